@@ -1,0 +1,214 @@
+#include "frontend/program.hpp"
+
+#include <cstdlib>
+#include <fstream>
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "frontend/debug_output.hpp"
+#include "frontend/error.hpp"
+
+namespace vplkit {
+namespace fs = std::filesystem;
+
+fs::path default_shader_dir() {
+  if (const char* from_environment = std::getenv("VPLKIT_SHADER_DIR"); from_environment && *from_environment)
+    return from_environment;
+  if (fs::exists(fs::path(VPLKIT_SOURCE_SHADER_DIR) / "lib")) return VPLKIT_SOURCE_SHADER_DIR;
+  return VPLKIT_INSTALLED_SHADER_DIR;
+}
+
+namespace {
+
+std::string read_text_file(const fs::path& path, const std::string& what_for) {
+  std::error_code ignored;
+  if (!fs::exists(path, ignored)) throw error("shader file not found: " + path.string() + what_for);
+  if (fs::is_directory(path, ignored)) throw error("shader path is a directory, not a file: " + path.string());
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw error("cannot read shader file " + path.string());
+  std::ostringstream contents;
+  contents << in.rdbuf();
+  if (in.bad()) throw error("error while reading shader file " + path.string());
+  return contents.str();
+}
+
+class expander {
+ public:
+  explicit expander(const fs::path& root) : root_(root) {}
+
+  expanded_source run(const std::string& text, const std::string& display_name) {
+    expand(text, display_name, /*top_level=*/true);
+    return {out_.str(), file_names_};
+  }
+
+ private:
+  void expand(const std::string& text, const std::string& display_name, bool top_level) {
+    static const std::regex include_line(R"(^\s*#\s*include\s+\"([^\"]+)\"\s*(//.*)?$)");
+    static const std::regex version_line(R"(^\s*#\s*version\b.*$)");
+    const int file_number = static_cast<int>(file_names_.size());
+    file_names_.push_back(display_name);
+    std::istringstream lines(text);
+    std::string line;
+    int line_number = 0;
+    bool wrote_line_directive = false;
+    while (std::getline(lines, line)) {
+      ++line_number;
+      if (!line.empty() && line.back() == '\r') line.pop_back();
+      std::smatch match;
+      if (std::regex_match(line, version_line)) {
+        if (!top_level || line_number != 1)
+          throw error(display_name + ":" + std::to_string(line_number) +
+                      ": #version must be the first line of the top-level shader, not in an included file");
+        out_ << line << "\n";
+        continue;
+      }
+      if (!wrote_line_directive) {
+        out_ << "#line " << line_number << " " << file_number << "\n";
+        wrote_line_directive = true;
+      }
+      if (std::regex_match(line, match, include_line)) {
+        const std::string relative = match[1].str();
+        const fs::path path = root_ / relative;
+        if (included_.insert(fs::weakly_canonical(path).string()).second) {
+          std::error_code ignored;
+          if (!fs::exists(path, ignored))
+            throw error(display_name + ":" + std::to_string(line_number) + ": included file \"" +
+                        relative + "\" not found (looked in " + root_.string() + ")");
+          expand(read_text_file(path, ""), relative, /*top_level=*/false);
+        }
+        out_ << "#line " << (line_number + 1) << " " << file_number << "\n";
+        continue;
+      }
+      out_ << line << "\n";
+    }
+  }
+
+  fs::path root_;
+  std::ostringstream out_;
+  std::vector<std::string> file_names_;
+  std::set<std::string> included_;
+};
+
+const char* stage_name(shader_stage stage) {
+  return stage == shader_stage::vertex ? "vertex" : "fragment";
+}
+
+}  // namespace
+
+shader_library::shader_library(fs::path root) : root_(std::move(root)) {
+  std::error_code ignored;
+  if (!fs::is_directory(root_, ignored))
+    throw error("shader directory not found: " + root_.string() +
+                " (set --shader-dir or VPLKIT_SHADER_DIR to the vplkit shaders/ folder)");
+}
+
+expanded_source shader_library::expand_file(const std::string& relative_path) const {
+  const std::string text =
+      read_text_file(root_ / relative_path, " (shader directory " + root_.string() +
+                                                 "; set --shader-dir or VPLKIT_SHADER_DIR)");
+  return expander(root_).run(text, relative_path);
+}
+
+expanded_source shader_library::expand_text(const std::string& text, const std::string& display_name) const {
+  return expander(root_).run(text, display_name);
+}
+
+std::string map_log_to_files(const std::string& log, const std::vector<std::string>& file_names) {
+  // Mesa: "0:12(5): error: ...", NVIDIA: "0(12) : error C0000: ...", AMD: "ERROR: 0:12: ...".
+  static const std::regex mesa(R"(^(\d+):(\d+)\((\d+)\))");
+  static const std::regex nvidia(R"(^(\d+)\((\d+)\))");
+  static const std::regex amd(R"(^(ERROR|WARNING): (\d+):(\d+):)");
+  auto name_of = [&](const std::string& number) {
+    const std::size_t index = std::stoul(number);
+    return index < file_names.size() ? file_names[index] : "<source " + number + ">";
+  };
+  std::istringstream lines(log);
+  std::ostringstream out;
+  std::string line;
+  while (std::getline(lines, line)) {
+    std::smatch match;
+    if (std::regex_search(line, match, mesa))
+      line = name_of(match[1]) + ":" + match[2].str() + ":" + match[3].str() + match.suffix().str();
+    else if (std::regex_search(line, match, nvidia))
+      line = name_of(match[1]) + ":" + match[2].str() + match.suffix().str();
+    else if (std::regex_search(line, match, amd))
+      line = name_of(match[2]) + ":" + match[3].str() + ": " + match[1].str() + match.suffix().str();
+    if (!line.empty()) out << "  " << line << "\n";
+  }
+  return out.str();
+}
+
+program link_program(const std::string& program_name, const std::vector<stage_source>& stages,
+                     const std::vector<std::string>& transform_feedback_varyings) {
+  check_gl("before building program " + program_name);
+  gl_program linked(glCreateProgram());
+  std::vector<gl_shader> shaders;
+  for (const stage_source& stage : stages) {
+    gl_shader shader(glCreateShader(stage.stage == shader_stage::vertex ? GL_VERTEX_SHADER : GL_FRAGMENT_SHADER));
+    const char* text = stage.source.text.c_str();
+    glShaderSource(shader.get(), 1, &text, nullptr);
+    glCompileShader(shader.get());
+    GLint compiled = GL_FALSE;
+    glGetShaderiv(shader.get(), GL_COMPILE_STATUS, &compiled);
+    if (!compiled) {
+      GLint length = 0;
+      glGetShaderiv(shader.get(), GL_INFO_LOG_LENGTH, &length);
+      std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
+      glGetShaderInfoLog(shader.get(), length, nullptr, log.data());
+      log.resize(std::char_traits<char>::length(log.c_str()));
+      // Compile failures are reported here; drop the driver's duplicate KHR_debug copy.
+      try { check_gl("compile"); } catch (const error&) {}
+      throw error("GLSL compile error in " + std::string(stage_name(stage.stage)) + " shader " +
+                  stage.source.file_names.front() + " (program " + program_name + "):\n" +
+                  map_log_to_files(log, stage.source.file_names));
+    }
+    glAttachShader(linked.get(), shader.get());
+    shaders.push_back(std::move(shader));
+  }
+  if (!transform_feedback_varyings.empty()) {
+    std::vector<const char*> names;
+    for (const std::string& name : transform_feedback_varyings) names.push_back(name.c_str());
+    glTransformFeedbackVaryings(linked.get(), static_cast<GLsizei>(names.size()), names.data(), GL_SEPARATE_ATTRIBS);
+  }
+  glLinkProgram(linked.get());
+  GLint link_ok = GL_FALSE;
+  glGetProgramiv(linked.get(), GL_LINK_STATUS, &link_ok);
+  if (!link_ok) {
+    GLint length = 0;
+    glGetProgramiv(linked.get(), GL_INFO_LOG_LENGTH, &length);
+    std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
+    glGetProgramInfoLog(linked.get(), length, nullptr, log.data());
+    log.resize(std::char_traits<char>::length(log.c_str()));
+    try { check_gl("link"); } catch (const error&) {}
+    std::vector<std::string> all_files;
+    for (const stage_source& stage : stages) all_files.push_back(stage.source.file_names.front());
+    std::string files;
+    for (const std::string& name : all_files) files += (files.empty() ? "" : ", ") + name;
+    throw error("GLSL link error in program " + program_name + " (" + files + "):\n  " + log);
+  }
+  for (const gl_shader& shader : shaders) glDetachShader(linked.get(), shader.get());
+  check_gl("building program " + program_name);
+  return program(std::move(linked));
+}
+
+program load_program(const shader_library& library, const std::string& vertex_file,
+                     const std::string& fragment_file) {
+  return link_program(vertex_file + " + " + fragment_file,
+                      {{shader_stage::vertex, library.expand_file(vertex_file)},
+                       {shader_stage::fragment, library.expand_file(fragment_file)}});
+}
+
+// GL 3.3 has no glProgramUniform (that is 4.1), so a setter binds the program first.
+void program::set(const std::string& uniform, int value) const { use(); glUniform1i(location(uniform), value); }
+void program::set(const std::string& uniform, unsigned value) const { use(); glUniform1ui(location(uniform), value); }
+void program::set(const std::string& uniform, float value) const { use(); glUniform1f(location(uniform), value); }
+void program::set(const std::string& uniform, const glm::vec2& value) const { use(); glUniform2fv(location(uniform), 1, glm::value_ptr(value)); }
+void program::set(const std::string& uniform, const glm::vec3& value) const { use(); glUniform3fv(location(uniform), 1, glm::value_ptr(value)); }
+void program::set(const std::string& uniform, const glm::vec4& value) const { use(); glUniform4fv(location(uniform), 1, glm::value_ptr(value)); }
+void program::set(const std::string& uniform, const glm::ivec2& value) const { use(); glUniform2iv(location(uniform), 1, glm::value_ptr(value)); }
+void program::set(const std::string& uniform, const glm::mat4& value) const { use(); glUniformMatrix4fv(location(uniform), 1, GL_FALSE, glm::value_ptr(value)); }
+
+}  // namespace vplkit

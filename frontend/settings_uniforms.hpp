@@ -1,0 +1,19 @@
+// The one place where each kernel settings struct is copied into its GLSL twin (a uniform struct
+// of the same name and fields). Every program that includes a lib file fills it from here.
+#pragma once
+
+#include <string>
+
+#include <vplkit/direct_light.hpp>
+#include <vplkit/irradiance.hpp>
+#include <vplkit/micro_linear_buffer.hpp>
+
+#include "frontend/program.hpp"
+
+namespace vplkit {
+
+void set_uniforms(const program& target, const std::string& name, const irradiance_settings<float>& settings);
+void set_uniforms(const program& target, const std::string& name, const elevation_slots<float>& slots);
+void set_uniforms(const program& target, const std::string& name, const spot_light<float>& light);
+
+}  // namespace vplkit

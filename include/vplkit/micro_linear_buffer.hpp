@@ -1,0 +1,140 @@
+// The micro linear buffer of paper 000 (section 3.3): approximate visibility of the pixel lights
+// sampled along one path of the radial pattern, near to far, as seen from one shading point.
+//
+// Both points are in the light's eye space (xy is the horizontal plane). The elevation of the
+// pixel light seen from the shading point, phi = atan(dz / |dxy|) in [-pi/2, pi/2], falls in one
+// of B equal slots (elevation_bucket). A nearer sample on the same path in the same slot lies in
+// the same direction from the shading point and so hides the farther one.
+//   Alg. 2  slot empty -> visible, mark it; else occluded.
+//   Alg. 3  as Alg. 2, but a sample in the same slot as its predecessor repeats the
+//           predecessor's verdict and leaves the buffer alone (one smooth surface, Fig. 3.4).
+//   Alg. 6  branch-free Alg. 3: slots are numbers initialised to 1; nu = slot, slot -= 1; the
+//           caller multiplies the contribution by clamp(nu, 0, 1) (Alg. 5, line 12).
+// Alg. 6 and Alg. 3 give the same verdict for every sequence (tested exhaustively).
+//
+// The bucket is found without atan: phi >= phi_k  <=>  dz >= tan(phi_k) * |dxy| for |dxy| > 0,
+// so the slot index is the number of interior boundaries k with dz >= tan(phi_k) * |dxy|. The
+// tangents are derived once, in double, by make_elevation_slots (C++) and handed to GLSL as a
+// uniform, so both sides make the same decision from the same inputs with IEEE-exact operations
+// (multiply, add, sqrt, compare) instead of two different atan approximations.
+// Points straight above (dz > 0, dxy = 0) fall in the top slot, straight below in the bottom one.
+//
+// GLSL twin: shaders/lib/micro_linear_buffer.glsl.
+#pragma once
+
+#include <cmath>
+
+#include <glm/glm.hpp>
+
+namespace vplkit {
+
+/// Largest slot count B supported (array sizes on both sides). GLSL: VPLKIT_MAX_SLOTS.
+inline constexpr int micro_linear_buffer_max_slots = 16;
+
+/// The slot layout for B slots: the tangents of the B - 1 interior slot boundaries, ascending.
+/// GLSL twin: struct elevation_slots (upload with one uniform struct).
+template <typename T>
+struct elevation_slots {
+  int count = 0;
+  T boundary_tangent[micro_linear_buffer_max_slots - 1] = {};
+};
+
+/// Returns nullptr when `count` is a usable slot count, else a message saying why not.
+constexpr const char* validate_slot_count(int count) {
+  if (count < 1 || count > micro_linear_buffer_max_slots)
+    return "micro linear buffer slot count must be in [1, 16]";
+  return nullptr;
+}
+
+/// The constants both sides need for B = count slots. Boundary k (1..B-1) is at elevation
+/// phi_k = pi * (k / B - 1/2); computed in double so every float tangent is correctly rounded.
+/// `count` must pass validate_slot_count (it is clamped into range otherwise).
+template <typename T>
+elevation_slots<T> make_elevation_slots(int count) {
+  elevation_slots<T> slots;
+  slots.count = glm::clamp(count, 1, micro_linear_buffer_max_slots);
+  const double pi = 3.14159265358979323846;
+  for (int k = 1; k < slots.count; ++k) {
+    const double fraction = static_cast<double>(k) / static_cast<double>(slots.count) - 0.5;
+    slots.boundary_tangent[k - 1] = static_cast<T>(std::tan(pi * fraction));
+  }
+  return slots;
+}
+
+/// Slot index in [0, slots.count) of the elevation of xp_eye seen from x_eye (light eye space).
+template <typename T, glm::qualifier Q>
+int elevation_bucket(const glm::vec<3, T, Q>& x_eye, const glm::vec<3, T, Q>& xp_eye,
+                     const elevation_slots<T>& slots) {
+  const T dx = xp_eye.x - x_eye.x;
+  const T dy = xp_eye.y - x_eye.y;
+  const T dz = xp_eye.z - x_eye.z;
+  const T horizontal = std::sqrt(dx * dx + dy * dy);
+  int index = 0;
+  for (int k = 0; k < slots.count - 1; ++k) index += (dz >= slots.boundary_tangent[k] * horizontal) ? 1 : 0;
+  return index;
+}
+
+/// Convenience form of the public contract elevation_bucket(x_eye, xp_eye, slots) with an int
+/// slot count (C++ only: in a shader, pass the elevation_slots uniform instead).
+template <typename T, glm::qualifier Q>
+int elevation_bucket(const glm::vec<3, T, Q>& x_eye, const glm::vec<3, T, Q>& xp_eye, int slots) {
+  return elevation_bucket(x_eye, xp_eye, make_elevation_slots<T>(slots));
+}
+
+/// Per-path visibility state. GLSL twin: struct micro_linear_buffer.
+template <typename T>
+struct micro_linear_buffer {
+  /// 1 = no earlier sample of this path in this elevation range ("visible"); Alg. 2 and 3 set it
+  /// to 0 ("occluded"), Alg. 6 decrements it.
+  T slot[micro_linear_buffer_max_slots] = {};
+  /// idx_{-1} of Alg. 3 and 6: the slot of the last sample that was tested, -1 before the first.
+  int previous_index = -1;
+  /// nu_{-1}: the verdict (Alg. 3) or unclamped slot value (Alg. 6) of that sample.
+  T previous_visibility = T(1);
+};
+
+/// Start a new path: every slot visible, no predecessor. (The buffer is reset for every path.)
+template <typename T>
+void micro_linear_buffer_reset(micro_linear_buffer<T>& buffer, int slot_count) {
+  for (int i = 0; i < micro_linear_buffer_max_slots; ++i) buffer.slot[i] = i < slot_count ? T(1) : T(0);
+  buffer.previous_index = -1;
+  buffer.previous_visibility = T(1);
+}
+
+/// Alg. 2: returns 1 (visible) or 0 (occluded).
+template <typename T>
+T micro_linear_buffer_alg2(micro_linear_buffer<T>& buffer, int index) {
+  const T visibility = buffer.slot[index];
+  buffer.slot[index] = T(0);
+  buffer.previous_index = index;
+  buffer.previous_visibility = visibility;
+  return visibility;
+}
+
+/// Alg. 3: returns 1 (visible) or 0 (occluded).
+template <typename T>
+T micro_linear_buffer_alg3(micro_linear_buffer<T>& buffer, int index) {
+  T visibility = buffer.previous_visibility;
+  if (index != buffer.previous_index) {
+    visibility = buffer.slot[index];
+    buffer.slot[index] = T(0);
+  }
+  buffer.previous_index = index;
+  buffer.previous_visibility = visibility;
+  return visibility;
+}
+
+/// Alg. 6: returns nu unclamped (1, 0, -1, ...); the caller applies clamp(nu, 0, 1) (Alg. 5).
+template <typename T>
+T micro_linear_buffer_alg6(micro_linear_buffer<T>& buffer, int index) {
+  // The thesis keeps this one branch (Alg. 6, line 3); a select compiles to the same on GPUs.
+  const bool same_as_previous = index == buffer.previous_index;
+  const T slot_value = buffer.slot[index];
+  const T visibility = same_as_previous ? buffer.previous_visibility : slot_value;
+  buffer.slot[index] = same_as_previous ? slot_value : slot_value - T(1);
+  buffer.previous_index = index;
+  buffer.previous_visibility = visibility;
+  return visibility;
+}
+
+}  // namespace vplkit
