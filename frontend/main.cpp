@@ -133,7 +133,9 @@ int run_view(const common_options& options, int frames) {
 int main(int argc, char** argv) {
   CLI::App app{"vplkit: real-time one-bounce indirect illumination (RSM with visibility, Light Wave, "
                "robust final gathering)"};
-  app.require_subcommand(1);
+  // At most one subcommand; an unknown word is then reported by name as an unexpected argument
+  // (require_subcommand(1) would only say that a subcommand is required).
+  app.require_subcommand(0, 1);
   app.set_version_flag("--version", vplkit::version_string);
 
   std::string context_kind = "headless";
@@ -163,6 +165,8 @@ int main(int argc, char** argv) {
     if (info->parsed()) return run_info(context_kind);
     if (render->parsed()) return run_render(render_options, out);
     if (view->parsed()) return run_view(view_options, frames);
+    std::cerr << "vplkit: error: a subcommand is required: info, render or view (see vplkit --help)\n";
+    return 2;
   } catch (const std::exception& failure) {
     std::cerr << "vplkit: error: " << failure.what() << "\n";
     return 1;

@@ -46,6 +46,10 @@ texture_2d::texture_2d(int width, int height, texel_format format, const void* i
     : name_(generate_texture()), width_(width), height_(height), format_(format) {
   check_texture_size(width, height, std::string("texture ") + format_name(format));
   const format_info f = info(format);
+  // Leave the caller's binding on the active unit alone: creating a render target must not
+  // silently unbind an input texture that was bound before it.
+  GLint previous = 0;
+  glGetIntegerv(GL_TEXTURE_BINDING_2D, &previous);
   glBindTexture(GL_TEXTURE_2D, name_.get());
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
   glTexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(f.internal_format), width, height, 0, f.format, f.type, initial);
@@ -53,6 +57,7 @@ texture_2d::texture_2d(int width, int height, texel_format format, const void* i
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glBindTexture(GL_TEXTURE_2D, static_cast<GLuint>(previous));
   check_gl(std::string("allocating a ") + std::to_string(width) + "x" + std::to_string(height) + " " +
            format_name(format) + " texture");
 }

@@ -1,0 +1,72 @@
+// Kernel micro-benchmarks (Google Benchmark): Eq. 3.2 throughput in float and double, and the
+// cost of Alg. 3 against Alg. 6 over slots x samples per path.
+//   build/bench/vplkit_bench --benchmark_filter=alg
+#include <benchmark/benchmark.h>
+
+#include <random>
+#include <vector>
+
+#include <vplkit/hash.hpp>
+#include <vplkit/irradiance.hpp>
+#include <vplkit/micro_linear_buffer.hpp>
+
+namespace {
+
+template <typename T>
+void pixel_light_irradiance_throughput(benchmark::State& state) {
+  using vec3 = glm::vec<3, T>;
+  constexpr std::size_t count = 4096;  // fits in L1/L2: measures arithmetic, not memory
+  std::mt19937 random(1);
+  std::uniform_real_distribution<T> uniform(-1, 1);
+  std::vector<vec3> points(count), normals(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    points[i] = vec3(uniform(random), uniform(random), uniform(random));
+    normals[i] = glm::normalize(vec3(uniform(random), uniform(random), uniform(random)) + vec3(0, 0, T(0.01)));
+  }
+  const vec3 x(0, 0, 2), n(0, 0, -1), flux(1);
+  for (auto _ : state) {
+    vec3 sum(0);
+    for (std::size_t i = 0; i < count; ++i) sum += vplkit::pixel_light_irradiance(x, n, points[i], normals[i], flux);
+    benchmark::DoNotOptimize(sum);
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(count));
+}
+BENCHMARK_TEMPLATE(pixel_light_irradiance_throughput, float);
+BENCHMARK_TEMPLATE(pixel_light_irradiance_throughput, double);
+
+// Slot indices of 1024 paths; a path's visibility is evaluated sample by sample as in Alg. 5.
+std::vector<int> random_paths(int slots, int samples_per_path) {
+  std::vector<int> indices(static_cast<std::size_t>(1024 * samples_per_path));
+  for (std::size_t i = 0; i < indices.size(); ++i)
+    indices[i] = static_cast<int>(vplkit::hash_uint32(static_cast<std::uint32_t>(i)) % static_cast<std::uint32_t>(slots));
+  return indices;
+}
+
+template <bool BranchFree>
+void visibility_cost(benchmark::State& state) {
+  const int slots = static_cast<int>(state.range(0));
+  const int samples = static_cast<int>(state.range(1));
+  const std::vector<int> indices = random_paths(slots, samples);
+  for (auto _ : state) {
+    float visible = 0.0f;
+    for (std::size_t path = 0; path < 1024; ++path) {
+      vplkit::micro_linear_buffer<float> buffer;
+      vplkit::micro_linear_buffer_reset(buffer, slots);
+      for (int sample = 0; sample < samples; ++sample) {
+        const int index = indices[path * static_cast<std::size_t>(samples) + static_cast<std::size_t>(sample)];
+        if constexpr (BranchFree) visible += glm::clamp(vplkit::micro_linear_buffer_alg6(buffer, index), 0.0f, 1.0f);
+        else visible += vplkit::micro_linear_buffer_alg3(buffer, index);
+      }
+    }
+    benchmark::DoNotOptimize(visible);
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * 1024 * samples);
+}
+void alg3(benchmark::State& state) { visibility_cost<false>(state); }
+void alg6(benchmark::State& state) { visibility_cost<true>(state); }
+BENCHMARK(alg3)->ArgNames({"slots", "samples"})->ArgsProduct({{2, 5, 8, 16}, {5, 10, 20, 40}});
+BENCHMARK(alg6)->ArgNames({"slots", "samples"})->ArgsProduct({{2, 5, 8, 16}, {5, 10, 20, 40}});
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,95 @@
+# Runs the vplkit executable on good and bad input and checks exit codes, messages and files.
+# Inputs: VPLKIT (the executable), SHADERS (the source shaders/ folder), WORK (a scratch folder),
+# XVFB_RUN (xvfb-run, or empty).
+file(REMOVE_RECURSE "${WORK}")
+file(MAKE_DIRECTORY "${WORK}")
+set(failures 0)
+
+# expect_failure(<name> <stderr regex> <file that must not exist> <args...>)
+function(expect_failure name pattern must_not_exist)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  set(problem "")
+  if(code EQUAL 0)
+    set(problem "exit code 0, expected non-zero")
+  elseif(NOT "${out}${err}" MATCHES "${pattern}")
+    set(problem "output does not match '${pattern}'")
+  elseif(NOT must_not_exist STREQUAL "" AND EXISTS "${must_not_exist}")
+    set(problem "left a file behind: ${must_not_exist}")
+  endif()
+  if(problem)
+    message(SEND_ERROR "FAILED ${name}: ${problem}\n  command: ${ARGN}\n  exit: ${code}\n  stdout: ${out}\n  stderr: ${err}")
+    math(EXPR count "${failures} + 1")
+    set(failures ${count} PARENT_SCOPE)
+  else()
+    message(STATUS "ok ${name}: exit ${code}, message: ${err}")
+  endif()
+endfunction()
+
+function(expect_success name pattern)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT code EQUAL 0 OR NOT "${out}" MATCHES "${pattern}")
+    message(SEND_ERROR "FAILED ${name}: exit ${code}\n  command: ${ARGN}\n  stdout: ${out}\n  stderr: ${err}")
+    math(EXPR count "${failures} + 1")
+    set(failures ${count} PARENT_SCOPE)
+  else()
+    message(STATUS "ok ${name}")
+  endif()
+endfunction()
+
+# --- good input -----------------------------------------------------------------------------
+expect_success("info prints GL and library versions" "vplkit [0-9]+\\.[0-9]+\\.[0-9]+.*GL_VERSION.*GL_RENDERER" "${VPLKIT}" info)
+expect_success("render writes the image and says where" "wrote .*/small\\.png" "${VPLKIT}" render --size 48x32 --shadow-map-size 128 --out "${WORK}/small.png")
+if(NOT EXISTS "${WORK}/small.png")
+  message(SEND_ERROR "FAILED render: ${WORK}/small.png does not exist")
+  math(EXPR failures "${failures} + 1")
+endif()
+expect_success("render prints a pass table" "\\| shadow map \\|.*\\| shading \\|.*\\| total \\|" "${VPLKIT}" render --size 16 --format rgba32f --out "${WORK}/f32.png")
+
+# --- bad input: a clear message, a non-zero exit, no file -------------------------------------
+expect_failure("unknown option" "--bogus" "" "${VPLKIT}" render --bogus)
+expect_failure("unknown subcommand" "frobnicate" "" "${VPLKIT}" frobnicate)
+expect_failure("size zero" "--size.*\\[1, 16384\\]" "${WORK}/zero.png" "${VPLKIT}" render --size 0 --out "${WORK}/zero.png")
+expect_failure("size not a number" "--size.*expected N or WxH" "${WORK}/bad.png" "${VPLKIT}" render --size big --out "${WORK}/bad.png")
+expect_failure("negative min distance" "--min-distance" "${WORK}/md.png" "${VPLKIT}" render --min-distance -1 --out "${WORK}/md.png")
+expect_failure("unknown format" "--format.*rgba8" "${WORK}/fmt.png" "${VPLKIT}" render --format rgba8 --out "${WORK}/fmt.png")
+expect_failure("unknown scene" "--scene.*atrium" "${WORK}/scene.png" "${VPLKIT}" render --scene atrium --out "${WORK}/scene.png")
+expect_failure("output not a png" "--out must name a \\.png file" "${WORK}/image.jpg" "${VPLKIT}" render --out "${WORK}/image.jpg")
+file(WRITE "${WORK}/a-file" "")
+expect_failure("unwritable output path" "cannot write ${WORK}/a-file/x\\.png" "${WORK}/a-file/x.png"
+               "${VPLKIT}" render --size 16 --out "${WORK}/a-file/x.png")
+expect_failure("missing shader folder" "shader directory not found: ${WORK}/no-shaders" "${WORK}/ns.png"
+               "${VPLKIT}" render --shader-dir "${WORK}/no-shaders" --out "${WORK}/ns.png")
+
+# A shader folder with one file missing, and one with a syntax error in a lib file.
+file(COPY "${SHADERS}/" DESTINATION "${WORK}/missing-file")
+file(REMOVE "${WORK}/missing-file/direct.frag")
+expect_failure("missing shader file" "shader file not found: ${WORK}/missing-file/direct\\.frag" "${WORK}/mf.png"
+               "${VPLKIT}" render --shader-dir "${WORK}/missing-file" --out "${WORK}/mf.png")
+file(COPY "${SHADERS}/" DESTINATION "${WORK}/syntax-error")
+file(READ "${WORK}/syntax-error/lib/direct_light.glsl" text)
+set(marker "float cone = t * t * (3.0 - 2.0 * t);")
+string(FIND "${text}" "${marker}" offset)
+string(SUBSTRING "${text}" 0 ${offset} before)
+string(REGEX MATCHALL "\n" newlines "${before}")
+list(LENGTH newlines line)
+math(EXPR line "${line} + 1")  # the 1-based line of the marker
+string(REPLACE "${marker}" "float cone = t * t * (3.0 - 2.0 * t) +;" text "${text}")
+file(WRITE "${WORK}/syntax-error/lib/direct_light.glsl" "${text}")
+expect_failure("GLSL syntax error names the lib file and line" "GLSL compile error.*lib/direct_light\\.glsl:${line}:" "${WORK}/se.png"
+               "${VPLKIT}" render --shader-dir "${WORK}/syntax-error" --out "${WORK}/se.png")
+
+# No GL context: a window without a display.
+expect_failure("no GL context (window without a display)" "no GL context: GLFW" ""
+               ${CMAKE_COMMAND} -E env --unset=DISPLAY --unset=WAYLAND_DISPLAY "${VPLKIT}" info --context window)
+
+# A real window under a virtual X server, when xvfb-run is installed (the setup script installs it).
+if(XVFB_RUN)
+  expect_success("view opens a window under Xvfb" "closed the window" "${XVFB_RUN}" -a "${VPLKIT}" view --size 64 --frames 3)
+  expect_success("info in a window under Xvfb" "context +GLFW window" "${XVFB_RUN}" -a "${VPLKIT}" info --context window)
+else()
+  message(STATUS "skipped the window tests: xvfb-run is not installed")
+endif()
+
+if(failures GREATER 0)
+  message(FATAL_ERROR "${failures} CLI check(s) failed")
+endif()

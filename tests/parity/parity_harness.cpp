@@ -1,0 +1,313 @@
+#include "tests/parity/parity_harness.hpp"
+
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <iomanip>
+#include <memory>
+#include <sstream>
+
+#include "frontend/context.hpp"
+#include "frontend/debug_output.hpp"
+#include "frontend/error.hpp"
+#include "frontend/gl_object.hpp"
+#include "frontend/render_target.hpp"
+
+namespace vplkit::parity {
+
+const shader_library& test_shaders() {
+  static std::unique_ptr<gl_context> context = create_headless_context();
+  static const shader_library library(default_shader_dir());
+  return library;
+}
+
+namespace {
+
+std::string include_lines(const kernel_source& source) {
+  std::string text;
+  for (const std::string& include : source.includes) text += "#include \"" + include + "\"\n";
+  return text;
+}
+
+void check_inputs(const kernel_inputs& inputs) {
+  if (inputs.width < 1 || inputs.height < 1) throw error("parity: empty input grid");
+  for (const auto& input : inputs.floats)
+    if (input.size() != inputs.size()) throw error("parity: a float input does not have width * height values");
+  for (const auto& input : inputs.uints)
+    if (input.size() != inputs.size()) throw error("parity: a uint input does not have width * height values");
+}
+
+std::string fragment_source(const kernel_source& source, const kernel_inputs& inputs) {
+  std::ostringstream out;
+  out << "#version 330 core\n" << include_lines(source);
+  for (std::size_t i = 0; i < inputs.floats.size(); ++i) out << "uniform sampler2D float_input" << i << ";\n";
+  for (std::size_t i = 0; i < inputs.uints.size(); ++i) out << "uniform usampler2D uint_input" << i << ";\n";
+  int location = 0;
+  for (int i = 0; i < source.float_outputs; ++i) out << "layout(location = " << location++ << ") out vec4 float_output" << i << ";\n";
+  for (int i = 0; i < source.uint_outputs; ++i) out << "layout(location = " << location++ << ") out uvec4 uint_output" << i << ";\n";
+  out << source.declarations << "\nvoid main() {\n  ivec2 texel = ivec2(gl_FragCoord.xy);\n";
+  for (std::size_t i = 0; i < inputs.floats.size(); ++i) out << "  vec4 fin" << i << " = texelFetch(float_input" << i << ", texel, 0);\n";
+  for (std::size_t i = 0; i < inputs.uints.size(); ++i) out << "  uvec4 uin" << i << " = texelFetch(uint_input" << i << ", texel, 0);\n";
+  for (int i = 0; i < source.float_outputs; ++i) out << "  vec4 fout" << i << " = vec4(0.0);\n";
+  for (int i = 0; i < source.uint_outputs; ++i) out << "  uvec4 uout" << i << " = uvec4(0u);\n";
+  out << "  {\n" << source.body << "\n  }\n";
+  for (int i = 0; i < source.float_outputs; ++i) out << "  float_output" << i << " = fout" << i << ";\n";
+  for (int i = 0; i < source.uint_outputs; ++i) out << "  uint_output" << i << " = uout" << i << ";\n";
+  out << "}\n";
+  return out.str();
+}
+
+std::string vertex_source(const kernel_source& source, const kernel_inputs& inputs) {
+  std::ostringstream out;
+  out << "#version 330 core\n" << include_lines(source);
+  int location = 0;
+  for (std::size_t i = 0; i < inputs.floats.size(); ++i) out << "layout(location = " << location++ << ") in vec4 fin" << i << ";\n";
+  for (std::size_t i = 0; i < inputs.uints.size(); ++i) out << "layout(location = " << location++ << ") in uvec4 uin" << i << ";\n";
+  for (int i = 0; i < source.float_outputs; ++i) out << "out vec4 fout" << i << ";\n";
+  for (int i = 0; i < source.uint_outputs; ++i) out << "flat out uvec4 uout" << i << ";\n";
+  out << source.declarations << "\nvoid main() {\n";
+  for (int i = 0; i < source.float_outputs; ++i) out << "  fout" << i << " = vec4(0.0);\n";
+  for (int i = 0; i < source.uint_outputs; ++i) out << "  uout" << i << " = uvec4(0u);\n";
+  out << "  {\n" << source.body << "\n  }\n  gl_Position = vec4(0.0, 0.0, 0.0, 1.0);\n}\n";
+  return out.str();
+}
+
+}  // namespace
+
+kernel_outputs run_fragment(const kernel_source& source, const kernel_inputs& inputs, const uniform_setter& uniforms) {
+  const shader_library& shaders = test_shaders();
+  check_inputs(inputs);
+  static const char* const full_screen_triangle =
+      "#version 330 core\nvoid main() {\n  vec2 corner = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));\n"
+      "  gl_Position = vec4(corner * 4.0 - 1.0, 0.0, 1.0);\n}\n";
+  program kernel = link_program("parity fragment kernel " + source.name,
+                                {{shader_stage::vertex, shaders.expand_text(full_screen_triangle, "<parity full-screen triangle>")},
+                                 {shader_stage::fragment, shaders.expand_text(fragment_source(source, inputs), "<parity " + source.name + ">")}});
+  std::vector<texture_2d> textures;
+  for (const auto& input : inputs.floats) textures.emplace_back(inputs.width, inputs.height, texel_format::rgba32f, input.data());
+  for (const auto& input : inputs.uints) textures.emplace_back(inputs.width, inputs.height, texel_format::rgba32ui, input.data());
+  for (std::size_t i = 0; i < textures.size(); ++i) {
+    const bool is_float = i < inputs.floats.size();
+    kernel.set((is_float ? "float_input" + std::to_string(i) : "uint_input" + std::to_string(i - inputs.floats.size())), static_cast<int>(i));
+    textures[i].bind(static_cast<int>(i));
+  }
+  if (uniforms) uniforms(kernel);
+  std::vector<texel_format> formats(static_cast<std::size_t>(source.float_outputs), texel_format::rgba32f);
+  formats.insert(formats.end(), static_cast<std::size_t>(source.uint_outputs), texel_format::rgba32ui);
+  framebuffer target(inputs.width, inputs.height, formats, false);
+  target.bind();
+  gl_vertex_array empty(generate_vertex_array());
+  glBindVertexArray(empty.get());
+  kernel.use();
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  check_gl("running parity fragment kernel " + source.name);
+
+  kernel_outputs outputs;
+  for (int i = 0; i < source.float_outputs; ++i) {
+    const std::vector<float> texels = target.read_float(static_cast<std::size_t>(i));
+    std::vector<glm::vec4> values(inputs.size());
+    std::memcpy(values.data(), texels.data(), texels.size() * sizeof(float));
+    outputs.floats.push_back(std::move(values));
+  }
+  for (int i = 0; i < source.uint_outputs; ++i) {
+    const std::vector<std::uint32_t> texels = target.read_uint(static_cast<std::size_t>(source.float_outputs + i));
+    std::vector<glm::uvec4> values(inputs.size());
+    std::memcpy(values.data(), texels.data(), texels.size() * sizeof(std::uint32_t));
+    outputs.uints.push_back(std::move(values));
+  }
+  return outputs;
+}
+
+kernel_outputs run_vertex(const kernel_source& source, const kernel_inputs& inputs, const uniform_setter& uniforms) {
+  const shader_library& shaders = test_shaders();
+  check_inputs(inputs);
+  std::vector<std::string> varyings;
+  for (int i = 0; i < source.float_outputs; ++i) varyings.push_back("fout" + std::to_string(i));
+  for (int i = 0; i < source.uint_outputs; ++i) varyings.push_back("uout" + std::to_string(i));
+  program kernel = link_program("parity vertex kernel " + source.name,
+                                {{shader_stage::vertex, shaders.expand_text(vertex_source(source, inputs), "<parity " + source.name + ">")}},
+                                varyings);
+  if (uniforms) uniforms(kernel);
+
+  const auto count = static_cast<GLsizei>(inputs.size());
+  gl_vertex_array vertex_array(generate_vertex_array());
+  glBindVertexArray(vertex_array.get());
+  std::vector<gl_buffer> attribute_buffers;
+  GLuint location = 0;
+  for (const auto& input : inputs.floats) {
+    attribute_buffers.emplace_back(generate_buffer());
+    glBindBuffer(GL_ARRAY_BUFFER, attribute_buffers.back().get());
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(input.size() * sizeof(glm::vec4)), input.data(), GL_STATIC_DRAW);
+    glEnableVertexAttribArray(location);
+    glVertexAttribPointer(location++, 4, GL_FLOAT, GL_FALSE, 0, nullptr);
+  }
+  for (const auto& input : inputs.uints) {
+    attribute_buffers.emplace_back(generate_buffer());
+    glBindBuffer(GL_ARRAY_BUFFER, attribute_buffers.back().get());
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(input.size() * sizeof(glm::uvec4)), input.data(), GL_STATIC_DRAW);
+    glEnableVertexAttribArray(location);
+    glVertexAttribIPointer(location++, 4, GL_UNSIGNED_INT, 0, nullptr);
+  }
+  std::vector<gl_buffer> captured;
+  for (std::size_t i = 0; i < varyings.size(); ++i) {
+    captured.emplace_back(generate_buffer());
+    glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, captured.back().get());
+    glBufferData(GL_TRANSFORM_FEEDBACK_BUFFER, static_cast<GLsizeiptr>(inputs.size() * 16), nullptr, GL_STATIC_READ);
+    glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, static_cast<GLuint>(i), captured.back().get());
+  }
+  kernel.use();
+  glEnable(GL_RASTERIZER_DISCARD);
+  glBeginTransformFeedback(GL_POINTS);
+  glDrawArrays(GL_POINTS, 0, count);
+  glEndTransformFeedback();
+  glDisable(GL_RASTERIZER_DISCARD);
+  check_gl("running parity vertex kernel " + source.name);
+
+  kernel_outputs outputs;
+  for (std::size_t i = 0; i < varyings.size(); ++i) {
+    glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, captured[i].get());
+    if (static_cast<int>(i) < source.float_outputs) {
+      std::vector<glm::vec4> values(inputs.size());
+      glGetBufferSubData(GL_TRANSFORM_FEEDBACK_BUFFER, 0, static_cast<GLsizeiptr>(values.size() * sizeof(glm::vec4)), values.data());
+      outputs.floats.push_back(std::move(values));
+    } else {
+      std::vector<glm::uvec4> values(inputs.size());
+      glGetBufferSubData(GL_TRANSFORM_FEEDBACK_BUFFER, 0, static_cast<GLsizeiptr>(values.size() * sizeof(glm::uvec4)), values.data());
+      outputs.uints.push_back(std::move(values));
+    }
+  }
+  for (std::size_t i = 0; i < varyings.size(); ++i) glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, static_cast<GLuint>(i), 0);
+  glBindVertexArray(0);
+  check_gl("reading back transform feedback of " + source.name);
+  return outputs;
+}
+
+std::int64_t ulp_distance(float a, float b) {
+  auto ordered = [](float value) {
+    std::int32_t bits;
+    std::memcpy(&bits, &value, sizeof bits);
+    // Map the sign-magnitude float order onto two's-complement order (-0 and +0 both to 0).
+    return bits < 0 ? static_cast<std::int64_t>(std::int32_t{INT32_MIN}) - bits : static_cast<std::int64_t>(bits);
+  };
+  return std::llabs(ordered(a) - ordered(b));
+}
+
+namespace {
+
+std::string describe_inputs(const kernel_inputs& inputs, std::size_t index) {
+  std::ostringstream out;
+  out << std::setprecision(9);
+  for (std::size_t i = 0; i < inputs.floats.size(); ++i) {
+    const glm::vec4& v = inputs.floats[i][index];
+    out << " fin" << i << "=(" << v.x << ", " << v.y << ", " << v.z << ", " << v.w << ")";
+  }
+  for (std::size_t i = 0; i < inputs.uints.size(); ++i) {
+    const glm::uvec4& v = inputs.uints[i][index];
+    out << " uin" << i << "=(" << v.x << ", " << v.y << ", " << v.z << ", " << v.w << ")";
+  }
+  return out.str();
+}
+
+std::string texel_name(const kernel_inputs& inputs, std::size_t index, int channel) {
+  const char* channels = "xyzw";
+  return "texel (" + std::to_string(index % static_cast<std::size_t>(inputs.width)) + ", " +
+         std::to_string(index / static_cast<std::size_t>(inputs.width)) + ")." + channels[channel];
+}
+
+std::size_t allowed(std::size_t values, double fraction) {
+  return static_cast<std::size_t>(std::floor(fraction * static_cast<double>(values)));
+}
+
+}  // namespace
+
+comparison compare(const std::string& kernel, const std::vector<glm::vec4>& gpu, const std::vector<glm::vec4>& cpu,
+                   const kernel_inputs& inputs, const tolerance& bounds, int channels) {
+  comparison result;
+  result.kernel = kernel;
+  if (gpu.size() != cpu.size() || gpu.size() != inputs.size()) throw error("parity compare: output sizes differ");
+  double worst_score = -1.0;
+  std::size_t listed = 0;
+  std::ostringstream list;
+  list << std::setprecision(9);
+  for (std::size_t index = 0; index < gpu.size(); ++index) {
+    for (int c = 0; c < channels; ++c) {
+      const float g = gpu[index][c], r = cpu[index][c];
+      ++result.values;
+      const bool finite = std::isfinite(g) && std::isfinite(r);
+      const double abs_error = finite ? std::fabs(static_cast<double>(g) - static_cast<double>(r)) : INFINITY;
+      const double magnitude = std::max(std::fabs(static_cast<double>(g)), std::fabs(static_cast<double>(r)));
+      const double rel_error = finite ? (magnitude > 0.0 ? abs_error / magnitude : 0.0) : INFINITY;
+      const std::int64_t ulps = finite ? ulp_distance(g, r) : INT64_MAX;
+      if (finite) {
+        result.max_abs = std::max(result.max_abs, abs_error);
+        result.max_rel = std::max(result.max_rel, rel_error);
+        result.max_ulp = std::max(result.max_ulp, ulps);
+      }
+      const bool within = finite && (abs_error <= bounds.max_abs || rel_error <= bounds.max_rel || ulps <= bounds.max_ulp);
+      // The worst texel: non-finite first, then by the error measure relative to its bound.
+      const double score = !finite ? INFINITY
+                                   : std::min({bounds.max_abs > 0 ? abs_error / bounds.max_abs : abs_error * 1e30,
+                                               bounds.max_rel > 0 ? rel_error / bounds.max_rel : rel_error * 1e30,
+                                               bounds.max_ulp > 0 ? static_cast<double>(ulps) / static_cast<double>(bounds.max_ulp)
+                                                                  : static_cast<double>(ulps) * 1e30});
+      std::ostringstream detail;
+      detail << std::setprecision(9) << texel_name(inputs, index, c) << ": gpu=" << g << " cpu=" << r
+             << " (abs " << abs_error << ", rel " << rel_error << ", ulp " << ulps << ");" << describe_inputs(inputs, index);
+      if (score > worst_score) {
+        worst_score = score;
+        result.worst = detail.str();
+      }
+      if (!within) {
+        ++result.mismatches;
+        if (listed++ < 8) list << "\n    " << detail.str();
+      }
+    }
+  }
+  result.allowed_mismatches = allowed(result.values, bounds.allowed_mismatch_fraction);
+  result.mismatch_list = list.str();
+  return result;
+}
+
+comparison compare_exact(const std::string& kernel, const std::vector<glm::uvec4>& gpu, const std::vector<glm::uvec4>& cpu,
+                         const kernel_inputs& inputs, double allowed_mismatch_fraction, int channels) {
+  comparison result;
+  result.kernel = kernel;
+  if (gpu.size() != cpu.size() || gpu.size() != inputs.size()) throw error("parity compare: output sizes differ");
+  std::size_t listed = 0;
+  std::ostringstream list;
+  for (std::size_t index = 0; index < gpu.size(); ++index) {
+    for (int c = 0; c < channels; ++c) {
+      ++result.values;
+      if (gpu[index][c] == cpu[index][c]) continue;
+      ++result.mismatches;
+      const std::string detail = texel_name(inputs, index, c) + ": gpu=" + std::to_string(gpu[index][c]) +
+                                 " cpu=" + std::to_string(cpu[index][c]) + ";" + describe_inputs(inputs, index);
+      if (result.worst.empty()) result.worst = detail;
+      if (listed++ < 8) list << "\n    " << detail;
+    }
+  }
+  result.allowed_mismatches = allowed(result.values, allowed_mismatch_fraction);
+  result.mismatch_list = list.str();
+  return result;
+}
+
+std::string comparison::summary() const {
+  std::ostringstream out;
+  out << std::setprecision(3) << "parity " << kernel << ": " << values << " values, " << mismatches
+      << " outside tolerance (allowed " << allowed_mismatches << "), max abs " << max_abs << ", max rel " << max_rel
+      << ", max ulp " << max_ulp << "\n  worst " << worst;
+  return out.str();
+}
+
+void require_parity(const comparison& result) {
+  MESSAGE(result.summary());
+  INFO("worst: " << result.worst);
+  INFO("mismatches:" << result.mismatch_list);
+  CHECK(result.passed());
+}
+
+}  // namespace vplkit::parity
