@@ -1,6 +1,7 @@
 // The vplkit executable: `info`, `render` (headless, the main job) and `view` (a window).
 #include <CLI/CLI.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -61,7 +62,15 @@ void add_common_options(CLI::App& command, common_options& options) {
       ->check(CLI::IsMember({"rgba16f", "rgba32f"}))->capture_default_str();
   command.add_option("--min-distance", options.min_distance,
                      "distance clamp of the light terms, scene units (irradiance_settings::min_distance)")
-      ->check(CLI::PositiveNumber)->capture_default_str();
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            float value = 0.0f;
+            return CLI::detail::lexical_cast(text, value) && value > 0.0f && std::isfinite(value)
+                       ? std::string()
+                       : "must be a number > 0 (scene units), got '" + text + "'";
+          },
+          "> 0"))
+      ->capture_default_str();
   command.add_option("--shader-dir", options.shader_dir, "folder with the vplkit shaders (default: $VPLKIT_SHADER_DIR, then the built-in path)");
 }
 

@@ -84,7 +84,12 @@ expect_failure("no GL context (window without a display)" "no GL context: GLFW" 
 
 # A real window under a virtual X server, when xvfb-run is installed (the setup script installs it).
 if(XVFB_RUN)
-  expect_success("view opens a window under Xvfb" "closed the window" "${XVFB_RUN}" -a "${VPLKIT}" view --size 64 --frames 3)
+  # Leak checking is off for this one run: GLFW's glfwTerminate unloads Mesa's DRI driver
+  # before LeakSanitizer runs, so the driver's process-lifetime allocations (2 x 56 bytes, seen
+  # in the sanitizer build) show without symbols and cannot be suppressed by library name. The
+  # frontend code on this path (renderer, programs) is leak-checked by the headless tests.
+  expect_success("view opens a window under Xvfb" "closed the window"
+                 ${CMAKE_COMMAND} -E env "ASAN_OPTIONS=detect_leaks=0" "${XVFB_RUN}" -a "${VPLKIT}" view --size 64 --frames 3)
   expect_success("info in a window under Xvfb" "context +GLFW window" "${XVFB_RUN}" -a "${VPLKIT}" info --context window)
 else()
   message(STATUS "skipped the window tests: xvfb-run is not installed")

@@ -1,0 +1,7 @@
+#!/usr/bin/env bash
+# README command 1: set up, build, and render the built-in default scene headless.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/setup.sh
+build/vplkit render --out output/cornell-box.png "$@"
+echo "The image is in $(pwd)/output/"
