@@ -11,81 +11,107 @@
 
 #include "frontend/context.hpp"
 #include "frontend/debug_output.hpp"
-#include "frontend/direct_renderer.hpp"
 #include "frontend/error.hpp"
 #include "frontend/image_io.hpp"
+#include "frontend/obj_loader.hpp"
 #include "frontend/program.hpp"
+#include "frontend/render_images.hpp"
+#include "frontend/rsm_pipeline.hpp"
 #include "frontend/scene.hpp"
 
 namespace {
 
+namespace fs = std::filesystem;
+
 // Largest image side the CLI accepts before asking GL; GL_MAX_TEXTURE_SIZE is checked later.
 constexpr int max_image_side = 16384;
 
-struct image_size {
-  int width = 512;
-  int height = 512;
-};
-
 // "512" or "640x480".
-std::string parse_size(const std::string& text, image_size& size) {
+std::string parse_size(const std::string& text, int& width, int& height) {
   static const std::regex pattern(R"((\d{1,6})(?:x(\d{1,6}))?)");
   std::smatch match;
   if (!std::regex_match(text, match, pattern)) return "expected N or WxH (for example 512 or 640x480), got '" + text + "'";
-  const int width = std::stoi(match[1]);
-  const int height = match[2].matched ? std::stoi(match[2]) : width;
-  if (width < 1 || height < 1 || width > max_image_side || height > max_image_side)
+  const int w = std::stoi(match[1]);
+  const int h = match[2].matched ? std::stoi(match[2]) : w;
+  if (w < 1 || h < 1 || w > max_image_side || h > max_image_side)
     return "each side must be in [1, " + std::to_string(max_image_side) + "], got '" + text + "'";
-  size = {width, height};
+  width = w;
+  height = h;
   return {};
 }
 
-struct common_options {
+CLI::Validator positive_number(const std::string& what) {
+  return CLI::Validator(
+      [what](std::string& text) {
+        double value = 0.0;
+        return CLI::detail::lexical_cast(text, value) && value > 0.0 && std::isfinite(value)
+                   ? std::string()
+                   : "must be a number > 0 (" + what + "), got '" + text + "'";
+      },
+      "> 0");
+}
+
+struct render_options {
   std::string scene_name = "cornell-box";
-  image_size size;
   std::string size_text = "512";
-  int shadow_map_size = 1024;
   std::string format = "rgba16f";
-  float min_distance = vplkit::irradiance_settings<float>{}.min_distance;
+  std::string filter = "full";
   std::string shader_dir;
+  vplkit::rsm_pipeline_settings settings;
 };
 
-void add_common_options(CLI::App& command, common_options& options) {
-  std::vector<std::string> scenes = vplkit::built_in_scene_names();
-  command.add_option("--scene", options.scene_name, "built-in scene")->check(CLI::IsMember(scenes))->capture_default_str();
+void add_render_options(CLI::App& command, render_options& options) {
+  std::vector<std::string> techniques;
+  for (const vplkit::rsm_technique& technique : vplkit::rsm_techniques()) techniques.push_back(technique.name);
+  vplkit::rsm_pipeline_settings& s = options.settings;
+  command.add_option("--technique", s.technique, "rendering technique")->check(CLI::IsMember(techniques))->capture_default_str();
+  command.add_option("--scene", options.scene_name, "built-in scene (cornell-box, indirect-shadow, instanced) or an .obj file")
+      ->capture_default_str();
   command.add_option("--size", options.size_text, "final image size, N or WxH")
-      ->check(CLI::Validator([&](std::string& text) { return parse_size(text, options.size); }, "N|WxH"))
+      ->check(CLI::Validator([&](std::string& text) { return parse_size(text, s.width, s.height); }, "N|WxH"))
       ->capture_default_str();
-  command.add_option("--shadow-map-size", options.shadow_map_size, "square shadow map resolution")
-      ->check(CLI::Range(1, max_image_side))->capture_default_str();
-  command.add_option("--format", options.format, "float format of the render targets")
+  command.add_option("--rsm-size", s.rsm_size, "square RSM resolution")->check(CLI::Range(1, max_image_side))->capture_default_str();
+  command.add_option("--indirect-divisor", s.indirect_divisor, "indirect buffer = image / this per axis (2: half, 1: full)")
+      ->check(CLI::IsMember({1, 2, 4, 8}))->capture_default_str();
+  command.add_option("--format", options.format, "float format of every render target")
       ->check(CLI::IsMember({"rgba16f", "rgba32f"}))->capture_default_str();
-  command.add_option("--min-distance", options.min_distance,
+  command.add_option("--paths", s.radial.paths, "radial pattern: paths")->check(CLI::Range(1, 256))->capture_default_str();
+  command.add_option("--samples-per-path", s.radial.samples_per_path, "radial pattern: samples per path")
+      ->check(CLI::Range(1, 256))->capture_default_str();
+  command.add_option("--max-radius", s.radial.max_radius, "sampling radius in RSM texels (radial and disk)")
+      ->check(positive_number("RSM texels"))->capture_default_str();
+  command.add_option("--slots", s.slots, "micro linear buffer slots")->check(CLI::Range(1, 16))->capture_default_str();
+  command.add_option("--disk-samples", s.disk.samples, "original RSM: samples")->check(CLI::Range(1, 65536))->capture_default_str();
+  command.add_option("--seed", s.radial.seed, "seed of the sampling patterns")->capture_default_str();
+  command.add_option("--min-distance", s.irradiance.min_distance,
                      "distance clamp of the light terms, scene units (irradiance_settings::min_distance)")
-      ->check(CLI::Validator(
-          [](std::string& text) {
-            float value = 0.0f;
-            return CLI::detail::lexical_cast(text, value) && value > 0.0f && std::isfinite(value)
-                       ? std::string()
-                       : "must be a number > 0 (scene units), got '" + text + "'";
-          },
-          "> 0"))
-      ->capture_default_str();
-  command.add_option("--shader-dir", options.shader_dir, "folder with the vplkit shaders (default: $VPLKIT_SHADER_DIR, then the built-in path)");
+      ->check(positive_number("scene units"))->capture_default_str();
+  command.add_option("--post-filter", options.filter, "bilateral post filter: full 2D kernel or separable")
+      ->check(CLI::IsMember({"full", "separable"}))->capture_default_str();
+  command.add_option("--shader-dir", options.shader_dir,
+                     "folder with the vplkit shaders (default: $VPLKIT_SHADER_DIR, then the built-in path)");
 }
 
-vplkit::direct_settings to_settings(const common_options& options) {
-  vplkit::direct_settings settings;
-  settings.width = options.size.width;
-  settings.height = options.size.height;
-  settings.shadow_map_size = options.shadow_map_size;
-  settings.target_format = options.format == "rgba32f" ? vplkit::texel_format::rgba32f : vplkit::texel_format::rgba16f;
-  settings.irradiance.min_distance = options.min_distance;
-  return settings;
+void finish_settings(render_options& options) {
+  vplkit::rsm_pipeline_settings& s = options.settings;
+  s.format = options.format == "rgba32f" ? vplkit::texel_format::rgba32f : vplkit::texel_format::rgba16f;
+  s.filter = options.filter == "separable" ? vplkit::post_filter::separable : vplkit::post_filter::full;
+  s.disk.max_radius = s.radial.max_radius;
+  s.disk.seed = s.radial.seed;
 }
 
-std::filesystem::path shader_dir(const common_options& options) {
-  return options.shader_dir.empty() ? vplkit::default_shader_dir() : std::filesystem::path(options.shader_dir);
+vplkit::scene load_scene(const std::string& name) {
+  if (fs::path(name).extension() == ".obj") return vplkit::frame_mesh(fs::path(name).stem().string(), vplkit::load_obj(name));
+  return vplkit::built_in_scene(name);
+}
+
+fs::path shader_dir(const render_options& options) {
+  return options.shader_dir.empty() ? vplkit::default_shader_dir() : fs::path(options.shader_dir);
+}
+
+// "output/cornell-box.png" + "-indirect" -> "output/cornell-box-indirect.png"
+fs::path with_suffix(const fs::path& path, const std::string& suffix) {
+  return path.parent_path() / (path.stem().string() + suffix + path.extension().string());
 }
 
 int run_info(const std::string& context_kind) {
@@ -97,36 +123,69 @@ int run_info(const std::string& context_kind) {
   return 0;
 }
 
-int run_render(const common_options& options, const std::string& out) {
-  // Check the output location before spending time on rendering.
-  const std::filesystem::path out_path(out);
-  if (out_path.extension() != ".png") throw vplkit::error("--out must name a .png file, got '" + out + "'");
-  auto context = vplkit::create_headless_context();
-  const vplkit::shader_library shaders(shader_dir(options));
-  vplkit::direct_renderer renderer(shaders, vplkit::built_in_scene(options.scene_name), to_settings(options));
+vplkit::rsm_frame render_frame(const vplkit::shader_library& shaders, const vplkit::scene& source,
+                               const vplkit::rsm_pipeline_settings& settings) {
+  vplkit::rsm_pipeline pipeline(shaders, source, settings);
   // The first frame pays for llvmpipe's shader JIT, and llvmpipe's first GL_TIME_ELAPSED query
   // reads a garbage start time (seen: 282 s); the pass table reports a warmed-up frame.
-  renderer.render();
-  const vplkit::frame image = renderer.render();
-  vplkit::write_png(out_path, image.width, image.height, vplkit::to_srgb8(image.radiance, image.width, image.height));
-  std::cout << "scene " << options.scene_name << ", technique direct, " << image.width << "x" << image.height << "\n"
-            << vplkit::format_pass_table(image.pass_times) << "wrote " << std::filesystem::absolute(out_path).string() << "\n";
+  pipeline.render();
+  return pipeline.render();
+}
+
+int run_render(render_options& options, std::string out) {
+  finish_settings(options);
+  const vplkit::rsm_technique& technique = vplkit::find_rsm_technique(options.settings.technique);
+  if (out.empty()) out = "output/" + fs::path(options.scene_name).stem().string() + "-" + technique.name + ".png";
+  const fs::path out_path(out);
+  if (out_path.extension() != ".png") throw vplkit::error("--out must name a .png file, got '" + out + "'");
+  if (const std::string problem = vplkit::validate(options.settings); !problem.empty()) throw vplkit::error(problem);
+
+  auto context = vplkit::create_headless_context();
+  const vplkit::shader_library shaders(shader_dir(options));
+  const vplkit::scene source = load_scene(options.scene_name);
+  const vplkit::rsm_frame frame = render_frame(shaders, source, options.settings);
+  const int w = frame.width, h = frame.height;
+
+  // Everything is rendered before anything is written, so a failure leaves no partial set.
+  std::vector<std::pair<fs::path, std::vector<std::uint8_t>>> images;
+  images.emplace_back(out_path, vplkit::to_srgb8(frame.radiance, w, h));
+  if (technique.indirect) {
+    const float exposure = vplkit::percentile_exposure(frame.indirect);
+    images.emplace_back(with_suffix(out_path, "-indirect"), vplkit::to_srgb8(frame.indirect, w, h, exposure));
+    if (technique.visibility != vplkit::rsm_visibility::none) {
+      vplkit::rsm_pipeline_settings without = options.settings;
+      without.technique = "rsm-radial";
+      const vplkit::rsm_frame reference = render_frame(shaders, source, without);
+      // Amplified 8x relative to the indirect image's exposure, as in Fig. 5.1c.
+      images.emplace_back(with_suffix(out_path, "-visibility-difference"),
+                          vplkit::to_srgb8(vplkit::luminance_difference(reference.indirect, frame.indirect, 8.0f * exposure), w, h));
+    }
+  }
+  for (const auto& [path, pixels] : images) vplkit::write_png(path, w, h, pixels);
+
+  std::cout << "scene " << source.name << " (" << source.geometry.triangle_count() << " triangles), technique "
+            << technique.name << ", " << w << "x" << h << ", RSM " << options.settings.rsm_size << "^2, indirect "
+            << (w + options.settings.indirect_divisor - 1) / options.settings.indirect_divisor << "x"
+            << (h + options.settings.indirect_divisor - 1) / options.settings.indirect_divisor << "\n"
+            << vplkit::format_pass_table(frame.pass_times);
+  for (const auto& image : images) std::cout << "wrote " << fs::absolute(image.first).string() << "\n";
   return 0;
 }
 
-int run_view(const common_options& options, int frames) {
-  vplkit::window_context window(options.size.width, options.size.height, "vplkit - " + options.scene_name);
+int run_view(render_options& options, int frames) {
+  finish_settings(options);
+  vplkit::window_context window(options.settings.width, options.settings.height, "vplkit - " + options.scene_name);
   const vplkit::shader_library shaders(shader_dir(options));
-  vplkit::direct_renderer renderer(shaders, vplkit::built_in_scene(options.scene_name), to_settings(options));
-  vplkit::program present = vplkit::load_program(shaders, "present.vert", "present.frag");
+  vplkit::rsm_pipeline pipeline(shaders, load_scene(options.scene_name), options.settings);
+  vplkit::program present = vplkit::load_program(shaders, "fullscreen.vert", "present.frag");
   vplkit::gl_vertex_array empty_vertex_array(vplkit::generate_vertex_array());
   for (int frame = 0; (frames == 0 || frame < frames) && !window.should_close(); ++frame) {
-    renderer.render();
+    pipeline.render();
     const auto [width, height] = window.framebuffer_size();
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(0, 0, width, height);
     present.set("image", 0);
-    renderer.output().bind(0);
+    pipeline.output().bind(0);
     present.use();
     glBindVertexArray(empty_vertex_array.get());
     glDrawArrays(GL_TRIANGLES, 0, 3);
@@ -151,16 +210,17 @@ int main(int argc, char** argv) {
   CLI::App* info = app.add_subcommand("info", "print the GL version and renderer and the library version");
   info->add_option("--context", context_kind, "which context to open")->check(CLI::IsMember({"headless", "window"}))->capture_default_str();
 
-  common_options render_options;
-  std::string out = "output/cornell-box.png";
-  CLI::App* render = app.add_subcommand("render", "render a scene headless (OSMesa) to a PNG");
-  add_common_options(*render, render_options);
-  render->add_option("--out", out, "output PNG path (folders are created)")->capture_default_str();
+  render_options render_settings;
+  std::string out;
+  CLI::App* render = app.add_subcommand("render", "render a scene headless (OSMesa) to PNG images");
+  add_render_options(*render, render_settings);
+  render->add_option("--out", out, "final image path (.png; folders are created) [output/<scene>-<technique>.png]; "
+                                   "the indirect and difference images go next to it");
 
-  common_options view_options;
+  render_options view_settings;
   int frames = 0;
   CLI::App* view = app.add_subcommand("view", "show a scene in a window (use xvfb-run without a display)");
-  add_common_options(*view, view_options);
+  add_render_options(*view, view_settings);
   view->add_option("--frames", frames, "close after this many frames (0: when the window is closed)")
       ->check(CLI::NonNegativeNumber)->capture_default_str();
 
@@ -172,13 +232,12 @@ int main(int argc, char** argv) {
 
   try {
     if (info->parsed()) return run_info(context_kind);
-    if (render->parsed()) return run_render(render_options, out);
-    if (view->parsed()) return run_view(view_options, frames);
+    if (render->parsed()) return run_render(render_settings, out);
+    if (view->parsed()) return run_view(view_settings, frames);
     std::cerr << "vplkit: error: a subcommand is required: info, render or view (see vplkit --help)\n";
     return 2;
   } catch (const std::exception& failure) {
     std::cerr << "vplkit: error: " << failure.what() << "\n";
     return 1;
   }
-  return 1;
 }

@@ -37,7 +37,7 @@ std::string read_text_file(const fs::path& path, const std::string& what_for) {
 
 class expander {
  public:
-  explicit expander(const fs::path& root) : root_(root) {}
+  expander(const fs::path& root, const shader_defines& defines) : root_(root), defines_(defines) {}
 
   expanded_source run(const std::string& text, const std::string& display_name) {
     expand(text, display_name, /*top_level=*/true);
@@ -63,6 +63,7 @@ class expander {
           throw error(display_name + ":" + std::to_string(line_number) +
                       ": #version must be the first line of the top-level shader, not in an included file");
         out_ << line << "\n";
+        for (const auto& [name, value] : defines_) out_ << "#define " << name << " " << value << "\n";
         continue;
       }
       if (!wrote_line_directive) {
@@ -87,6 +88,7 @@ class expander {
   }
 
   fs::path root_;
+  const shader_defines& defines_;
   std::ostringstream out_;
   std::vector<std::string> file_names_;
   std::set<std::string> included_;
@@ -105,15 +107,16 @@ shader_library::shader_library(fs::path root) : root_(std::move(root)) {
                 " (set --shader-dir or VPLKIT_SHADER_DIR to the vplkit shaders/ folder)");
 }
 
-expanded_source shader_library::expand_file(const std::string& relative_path) const {
+expanded_source shader_library::expand_file(const std::string& relative_path, const shader_defines& defines) const {
   const std::string text =
       read_text_file(root_ / relative_path, " (shader directory " + root_.string() +
                                                  "; set --shader-dir or VPLKIT_SHADER_DIR)");
-  return expander(root_).run(text, relative_path);
+  return expander(root_, defines).run(text, relative_path);
 }
 
-expanded_source shader_library::expand_text(const std::string& text, const std::string& display_name) const {
-  return expander(root_).run(text, display_name);
+expanded_source shader_library::expand_text(const std::string& text, const std::string& display_name,
+                                            const shader_defines& defines) const {
+  return expander(root_, defines).run(text, display_name);
 }
 
 std::string map_log_to_files(const std::string& log, const std::vector<std::string>& file_names) {
@@ -195,10 +198,11 @@ program link_program(const std::string& program_name, const std::vector<stage_so
 }
 
 program load_program(const shader_library& library, const std::string& vertex_file,
-                     const std::string& fragment_file) {
-  return link_program(vertex_file + " + " + fragment_file,
-                      {{shader_stage::vertex, library.expand_file(vertex_file)},
-                       {shader_stage::fragment, library.expand_file(fragment_file)}});
+                     const std::string& fragment_file, const shader_defines& defines) {
+  std::string name = vertex_file + " + " + fragment_file;
+  for (const auto& [define, value] : defines) name += " " + define + "=" + value;
+  return link_program(name, {{shader_stage::vertex, library.expand_file(vertex_file, defines)},
+                             {shader_stage::fragment, library.expand_file(fragment_file, defines)}});
 }
 
 // GL 3.3 has no glProgramUniform (that is 4.1), so a setter binds the program first.

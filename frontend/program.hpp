@@ -27,15 +27,20 @@ struct expanded_source {
 /// tree's shaders/ when it exists, else the installed share/vplkit/shaders.
 std::filesystem::path default_shader_dir();
 
+/// Preprocessor definitions placed right after #version: the GLSL side of a kernel's variant
+/// template parameters (e.g. {"VPLKIT_VISIBILITY", "6"}).
+using shader_defines = std::vector<std::pair<std::string, std::string>>;
+
 class shader_library {
  public:
   explicit shader_library(std::filesystem::path root);
   const std::filesystem::path& root() const { return root_; }
   /// Expands a file under root (e.g. "direct.frag"). Throws vplkit::error naming a missing or
   /// unreadable file, and the including file:line for a missing include.
-  expanded_source expand_file(const std::string& relative_path) const;
+  expanded_source expand_file(const std::string& relative_path, const shader_defines& defines = {}) const;
   /// Expands in-memory text (generated shaders), shown in messages as `display_name`.
-  expanded_source expand_text(const std::string& text, const std::string& display_name) const;
+  expanded_source expand_text(const std::string& text, const std::string& display_name,
+                              const shader_defines& defines = {}) const;
 
  private:
   std::filesystem::path root_;
@@ -76,9 +81,10 @@ struct stage_source {
 program link_program(const std::string& program_name, const std::vector<stage_source>& stages,
                      const std::vector<std::string>& transform_feedback_varyings = {});
 
-/// Loads "<name>.vert" and "<name>.frag" from the library and links them.
+/// Loads a vertex and a fragment shader file from the library and links them; `defines` go
+/// into both stages.
 program load_program(const shader_library& library, const std::string& vertex_file,
-                     const std::string& fragment_file);
+                     const std::string& fragment_file, const shader_defines& defines = {});
 
 /// Rewrites a driver log so that each "<source>:<line>(<column>)" (Mesa), "<source>(<line>)"
 /// (NVIDIA) or "ERROR: <source>:<line>:" (AMD) reference names the original file and line.

@@ -1,5 +1,6 @@
-// Scenes the frontend renders: triangle geometry with a diffuse albedo per vertex, a camera and a
-// spot light. Built-in scenes are made in code, so the default job needs no files.
+// Scenes the frontend renders: triangle geometry with a diffuse albedo per vertex, a camera and
+// one primary light (spot or directional). Built-in scenes are made in code, so the default job
+// needs no files; OBJ files load through frontend/obj_loader.hpp.
 #pragma once
 
 #include <cstdint>
@@ -21,7 +22,17 @@ struct vertex {
 struct mesh {
   std::vector<vertex> vertices;
   std::vector<std::uint32_t> indices;  // triangles, counter-clockwise seen from the normal side
+  std::size_t triangle_count() const { return indices.size() / 3; }
 };
+
+struct bounding_box {
+  glm::vec3 minimum{0.0f};
+  glm::vec3 maximum{0.0f};
+  glm::vec3 centre() const { return 0.5f * (minimum + maximum); }
+  float radius() const { return 0.5f * glm::length(maximum - minimum); }
+};
+
+bounding_box bounds(const mesh& geometry);
 
 struct camera {
   glm::vec3 position{0.0f, 1.0f, 3.8f};
@@ -29,22 +40,42 @@ struct camera {
   glm::vec3 up{0.0f, 1.0f, 0.0f};
   float vertical_fov_degrees = 40.0f;
   float near_plane = 0.05f;
-  float far_plane = 20.0f;
+  float far_plane = 50.0f;
+};
+
+enum class light_kind { spot, directional };
+
+struct scene_light {
+  light_kind kind = light_kind::spot;
+  spot_light<float> spot;                ///< used when kind == spot
+  directional_light<float> directional;  ///< used when kind == directional
 };
 
 struct scene {
   std::string name;
   mesh geometry;
   camera view;
-  spot_light<float> light;
+  scene_light light;
 };
 
 /// Names accepted by built_in_scene, for help texts and messages.
 std::vector<std::string> built_in_scene_names();
 
 /// The Cornell box (2 x 2 x 2, floor at y = 0, open towards +z) with a tall and a short block,
-/// red left wall, green right wall, and a spot light under the ceiling pointing down.
+/// red left wall, green right wall, and a spot light under the ceiling pointing down: the
+/// classic light-leak case (the tall block's shadow side should not see the red wall's light
+/// through the block).
 scene make_cornell_box();
+
+/// The indirect-shadow scene: a brightly lit red wall, a white floor as the receiver, and a
+/// white panel standing between them. A directional light from the side opposite the wall
+/// lights the wall head-on; behind the panel the floor is directly lit but sees less of the
+/// wall, so the panel casts an indirect shadow away from its direct one.
+scene make_indirect_shadow_scene();
+
+/// A room with 16 x 16 instances of a 1024-triangle sphere on its floor: 262,154 triangles,
+/// the scale of the thesis's Sponza (262k), for timing the geometry passes.
+scene make_instanced_scene();
 
 /// Throws vplkit::error listing the known names when `name` is not one of them.
 scene built_in_scene(const std::string& name);
@@ -54,5 +85,13 @@ void add_box(mesh& target, glm::vec3 centre, glm::vec3 size, float yaw_degrees, 
 
 /// Appends the quad a, b, c, d (counter-clockwise seen from where `normal` points).
 void add_quad(mesh& target, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, glm::vec3 normal, glm::vec3 albedo);
+
+/// Appends a UV sphere of `stacks` x `slices` quads (2 * stacks * slices triangles, less the
+/// degenerate ones at the poles are kept for a uniform count).
+void add_sphere(mesh& target, glm::vec3 centre, float radius, int stacks, int slices, glm::vec3 albedo);
+
+/// Places a camera and a spot light for a mesh without a scene description (OBJ files): the
+/// camera looks at the bounding box from +z, the light shines down from above it.
+scene frame_mesh(std::string name, mesh geometry);
 
 }  // namespace vplkit

@@ -4,9 +4,13 @@
 
 #include <string>
 
+#include <vplkit/bilateral.hpp>
 #include <vplkit/direct_light.hpp>
 #include <vplkit/irradiance.hpp>
 #include <vplkit/micro_linear_buffer.hpp>
+#include <vplkit/rsm_gather.hpp>
+#include <vplkit/rsm_pattern.hpp>
+#include <vplkit/shadow.hpp>
 
 #include "frontend/program.hpp"
 
@@ -15,5 +19,11 @@ namespace vplkit {
 void set_uniforms(const program& target, const std::string& name, const irradiance_settings<float>& settings);
 void set_uniforms(const program& target, const std::string& name, const elevation_slots<float>& slots);
 void set_uniforms(const program& target, const std::string& name, const spot_light<float>& light);
+void set_uniforms(const program& target, const std::string& name, const directional_light<float>& light);
+void set_uniforms(const program& target, const std::string& name, const radial_pattern_constants<float>& constants);
+void set_uniforms(const program& target, const std::string& name, const disk_pattern_settings<float>& settings);
+void set_uniforms(const program& target, const std::string& name, const rsm_gather_settings<float>& settings);
+void set_uniforms(const program& target, const std::string& name, const shadow_density_settings<float>& settings);
+void set_uniforms(const program& target, const std::string& name, const bilateral_settings<float>& settings);
 
 }  // namespace vplkit

@@ -8,7 +8,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(cmake g++ make pkg-config libglm-dev doctest-dev libglfw3-dev libosmesa6-dev
-          python3-glad xvfb xauth libcli11-dev libstb-dev libbenchmark-dev)
+          python3-glad xvfb xauth libcli11-dev libstb-dev libbenchmark-dev libtinyobjloader-dev)
 
 build_dir=build
 cmake_options=(-DCMAKE_BUILD_TYPE=Release)

@@ -1,10 +1,17 @@
-// Direct irradiance from a spot light: the primary light of the RSM pipeline (paper 000, chapter
-// 4 renders an RSM from a spot or directional light) and of vplkit's direct pass.
+// The primary lights of the RSM pipeline (paper 000 renders its RSM from a spot or a
+// directional light): direct irradiance, and the flux an RSM texel reflects.
 //
-//   E(x, n) = I * cone(cos_axis) * max(0, <n, l>) / max(|p - x|, min_distance)^2
+// Spot light:  E(x, n) = I * cone(cos_axis) * max(0, <n, l>) / max(|p - x|, min_distance)^2
 // with l the unit direction from x to the light at p, I the radiant intensity on the axis, and
-// cone() a smoothstep from cos_outer (0) to cos_inner (1) of the angle off the axis.
-// The distance clamp is the one of pixel_light_irradiance (irradiance_settings::min_distance).
+// cone() a smoothstep from cos_outer (0) to cos_inner (1) of the angle off the axis. The distance
+// clamp is the one of pixel_light_irradiance (irradiance_settings::min_distance).
+// Directional light:  E(x, n) = E_perpendicular * max(0, <n, -direction>).
+//
+// RSM flux (Dachsbacher and Stamminger 2005: "the flux of each pixel light is the flux of the
+// light through the pixel, times the reflectance"): a texel of a perspective RSM with half-angle
+// tangent t and W x H texels covers the solid angle (2t/W)(2t/H) cos^3(theta) around its
+// direction (theta off the axis); the spot light sends I * cone * that solid angle through it. A
+// texel of an orthographic RSM covers the area (width/W)(height/H) across the light's direction.
 //
 // GLSL twin: shaders/lib/direct_light.glsl.
 #pragma once
@@ -54,6 +61,60 @@ glm::vec<3, T, Q> spot_light_irradiance(const glm::vec<3, T, Q>& x, const glm::v
   const T t = glm::clamp((cos_axis - light.cos_outer) / (light.cos_inner - light.cos_outer), T(0), T(1));
   const T cone = t * t * (T(3) - T(2) * t);
   return light.intensity * (cone * cos_receiver / distance_squared);
+}
+
+/// A directional light. GLSL twin: struct directional_light.
+template <typename T>
+struct directional_light {
+  /// Unit vector the light travels along.
+  glm::vec<3, T> direction = glm::vec<3, T>(0, -1, 0);
+  /// Irradiance on a surface perpendicular to the light, per colour channel (W/m^2).
+  glm::vec<3, T> irradiance = glm::vec<3, T>(1);
+};
+
+template <typename T>
+const char* validate(const directional_light<T>& light) {
+  if (!(std::abs(glm::length(light.direction) - T(1)) < T(1e-3))) return "directional_light::direction must be a unit vector";
+  return nullptr;
+}
+
+template <typename T, glm::qualifier Q>
+glm::vec<3, T, Q> directional_light_irradiance(const glm::vec<3, T, Q>& n, const directional_light<T>& light) {
+  return light.irradiance * glm::max(T(0), -glm::dot(n, light.direction));
+}
+
+/// Solid angle of the texel at normalised device coordinate `ndc` of a W x H perspective map
+/// with tangent of the half field of view `tan_half_fov` (square frustum).
+template <typename T>
+T perspective_texel_solid_angle(const glm::vec<2, T>& ndc, T tan_half_fov, const glm::ivec2& size) {
+  const glm::vec<2, T> on_plane = ndc * tan_half_fov;  // image plane at distance 1
+  const T cos_theta = T(1) / std::sqrt(T(1) + glm::dot(on_plane, on_plane));
+  const T texel_area = (T(2) * tan_half_fov / T(size.x)) * (T(2) * tan_half_fov / T(size.y));
+  return texel_area * (cos_theta * cos_theta * cos_theta);
+}
+
+/// Flux reflected by the surface (position, normal) seen in an RSM texel of a spot light:
+/// albedo * I * cone * solid angle, and 0 when the surface faces away from the light (its back
+/// is lit, and its pixel light would shine from the wrong side).
+template <typename T, glm::qualifier Q>
+glm::vec<3, T, Q> spot_light_texel_flux(const glm::vec<3, T, Q>& albedo, const glm::vec<3, T, Q>& position,
+                                        const glm::vec<3, T, Q>& normal, const spot_light<T>& light,
+                                        const glm::vec<2, T>& ndc, T tan_half_fov, const glm::ivec2& size) {
+  const glm::vec<3, T, Q> from_light = glm::normalize(position - light.position);
+  const T cos_axis = glm::dot(light.direction, from_light);
+  const T t = glm::clamp((cos_axis - light.cos_outer) / (light.cos_inner - light.cos_outer), T(0), T(1));
+  const T cone = t * t * (T(3) - T(2) * t);
+  const T facing = glm::dot(normal, from_light) < T(0) ? T(1) : T(0);
+  return albedo * light.intensity * (facing * cone * perspective_texel_solid_angle(ndc, tan_half_fov, size));
+}
+
+/// Flux reflected by the surface seen in a texel of an orthographic RSM whose texels cover
+/// `texel_area` across the light's direction: albedo * E_perpendicular * area (0 facing away).
+template <typename T, glm::qualifier Q>
+glm::vec<3, T, Q> directional_light_texel_flux(const glm::vec<3, T, Q>& albedo, const glm::vec<3, T, Q>& normal,
+                                               const directional_light<T>& light, T texel_area) {
+  const T facing = glm::dot(normal, light.direction) < T(0) ? T(1) : T(0);
+  return albedo * light.irradiance * (facing * texel_area);
 }
 
 }  // namespace vplkit

@@ -1,4 +1,5 @@
-// GLSL twin of include/vplkit/direct_light.hpp: spot-light irradiance with a smooth cone.
+// GLSL twin of include/vplkit/direct_light.hpp: spot and directional light irradiance, and the
+// flux of an RSM texel.
 #ifndef VPLKIT_DIRECT_LIGHT_GLSL
 #define VPLKIT_DIRECT_LIGHT_GLSL
 
@@ -22,6 +23,37 @@ vec3 spot_light_irradiance(vec3 x, vec3 n, spot_light light, irradiance_settings
   float t = clamp((cos_axis - light.cos_outer) / (light.cos_inner - light.cos_outer), 0.0, 1.0);
   float cone = t * t * (3.0 - 2.0 * t);
   return light.intensity * (cone * cos_receiver / distance_squared);
+}
+
+struct directional_light {
+  vec3 direction;
+  vec3 irradiance;
+};
+
+vec3 directional_light_irradiance(vec3 n, directional_light light) {
+  return light.irradiance * max(0.0, -dot(n, light.direction));
+}
+
+float perspective_texel_solid_angle(vec2 ndc, float tan_half_fov, ivec2 size) {
+  vec2 on_plane = ndc * tan_half_fov;
+  float cos_theta = 1.0 / sqrt(1.0 + dot(on_plane, on_plane));
+  float texel_area = (2.0 * tan_half_fov / float(size.x)) * (2.0 * tan_half_fov / float(size.y));
+  return texel_area * (cos_theta * cos_theta * cos_theta);
+}
+
+vec3 spot_light_texel_flux(vec3 albedo, vec3 position, vec3 normal, spot_light light, vec2 ndc, float tan_half_fov,
+                           ivec2 size) {
+  vec3 from_light = normalize(position - light.position);
+  float cos_axis = dot(light.direction, from_light);
+  float t = clamp((cos_axis - light.cos_outer) / (light.cos_inner - light.cos_outer), 0.0, 1.0);
+  float cone = t * t * (3.0 - 2.0 * t);
+  float facing = dot(normal, from_light) < 0.0 ? 1.0 : 0.0;
+  return albedo * light.intensity * (facing * cone * perspective_texel_solid_angle(ndc, tan_half_fov, size));
+}
+
+vec3 directional_light_texel_flux(vec3 albedo, vec3 normal, directional_light light, float texel_area) {
+  float facing = dot(normal, light.direction) < 0.0 ? 1.0 : 0.0;
+  return albedo * light.irradiance * (facing * texel_area);
 }
 
 #endif

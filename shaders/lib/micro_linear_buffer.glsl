@@ -27,7 +27,7 @@ struct micro_linear_buffer {
   float previous_visibility;
 };
 
-void micro_linear_buffer_reset(inout micro_linear_buffer buffer, int slot_count) {
+void micro_linear_buffer_reset(out micro_linear_buffer buffer, int slot_count) {
   for (int i = 0; i < VPLKIT_MAX_SLOTS; ++i) buffer.slot[i] = i < slot_count ? 1.0 : 0.0;
   buffer.previous_index = -1;
   buffer.previous_visibility = 1.0;

@@ -1,0 +1,143 @@
+#include "frontend/rsm_cpu_mirror.hpp"
+
+#include <algorithm>
+#include <thread>
+#include <vector>
+
+#include <vplkit/direct_light.hpp>
+#include <vplkit/transform.hpp>
+
+namespace vplkit {
+namespace {
+
+// Runs row(y) for every y in [0, height), rows interleaved over the threads.
+template <typename Row>
+void parallel_rows(int height, int threads, const Row& row) {
+  threads = std::clamp(threads, 1, std::max(height, 1));
+  std::vector<std::thread> workers;
+  for (int t = 1; t < threads; ++t)
+    workers.emplace_back([&, t] {
+      for (int y = t; y < height; y += threads) row(y);
+    });
+  for (int y = 0; y < height; y += threads) row(y);
+  for (std::thread& worker : workers) worker.join();
+}
+
+glm::ivec2 gbuffer_texel_of(glm::ivec2 texel, const rsm_frame_constants& constants) {
+  return glm::min(texel * constants.indirect_divisor, constants.image_size - 1);
+}
+
+rsm_texel<float> fetch_rsm(const rsm_pass_buffers& buffers, glm::ivec2 texel) {
+  const glm::vec4 position_depth = buffers.rsm[0].at(texel);
+  return {glm::vec3(position_depth), position_depth.w, glm::vec3(buffers.rsm[1].at(texel)), glm::vec3(buffers.rsm[2].at(texel))};
+}
+
+template <rsm_pattern Pattern, rsm_visibility Visibility>
+glm::vec3 gather_variant(const gather_receiver<float>& receiver, const rsm_pass_buffers& buffers,
+                         const rsm_frame_constants& constants) {
+  return gather_rsm<Pattern, Visibility>(
+      receiver, [&](glm::ivec2 texel) { return fetch_rsm(buffers, texel); }, constants.gather);
+}
+
+glm::vec3 gather_dispatch(const gather_receiver<float>& receiver, const rsm_pass_buffers& buffers,
+                          const rsm_frame_constants& constants) {
+  const rsm_technique& technique = constants.technique;
+  if (technique.pattern == rsm_pattern::disk) return gather_variant<rsm_pattern::disk, rsm_visibility::none>(receiver, buffers, constants);
+  switch (technique.visibility) {
+    case rsm_visibility::none: return gather_variant<rsm_pattern::radial, rsm_visibility::none>(receiver, buffers, constants);
+    case rsm_visibility::alg2: return gather_variant<rsm_pattern::radial, rsm_visibility::alg2>(receiver, buffers, constants);
+    case rsm_visibility::alg3: return gather_variant<rsm_pattern::radial, rsm_visibility::alg3>(receiver, buffers, constants);
+    case rsm_visibility::alg6: return gather_variant<rsm_pattern::radial, rsm_visibility::alg6>(receiver, buffers, constants);
+  }
+  return glm::vec3(0.0f);
+}
+
+struct filter_taps {
+  const image_buffer& values;
+  const rsm_pass_buffers& buffers;
+  const rsm_frame_constants& constants;
+  bilateral_tap<float> operator()(glm::ivec2 texel) const {
+    const glm::vec4 value = values.at(texel);
+    return {glm::vec3(value), value.w, glm::vec3(buffers.gbuffer[2].at(gbuffer_texel_of(texel, constants)))};
+  }
+};
+
+}  // namespace
+
+int hardware_threads() { return static_cast<int>(std::max(1u, std::thread::hardware_concurrency())); }
+
+image_buffer cpu_gather_pass(const rsm_pass_buffers& buffers, const rsm_frame_constants& constants, int threads) {
+  image_buffer out;
+  out.width = constants.indirect_size.x;
+  out.height = constants.indirect_size.y;
+  out.texels.assign(static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height), glm::vec4(0.0f));
+  parallel_rows(out.height, threads, [&](int y) {
+    for (int x = 0; x < out.width; ++x) {
+      const glm::ivec2 texel(x, y);
+      const glm::ivec2 sample = gbuffer_texel_of(texel, constants);
+      const glm::vec4 position_depth = buffers.gbuffer[0].at(sample);
+      if (!(position_depth.w < 0.0f)) continue;
+      const glm::vec3 position(position_depth);
+      const gather_receiver<float> receiver{position, glm::vec3(buffers.gbuffer[2].at(sample)),
+                                            map_coordinate(constants.light.view_projection, position, constants.gather.rsm_size),
+                                            glm::uvec2(texel)};
+      out.at(texel) = glm::vec4(gather_dispatch(receiver, buffers, constants), position_depth.w);
+    }
+  });
+  return out;
+}
+
+image_buffer cpu_blur_x_pass(const image_buffer& indirect, const rsm_pass_buffers& buffers,
+                             const rsm_frame_constants& constants, int threads) {
+  image_buffer out;
+  out.width = indirect.width;
+  out.height = indirect.height;
+  out.texels.assign(indirect.texels.size(), glm::vec4(0.0f));
+  const filter_taps taps{indirect, buffers, constants};
+  parallel_rows(out.height, threads, [&](int y) {
+    for (int x = 0; x < out.width; ++x) {
+      const bilateral_tap<float> centre = taps(glm::ivec2(x, y));
+      if (!(centre.depth < 0.0f)) continue;
+      out.at(glm::ivec2(x, y)) = glm::vec4(
+          bilateral_filter_axis(glm::vec2(x, y) + 0.5f, centre.depth, centre.normal, taps, constants.indirect_size, 0, constants.bilateral),
+          centre.depth);
+    }
+  });
+  return out;
+}
+
+post_images cpu_post_pass(const image_buffer& filtered_input, const rsm_pass_buffers& buffers,
+                          const rsm_frame_constants& constants, int threads) {
+  post_images out;
+  for (image_buffer* image : {&out.radiance, &out.indirect}) {
+    image->width = constants.image_size.x;
+    image->height = constants.image_size.y;
+    image->texels.assign(static_cast<std::size_t>(image->width) * static_cast<std::size_t>(image->height), glm::vec4(0, 0, 0, 1));
+  }
+  const filter_taps taps{filtered_input, buffers, constants};
+  const bool separable = constants.filter == post_filter::separable;
+  parallel_rows(constants.image_size.y, threads, [&](int y) {
+    for (int x = 0; x < constants.image_size.x; ++x) {
+      const glm::ivec2 pixel(x, y);
+      const glm::vec4 position_depth = buffers.gbuffer[0].at(pixel);
+      if (!(position_depth.w < 0.0f)) continue;
+      const glm::vec4 albedo_density = buffers.gbuffer[1].at(pixel);
+      const glm::vec3 n(buffers.gbuffer[2].at(pixel));
+      glm::vec3 indirect(0.0f);
+      if (constants.technique.indirect) {
+        const glm::vec2 centre = (glm::vec2(pixel) + 0.5f) / static_cast<float>(constants.indirect_divisor);
+        indirect = separable ? bilateral_filter_axis(centre, position_depth.w, n, taps, constants.indirect_size, 1, constants.bilateral)
+                             : bilateral_filter(centre, position_depth.w, n, taps, constants.indirect_size, constants.bilateral);
+      }
+      const glm::vec3 direct = constants.primary.kind == light_kind::spot
+                                   ? spot_light_irradiance(glm::vec3(position_depth), n, constants.primary.spot, constants.gather.irradiance)
+                                   : directional_light_irradiance(n, constants.primary.directional);
+      out.radiance.at(pixel) =
+          glm::vec4(glm::vec3(albedo_density) * 0.318309886183790671538f * (direct * albedo_density.w + indirect), 1.0f);
+      out.indirect.at(pixel) = glm::vec4(indirect, 1.0f);
+    }
+  });
+  return out;
+}
+
+}  // namespace vplkit

@@ -1,0 +1,31 @@
+// The CPU mirror of the RSM pipeline's gather and post passes: the same C++ kernels the GLSL
+// twins mirror, run on the RSM and G-buffer read back from the GL pipeline, so that tests can
+// compare the passes texel by texel and benchmarks can compare the CPU gather with llvmpipe.
+// Rows are split across threads; every texel is computed exactly as in its shader.
+#pragma once
+
+#include "frontend/rsm_pipeline.hpp"
+
+namespace vplkit {
+
+/// Pass 3 on the CPU: [irradiance | camera depth] at the indirect buffer's resolution.
+image_buffer cpu_gather_pass(const rsm_pass_buffers& buffers, const rsm_frame_constants& constants, int threads);
+
+/// Pass 4a on the CPU (separable filter): the x axis over `indirect`.
+image_buffer cpu_blur_x_pass(const image_buffer& indirect, const rsm_pass_buffers& buffers,
+                             const rsm_frame_constants& constants, int threads);
+
+struct post_images {
+  image_buffer radiance;  ///< [radiance | 1]
+  image_buffer indirect;  ///< [filtered indirect irradiance | 1]
+};
+
+/// Pass 4 on the CPU, reading `filtered_input`: the indirect buffer (full filter) or the x pass's
+/// output (separable filter).
+post_images cpu_post_pass(const image_buffer& filtered_input, const rsm_pass_buffers& buffers,
+                          const rsm_frame_constants& constants, int threads);
+
+/// Number of threads to use for "all cores".
+int hardware_threads();
+
+}  // namespace vplkit

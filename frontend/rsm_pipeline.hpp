@@ -1,0 +1,147 @@
+// The four-pass deferred pipeline of paper 000 (chapter 4): 1. RSM generation, 2. G-buffer
+// generation (with the shadow density of Alg. 4), 3. RSM sampling (the gather, at a reduced
+// resolution), 4. post processing (bilateral upsampling and blur, direct + indirect).
+// Techniques: direct light only, the original RSM (disk pattern, 400 samples), and the radial
+// pattern without visibility or with Alg. 2, 3 or 6.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include <vplkit/bilateral.hpp>
+#include <vplkit/irradiance.hpp>
+#include <vplkit/rsm_gather.hpp>
+#include <vplkit/shadow.hpp>
+
+#include "frontend/gpu_timer.hpp"
+#include "frontend/mesh_buffers.hpp"
+#include "frontend/program.hpp"
+#include "frontend/render_target.hpp"
+#include "frontend/scene.hpp"
+
+namespace vplkit {
+
+/// A technique the pipeline renders.
+struct rsm_technique {
+  const char* name = "";     ///< CLI name, e.g. "rsm-alg6"
+  bool indirect = false;     ///< false: direct light only
+  rsm_pattern pattern = rsm_pattern::radial;
+  rsm_visibility visibility = rsm_visibility::none;
+  const char* description = "";
+};
+
+/// direct, rsm-original, rsm-radial, rsm-alg2, rsm-alg3, rsm-alg6.
+const std::vector<rsm_technique>& rsm_techniques();
+/// Throws vplkit::error listing the names when `name` is unknown.
+const rsm_technique& find_rsm_technique(const std::string& name);
+
+enum class post_filter { full, separable };
+
+/// Every setting of the pipeline, with the thesis's configuration as the defaults.
+struct rsm_pipeline_settings {
+  int width = 512;              ///< final image (the thesis: 512 x 512)
+  int height = 512;
+  int rsm_size = 512;           ///< square RSM (the thesis: 512 x 512)
+  int indirect_divisor = 2;     ///< indirect buffer = image / divisor per axis (2: 256^2, 1: Table 5.2's 512^2)
+  texel_format format = texel_format::rgba16f;  ///< every render target: rgba16f (the thesis) or rgba32f
+  std::string technique = "rsm-alg6";
+  radial_pattern_settings<float> radial;        ///< 15 paths x 10 samples
+  disk_pattern_settings<float> disk;            ///< 400 samples
+  int slots = 5;                                ///< micro linear buffer slots
+  irradiance_settings<float> irradiance;
+  shadow_density_settings<float> shadow;
+  bilateral_settings<float> bilateral;          ///< kernel 17
+  post_filter filter = post_filter::full;
+};
+
+/// Empty when usable, else a message naming the bad setting.
+std::string validate(const rsm_pipeline_settings& settings);
+
+/// Light-space matrices of the RSM: perspective for a spot light (a square frustum around the
+/// outer cone), orthographic for a directional light (around the scene's bounds).
+struct light_frustum {
+  glm::mat4 view{1.0f};
+  glm::mat4 view_projection{1.0f};
+  float tan_half_fov = 0.0f;  ///< spot light
+  float texel_area = 0.0f;    ///< directional light: area one RSM texel covers across the light
+};
+light_frustum make_light_frustum(const scene& source, int rsm_size);
+
+glm::mat4 camera_view_matrix(const camera& view);
+glm::mat4 camera_projection_matrix(const camera& view, float aspect);
+
+/// The constants of a frame that the GL passes and their CPU mirror share (one derivation).
+struct rsm_frame_constants {
+  rsm_technique technique;
+  rsm_gather_settings<float> gather;
+  light_frustum light;
+  scene_light primary;
+  glm::mat4 camera_view{1.0f};
+  glm::mat4 camera_view_projection{1.0f};
+  shadow_density_settings<float> shadow;
+  bilateral_settings<float> bilateral;
+  post_filter filter = post_filter::full;
+  glm::ivec2 image_size{0};
+  glm::ivec2 indirect_size{0};
+  int indirect_divisor = 2;
+};
+rsm_frame_constants make_frame_constants(const scene& source, const rsm_pipeline_settings& settings);
+
+/// A read-back render target: RGBA texels, rows bottom-up.
+struct image_buffer {
+  int width = 0;
+  int height = 0;
+  std::vector<glm::vec4> texels;
+  const glm::vec4& at(glm::ivec2 texel) const { return texels[static_cast<std::size_t>(texel.y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(texel.x)]; }
+  glm::vec4& at(glm::ivec2 texel) { return texels[static_cast<std::size_t>(texel.y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(texel.x)]; }
+};
+
+/// The intermediate buffers of a frame, read back for the CPU mirror and for tests.
+struct rsm_pass_buffers {
+  image_buffer rsm[3];      ///< [position | depth], [normal | -], [flux | -]
+  image_buffer gbuffer[3];  ///< [position | depth], [albedo | shadow density], [normal | -]
+  image_buffer indirect;    ///< [irradiance | depth] (empty for direct light only)
+  image_buffer blurred_x;   ///< the separable filter's x pass (empty for the full filter)
+};
+
+struct rsm_frame {
+  int width = 0;
+  int height = 0;
+  std::vector<float> radiance;  ///< final image: RGBA, rows bottom-up
+  std::vector<float> indirect;  ///< filtered indirect irradiance at full resolution
+  std::vector<pass_time> pass_times;
+};
+
+class rsm_pipeline {
+ public:
+  /// Validates, loads the programs and uploads the scene. Throws vplkit::error with the reason.
+  rsm_pipeline(const shader_library& shaders, const scene& source, const rsm_pipeline_settings& settings);
+  rsm_frame render();
+  const rsm_frame_constants& constants() const { return constants_; }
+  /// The intermediate buffers of the last frame.
+  rsm_pass_buffers read_buffers() const;
+  /// The final radiance texture of the last frame.
+  const texture_2d& output() const { return post_target_.colour(0); }
+
+ private:
+  scene scene_;
+  rsm_pipeline_settings settings_;
+  rsm_frame_constants constants_;
+  mesh_buffers mesh_;
+  program rsm_program_;
+  program gbuffer_program_;
+  program gather_program_;
+  program blur_x_program_;
+  program post_program_;
+  framebuffer rsm_target_;
+  framebuffer gbuffer_target_;
+  framebuffer indirect_target_;
+  framebuffer blur_x_target_;
+  framebuffer post_target_;
+  gl_vertex_array empty_vertex_array_;
+  gpu_timer timer_;
+};
+
+}  // namespace vplkit

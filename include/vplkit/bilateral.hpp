@@ -1,0 +1,109 @@
+// The post filter of paper 000 (section 4.5): the half-resolution indirect irradiance is
+// upsampled and blurred by an edge-aware (bilateral) kernel of size 17 whose weight falls with
+// the distance, the depth difference and the normal difference.
+//
+// Joint upsampling and blur in one pass: for a full-resolution pixel at low-resolution
+// coordinate c (texels, continuous), the taps are the kernel_size x kernel_size low-resolution
+// texels around c; each weighs
+//   w = exp(-|q - c|^2 / (2 sigma_s^2)) * exp(-((z_q - z_c) / (sigma_z z_c))^2 / 2) * max(0, <n_c, n_q>)^k
+// (z: camera eye-space depth, relative difference, so the filter does not depend on the scene's
+// scale; n: normals; k an integer power, computed by repeated multiplication). Taking the taps
+// on the low-resolution grid means kernel 17 spans 17 distinct irradiance samples per axis.
+// The thesis does not give the sigmas or the power: settings.
+// `bilateral_filter` is the full 2D kernel; `bilateral_filter_axis` one axis of the separable
+// approximation (two passes, 2 x 17 taps instead of 17^2).
+//
+// GLSL twin: shaders/lib/bilateral.glsl; the including shader defines
+// `bilateral_tap bilateral_fetch(ivec2 texel)`.
+#pragma once
+
+#include <cmath>
+
+#include <glm/glm.hpp>
+
+namespace vplkit {
+
+/// A low-resolution texel as the filter sees it.
+template <typename T>
+struct bilateral_tap {
+  glm::vec<3, T> value;   ///< indirect irradiance
+  T depth;                ///< camera eye-space depth (negative in front; >= 0: no surface)
+  glm::vec<3, T> normal;  ///< world space, unit
+};
+
+/// GLSL twin: struct bilateral_settings.
+template <typename T = float>
+struct bilateral_settings {
+  int kernel_size = 17;      ///< taps per axis (odd, >= 1); the thesis's 17
+  T spatial_sigma = T(4);    ///< in low-resolution texels
+  T depth_sigma = T(0.05);   ///< relative depth difference (0.05 = 5% of the depth)
+  int normal_power = 8;      ///< k in max(0, <n_c, n_q>)^k (>= 0)
+};
+
+template <typename T>
+const char* validate(const bilateral_settings<T>& settings) {
+  if (settings.kernel_size < 1 || settings.kernel_size > 63 || settings.kernel_size % 2 == 0)
+    return "bilateral_settings::kernel_size must be odd and in [1, 63]";
+  if (!(settings.spatial_sigma > T(0))) return "bilateral_settings::spatial_sigma must be > 0";
+  if (!(settings.depth_sigma > T(0))) return "bilateral_settings::depth_sigma must be > 0";
+  if (settings.normal_power < 0 || settings.normal_power > 64) return "bilateral_settings::normal_power must be in [0, 64]";
+  return nullptr;
+}
+
+/// The weight of one tap at `offset` (low-resolution texels) from the centre.
+template <typename T>
+T bilateral_weight(const glm::vec<2, T>& offset, T centre_depth, T tap_depth, const glm::vec<3, T>& centre_normal,
+                   const glm::vec<3, T>& tap_normal, const bilateral_settings<T>& settings) {
+  const T spatial = std::exp(-glm::dot(offset, offset) / (T(2) * settings.spatial_sigma * settings.spatial_sigma));
+  const T relative = (tap_depth - centre_depth) / (settings.depth_sigma * centre_depth);
+  const T depth = std::exp(T(-0.5) * relative * relative);
+  const T facing = glm::max(T(0), glm::dot(centre_normal, tap_normal));
+  T normal = T(1);
+  for (int i = 0; i < settings.normal_power; ++i) normal *= facing;
+  return spatial * depth * normal;
+}
+
+namespace detail {
+template <typename T, typename Fetch>
+void bilateral_add_tap(const glm::ivec2& texel, const glm::vec<2, T>& centre, T centre_depth,
+                       const glm::vec<3, T>& centre_normal, Fetch& fetch, const glm::ivec2& size,
+                       const bilateral_settings<T>& settings, glm::vec<3, T>& sum, T& weight_sum) {
+  if (texel.x < 0 || texel.y < 0 || texel.x >= size.x || texel.y >= size.y) return;
+  const bilateral_tap<T> tap = fetch(texel);
+  if (!(tap.depth < T(0))) return;
+  const T weight = bilateral_weight(glm::vec<2, T>(texel) + T(0.5) - centre, centre_depth, tap.depth, centre_normal,
+                                    tap.normal, settings);
+  sum += weight * tap.value;
+  weight_sum += weight;
+}
+}  // namespace detail
+
+/// Full 2D kernel around low-resolution coordinate `centre`. Returns 0 where no tap has weight.
+template <typename T, typename Fetch>
+glm::vec<3, T> bilateral_filter(const glm::vec<2, T>& centre, T centre_depth, const glm::vec<3, T>& centre_normal,
+                                Fetch&& fetch, const glm::ivec2& size, const bilateral_settings<T>& settings) {
+  const glm::ivec2 base = glm::ivec2(glm::floor(centre));
+  const int radius = settings.kernel_size / 2;
+  glm::vec<3, T> sum(0);
+  T weight_sum = T(0);
+  for (int j = -radius; j <= radius; ++j)
+    for (int i = -radius; i <= radius; ++i)
+      detail::bilateral_add_tap(base + glm::ivec2(i, j), centre, centre_depth, centre_normal, fetch, size, settings, sum, weight_sum);
+  return weight_sum > T(0) ? sum / weight_sum : glm::vec<3, T>(0);
+}
+
+/// One axis (0: x, 1: y) of the separable approximation.
+template <typename T, typename Fetch>
+glm::vec<3, T> bilateral_filter_axis(const glm::vec<2, T>& centre, T centre_depth, const glm::vec<3, T>& centre_normal,
+                                     Fetch&& fetch, const glm::ivec2& size, int axis, const bilateral_settings<T>& settings) {
+  const glm::ivec2 base = glm::ivec2(glm::floor(centre));
+  const glm::ivec2 step = axis == 0 ? glm::ivec2(1, 0) : glm::ivec2(0, 1);
+  const int radius = settings.kernel_size / 2;
+  glm::vec<3, T> sum(0);
+  T weight_sum = T(0);
+  for (int i = -radius; i <= radius; ++i)
+    detail::bilateral_add_tap(base + step * i, centre, centre_depth, centre_normal, fetch, size, settings, sum, weight_sum);
+  return weight_sum > T(0) ? sum / weight_sum : glm::vec<3, T>(0);
+}
+
+}  // namespace vplkit

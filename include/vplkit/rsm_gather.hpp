@@ -1,0 +1,122 @@
+// The per-receiver RSM gather of paper 000: Alg. 1 (with the visibility of Alg. 2 or 3) and
+// Alg. 5 (with the branch-free visibility of Alg. 6), or the original RSM gather with the disk
+// pattern. Returns the irradiance at the receiver due to the RSM's pixel lights.
+//
+// The RSM is read through a callable, `fetch(glm::ivec2 texel) -> rsm_texel<T>` (in GLSL the
+// including shader defines `rsm_texel rsm_fetch(ivec2 texel)`), so the same gather runs on
+// textures, on read-back buffers and on synthetic RSMs in tests.
+//
+// Irradiance: Eq. 3.2 leaves out the 1/pi of a Lambertian pixel light (as Dachsbacher and
+// Stamminger 2005 do); the gather applies it once at the end, so with the RSM's flux being
+// the flux reflected by each texel, the result is the physical irradiance and albedo / pi times
+// it the reflected radiance. Samples outside the RSM, or on empty texels (eye depth >= 0:
+// nothing was rendered there), are skipped and do not touch the micro linear buffer (Alg. 1,
+// line 9: visibility is computed only for samples inside the RSM).
+//
+// GLSL twin: shaders/lib/rsm_gather.glsl, with VPLKIT_RSM_PATTERN and VPLKIT_VISIBILITY
+// (#defines) for the template parameters.
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <vplkit/irradiance.hpp>
+#include <vplkit/micro_linear_buffer.hpp>
+#include <vplkit/rsm_pattern.hpp>
+#include <vplkit/transform.hpp>
+
+namespace vplkit {
+
+/// One texel of the RSM (Fig. 4.2): a pixel light.
+template <typename T>
+struct rsm_texel {
+  glm::vec<3, T> position;  ///< world space
+  T eye_depth;              ///< z in the light's eye space (negative in front); >= 0: empty
+  glm::vec<3, T> normal;    ///< world space, unit
+  glm::vec<3, T> flux;      ///< flux reflected by the texel
+};
+
+enum class rsm_pattern { radial = 0, disk = 1 };                 ///< GLSL: VPLKIT_RSM_PATTERN 0 / 1
+enum class rsm_visibility { none = 0, alg2 = 2, alg3 = 3, alg6 = 6 };  ///< GLSL: VPLKIT_VISIBILITY
+
+/// "none", "alg2", "alg3", "alg6".
+inline const char* visibility_name(rsm_visibility visibility) {
+  switch (visibility) {
+    case rsm_visibility::none: return "none";
+    case rsm_visibility::alg2: return "alg2";
+    case rsm_visibility::alg3: return "alg3";
+    case rsm_visibility::alg6: return "alg6";
+  }
+  return "unknown";
+}
+
+/// Everything the gather needs besides the receiver and the RSM. GLSL twin: the uniforms of
+/// shaders/gather.frag, filled by set_uniforms.
+template <typename T>
+struct rsm_gather_settings {
+  irradiance_settings<T> irradiance;
+  radial_pattern_constants<T> radial = make_radial_pattern_constants(radial_pattern_settings<T>{});
+  disk_pattern_settings<T> disk;
+  elevation_slots<T> slots = make_elevation_slots<T>(5);  ///< the thesis's 5 slots
+  glm::mat<4, 4, T> light_view = glm::mat<4, 4, T>(1);    ///< world -> light eye space
+  glm::ivec2 rsm_size = glm::ivec2(512);
+};
+
+/// The receiver: a G-buffer sample.
+template <typename T>
+struct gather_receiver {
+  glm::vec<3, T> position;        ///< world space
+  glm::vec<3, T> normal;          ///< world space, unit
+  glm::vec<2, T> rsm_coordinate;  ///< its projection onto the RSM, in texels (continuous)
+  glm::uvec2 pixel;               ///< its pixel in the indirect buffer (seeds the pattern)
+};
+
+namespace detail {
+
+template <rsm_visibility Visibility, typename T>
+T visibility_of(micro_linear_buffer<T>& buffer, int index) {
+  if constexpr (Visibility == rsm_visibility::alg2) return micro_linear_buffer_alg2(buffer, index);
+  else if constexpr (Visibility == rsm_visibility::alg3) return micro_linear_buffer_alg3(buffer, index);
+  else if constexpr (Visibility == rsm_visibility::alg6) return glm::clamp(micro_linear_buffer_alg6(buffer, index), T(0), T(1));
+  else return T(1);
+}
+
+}  // namespace detail
+
+/// The gather: irradiance at the receiver. Visibility needs the radial pattern (its samples
+/// lie on paths); the disk pattern has none.
+template <rsm_pattern Pattern, rsm_visibility Visibility, typename T, typename Fetch>
+glm::vec<3, T> gather_rsm(const gather_receiver<T>& receiver, Fetch&& fetch, const rsm_gather_settings<T>& settings) {
+  static_assert(Pattern == rsm_pattern::radial || Visibility == rsm_visibility::none,
+                "the disk pattern has no paths: visibility needs rsm_pattern::radial");
+  glm::vec<3, T> irradiance(0);
+  const glm::vec<3, T> receiver_eye = transform_point(settings.light_view, receiver.position);
+  // One sample: fetch, visibility, Eq. 3.2, accumulate (Alg. 1 lines 9-16, Alg. 5 lines 9-15).
+  auto accumulate = [&](const pattern_sample<T>& sample, micro_linear_buffer<T>& buffer) {
+    const glm::ivec2 texel = glm::ivec2(glm::floor(receiver.rsm_coordinate + sample.offset));
+    if (texel.x < 0 || texel.y < 0 || texel.x >= settings.rsm_size.x || texel.y >= settings.rsm_size.y) return;
+    const rsm_texel<T> light = fetch(texel);
+    if (!(light.eye_depth < T(0))) return;
+    T visibility = T(1);
+    if constexpr (Visibility != rsm_visibility::none) {
+      const glm::vec<3, T> light_eye = transform_point(settings.light_view, light.position);
+      visibility = detail::visibility_of<Visibility>(buffer, elevation_bucket(receiver_eye, light_eye, settings.slots));
+    }
+    const glm::vec<3, T> e = pixel_light_irradiance(receiver.position, receiver.normal, light.position, light.normal,
+                                                    light.flux, settings.irradiance);
+    irradiance += (visibility * sample.weight) * e;
+  };
+  micro_linear_buffer<T> buffer;
+  if constexpr (Pattern == rsm_pattern::radial) {
+    for (int path = 0; path < settings.radial.paths; ++path) {
+      micro_linear_buffer_reset(buffer, settings.slots.count);
+      for (int sample = 0; sample < settings.radial.samples_per_path; ++sample)
+        accumulate(radial_pattern_sample(path, sample, receiver.pixel, settings.radial), buffer);
+    }
+  } else {
+    micro_linear_buffer_reset(buffer, settings.slots.count);  // unused without paths, but defined
+    for (int sample = 0; sample < settings.disk.samples; ++sample) accumulate(rsm_disk_sample(sample, settings.disk), buffer);
+  }
+  return irradiance * T(0.318309886183790671538);  // 1 / pi
+}
+
+}  // namespace vplkit

@@ -1,0 +1,151 @@
+// Where an RSM gather samples: the radial pattern of paper 000 (section 3.2, Alg. 1 and 5) and
+// the original RSM disk pattern (Dachsbacher and Stamminger 2005) as the baseline. Offsets are
+// in RSM texels from the receiver's projection onto the RSM; weights in texels^2 (the RSM area
+// a sample stands for), so sum(weight * E_p) estimates the sum of E_p over all pixel lights.
+//
+// Radial pattern: P straight paths from the projection, S samples per path, near to far. The
+// annulus [r_min, r_max] is cut into S log-spaced rings, r_j = r_min * q^j with
+// q = (r_max / r_min)^(1/S); sample j lies uniformly in ring j, at angle 2 pi (p + rotation +
+// jitter) / P. Its weight (2 pi / P) * r * (r_(j+1) - r_j) is the inverse of its area density,
+// so the weighted sum is an unbiased estimate of the integral over the annulus, and since the
+// ring widths grow like r, the weight grows like r^2: "density decreases and weight grows with
+// the square of the distance" (SEED_NOTES derives the same for log-spaced radii). The inner disk
+// r < r_min is not sampled: with the default r_min = 1 texel it is the receiver's own texel,
+// whose surface cannot light itself (Eq. 3.2 is 0 for coplanar points).
+// Per pixel, the whole pattern is rotated by up to one path spacing and scaled by a factor near
+// 1; per sample, the angle is jittered by a fraction of the path spacing (Alg. 1, lines 4-5).
+// The thesis gives no amounts: they are settings. Randomness comes from hash.hpp and angles go
+// through direction_from_angle, so the GLSL twin computes the same offsets to the bit.
+//
+// Disk pattern: offset = r_max * xi1 * (sin 2 pi xi2, cos 2 pi xi2), weight xi1^2, the same for
+// every pixel. The weight is normalised by 3 pi r_max^2 / N so that the weights sum to the disk's
+// area in expectation (E[xi1^2] = 1/3). Like the original, it is biased for anything but a
+// constant: uniform xi1 puts area density ~ 1 / r, and xi1^2 over-compensates it.
+//
+// GLSL twin: shaders/lib/rsm_pattern.glsl.
+#pragma once
+
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+#include <vplkit/hash.hpp>
+#include <vplkit/polynomial_math.hpp>
+
+namespace vplkit {
+
+/// A sample of a pattern: where (RSM texels from the projection) and how much area it stands for.
+template <typename T>
+struct pattern_sample {
+  glm::vec<2, T> offset;
+  T weight;
+};
+
+/// Settings of the radial pattern (defaults: the thesis's 15 x 10).
+template <typename T = float>
+struct radial_pattern_settings {
+  int paths = 15;              ///< P, straight paths from the projection (>= 1)
+  int samples_per_path = 10;   ///< S, samples along each path, near to far (>= 1)
+  T min_radius = T(1);         ///< r_min in RSM texels (> 0)
+  T max_radius = T(64);        ///< r_max in RSM texels (> r_min); 1/8 of a 512^2 RSM
+  T rotation_jitter = T(1);    ///< per-pixel rotation, in path spacings: uniform in [0, this)
+  T angle_jitter = T(0.25);    ///< per-sample angle jitter, in path spacings: +-half of this
+  T scale_jitter = T(0.2);     ///< per-pixel radius scale: uniform in [1 - this/2, 1 + this/2)
+  std::uint32_t seed = 0;      ///< changes every per-pixel and per-sample random number
+};
+
+/// Returns nullptr when the settings are usable, else a message naming the bad field.
+template <typename T>
+const char* validate(const radial_pattern_settings<T>& settings) {
+  if (settings.paths < 1 || settings.paths > 256) return "radial_pattern_settings::paths must be in [1, 256]";
+  if (settings.samples_per_path < 1 || settings.samples_per_path > 256)
+    return "radial_pattern_settings::samples_per_path must be in [1, 256]";
+  if (!(settings.min_radius > T(0))) return "radial_pattern_settings::min_radius must be > 0";
+  if (!(settings.max_radius > settings.min_radius)) return "radial_pattern_settings::max_radius must be > min_radius";
+  if (!(settings.rotation_jitter >= T(0) && settings.rotation_jitter <= T(1)))
+    return "radial_pattern_settings::rotation_jitter must be in [0, 1]";
+  if (!(settings.angle_jitter >= T(0) && settings.angle_jitter <= T(1)))
+    return "radial_pattern_settings::angle_jitter must be in [0, 1]";
+  if (!(settings.scale_jitter >= T(0) && settings.scale_jitter < T(1)))
+    return "radial_pattern_settings::scale_jitter must be in [0, 1)";
+  return nullptr;
+}
+
+/// The constants both sides use, derived once from the settings. GLSL twin: struct
+/// radial_pattern_constants (a uniform).
+template <typename T>
+struct radial_pattern_constants {
+  int paths;
+  int samples_per_path;
+  T min_radius;
+  T ring_ratio;     ///< q = (r_max / r_min)^(1 / S)
+  T path_spacing;   ///< 2 pi / P
+  T rotation_jitter;
+  T angle_jitter;
+  T scale_jitter;
+  std::uint32_t seed;
+};
+
+template <typename T>
+radial_pattern_constants<T> make_radial_pattern_constants(const radial_pattern_settings<T>& settings) {
+  const double ratio = static_cast<double>(settings.max_radius) / static_cast<double>(settings.min_radius);
+  return {settings.paths,
+          settings.samples_per_path,
+          settings.min_radius,
+          static_cast<T>(std::pow(ratio, 1.0 / settings.samples_per_path)),
+          static_cast<T>(6.28318530717958647692 / settings.paths),
+          settings.rotation_jitter,
+          settings.angle_jitter,
+          settings.scale_jitter,
+          settings.seed};
+}
+
+/// Sample `sample` (0 = nearest) of path `path` for the receiver at RSM pixel `pixel`.
+template <typename T>
+pattern_sample<T> radial_pattern_sample(int path, int sample, const glm::uvec2& pixel,
+                                        const radial_pattern_constants<T>& constants) {
+  const std::uint32_t pixel_hash = hash_combine(hash_combine(constants.seed, pixel.x), pixel.y);
+  const T rotation = constants.rotation_jitter * T(uniform_float_from_bits(hash_combine(pixel_hash, 0u)));
+  const T scale = T(1) + constants.scale_jitter * (T(uniform_float_from_bits(hash_combine(pixel_hash, 1u))) - T(0.5));
+  const std::uint32_t sample_hash =
+      hash_combine(pixel_hash, static_cast<std::uint32_t>(2 + path * constants.samples_per_path + sample));
+  const T angle_offset = constants.angle_jitter * (T(uniform_float_from_bits(sample_hash)) - T(0.5));
+  const T radial_position = T(uniform_float_from_bits(hash_uint32(sample_hash)));
+  T inner = constants.min_radius;
+  for (int ring = 0; ring < sample; ++ring) inner *= constants.ring_ratio;
+  const T ring_width = scale * (inner * constants.ring_ratio - inner);
+  const T radius = scale * inner + radial_position * ring_width;
+  const glm::vec<2, T> direction =
+      direction_from_angle(constants.path_spacing * (T(path) + rotation + angle_offset));
+  return {direction * radius, constants.path_spacing * radius * ring_width};
+}
+
+/// Settings of the original RSM disk pattern (defaults: 400 samples, as suggested there).
+template <typename T = float>
+struct disk_pattern_settings {
+  int samples = 400;         ///< N (>= 1)
+  T max_radius = T(64);      ///< r_max in RSM texels (> 0)
+  std::uint32_t seed = 0;
+};
+
+template <typename T>
+const char* validate(const disk_pattern_settings<T>& settings) {
+  if (settings.samples < 1 || settings.samples > 65536) return "disk_pattern_settings::samples must be in [1, 65536]";
+  if (!(settings.max_radius > T(0))) return "disk_pattern_settings::max_radius must be > 0";
+  return nullptr;
+}
+
+/// Sample `sample` of the disk pattern: the same for every receiver.
+template <typename T>
+pattern_sample<T> rsm_disk_sample(int sample, const disk_pattern_settings<T>& settings) {
+  const std::uint32_t sample_hash = hash_combine(settings.seed ^ 0x5bd1e995u, static_cast<std::uint32_t>(sample));
+  const T xi1 = T(uniform_float_from_bits(sample_hash));
+  const T xi2 = T(uniform_float_from_bits(hash_uint32(sample_hash)));
+  const glm::vec<2, T> direction = direction_from_angle(T(6.28318530717958647692) * xi2);
+  const T radius = settings.max_radius * xi1;
+  const T normalisation = T(3) * T(3.14159265358979323846) * settings.max_radius * settings.max_radius / T(settings.samples);
+  // (sin, cos) as printed in the RSM paper.
+  return {glm::vec<2, T>(direction.y, direction.x) * radius, xi1 * xi1 * normalisation};
+}
+
+}  // namespace vplkit

@@ -1,0 +1,38 @@
+#version 330 core
+// Pass 3, RSM sampling (paper 000, section 4.4): the gather at the indirect buffer's resolution,
+// one G-buffer sample per texel (G-buffer texel = indirect texel * divisor). Writes
+// [irradiance | camera eye depth] (Fig. 4.4). VPLKIT_RSM_PATTERN and VPLKIT_VISIBILITY select
+// the variant (lib/rsm_gather.glsl).
+#include "lib/rsm_gather.glsl"
+
+uniform rsm_gather_settings settings;
+uniform mat4 light_view_projection;
+uniform int indirect_divisor;
+uniform ivec2 gbuffer_size;
+uniform sampler2D rsm_position_depth;
+uniform sampler2D rsm_normal;
+uniform sampler2D rsm_flux;
+uniform sampler2D gbuffer_position_depth;
+uniform sampler2D gbuffer_normal;
+
+layout(location = 0) out vec4 indirect;
+
+rsm_texel rsm_fetch(ivec2 texel) {
+  vec4 position_depth = texelFetch(rsm_position_depth, texel, 0);
+  return rsm_texel(position_depth.xyz, position_depth.w, texelFetch(rsm_normal, texel, 0).xyz,
+                   texelFetch(rsm_flux, texel, 0).xyz);
+}
+
+void main() {
+  ivec2 texel = ivec2(gl_FragCoord.xy);
+  ivec2 sample_texel = min(texel * indirect_divisor, gbuffer_size - 1);
+  vec4 position_depth = texelFetch(gbuffer_position_depth, sample_texel, 0);
+  if (!(position_depth.w < 0.0)) {  // no surface here
+    indirect = vec4(0.0);
+    return;
+  }
+  gather_receiver receiver = gather_receiver(position_depth.xyz, texelFetch(gbuffer_normal, sample_texel, 0).xyz,
+                                             map_coordinate(light_view_projection, position_depth.xyz, settings.rsm_size),
+                                             uvec2(texel));
+  indirect = vec4(gather_rsm(receiver, settings), position_depth.w);
+}

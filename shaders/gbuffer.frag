@@ -1,0 +1,44 @@
+#version 330 core
+// Pass 2, G-buffer generation (paper 000, Fig. 4.3): [world position | camera eye depth],
+// [albedo | shadow density (Alg. 4)], [world normal | -].
+#include "lib/shadow.glsl"
+#include "lib/transform.glsl"
+
+uniform mat4 camera_view;
+uniform mat4 light_view;
+uniform mat4 light_view_projection;
+uniform ivec2 rsm_size;
+uniform shadow_density_settings shadow;
+uniform sampler2D rsm_position_depth;
+
+in vec3 world_position;
+in vec3 world_normal;
+in vec3 surface_albedo;
+layout(location = 0) out vec4 position_depth;
+layout(location = 1) out vec4 albedo_density;
+layout(location = 2) out vec4 normal_out;
+
+float rsm_depth_fetch(ivec2 texel) { return texelFetch(rsm_position_depth, texel, 0).w; }
+
+// Change of the light eye depth per RSM texel across this surface, from screen-space
+// derivatives (receiver-plane depth bias, Isidoro 2006): solve
+// [d(rsm)/dx d(rsm)/dy]^T * gradient = [d(depth)/dx d(depth)/dy]. Clamped, because at
+// silhouettes the derivatives straddle two surfaces.
+vec2 receiver_depth_gradient(vec2 rsm_coordinate, float receiver_depth) {
+  vec2 rsm_dx = dFdx(rsm_coordinate), rsm_dy = dFdy(rsm_coordinate);
+  float depth_dx = dFdx(receiver_depth), depth_dy = dFdy(receiver_depth);
+  float determinant = rsm_dx.x * rsm_dy.y - rsm_dx.y * rsm_dy.x;
+  if (abs(determinant) < 1e-8) return vec2(0.0);
+  vec2 gradient = vec2(rsm_dy.y * depth_dx - rsm_dx.y * depth_dy, rsm_dx.x * depth_dy - rsm_dy.x * depth_dx) / determinant;
+  float limit = 0.1;  // scene units per RSM texel
+  return clamp(gradient, vec2(-limit), vec2(limit));
+}
+
+void main() {
+  vec2 rsm_coordinate = map_coordinate(light_view_projection, world_position, rsm_size);
+  float receiver_depth = transform_point(light_view, world_position).z;
+  vec2 depth_gradient = receiver_depth_gradient(rsm_coordinate, receiver_depth);
+  position_depth = vec4(world_position, transform_point(camera_view, world_position).z);
+  albedo_density = vec4(surface_albedo, shadow_density(rsm_coordinate, receiver_depth, depth_gradient, rsm_size, shadow));
+  normal_out = vec4(normalize(world_normal), 0.0);
+}

@@ -1,0 +1,93 @@
+// GLSL twin of include/vplkit/rsm_gather.hpp: the RSM gather of paper 000 (Alg. 1/5 with the
+// visibility of Alg. 2, 3 or 6, or the original disk pattern).
+// Before including, define
+//   VPLKIT_RSM_PATTERN  0 radial, 1 disk
+//   VPLKIT_VISIBILITY   0 none, 2 Alg. 2, 3 Alg. 3, 6 Alg. 6
+// and the function `rsm_texel rsm_fetch(ivec2 texel)` (declare it after including this file's
+// rsm_texel, e.g. with a prototype: the struct comes first, the fetch after).
+#ifndef VPLKIT_RSM_GATHER_GLSL
+#define VPLKIT_RSM_GATHER_GLSL
+
+#include "lib/irradiance.glsl"
+#include "lib/micro_linear_buffer.glsl"
+#include "lib/rsm_pattern.glsl"
+#include "lib/transform.glsl"
+
+#ifndef VPLKIT_RSM_PATTERN
+#error "define VPLKIT_RSM_PATTERN (0 radial, 1 disk) before including lib/rsm_gather.glsl"
+#endif
+#ifndef VPLKIT_VISIBILITY
+#error "define VPLKIT_VISIBILITY (0, 2, 3 or 6) before including lib/rsm_gather.glsl"
+#endif
+#if VPLKIT_RSM_PATTERN == 1 && VPLKIT_VISIBILITY != 0
+#error "the disk pattern has no paths: visibility needs VPLKIT_RSM_PATTERN 0"
+#endif
+
+struct rsm_texel {
+  vec3 position;
+  float eye_depth;
+  vec3 normal;
+  vec3 flux;
+};
+
+rsm_texel rsm_fetch(ivec2 texel);
+
+struct rsm_gather_settings {
+  irradiance_settings irradiance;
+  radial_pattern_constants radial;
+  disk_pattern_settings disk;
+  elevation_slots slots;
+  mat4 light_view;
+  ivec2 rsm_size;
+};
+
+struct gather_receiver {
+  vec3 position;
+  vec3 normal;
+  vec2 rsm_coordinate;
+  uvec2 pixel;
+};
+
+void rsm_gather_accumulate(gather_receiver receiver, vec3 receiver_eye, pattern_sample s, rsm_gather_settings settings,
+                           inout micro_linear_buffer buffer, inout vec3 irradiance) {
+  ivec2 texel = ivec2(floor(receiver.rsm_coordinate + s.offset));
+  if (texel.x < 0 || texel.y < 0 || texel.x >= settings.rsm_size.x || texel.y >= settings.rsm_size.y) return;
+  rsm_texel light = rsm_fetch(texel);
+  if (!(light.eye_depth < 0.0)) return;
+  float visibility = 1.0;
+#if VPLKIT_VISIBILITY != 0
+  vec3 light_eye = transform_point(settings.light_view, light.position);
+  int index = elevation_bucket(receiver_eye, light_eye, settings.slots);
+#if VPLKIT_VISIBILITY == 2
+  visibility = micro_linear_buffer_alg2(buffer, index);
+#elif VPLKIT_VISIBILITY == 3
+  visibility = micro_linear_buffer_alg3(buffer, index);
+#elif VPLKIT_VISIBILITY == 6
+  visibility = clamp(micro_linear_buffer_alg6(buffer, index), 0.0, 1.0);
+#endif
+#endif
+  vec3 e = pixel_light_irradiance(receiver.position, receiver.normal, light.position, light.normal, light.flux,
+                                  settings.irradiance);
+  irradiance += (visibility * s.weight) * e;
+}
+
+vec3 gather_rsm(gather_receiver receiver, rsm_gather_settings settings) {
+  vec3 irradiance = vec3(0.0);
+  vec3 receiver_eye = transform_point(settings.light_view, receiver.position);
+  micro_linear_buffer buffer;
+#if VPLKIT_RSM_PATTERN == 0
+  for (int path = 0; path < settings.radial.paths; ++path) {
+    micro_linear_buffer_reset(buffer, settings.slots.count);
+    for (int sample = 0; sample < settings.radial.samples_per_path; ++sample)
+      rsm_gather_accumulate(receiver, receiver_eye, radial_pattern_sample(path, sample, receiver.pixel, settings.radial),
+                            settings, buffer, irradiance);
+  }
+#else
+  micro_linear_buffer_reset(buffer, settings.slots.count);  // unused without paths, but defined
+  for (int sample = 0; sample < settings.disk.samples; ++sample)
+    rsm_gather_accumulate(receiver, receiver_eye, rsm_disk_sample(sample, settings.disk), settings, buffer, irradiance);
+#endif
+  return irradiance * 0.318309886183790671538;
+}
+
+#endif

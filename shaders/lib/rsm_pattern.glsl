@@ -1,0 +1,57 @@
+// GLSL twin of include/vplkit/rsm_pattern.hpp: the radial pattern of paper 000 and the original
+// RSM disk pattern, bit-identical offsets (hash.glsl, polynomial_math.glsl).
+#ifndef VPLKIT_RSM_PATTERN_GLSL
+#define VPLKIT_RSM_PATTERN_GLSL
+
+#include "lib/hash.glsl"
+#include "lib/polynomial_math.glsl"
+
+struct pattern_sample {
+  vec2 offset;
+  float weight;
+};
+
+struct radial_pattern_constants {
+  int paths;
+  int samples_per_path;
+  float min_radius;
+  float ring_ratio;
+  float path_spacing;
+  float rotation_jitter;
+  float angle_jitter;
+  float scale_jitter;
+  uint seed;
+};
+
+pattern_sample radial_pattern_sample(int path, int sample, uvec2 pixel, radial_pattern_constants constants) {
+  uint pixel_hash = hash_combine(hash_combine(constants.seed, pixel.x), pixel.y);
+  float rotation = constants.rotation_jitter * uniform_float_from_bits(hash_combine(pixel_hash, 0u));
+  float scale = 1.0 + constants.scale_jitter * (uniform_float_from_bits(hash_combine(pixel_hash, 1u)) - 0.5);
+  uint sample_hash = hash_combine(pixel_hash, uint(2 + path * constants.samples_per_path + sample));
+  float angle_offset = constants.angle_jitter * (uniform_float_from_bits(sample_hash) - 0.5);
+  float radial_position = uniform_float_from_bits(hash_uint32(sample_hash));
+  float inner = constants.min_radius;
+  for (int ring = 0; ring < sample; ++ring) inner *= constants.ring_ratio;
+  float ring_width = scale * (inner * constants.ring_ratio - inner);
+  float radius = scale * inner + radial_position * ring_width;
+  vec2 direction = direction_from_angle(constants.path_spacing * (float(path) + rotation + angle_offset));
+  return pattern_sample(direction * radius, constants.path_spacing * radius * ring_width);
+}
+
+struct disk_pattern_settings {
+  int samples;
+  float max_radius;
+  uint seed;
+};
+
+pattern_sample rsm_disk_sample(int sample, disk_pattern_settings settings) {
+  uint sample_hash = hash_combine(settings.seed ^ 0x5bd1e995u, uint(sample));
+  float xi1 = uniform_float_from_bits(sample_hash);
+  float xi2 = uniform_float_from_bits(hash_uint32(sample_hash));
+  vec2 direction = direction_from_angle(6.28318530717958647692 * xi2);
+  float radius = settings.max_radius * xi1;
+  float normalisation = 3.0 * 3.14159265358979323846 * settings.max_radius * settings.max_radius / float(settings.samples);
+  return pattern_sample(vec2(direction.y, direction.x) * radius, xi1 * xi1 * normalisation);
+}
+
+#endif

@@ -1,0 +1,59 @@
+#version 330 core
+// Pass 4, post processing (paper 000, section 4.5): the indirect buffer upsampled and blurred
+// by the bilateral filter (full 2D, or the y axis over pass 4a's output when VPLKIT_SEPARABLE),
+// then direct light from the G-buffer (albedo, shadow density) plus indirect:
+//   radiance = albedo / pi * (E_direct * shadow_density + E_indirect).
+// Writes [radiance | 1] and [filtered indirect irradiance | 1].
+#include "lib/bilateral.glsl"
+#include "lib/direct_light.glsl"
+
+uniform bilateral_settings bilateral;
+uniform irradiance_settings irradiance;
+uniform int indirect_divisor;
+uniform ivec2 indirect_size;
+uniform ivec2 gbuffer_size;
+uniform sampler2D indirect_buffer;
+uniform sampler2D gbuffer_position_depth;
+uniform sampler2D gbuffer_albedo_density;
+uniform sampler2D gbuffer_normal;
+#if VPLKIT_LIGHT_DIRECTIONAL
+uniform directional_light directional;
+#else
+uniform spot_light spot;
+#endif
+
+layout(location = 0) out vec4 radiance;
+layout(location = 1) out vec4 indirect_out;
+
+bilateral_tap bilateral_fetch(ivec2 texel) {
+  vec4 value = texelFetch(indirect_buffer, texel, 0);
+  return bilateral_tap(value.xyz, value.w, texelFetch(gbuffer_normal, min(texel * indirect_divisor, gbuffer_size - 1), 0).xyz);
+}
+
+void main() {
+  ivec2 pixel = ivec2(gl_FragCoord.xy);
+  vec4 position_depth = texelFetch(gbuffer_position_depth, pixel, 0);
+  if (!(position_depth.w < 0.0)) {
+    radiance = vec4(0.0, 0.0, 0.0, 1.0);
+    indirect_out = vec4(0.0, 0.0, 0.0, 1.0);
+    return;
+  }
+  vec4 albedo_density = texelFetch(gbuffer_albedo_density, pixel, 0);
+  vec3 n = texelFetch(gbuffer_normal, pixel, 0).xyz;
+  vec3 indirect_irradiance = vec3(0.0);
+#if VPLKIT_INDIRECT
+  vec2 centre = (vec2(pixel) + 0.5) / float(indirect_divisor);
+#if VPLKIT_SEPARABLE
+  indirect_irradiance = bilateral_filter_axis(centre, position_depth.w, n, indirect_size, 1, bilateral);
+#else
+  indirect_irradiance = bilateral_filter(centre, position_depth.w, n, indirect_size, bilateral);
+#endif
+#endif
+#if VPLKIT_LIGHT_DIRECTIONAL
+  vec3 direct = directional_light_irradiance(n, directional);
+#else
+  vec3 direct = spot_light_irradiance(position_depth.xyz, n, spot, irradiance);
+#endif
+  radiance = vec4(albedo_density.rgb * 0.318309886183790671538 * (direct * albedo_density.a + indirect_irradiance), 1.0);
+  indirect_out = vec4(indirect_irradiance, 1.0);
+}

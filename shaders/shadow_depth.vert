@@ -1,5 +1,0 @@
-#version 330 core
-// Shadow-map pass: depth only, from the light.
-layout(location = 0) in vec3 position;
-uniform mat4 view_projection;
-void main() { gl_Position = view_projection * vec4(position, 1.0); }
