@@ -1,5 +1,7 @@
 #include "frontend/render_target.hpp"
 
+#include <cmath>
+
 #include "frontend/debug_output.hpp"
 #include "frontend/error.hpp"
 
@@ -58,8 +60,10 @@ texture_2d::texture_2d(int width, int height, texel_format format, const void* i
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
   glBindTexture(GL_TEXTURE_2D, static_cast<GLuint>(previous));
-  check_gl(std::string("allocating a ") + std::to_string(width) + "x" + std::to_string(height) + " " +
-           format_name(format) + " texture");
+  const int bytes_per_texel = format == texel_format::rgba16f ? 8 : format == texel_format::depth32f ? 4 : 16;
+  const double mebibytes = static_cast<double>(width) * height * bytes_per_texel / (1024.0 * 1024.0);
+  check_gl(std::string("allocating a ") + std::to_string(width) + "x" + std::to_string(height) + " " + format_name(format) +
+           " texture (" + std::to_string(static_cast<long long>(std::ceil(mebibytes))) + " MiB)");
 }
 
 void texture_2d::bind(int unit) const {

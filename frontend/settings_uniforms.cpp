@@ -30,7 +30,8 @@ void set_uniforms(const program& target, const std::string& name, const radial_p
   target.set(name + ".samples_per_path", constants.samples_per_path);
   target.set(name + ".min_radius", constants.min_radius);
   target.set(name + ".ring_ratio", constants.ring_ratio);
-  target.set(name + ".path_spacing", constants.path_spacing);
+  target.set(name + ".path_turns", constants.path_turns);
+  target.set(name + ".path_angle", constants.path_angle);
   target.set(name + ".rotation_jitter", constants.rotation_jitter);
   target.set(name + ".angle_jitter", constants.angle_jitter);
   target.set(name + ".scale_jitter", constants.scale_jitter);

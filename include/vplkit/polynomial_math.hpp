@@ -16,12 +16,14 @@
 
 namespace vplkit {
 
-/// (cos angle, sin angle) for any finite angle (radians). The angle is reduced to [-pi, pi],
-/// halved to [-pi/2, pi/2], where Taylor polynomials of degree 13 (sin) and 14 (cos) are exact
-/// to 1e-9, and doubled back: cos = c^2 - s^2, sin = 2 s c.
+/// (cos 2 pi turns, sin 2 pi turns) for any finite angle in turns. The angle is reduced to half
+/// a turn either way, halved to [-pi/2, pi/2], where Taylor polynomials of degree 13 (sin) and
+/// 14 (cos) are exact to 1e-9, and doubled back: cos = c^2 - s^2, sin = 2 s c.
+/// Callers pass turns rather than radians where they can: a shader compiler may fold a chain
+/// of constant multiplies (2 pi * x * 1 / (2 pi)) that C++ rounds step by step (GLSL allows it),
+/// and then the two sides differ by an ulp of the angle.
 template <typename T>
-glm::vec<2, T> direction_from_angle(T angle) {
-  const T turns = angle * T(0.159154943091895335769);  // 1 / (2 pi)
+glm::vec<2, T> direction_from_turns(T turns) {
   const T reduced_turns = turns - std::floor(turns + T(0.5));
   const T half_angle = reduced_turns * T(3.14159265358979323846);  // (2 pi * reduced) / 2
   const T h2 = half_angle * half_angle;
@@ -39,6 +41,12 @@ glm::vec<2, T> direction_from_angle(T angle) {
                                                                          (T(1) - h2 * T(0.00757575757575757576) *
                                                                                      (T(1) - h2 * T(0.00549450549450549451)))))));
   return {c * c - s * s, T(2) * s * c};
+}
+
+/// (cos angle, sin angle) for an angle in radians: direction_from_turns(angle / (2 pi)).
+template <typename T>
+glm::vec<2, T> direction_from_angle(T angle) {
+  return direction_from_turns(angle * T(0.159154943091895335769));
 }
 
 }  // namespace vplkit

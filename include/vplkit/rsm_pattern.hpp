@@ -15,7 +15,7 @@
 // Per pixel, the whole pattern is rotated by up to one path spacing and scaled by a factor near
 // 1; per sample, the angle is jittered by a fraction of the path spacing (Alg. 1, lines 4-5).
 // The thesis gives no amounts: they are settings. Randomness comes from hash.hpp and angles go
-// through direction_from_angle, so the GLSL twin computes the same offsets to the bit.
+// through direction_from_turns, so the GLSL twin computes the same offsets to the bit.
 //
 // Disk pattern: offset = r_max * xi1 * (sin 2 pi xi2, cos 2 pi xi2), weight xi1^2, the same for
 // every pixel. The weight is normalised by 3 pi r_max^2 / N so that the weights sum to the disk's
@@ -79,7 +79,8 @@ struct radial_pattern_constants {
   int samples_per_path;
   T min_radius;
   T ring_ratio;     ///< q = (r_max / r_min)^(1 / S)
-  T path_spacing;   ///< 2 pi / P
+  T path_turns;     ///< 1 / P: the angle between paths in turns
+  T path_angle;     ///< 2 pi / P: the same in radians, for the weights
   T rotation_jitter;
   T angle_jitter;
   T scale_jitter;
@@ -93,6 +94,7 @@ radial_pattern_constants<T> make_radial_pattern_constants(const radial_pattern_s
           settings.samples_per_path,
           settings.min_radius,
           static_cast<T>(std::pow(ratio, 1.0 / settings.samples_per_path)),
+          static_cast<T>(1.0 / settings.paths),
           static_cast<T>(6.28318530717958647692 / settings.paths),
           settings.rotation_jitter,
           settings.angle_jitter,
@@ -115,9 +117,8 @@ pattern_sample<T> radial_pattern_sample(int path, int sample, const glm::uvec2& 
   for (int ring = 0; ring < sample; ++ring) inner *= constants.ring_ratio;
   const T ring_width = scale * (inner * constants.ring_ratio - inner);
   const T radius = scale * inner + radial_position * ring_width;
-  const glm::vec<2, T> direction =
-      direction_from_angle(constants.path_spacing * (T(path) + rotation + angle_offset));
-  return {direction * radius, constants.path_spacing * radius * ring_width};
+  const glm::vec<2, T> direction = direction_from_turns(constants.path_turns * (T(path) + rotation + angle_offset));
+  return {direction * radius, constants.path_angle * radius * ring_width};
 }
 
 /// Settings of the original RSM disk pattern (defaults: 400 samples, as suggested there).
@@ -141,7 +142,7 @@ pattern_sample<T> rsm_disk_sample(int sample, const disk_pattern_settings<T>& se
   const std::uint32_t sample_hash = hash_combine(settings.seed ^ 0x5bd1e995u, static_cast<std::uint32_t>(sample));
   const T xi1 = T(uniform_float_from_bits(sample_hash));
   const T xi2 = T(uniform_float_from_bits(hash_uint32(sample_hash)));
-  const glm::vec<2, T> direction = direction_from_angle(T(6.28318530717958647692) * xi2);
+  const glm::vec<2, T> direction = direction_from_turns(xi2);
   const T radius = settings.max_radius * xi1;
   const T normalisation = T(3) * T(3.14159265358979323846) * settings.max_radius * settings.max_radius / T(settings.samples);
   // (sin, cos) as printed in the RSM paper.

@@ -2,8 +2,7 @@
 #ifndef VPLKIT_POLYNOMIAL_MATH_GLSL
 #define VPLKIT_POLYNOMIAL_MATH_GLSL
 
-vec2 direction_from_angle(float angle) {
-  float turns = angle * 0.159154943091895335769;
+vec2 direction_from_turns(float turns) {
   float reduced_turns = turns - floor(turns + 0.5);
   float half_angle = reduced_turns * 3.14159265358979323846;
   float h2 = half_angle * half_angle;
@@ -22,5 +21,7 @@ vec2 direction_from_angle(float angle) {
                                                                              (1.0 - h2 * 0.00549450549450549451))))));
   return vec2(c * c - s * s, 2.0 * s * c);
 }
+
+vec2 direction_from_angle(float angle) { return direction_from_turns(angle * 0.159154943091895335769); }
 
 #endif

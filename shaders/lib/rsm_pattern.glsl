@@ -16,7 +16,8 @@ struct radial_pattern_constants {
   int samples_per_path;
   float min_radius;
   float ring_ratio;
-  float path_spacing;
+  float path_turns;
+  float path_angle;
   float rotation_jitter;
   float angle_jitter;
   float scale_jitter;
@@ -34,8 +35,8 @@ pattern_sample radial_pattern_sample(int path, int sample, uvec2 pixel, radial_p
   for (int ring = 0; ring < sample; ++ring) inner *= constants.ring_ratio;
   float ring_width = scale * (inner * constants.ring_ratio - inner);
   float radius = scale * inner + radial_position * ring_width;
-  vec2 direction = direction_from_angle(constants.path_spacing * (float(path) + rotation + angle_offset));
-  return pattern_sample(direction * radius, constants.path_spacing * radius * ring_width);
+  vec2 direction = direction_from_turns(constants.path_turns * (float(path) + rotation + angle_offset));
+  return pattern_sample(direction * radius, constants.path_angle * radius * ring_width);
 }
 
 struct disk_pattern_settings {
@@ -48,7 +49,7 @@ pattern_sample rsm_disk_sample(int sample, disk_pattern_settings settings) {
   uint sample_hash = hash_combine(settings.seed ^ 0x5bd1e995u, uint(sample));
   float xi1 = uniform_float_from_bits(sample_hash);
   float xi2 = uniform_float_from_bits(hash_uint32(sample_hash));
-  vec2 direction = direction_from_angle(6.28318530717958647692 * xi2);
+  vec2 direction = direction_from_turns(xi2);
   float radius = settings.max_radius * xi1;
   float normalisation = 3.0 * 3.14159265358979323846 * settings.max_radius * settings.max_radius / float(settings.samples);
   return pattern_sample(vec2(direction.y, direction.x) * radius, xi1 * xi1 * normalisation);

@@ -38,12 +38,27 @@ endfunction()
 
 # --- good input -----------------------------------------------------------------------------
 expect_success("info prints GL and library versions" "vplkit [0-9]+\\.[0-9]+\\.[0-9]+.*GL_VERSION.*GL_RENDERER" "${VPLKIT}" info)
-expect_success("render writes the image and says where" "wrote .*/small\\.png" "${VPLKIT}" render --size 48x32 --shadow-map-size 128 --out "${WORK}/small.png")
-if(NOT EXISTS "${WORK}/small.png")
-  message(SEND_ERROR "FAILED render: ${WORK}/small.png does not exist")
+expect_success("render writes the images and says where"
+               "wrote .*/small\\.png.*wrote .*/small-indirect\\.png.*wrote .*/small-visibility-difference\\.png"
+               "${VPLKIT}" render --size 48x32 --rsm-size 64 --out "${WORK}/small.png")
+foreach(image small small-indirect small-visibility-difference)
+  if(NOT EXISTS "${WORK}/${image}.png")
+    message(SEND_ERROR "FAILED render: ${WORK}/${image}.png does not exist")
+    math(EXPR failures "${failures} + 1")
+  endif()
+endforeach()
+expect_success("render prints the pass table of Table 5.3"
+               "\\| RSM generation \\|.*\\| G-buffer generation \\|.*\\| RSM sampling \\|.*\\| post processing \\|.*\\| total \\|"
+               "${VPLKIT}" render --size 16 --rsm-size 32 --format rgba32f --out "${WORK}/f32.png")
+foreach(technique direct rsm-original rsm-radial rsm-alg2 rsm-alg3 rsm-alg6)
+  expect_success("render --technique ${technique}" "technique ${technique}"
+                 "${VPLKIT}" render --technique ${technique} --scene indirect-shadow --size 24 --rsm-size 32
+                 --post-filter separable --out "${WORK}/t-${technique}.png")
+endforeach()
+if(EXISTS "${WORK}/t-direct-indirect.png" OR EXISTS "${WORK}/t-rsm-radial-visibility-difference.png")
+  message(SEND_ERROR "FAILED render: an indirect or difference image for a technique without one")
   math(EXPR failures "${failures} + 1")
 endif()
-expect_success("render prints a pass table" "\\| shadow map \\|.*\\| shading \\|.*\\| total \\|" "${VPLKIT}" render --size 16 --format rgba32f --out "${WORK}/f32.png")
 
 # --- bad input: a clear message, a non-zero exit, no file -------------------------------------
 expect_failure("unknown option" "--bogus" "" "${VPLKIT}" render --bogus)
@@ -52,7 +67,17 @@ expect_failure("size zero" "--size.*\\[1, 16384\\]" "${WORK}/zero.png" "${VPLKIT
 expect_failure("size not a number" "--size.*expected N or WxH" "${WORK}/bad.png" "${VPLKIT}" render --size big --out "${WORK}/bad.png")
 expect_failure("negative min distance" "--min-distance" "${WORK}/md.png" "${VPLKIT}" render --min-distance -1 --out "${WORK}/md.png")
 expect_failure("unknown format" "--format.*rgba8" "${WORK}/fmt.png" "${VPLKIT}" render --format rgba8 --out "${WORK}/fmt.png")
-expect_failure("unknown scene" "--scene.*atrium" "${WORK}/scene.png" "${VPLKIT}" render --scene atrium --out "${WORK}/scene.png")
+expect_failure("unknown scene" "unknown scene 'atrium'.*cornell-box" "${WORK}/scene.png" "${VPLKIT}" render --scene atrium --out "${WORK}/scene.png")
+expect_failure("unknown technique" "--technique.*rsm-alg7" "${WORK}/tech.png" "${VPLKIT}" render --technique rsm-alg7 --out "${WORK}/tech.png")
+expect_failure("slots out of range" "--slots.*17" "${WORK}/slots.png" "${VPLKIT}" render --slots 17 --out "${WORK}/slots.png")
+expect_failure("paths out of range" "--paths.*0" "${WORK}/paths.png" "${VPLKIT}" render --paths 0 --out "${WORK}/paths.png")
+expect_failure("max radius below min radius" "max_radius must be > min_radius" "${WORK}/radius.png"
+               "${VPLKIT}" render --max-radius 0.5 --out "${WORK}/radius.png")
+expect_failure("RSM size out of range" "--rsm-size.*16385" "${WORK}/big.png"
+               "${VPLKIT}" render --size 8 --rsm-size 16385 --out "${WORK}/big.png")
+# 3 targets of 16384^2 rgba16f: 6 GiB, more than llvmpipe allocates (or above GL_MAX_TEXTURE_SIZE elsewhere).
+expect_failure("RSM too large for the GL implementation" "16384x16384 rgba16f texture" "${WORK}/big.png"
+               "${VPLKIT}" render --size 8 --rsm-size 16384 --out "${WORK}/big.png")
 expect_failure("output not a png" "--out must name a \\.png file" "${WORK}/image.jpg" "${VPLKIT}" render --out "${WORK}/image.jpg")
 file(WRITE "${WORK}/a-file" "")
 expect_failure("unwritable output path" "cannot write ${WORK}/a-file/x\\.png" "${WORK}/a-file/x.png"
@@ -62,8 +87,8 @@ expect_failure("missing shader folder" "shader directory not found: ${WORK}/no-s
 
 # A shader folder with one file missing, and one with a syntax error in a lib file.
 file(COPY "${SHADERS}/" DESTINATION "${WORK}/missing-file")
-file(REMOVE "${WORK}/missing-file/direct.frag")
-expect_failure("missing shader file" "shader file not found: ${WORK}/missing-file/direct\\.frag" "${WORK}/mf.png"
+file(REMOVE "${WORK}/missing-file/gather.frag")
+expect_failure("missing shader file" "shader file not found: ${WORK}/missing-file/gather\\.frag" "${WORK}/mf.png"
                "${VPLKIT}" render --shader-dir "${WORK}/missing-file" --out "${WORK}/mf.png")
 file(COPY "${SHADERS}/" DESTINATION "${WORK}/syntax-error")
 file(READ "${WORK}/syntax-error/lib/direct_light.glsl" text)
@@ -89,7 +114,7 @@ if(XVFB_RUN)
   # in the sanitizer build) show without symbols and cannot be suppressed by library name. The
   # frontend code on this path (renderer, programs) is leak-checked by the headless tests.
   expect_success("view opens a window under Xvfb" "closed the window"
-                 ${CMAKE_COMMAND} -E env "ASAN_OPTIONS=detect_leaks=0" "${XVFB_RUN}" -a "${VPLKIT}" view --size 64 --frames 3)
+                 ${CMAKE_COMMAND} -E env "ASAN_OPTIONS=detect_leaks=0" "${XVFB_RUN}" -a "${VPLKIT}" view --size 64 --rsm-size 64 --frames 3)
   expect_success("info in a window under Xvfb" "context +GLFW window" "${XVFB_RUN}" -a "${VPLKIT}" info --context window)
 else()
   message(STATUS "skipped the window tests: xvfb-run is not installed")

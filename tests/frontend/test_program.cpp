@@ -111,10 +111,24 @@ TEST_CASE("driver logs of Mesa, NVIDIA and AMD are mapped to file:line") {
 TEST_CASE("every shipped pass program compiles and links") {
   const shader_library& library = parity::test_shaders();
   for (const auto& [vertex, fragment] : std::vector<std::pair<std::string, std::string>>{
-           {"shadow_depth.vert", "shadow_depth.frag"}, {"direct.vert", "direct.frag"}, {"present.vert", "present.frag"}}) {
+           {"fullscreen.vert", "present.frag"}, {"fullscreen.vert", "blur_x.frag"}, {"scene.vert", "gbuffer.frag"}}) {
     CAPTURE(fragment);
     CHECK_NOTHROW(load_program(library, vertex, fragment));
   }
+  // The variant programs, every define combination the pipeline uses.
+  for (const char* light : {"0", "1"}) {
+    CHECK_NOTHROW(load_program(library, "scene.vert", "rsm.frag", {{"VPLKIT_LIGHT_DIRECTIONAL", light}}));
+    for (const char* indirect : {"0", "1"})
+      for (const char* separable : {"0", "1"})
+        CHECK_NOTHROW(load_program(library, "fullscreen.vert", "post.frag",
+                                   {{"VPLKIT_INDIRECT", indirect}, {"VPLKIT_SEPARABLE", separable}, {"VPLKIT_LIGHT_DIRECTIONAL", light}}));
+  }
+  for (const char* visibility : {"0", "2", "3", "6"})
+    CHECK_NOTHROW(load_program(library, "fullscreen.vert", "gather.frag", {{"VPLKIT_RSM_PATTERN", "0"}, {"VPLKIT_VISIBILITY", visibility}}));
+  CHECK_NOTHROW(load_program(library, "fullscreen.vert", "gather.frag", {{"VPLKIT_RSM_PATTERN", "1"}, {"VPLKIT_VISIBILITY", "0"}}));
+  // The disk pattern has no paths: asking it for visibility is a compile error that says so.
+  CHECK_THROWS_WITH_AS(load_program(library, "fullscreen.vert", "gather.frag", {{"VPLKIT_RSM_PATTERN", "1"}, {"VPLKIT_VISIBILITY", "6"}}),
+                       doctest::Contains("the disk pattern has no paths"), vplkit::error);
 }
 
 TEST_CASE("GL errors reach the error path with the operation's name") {

@@ -1,0 +1,169 @@
+// Properties of the sampling patterns (include/vplkit/rsm_pattern.hpp) and of the polynomial
+// trigonometry they use (include/vplkit/polynomial_math.hpp).
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include <vplkit/polynomial_math.hpp>
+#include <vplkit/rsm_pattern.hpp>
+
+using namespace vplkit;
+
+namespace {
+constexpr double pi = 3.14159265358979323846;
+
+// Mean and RMS error, over `pixels` receivers, of the radial pattern's estimate of the
+// integral of f over its annulus.
+template <typename F>
+std::pair<double, double> radial_estimate_error(const radial_pattern_settings<double>& settings, int pixels, F f, double exact) {
+  const radial_pattern_constants<double> constants = make_radial_pattern_constants(settings);
+  double sum = 0.0, sum_squares = 0.0;
+  for (int p = 0; p < pixels; ++p) {
+    const glm::uvec2 pixel(static_cast<unsigned>(p % 64), static_cast<unsigned>(p / 64));
+    double estimate = 0.0;
+    for (int path = 0; path < settings.paths; ++path)
+      for (int sample = 0; sample < settings.samples_per_path; ++sample) {
+        const pattern_sample<double> s = radial_pattern_sample(path, sample, pixel, constants);
+        estimate += s.weight * f(s.offset);
+      }
+    const double error = estimate / exact - 1.0;
+    sum += error;
+    sum_squares += error * error;
+  }
+  return {sum / pixels, std::sqrt(sum_squares / pixels)};
+}
+}  // namespace
+
+TEST_CASE("direction_from_angle matches cos and sin to 2e-6 in float for |angle| <= 20") {
+  // The patterns use angles in [-pi / P, 2 pi (1 + 1 / P)). In float the argument reduction
+  // (angle / 2 pi rounded to float) dominates the error: about ulp(angle / 2 pi) * 2 pi, so
+  // 2e-6 up to 20 radians (and ~1e-4 at 1000).
+  double worst = 0.0;
+  for (int i = -40000; i <= 40000; ++i) {
+    const float angle = static_cast<float>(i) * 0.0005f;
+    const glm::vec2 direction = direction_from_angle(angle);
+    worst = std::max({worst, std::fabs(direction.x - std::cos(static_cast<double>(angle))),
+                      std::fabs(direction.y - std::sin(static_cast<double>(angle)))});
+  }
+  CAPTURE(worst);
+  CHECK(worst < 2e-6);
+  // In double the polynomials themselves are the limit: the degree-13/14 Taylor remainders at
+  // pi/2, doubled by the double-angle step, 2e-9 on [-pi, pi].
+  double worst_double = 0.0;
+  for (int i = -1000; i <= 1000; ++i) {
+    const double angle = pi * i / 1000.0;
+    const glm::dvec2 direction = direction_from_angle(angle);
+    worst_double = std::max({worst_double, std::fabs(direction.x - std::cos(angle)), std::fabs(direction.y - std::sin(angle))});
+  }
+  CAPTURE(worst_double);
+  CHECK(worst_double < 2e-9);
+}
+
+TEST_CASE("radial pattern: P paths x S samples, near to far, radii in [r_min, r_max] (scaled), one seed one pattern") {
+  radial_pattern_settings<float> settings;
+  settings.scale_jitter = 0.0f;
+  const radial_pattern_constants<float> constants = make_radial_pattern_constants(settings);
+  for (unsigned pixel = 0; pixel < 64; ++pixel) {
+    for (int path = 0; path < settings.paths; ++path) {
+      float previous = 0.0f;
+      for (int sample = 0; sample < settings.samples_per_path; ++sample) {
+        const pattern_sample<float> s = radial_pattern_sample(path, sample, glm::uvec2(pixel, 3u), constants);
+        const float radius = glm::length(s.offset);
+        REQUIRE(radius >= settings.min_radius * 0.9999f);
+        REQUIRE(radius <= settings.max_radius * 1.0001f);
+        REQUIRE(radius > previous);  // near to far along each path
+        REQUIRE(s.weight > 0.0f);
+        previous = radius;
+      }
+    }
+  }
+  // Different pixels get different rotations; the same pixel always the same pattern.
+  const auto first = radial_pattern_sample(0, 0, glm::uvec2(1, 2), constants);
+  CHECK(radial_pattern_sample(0, 0, glm::uvec2(1, 2), constants).offset == first.offset);
+  CHECK(radial_pattern_sample(0, 0, glm::uvec2(2, 2), constants).offset != first.offset);
+  settings.seed = 7;
+  CHECK(radial_pattern_sample(0, 0, glm::uvec2(1, 2), make_radial_pattern_constants(settings)).offset != first.offset);
+}
+
+TEST_CASE("radial pattern: the weight grows with the square of the distance") {
+  // weight = (2 pi / P) r (q - 1) r_ring for r in [r_ring, q r_ring], so weight / r^2 lies in
+  // [(2 pi / P)(q - 1) / q, (2 pi / P)(q - 1)] for every ring: the same up to the factor q.
+  radial_pattern_settings<double> settings;
+  settings.scale_jitter = 0.0;
+  settings.angle_jitter = 0.0;
+  const auto constants = make_radial_pattern_constants(settings);
+  double min_ratio = 1e30, max_ratio = 0.0;
+  for (int sample = 0; sample < settings.samples_per_path; ++sample) {
+    const auto s = radial_pattern_sample(3, sample, glm::uvec2(5, 5), constants);
+    const double ratio = s.weight / glm::dot(s.offset, s.offset);
+    min_ratio = std::min(min_ratio, ratio);
+    max_ratio = std::max(max_ratio, ratio);
+  }
+  // Within a ring r varies by the ring ratio q = 64^(1/10) = 1.52, so weight / r^2 by at most q.
+  CHECK(max_ratio / min_ratio <= constants.ring_ratio * 1.0001);
+}
+
+TEST_CASE("radial pattern integrates a constant over its annulus without bias") {
+  radial_pattern_settings<double> settings;
+  settings.scale_jitter = 0.0;  // the scale jitter changes the annulus itself
+  const double area = pi * (settings.max_radius * settings.max_radius - settings.min_radius * settings.min_radius);
+  const auto [mean, rms] = radial_estimate_error(settings, 4096, [](const glm::dvec2&) { return 1.0; }, area);
+  CAPTURE(mean);
+  CAPTURE(rms);
+  CHECK(std::fabs(mean) < 2e-3);  // 4096 receivers: the mean of unbiased estimates
+  CHECK(rms < 0.05);              // stratified in rings and paths: each estimate is already close
+}
+
+TEST_CASE("radial pattern integrates a smooth function, and its error falls as the sample count grows") {
+  // f = exp(-|o|^2 / (2 sigma^2)); over the annulus its integral is
+  // 2 pi sigma^2 (exp(-r_min^2 / 2 sigma^2) - exp(-r_max^2 / 2 sigma^2)).
+  const double sigma = 20.0;
+  const auto f = [&](const glm::dvec2& o) { return std::exp(-glm::dot(o, o) / (2 * sigma * sigma)); };
+  double previous_rms = 1e30;
+  for (int samples : {5, 10, 20, 40}) {
+    radial_pattern_settings<double> settings;
+    settings.scale_jitter = 0.0;
+    settings.samples_per_path = samples;
+    const double exact = 2 * pi * sigma * sigma *
+                         (std::exp(-settings.min_radius * settings.min_radius / (2 * sigma * sigma)) -
+                          std::exp(-settings.max_radius * settings.max_radius / (2 * sigma * sigma)));
+    const auto [mean, rms] = radial_estimate_error(settings, 2048, f, exact);
+    CAPTURE(samples);
+    CAPTURE(mean);
+    CAPTURE(rms);
+    CHECK(std::fabs(mean) < 3e-3);
+    CHECK(rms < previous_rms);
+    previous_rms = rms;
+  }
+  CHECK(previous_rms < 0.01);  // 15 x 40 samples: under 1% per receiver
+}
+
+TEST_CASE("disk pattern: the same for every receiver, inside r_max, weights sum to the disk's area in expectation") {
+  disk_pattern_settings<double> settings;
+  settings.samples = 400;
+  double weight_sum = 0.0;
+  for (int sample = 0; sample < settings.samples; ++sample) {
+    const auto s = rsm_disk_sample(sample, settings);
+    REQUIRE(glm::length(s.offset) <= settings.max_radius);
+    // weight = xi1^2 * 3 pi r_max^2 / N with xi1 = |offset| / r_max.
+    const double xi1 = glm::length(s.offset) / settings.max_radius;
+    REQUIRE(s.weight == doctest::Approx(xi1 * xi1 * 3 * pi * settings.max_radius * settings.max_radius / settings.samples).epsilon(1e-7));
+    weight_sum += s.weight;
+  }
+  const double area = pi * settings.max_radius * settings.max_radius;
+  CHECK(weight_sum == doctest::Approx(area).epsilon(0.1));  // 400 samples of xi1^2: sd ~ 4.5%
+  // Biased for anything but a constant (documented): for f = 1/r the disk estimate differs from
+  // the integral 2 pi r_max by more than the radial pattern's.
+  const auto inverse_r = [](const glm::dvec2& o) { return 1.0 / std::max(glm::length(o), 1e-9); };
+  double disk_estimate = 0.0;
+  for (int sample = 0; sample < 20000; ++sample) {
+    settings.samples = 20000;
+    const auto s = rsm_disk_sample(sample, settings);
+    disk_estimate += s.weight * inverse_r(s.offset);
+  }
+  const double exact = 2 * pi * settings.max_radius;
+  CAPTURE(disk_estimate / exact);
+  CHECK(std::fabs(disk_estimate / exact - 0.75) < 0.02);  // E[3 xi^2 / xi] / E[2] = (3/2) / 2
+}
