@@ -80,6 +80,22 @@ mesh load_obj(const fs::path& path) {
     throw error(path.string() + ": " + (reader.Error().empty() ? std::string("tinyobjloader could not parse it") : reader.Error()));
   const tinyobj::attrib_t& attributes = reader.GetAttrib();
   const auto& materials = reader.GetMaterials();
+  // Where the file has no normals, each corner takes the area-weighted mean of the normals of
+  // the faces around its position (smooth shading, as the meshes were scanned or modelled).
+  std::vector<glm::vec3> smooth_normals(attributes.vertices.size() / 3, glm::vec3(0.0f));
+  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+    const auto& indices = shape.mesh.indices;
+    for (std::size_t face = 0; face + 2 < indices.size(); face += 3) {
+      glm::vec3 corner[3];
+      for (int k = 0; k < 3; ++k) {
+        const auto i = static_cast<std::size_t>(indices[face + static_cast<std::size_t>(k)].vertex_index);
+        corner[k] = {attributes.vertices[3 * i], attributes.vertices[3 * i + 1], attributes.vertices[3 * i + 2]};
+      }
+      const glm::vec3 area_weighted = glm::cross(corner[1] - corner[0], corner[2] - corner[0]);
+      for (int k = 0; k < 3; ++k)
+        smooth_normals[static_cast<std::size_t>(indices[face + static_cast<std::size_t>(k)].vertex_index)] += area_weighted;
+    }
+  }
   mesh result;
   for (const tinyobj::shape_t& shape : reader.GetShapes()) {
     const auto& indices = shape.mesh.indices;
@@ -101,7 +117,9 @@ mesh load_obj(const fs::path& path) {
       }
       for (int k = 0; k < 3; ++k) {
         const int normal_index = indices[face + static_cast<std::size_t>(k)].normal_index;
-        glm::vec3 normal = face_normal;
+        const glm::vec3 smooth = smooth_normals[static_cast<std::size_t>(indices[face + static_cast<std::size_t>(k)].vertex_index)];
+        // The smooth normal, unless it leans away from the face (a crease folded over itself).
+        glm::vec3 normal = glm::length(smooth) > 0.0f && glm::dot(smooth, face_normal) > 0.0f ? glm::normalize(smooth) : face_normal;
         if (normal_index >= 0) {
           const auto n = static_cast<std::size_t>(normal_index);
           const glm::vec3 given(attributes.normals[3 * n], attributes.normals[3 * n + 1], attributes.normals[3 * n + 2]);

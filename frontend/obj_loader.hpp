@@ -11,7 +11,7 @@
 namespace vplkit {
 
 /// Loads triangles (polygons are fan-triangulated) with per-vertex normals (the OBJ's, or the
-/// face normal where it has none) and albedo from the material's Kd (0.73 grey without one).
+/// area-weighted mean of the adjacent face normals where it has none) and albedo from the material's Kd (0.73 grey without one).
 /// Throws vplkit::error naming file:line for malformed input.
 mesh load_obj(const std::filesystem::path& path);
 

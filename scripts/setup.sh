@@ -8,7 +8,11 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(cmake g++ make pkg-config libglm-dev doctest-dev libglfw3-dev libosmesa6-dev
-          python3-glad xvfb xauth libcli11-dev libstb-dev libbenchmark-dev libtinyobjloader-dev)
+          python3-glad xvfb xauth libcli11-dev libstb-dev libbenchmark-dev libtinyobjloader-dev
+          assimp-testmodels)
+# node and npm fetch the test meshes; a machine may have them from elsewhere than Debian.
+command -v node >/dev/null 2>&1 || packages+=(nodejs)
+command -v npm >/dev/null 2>&1 || packages+=(npm)
 
 build_dir=build
 cmake_options=(-DCMAKE_BUILD_TYPE=Release)
@@ -43,6 +47,17 @@ else
   export DEBIAN_FRONTEND=noninteractive
   "${as_root[@]}" apt-get update -q
   "${as_root[@]}" apt-get install -y -q --no-install-recommends "${missing[@]}"
+fi
+
+# Test meshes from the npm registry (bunny, teapot: public domain), converted to OBJ once.
+if [ -f meshes/bunny.obj ] && [ -f meshes/teapot.obj ]; then
+  echo "setup: meshes/bunny.obj and meshes/teapot.obj are there"
+else
+  if npm install --silent --no-audit --no-fund --no-save --prefix meshes/npm bunny@1.0.1 teapot@1.0.0; then
+    node scripts/npm_mesh_to_obj.js meshes/npm/node_modules meshes
+  else
+    echo "setup: warning: could not fetch the npm packages bunny and teapot; the tests that use them will be skipped" >&2
+  fi
 fi
 
 jobs=$(nproc 2>/dev/null || echo 2)

@@ -13,9 +13,17 @@
 // nothing was rendered there), are skipped and do not touch the micro linear buffer (Alg. 1,
 // line 9: visibility is computed only for samples inside the RSM).
 //
+// Elevation: the thesis stores the light's eye-space depth in the RSM to evaluate the elevation
+// angle (section 4.2), and the light's view is a rigid motion, so the gather takes the vertical
+// component from the stored depths, dz = z_p - z_x, and the horizontal length from the world
+// distance it already has for Eq. 3.2: |dxy| = sqrt(max(0, |x_p - x|^2 - dz^2)). No pixel light
+// is transformed into eye space.
+//
 // GLSL twin: shaders/lib/rsm_gather.glsl, with VPLKIT_RSM_PATTERN and VPLKIT_VISIBILITY
 // (#defines) for the template parameters.
 #pragma once
+
+#include <cmath>
 
 #include <glm/glm.hpp>
 
@@ -57,7 +65,7 @@ struct rsm_gather_settings {
   radial_pattern_constants<T> radial = make_radial_pattern_constants(radial_pattern_settings<T>{});
   disk_pattern_settings<T> disk;
   elevation_slots<T> slots = make_elevation_slots<T>(5);  ///< the thesis's 5 slots
-  glm::mat<4, 4, T> light_view = glm::mat<4, 4, T>(1);    ///< world -> light eye space
+  glm::mat<4, 4, T> light_view = glm::mat<4, 4, T>(1);    ///< world -> light eye space (rigid)
   glm::ivec2 rsm_size = glm::ivec2(512);
 };
 
@@ -89,7 +97,7 @@ glm::vec<3, T> gather_rsm(const gather_receiver<T>& receiver, Fetch&& fetch, con
   static_assert(Pattern == rsm_pattern::radial || Visibility == rsm_visibility::none,
                 "the disk pattern has no paths: visibility needs rsm_pattern::radial");
   glm::vec<3, T> irradiance(0);
-  const glm::vec<3, T> receiver_eye = transform_point(settings.light_view, receiver.position);
+  const T receiver_depth = transform_point(settings.light_view, receiver.position).z;
   // One sample: fetch, visibility, Eq. 3.2, accumulate (Alg. 1 lines 9-16, Alg. 5 lines 9-15).
   auto accumulate = [&](const pattern_sample<T>& sample, micro_linear_buffer<T>& buffer) {
     const glm::ivec2 texel = glm::ivec2(glm::floor(receiver.rsm_coordinate + sample.offset));
@@ -98,8 +106,10 @@ glm::vec<3, T> gather_rsm(const gather_receiver<T>& receiver, Fetch&& fetch, con
     if (!(light.eye_depth < T(0))) return;
     T visibility = T(1);
     if constexpr (Visibility != rsm_visibility::none) {
-      const glm::vec<3, T> light_eye = transform_point(settings.light_view, light.position);
-      visibility = detail::visibility_of<Visibility>(buffer, elevation_bucket(receiver_eye, light_eye, settings.slots));
+      const glm::vec<3, T> offset = light.position - receiver.position;
+      const T dz = light.eye_depth - receiver_depth;
+      const T horizontal = std::sqrt(glm::max(T(0), glm::dot(offset, offset) - dz * dz));
+      visibility = detail::visibility_of<Visibility>(buffer, elevation_slot(dz, horizontal, settings.slots));
     }
     const glm::vec<3, T> e = pixel_light_irradiance(receiver.position, receiver.normal, light.position, light.normal,
                                                     light.flux, settings.irradiance);

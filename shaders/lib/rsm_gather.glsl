@@ -48,7 +48,7 @@ struct gather_receiver {
   uvec2 pixel;
 };
 
-void rsm_gather_accumulate(gather_receiver receiver, vec3 receiver_eye, pattern_sample s, rsm_gather_settings settings,
+void rsm_gather_accumulate(gather_receiver receiver, float receiver_depth, pattern_sample s, rsm_gather_settings settings,
                            inout micro_linear_buffer buffer, inout vec3 irradiance) {
   ivec2 texel = ivec2(floor(receiver.rsm_coordinate + s.offset));
   if (texel.x < 0 || texel.y < 0 || texel.x >= settings.rsm_size.x || texel.y >= settings.rsm_size.y) return;
@@ -56,8 +56,10 @@ void rsm_gather_accumulate(gather_receiver receiver, vec3 receiver_eye, pattern_
   if (!(light.eye_depth < 0.0)) return;
   float visibility = 1.0;
 #if VPLKIT_VISIBILITY != 0
-  vec3 light_eye = transform_point(settings.light_view, light.position);
-  int index = elevation_bucket(receiver_eye, light_eye, settings.slots);
+  vec3 offset = light.position - receiver.position;
+  float dz = light.eye_depth - receiver_depth;
+  float horizontal = sqrt(max(0.0, dot(offset, offset) - dz * dz));
+  int index = elevation_slot(dz, horizontal, settings.slots);
 #if VPLKIT_VISIBILITY == 2
   visibility = micro_linear_buffer_alg2(buffer, index);
 #elif VPLKIT_VISIBILITY == 3
@@ -73,19 +75,19 @@ void rsm_gather_accumulate(gather_receiver receiver, vec3 receiver_eye, pattern_
 
 vec3 gather_rsm(gather_receiver receiver, rsm_gather_settings settings) {
   vec3 irradiance = vec3(0.0);
-  vec3 receiver_eye = transform_point(settings.light_view, receiver.position);
+  float receiver_depth = transform_point(settings.light_view, receiver.position).z;
   micro_linear_buffer buffer;
 #if VPLKIT_RSM_PATTERN == 0
   for (int path = 0; path < settings.radial.paths; ++path) {
     micro_linear_buffer_reset(buffer, settings.slots.count);
     for (int sample = 0; sample < settings.radial.samples_per_path; ++sample)
-      rsm_gather_accumulate(receiver, receiver_eye, radial_pattern_sample(path, sample, receiver.pixel, settings.radial),
+      rsm_gather_accumulate(receiver, receiver_depth, radial_pattern_sample(path, sample, receiver.pixel, settings.radial),
                             settings, buffer, irradiance);
   }
 #else
   micro_linear_buffer_reset(buffer, settings.slots.count);  // unused without paths, but defined
   for (int sample = 0; sample < settings.disk.samples; ++sample)
-    rsm_gather_accumulate(receiver, receiver_eye, rsm_disk_sample(sample, settings.disk), settings, buffer, irradiance);
+    rsm_gather_accumulate(receiver, receiver_depth, rsm_disk_sample(sample, settings.disk), settings, buffer, irradiance);
 #endif
   return irradiance * 0.318309886183790671538;
 }

@@ -162,6 +162,25 @@ TEST_CASE("Alg. 6 equals Alg. 3 for every slot count on 10^5 random paths of 10 
   }
 }
 
+TEST_CASE("Alg. 6 slot values are 1 - the number of claims, decremented once per run, saturating at -254") {
+  micro_linear_buffer<float> buffer;
+  micro_linear_buffer_reset(buffer, 16);
+  // Alternating slots 15 and 3: every sample starts a new run, so each claims its slot.
+  for (int claim = 0; claim < 5; ++claim) {
+    CHECK(micro_linear_buffer_alg6(buffer, 15) == 1.0f - static_cast<float>(claim));
+    CHECK(micro_linear_buffer_alg6(buffer, 3) == 1.0f - static_cast<float>(claim));
+  }
+  // A run repeats its predecessor's value and claims nothing more; slot 3 holds 1 - 5 now.
+  CHECK(micro_linear_buffer_alg6(buffer, 3) == -3.0f);
+  CHECK(micro_linear_buffer_alg6(buffer, 15) == -4.0f);
+  // Saturation: after 255 claims the value stays at 1 - 255; the clamped verdict is 0 throughout.
+  for (int claim = 0; claim < 600; ++claim) {
+    REQUIRE(glm::clamp(micro_linear_buffer_alg6(buffer, claim % 2 == 0 ? 7 : 8), 0.0f, 1.0f) == (claim < 2 ? 1.0f : 0.0f));
+  }
+  CHECK(micro_linear_buffer_alg6(buffer, 7) == -254.0f);
+  CHECK(micro_linear_buffer_alg6(buffer, 3) == -4.0f);  // other slots untouched
+}
+
 TEST_CASE("Alg. 2 and Alg. 3: the first sample of a slot is visible, a later one in another run is occluded") {
   micro_linear_buffer<double> buffer;
   micro_linear_buffer_reset(buffer, 5);
