@@ -15,6 +15,7 @@
 #include <iomanip>
 #include <iostream>
 #include <map>
+#include <memory>
 #include <sstream>
 
 #include "frontend/context.hpp"
@@ -46,20 +47,36 @@ struct sweep {
   const scene& source;
   int repeat;
 
-  measurement run(const rsm_pipeline_settings& settings) const {
-    rsm_pipeline pipeline(shaders, source, settings);
-    pipeline.render();  // warm-up: shader JIT, and llvmpipe's first timer query is garbage
-    std::map<std::string, std::vector<double>> samples;
-    std::vector<double> totals;
-    for (int i = 0; i < repeat; ++i) {
-      const rsm_frame frame = pipeline.render();
-      double total = 0.0;
-      for (const pass_time& time : frame.pass_times) {
-        samples[time.pass].push_back(time.milliseconds);
-        total += time.milliseconds;
-      }
-      totals.push_back(total);
+  measurement run(const rsm_pipeline_settings& settings) const { return run_interleaved({settings}).front(); }
+
+  // Renders the configurations in turn, frame by frame (A B C A B C ...), so that they share
+  // whatever else the machine is doing: their ratios are the numbers to quote.
+  std::vector<measurement> run_interleaved(const std::vector<rsm_pipeline_settings>& configurations) const {
+    std::vector<std::unique_ptr<rsm_pipeline>> pipelines;
+    for (const rsm_pipeline_settings& settings : configurations) {
+      pipelines.push_back(std::make_unique<rsm_pipeline>(shaders, source, settings));
+      pipelines.back()->render();  // warm-up: shader JIT, and llvmpipe's first timer query is garbage
     }
+    std::vector<std::map<std::string, std::vector<double>>> samples(configurations.size());
+    std::vector<std::vector<double>> totals(configurations.size());
+    for (int i = 0; i < repeat; ++i) {
+      for (std::size_t c = 0; c < pipelines.size(); ++c) {
+        const rsm_frame frame = pipelines[c]->render();
+        double total = 0.0;
+        for (const pass_time& time : frame.pass_times) {
+          samples[c][time.pass].push_back(time.milliseconds);
+          total += time.milliseconds;
+        }
+        totals[c].push_back(total);
+      }
+    }
+    std::vector<measurement> results;
+    for (std::size_t c = 0; c < configurations.size(); ++c) results.push_back(summarise(configurations[c], samples[c], totals[c]));
+    return results;
+  }
+
+  measurement summarise(const rsm_pipeline_settings& settings, const std::map<std::string, std::vector<double>>& samples,
+                        const std::vector<double>& totals) const {
     measurement m;
     m.technique = settings.technique;
     m.width = settings.width;
@@ -121,17 +138,22 @@ int main(int argc, char** argv) {
     std::ostringstream md;
     md << "# RSM pipeline sweep\n\nScene " << source.name << " (" << source.geometry.triangle_count() << " triangles), "
        << size << "x" << size << " image, " << rsm_size << "x" << rsm_size << " RSM, median of " << repeat
-       << " frames, GL timer queries on:\n\n```\n" << describe_current_context() << "\n```\n\n";
+       << " frames (configurations compared in one table are rendered interleaved), GL timer queries on:\n\n```\n" << describe_current_context() << "\n```\n\n";
 
     // Table 5.1: with and without visibility (and the original RSM), thesis configuration.
     std::cerr << "Table 5.1 / 5.3\n";
     md << "## With and without visibility (Table 5.1), indirect " << size / 2 << "^2\n\n| technique | total ms | RSM sampling ms | vs rsm-radial |\n|---|---:|---:|---:|\n";
     std::map<std::string, measurement> by_technique;
-    for (const char* technique : {"rsm-radial", "rsm-alg3", "rsm-alg6", "rsm-original", "direct"}) {
-      rsm_pipeline_settings settings = base;
-      settings.technique = technique;
-      by_technique[technique] = runner.run(settings);
-      rows.push_back(by_technique[technique]);
+    const std::vector<const char*> table_techniques = {"rsm-radial", "rsm-alg3", "rsm-alg6", "rsm-original", "direct"};
+    std::vector<rsm_pipeline_settings> table_settings;
+    for (const char* technique : table_techniques) {
+      table_settings.push_back(base);
+      table_settings.back().technique = technique;
+    }
+    const std::vector<measurement> table = runner.run_interleaved(table_settings);
+    for (std::size_t i = 0; i < table.size(); ++i) {
+      by_technique[table_techniques[i]] = table[i];
+      rows.push_back(table[i]);
     }
     for (const char* technique : {"rsm-radial", "rsm-alg3", "rsm-alg6", "rsm-original", "direct"}) {
       const measurement& m = by_technique[technique];
@@ -219,6 +241,7 @@ int main(int argc, char** argv) {
     std::cerr << "CPU gather\n";
     md << "## CPU gather (C++ mirror, " << hardware_threads() << " threads) against the GL gather, same frame\n\n"
        << "| technique | GL ms | CPU ms | GL Msamples/s | CPU Msamples/s | CPU / GL |\n|---|---:|---:|---:|---:|---:|\n";
+    // GL gather and CPU gather of the same frame, alternating, for each technique in turn.
     std::map<std::string, double> cpu_ms;
     for (const char* technique : {"rsm-radial", "rsm-alg6"}) {
       rsm_pipeline_settings settings = base;
@@ -228,15 +251,17 @@ int main(int argc, char** argv) {
       const rsm_pass_buffers buffers = pipeline.read_buffers();
       std::size_t occupied = 0;
       for (const glm::vec4& texel : buffers.indirect.texels) occupied += texel.w < 0.0f;
-      std::vector<double> times;
+      std::vector<double> cpu_times, gl_times;
       for (int i = 0; i < repeat; ++i) {
+        for (const pass_time& time : pipeline.render().pass_times)
+          if (time.pass == "RSM sampling") gl_times.push_back(time.milliseconds);
         const auto start = std::chrono::steady_clock::now();
         const image_buffer gathered = cpu_gather_pass(buffers, pipeline.constants(), hardware_threads());
-        times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+        cpu_times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
         if (gathered.texels.size() != buffers.indirect.texels.size()) throw error("CPU gather: wrong size");
       }
-      cpu_ms[technique] = median(times);
-      const double gl_ms = pass(by_technique[technique], "RSM sampling");
+      cpu_ms[technique] = median(cpu_times);
+      const double gl_ms = median(gl_times);
       const double sample_count = static_cast<double>(occupied) * settings.radial.paths * settings.radial.samples_per_path;
       md << "| " << technique << " | " << fixed(gl_ms) << " | " << fixed(cpu_ms[technique]) << " | " << fixed(sample_count / gl_ms / 1e3, 1)
          << " | " << fixed(sample_count / cpu_ms[technique] / 1e3, 1) << " | " << fixed(gl_ms / cpu_ms[technique], 2) << "x |\n";

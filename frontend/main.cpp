@@ -55,7 +55,7 @@ struct render_options {
   std::string scene_name = "cornell-box";
   std::string size_text = "512";
   std::string format = "rgba16f";
-  std::string filter = "full";
+  std::string filter = "separable";
   std::string shader_dir;
   vplkit::rsm_pipeline_settings settings;
 };

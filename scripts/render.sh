@@ -4,4 +4,5 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
 build/vplkit render --out output/cornell-box.png "$@"
-echo "The image is in $(pwd)/output/"
+echo "The images are in $(pwd)/output/: cornell-box.png (final), cornell-box-indirect.png,"
+echo "cornell-box-visibility-difference.png"

@@ -117,10 +117,14 @@ glm::vec<3, T> gather_rsm(const gather_receiver<T>& receiver, Fetch&& fetch, con
   };
   micro_linear_buffer<T> buffer;
   if constexpr (Pattern == rsm_pattern::radial) {
+    const radial_pixel<T> pixel = radial_pattern_pixel(receiver.pixel, settings.radial);
     for (int path = 0; path < settings.radial.paths; ++path) {
       micro_linear_buffer_reset(buffer, settings.slots.count);
-      for (int sample = 0; sample < settings.radial.samples_per_path; ++sample)
-        accumulate(radial_pattern_sample(path, sample, receiver.pixel, settings.radial), buffer);
+      T ring_inner_radius = settings.radial.min_radius;
+      for (int sample = 0; sample < settings.radial.samples_per_path; ++sample) {
+        accumulate(radial_pattern_sample(path, sample, ring_inner_radius, pixel, settings.radial), buffer);
+        ring_inner_radius *= settings.radial.ring_ratio;
+      }
     }
   } else {
     micro_linear_buffer_reset(buffer, settings.slots.count);  // unused without paths, but defined

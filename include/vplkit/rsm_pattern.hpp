@@ -102,23 +102,44 @@ radial_pattern_constants<T> make_radial_pattern_constants(const radial_pattern_s
           settings.seed};
 }
 
-/// Sample `sample` (0 = nearest) of path `path` for the receiver at RSM pixel `pixel`.
+/// The per-receiver part of the radial pattern: its hash, rotation and scale.
 template <typename T>
-pattern_sample<T> radial_pattern_sample(int path, int sample, const glm::uvec2& pixel,
-                                        const radial_pattern_constants<T>& constants) {
+struct radial_pixel {
+  std::uint32_t hash;
+  T rotation;  ///< in path spacings
+  T scale;     ///< of every radius
+};
+
+template <typename T>
+radial_pixel<T> radial_pattern_pixel(const glm::uvec2& pixel, const radial_pattern_constants<T>& constants) {
   const std::uint32_t pixel_hash = hash_combine(hash_combine(constants.seed, pixel.x), pixel.y);
   const T rotation = constants.rotation_jitter * T(uniform_float_from_bits(hash_combine(pixel_hash, 0u)));
   const T scale = T(1) + constants.scale_jitter * (T(uniform_float_from_bits(hash_combine(pixel_hash, 1u))) - T(0.5));
+  return {pixel_hash, rotation, scale};
+}
+
+/// Sample `sample` (0 = nearest) of path `path` for a receiver, given the inner radius of its
+/// ring, r_min * q^sample (the gather keeps it as a running product along the path).
+template <typename T>
+pattern_sample<T> radial_pattern_sample(int path, int sample, T ring_inner_radius, const radial_pixel<T>& pixel,
+                                        const radial_pattern_constants<T>& constants) {
   const std::uint32_t sample_hash =
-      hash_combine(pixel_hash, static_cast<std::uint32_t>(2 + path * constants.samples_per_path + sample));
+      hash_combine(pixel.hash, static_cast<std::uint32_t>(2 + path * constants.samples_per_path + sample));
   const T angle_offset = constants.angle_jitter * (T(uniform_float_from_bits(sample_hash)) - T(0.5));
   const T radial_position = T(uniform_float_from_bits(hash_uint32(sample_hash)));
+  const T ring_width = pixel.scale * (ring_inner_radius * constants.ring_ratio - ring_inner_radius);
+  const T radius = pixel.scale * ring_inner_radius + radial_position * ring_width;
+  const glm::vec<2, T> direction = direction_from_turns(constants.path_turns * (T(path) + pixel.rotation + angle_offset));
+  return {direction * radius, constants.path_angle * radius * ring_width};
+}
+
+/// Sample `sample` (0 = nearest) of path `path` for the receiver at RSM pixel `pixel`: the same
+/// as the two calls above (the ring radius by repeated multiplication, as the gather does).
+template <typename T>
+pattern_sample<T> radial_pattern_sample(int path, int sample, const glm::uvec2& pixel, const radial_pattern_constants<T>& constants) {
   T inner = constants.min_radius;
   for (int ring = 0; ring < sample; ++ring) inner *= constants.ring_ratio;
-  const T ring_width = scale * (inner * constants.ring_ratio - inner);
-  const T radius = scale * inner + radial_position * ring_width;
-  const glm::vec<2, T> direction = direction_from_turns(constants.path_turns * (T(path) + rotation + angle_offset));
-  return {direction * radius, constants.path_angle * radius * ring_width};
+  return radial_pattern_sample(path, sample, inner, radial_pattern_pixel(pixel, constants), constants);
 }
 
 /// Settings of the original RSM disk pattern (defaults: 400 samples, as suggested there).

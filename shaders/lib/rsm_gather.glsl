@@ -78,11 +78,15 @@ vec3 gather_rsm(gather_receiver receiver, rsm_gather_settings settings) {
   float receiver_depth = transform_point(settings.light_view, receiver.position).z;
   micro_linear_buffer buffer;
 #if VPLKIT_RSM_PATTERN == 0
+  radial_pixel pixel = radial_pattern_pixel(receiver.pixel, settings.radial);
   for (int path = 0; path < settings.radial.paths; ++path) {
     micro_linear_buffer_reset(buffer, settings.slots.count);
-    for (int sample = 0; sample < settings.radial.samples_per_path; ++sample)
-      rsm_gather_accumulate(receiver, receiver_depth, radial_pattern_sample(path, sample, receiver.pixel, settings.radial),
+    float ring_inner_radius = settings.radial.min_radius;
+    for (int sample = 0; sample < settings.radial.samples_per_path; ++sample) {
+      rsm_gather_accumulate(receiver, receiver_depth, radial_pattern_sample(path, sample, ring_inner_radius, pixel, settings.radial),
                             settings, buffer, irradiance);
+      ring_inner_radius *= settings.radial.ring_ratio;
+    }
   }
 #else
   micro_linear_buffer_reset(buffer, settings.slots.count);  // unused without paths, but defined

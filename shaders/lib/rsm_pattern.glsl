@@ -24,19 +24,34 @@ struct radial_pattern_constants {
   uint seed;
 };
 
-pattern_sample radial_pattern_sample(int path, int sample, uvec2 pixel, radial_pattern_constants constants) {
+struct radial_pixel {
+  uint hash;
+  float rotation;
+  float scale;
+};
+
+radial_pixel radial_pattern_pixel(uvec2 pixel, radial_pattern_constants constants) {
   uint pixel_hash = hash_combine(hash_combine(constants.seed, pixel.x), pixel.y);
   float rotation = constants.rotation_jitter * uniform_float_from_bits(hash_combine(pixel_hash, 0u));
   float scale = 1.0 + constants.scale_jitter * (uniform_float_from_bits(hash_combine(pixel_hash, 1u)) - 0.5);
-  uint sample_hash = hash_combine(pixel_hash, uint(2 + path * constants.samples_per_path + sample));
+  return radial_pixel(pixel_hash, rotation, scale);
+}
+
+pattern_sample radial_pattern_sample(int path, int sample, float ring_inner_radius, radial_pixel pixel,
+                                     radial_pattern_constants constants) {
+  uint sample_hash = hash_combine(pixel.hash, uint(2 + path * constants.samples_per_path + sample));
   float angle_offset = constants.angle_jitter * (uniform_float_from_bits(sample_hash) - 0.5);
   float radial_position = uniform_float_from_bits(hash_uint32(sample_hash));
+  float ring_width = pixel.scale * (ring_inner_radius * constants.ring_ratio - ring_inner_radius);
+  float radius = pixel.scale * ring_inner_radius + radial_position * ring_width;
+  vec2 direction = direction_from_turns(constants.path_turns * (float(path) + pixel.rotation + angle_offset));
+  return pattern_sample(direction * radius, constants.path_angle * radius * ring_width);
+}
+
+pattern_sample radial_pattern_sample(int path, int sample, uvec2 pixel, radial_pattern_constants constants) {
   float inner = constants.min_radius;
   for (int ring = 0; ring < sample; ++ring) inner *= constants.ring_ratio;
-  float ring_width = scale * (inner * constants.ring_ratio - inner);
-  float radius = scale * inner + radial_position * ring_width;
-  vec2 direction = direction_from_turns(constants.path_turns * (float(path) + rotation + angle_offset));
-  return pattern_sample(direction * radius, constants.path_angle * radius * ring_width);
+  return radial_pattern_sample(path, sample, inner, radial_pattern_pixel(pixel, constants), constants);
 }
 
 struct disk_pattern_settings {
