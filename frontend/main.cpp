@@ -161,7 +161,19 @@ int run_render(render_options& options, std::string out) {
                           vplkit::to_srgb8(vplkit::luminance_difference(reference.indirect, frame.indirect, 8.0f * exposure), w, h));
     }
   }
-  for (const auto& [path, pixels] : images) vplkit::write_png(path, w, h, pixels);
+  // Each file is written whole (write_png); if a later one fails, the earlier ones of this run
+  // are removed too, so a failure leaves no partial set of images.
+  std::vector<fs::path> written;
+  try {
+    for (const auto& [path, pixels] : images) {
+      vplkit::write_png(path, w, h, pixels);
+      written.push_back(path);
+    }
+  } catch (...) {
+    std::error_code ignored;
+    for (const fs::path& path : written) fs::remove(path, ignored);
+    throw;
+  }
 
   std::cout << "scene " << source.name << " (" << source.geometry.triangle_count() << " triangles), technique "
             << technique.name << ", " << w << "x" << h << ", RSM " << options.settings.rsm_size << "^2, indirect "

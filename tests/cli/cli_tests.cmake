@@ -103,6 +103,16 @@ file(WRITE "${WORK}/syntax-error/lib/direct_light.glsl" "${text}")
 expect_failure("GLSL syntax error names the lib file and line" "GLSL compile error.*lib/direct_light\\.glsl:${line}:" "${WORK}/se.png"
                "${VPLKIT}" render --shader-dir "${WORK}/syntax-error" --out "${WORK}/se.png")
 
+# A malformed OBJ scene: named with file:line, nothing written.
+file(WRITE "${WORK}/bad.obj" "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n")
+expect_failure("malformed OBJ scene" "${WORK}/bad\\.obj:4: face vertex index 9 is out of range" "${WORK}/obj.png"
+               "${VPLKIT}" render --scene "${WORK}/bad.obj" --size 16 --out "${WORK}/obj.png")
+expect_failure("missing OBJ scene" "${WORK}/none\\.obj: cannot open the OBJ file" "${WORK}/none.png"
+               "${VPLKIT}" render --scene "${WORK}/none.obj" --size 16 --out "${WORK}/none.png")
+file(WRITE "${WORK}/good.obj" "v -1 0 -1\nv 1 0 -1\nv 0 1 0\nf 1 2 3\n")
+expect_success("an OBJ scene renders" "scene good \\(3 triangles\\)" "${VPLKIT}" render --scene "${WORK}/good.obj" --size 16 --rsm-size 32
+               --out "${WORK}/good.png")
+
 # No GL context: a window without a display.
 expect_failure("no GL context (window without a display)" "no GL context: GLFW" ""
                ${CMAKE_COMMAND} -E env --unset=DISPLAY --unset=WAYLAND_DISPLAY "${VPLKIT}" info --context window)
