@@ -1,0 +1,194 @@
+// Light Wave (paper 003, Larson 2012): virtual point lights floating in space on hemispheres
+// stacked around the primary light, their per-vertex contribution with a lobe widened to 240
+// degrees, the counting of the integrated indirect shadows, and the thesis's image comparison.
+//
+// Layout (chapter 4.1, Eq. 4.1, 4.2, 5.1). Rays leave the light every `angle` degrees around its
+// axis and every `angle` degrees away from it, down to 90 degrees, plus the axis itself:
+// rays = (90 / angle) * (360 / angle) + 1 (one axis ray: no duplicates at the pole). On each ray
+// lie `per_ray` VPLs, one per hemisphere h = 0 .. per_ray - 1, at the distance
+// max_distance * (1 - 2^-(h+1)) (Eq. 4.1 with i = h + 1), with the attenuation 0.05 * 2^h
+// (Eq. 4.2: 5%, 10%, 20%, 40%, 80%). The paper indexes the two formulas inconsistently; this
+// reading reproduces both of its number sequences (SEED_NOTES, B). A VPL's normal is its ray's
+// direction: the light's direction rotated by the polar angle about an axis perpendicular to it,
+// then by the azimuth about the light's direction. (The thesis's printed update overwrites
+// normal.x before it computes normal.y; this is the rotation it means.)
+// Index order: hemisphere-major, index = h * rays + ray; ray 0 is the axis, ray 1 + (e - 1) *
+// azimuths + a has the polar angle e * angle and the azimuth a * angle.
+//
+// Contribution (Eq. 4.5), per vertex, summed over all VPLs and divided by their number:
+//   obj   = max(0, <n, normalize(vpl - x)>)
+//   light = clamp((<n_vpl, normalize(x - vpl)> + 0.5) / 1.5, 0, 1)        (the 240-degree lobe)
+//   indirect += albedo * obj * light * max(0, 1 - attenuation) + specular
+// with no distance falloff (the thesis has none). The factor 1 - attenuation goes negative from
+// the sixth hemisphere on (160%); it is clamped at 0 (SEED_NOTES). The specular term, which the
+// thesis describes but does not print, is specular_strength * max(0, <reflect(l, n), v>)^exponent
+// with l = normalize(x - vpl), v = normalize(eye - x): a Phong lobe of the VPL seen in the mirror
+// direction, 0 for surfaces facing away from the VPL.
+//
+// GLSL twin: shaders/lib/lightwave.glsl.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+
+#include <glm/glm.hpp>
+
+#include <vplkit/polynomial_math.hpp>
+
+namespace vplkit {
+
+/// Returns nullptr when `angle_deg` and `per_ray` give a layout, else a message saying why not.
+constexpr const char* validate_lightwave_layout(int angle_deg, int per_ray) {
+  if (angle_deg < 1 || angle_deg > 90 || 90 % angle_deg != 0 || 360 % angle_deg != 0)
+    return "Light Wave ray angle must divide 90 and 360 (1, 2, 3, 5, 6, 9, 10, 15, 18, 30, 45 or 90 degrees)";
+  if (per_ray < 1 || per_ray > 32) return "Light Wave VPLs per ray must be in [1, 32]";
+  return nullptr;
+}
+
+/// Rays of the layout: (90 / angle) * (360 / angle) + 1.
+constexpr int lightwave_ray_count(int angle_deg) { return (90 / angle_deg) * (360 / angle_deg) + 1; }
+
+/// Eq. 5.1: VPLs = per_ray * ((90 / angle) * (360 / angle) + 1). 5 degrees x 5 -> 6485.
+constexpr int lightwave_vpl_count(int angle_deg, int per_ray) { return per_ray * lightwave_ray_count(angle_deg); }
+
+/// Eq. 4.2: the attenuation of hemisphere h (0 = innermost): 0.05 * 2^h.
+template <typename T = float>
+constexpr T lightwave_attenuation(int hemisphere) {
+  T attenuation = T(0.05);
+  for (int h = 0; h < hemisphere; ++h) attenuation *= T(2);
+  return attenuation;
+}
+
+/// The 240-degree lobe of a VPL (section 3.3): maps cos in [-0.5, 1] onto [0, 1].
+template <typename T>
+T lightwave_lobe(T cos_angle) {
+  return glm::clamp((cos_angle + T(0.5)) / T(1.5), T(0), T(1));
+}
+
+/// Where the VPLs go. GLSL twin: struct lightwave_layout_settings.
+template <typename T = float>
+struct lightwave_layout_settings {
+  glm::vec<3, T> light_position = glm::vec<3, T>(0);
+  glm::vec<3, T> light_direction = glm::vec<3, T>(0, -1, 0);  ///< unit
+  int angle_deg = 5;      ///< between rays, around and away from the axis (the thesis: 5)
+  int per_ray = 5;        ///< VPLs per ray = stacked hemispheres (the thesis: 5)
+  T max_distance = T(1);  ///< the hemispheres approach it: h-th at max_distance (1 - 2^-(h+1))
+};
+
+/// One VPL. GLSL twin: struct lightwave_vpl.
+template <typename T>
+struct lightwave_vpl {
+  glm::vec<3, T> position;
+  glm::vec<3, T> normal;  ///< unit: the direction of its ray
+  T attenuation;          ///< Eq. 4.2
+};
+
+/// VPL number `index` (0 .. lightwave_vpl_count - 1) of the layout.
+template <typename T>
+lightwave_vpl<T> lightwave_layout_vpl(int index, const lightwave_layout_settings<T>& settings) {
+  const int rays = lightwave_ray_count(settings.angle_deg);
+  const int azimuths = 360 / settings.angle_deg;
+  const int hemisphere = index / rays;
+  const int ray = index - hemisphere * rays;
+  const int polar_step = ray == 0 ? 0 : (ray - 1) / azimuths + 1;
+  const int azimuth_step = ray == 0 ? 0 : (ray - 1) - (polar_step - 1) * azimuths;
+  // An orthonormal basis (u, v, w) around the light's direction w.
+  const glm::vec<3, T> w = settings.light_direction;
+  const glm::vec<3, T> helper = glm::abs(w.y) < T(0.9) ? glm::vec<3, T>(0, 1, 0) : glm::vec<3, T>(1, 0, 0);
+  const glm::vec<3, T> u = glm::normalize(glm::cross(helper, w));
+  const glm::vec<3, T> v = glm::cross(w, u);
+  const glm::vec<2, T> polar = direction_from_turns(T(polar_step * settings.angle_deg) / T(360));
+  const glm::vec<2, T> azimuth = direction_from_turns(T(azimuth_step * settings.angle_deg) / T(360));
+  const glm::vec<3, T> direction = w * polar.x + (u * azimuth.x + v * azimuth.y) * polar.y;
+  T fraction = T(0.5);  // 2^-(h+1)
+  for (int h = 0; h < hemisphere; ++h) fraction *= T(0.5);
+  return {settings.light_position + direction * (settings.max_distance * (T(1) - fraction)), direction,
+          lightwave_attenuation<T>(hemisphere)};
+}
+
+/// Writes all lightwave_vpl_count VPLs to `out` (an output iterator), in index order.
+template <typename T, typename OutputIterator>
+OutputIterator lightwave_layout(const lightwave_layout_settings<T>& settings, OutputIterator out) {
+  const int count = lightwave_vpl_count(settings.angle_deg, settings.per_ray);
+  for (int index = 0; index < count; ++index) *out++ = lightwave_layout_vpl(index, settings);
+  return out;
+}
+
+/// The shading parameters of Eq. 4.5. GLSL twin: struct lightwave_shading_settings.
+template <typename T = float>
+struct lightwave_shading_settings {
+  T specular_strength = T(0.05);  ///< weight of the specular term (the thesis does not print one)
+  int specular_exponent = 16;     ///< Phong exponent of the specular term (>= 1)
+};
+
+/// One VPL's term of Eq. 4.5 at vertex (x, n) with albedo, seen from `eye`.
+template <typename T, glm::qualifier Q>
+glm::vec<3, T, Q> lightwave_vpl_contribution(const glm::vec<3, T, Q>& x, const glm::vec<3, T, Q>& n, const glm::vec<3, T, Q>& albedo,
+                                             const glm::vec<3, T, Q>& eye, const lightwave_vpl<T>& vpl,
+                                             const lightwave_shading_settings<T>& settings) {
+  const glm::vec<3, T, Q> to_vpl = glm::normalize(vpl.position - x);
+  const T object_term = glm::max(T(0), glm::dot(n, to_vpl));
+  const T light_term = lightwave_lobe(glm::dot(vpl.normal, -to_vpl));
+  const T strength = glm::max(T(0), T(1) - vpl.attenuation);
+  // Phong: the reflection of the incoming direction -to_vpl about n, against the view direction.
+  const glm::vec<3, T, Q> reflected = -to_vpl - T(2) * glm::dot(n, -to_vpl) * n;
+  const T mirror = glm::max(T(0), glm::dot(reflected, glm::normalize(eye - x)));
+  T specular = object_term > T(0) ? settings.specular_strength : T(0);
+  for (int i = 0; i < settings.specular_exponent; ++i) specular *= mirror;
+  return albedo * (object_term * light_term * strength) + glm::vec<3, T, Q>(specular);
+}
+
+/// Eq. 4.5 summed over `count` VPLs from `fetch(int index) -> lightwave_vpl<T>`, divided by count.
+template <typename T, glm::qualifier Q, typename Fetch>
+glm::vec<3, T, Q> lightwave_vertex_indirect(const glm::vec<3, T, Q>& x, const glm::vec<3, T, Q>& n, const glm::vec<3, T, Q>& albedo,
+                                            const glm::vec<3, T, Q>& eye, Fetch&& fetch, int count,
+                                            const lightwave_shading_settings<T>& settings) {
+  glm::vec<3, T, Q> sum(0);
+  for (int index = 0; index < count; ++index) sum += lightwave_vpl_contribution(x, n, albedo, eye, fetch(index), settings);
+  return count > 0 ? sum / T(count) : sum;
+}
+
+/// Eq. 4.8 generalised: shadow lookups of the integrated technique with `steps` in-between
+/// points on each of the C(maps, 2) pairs of maps: (steps + 2) * maps * (maps - 1) / 2.
+constexpr int lightwave_integrated_shadow_count(int steps, int maps) { return (steps + 2) * (maps * (maps - 1) / 2); }
+
+/// Lookup number `lookup` (0 .. steps + 1) on the line from a fragment's coordinate in map a to
+/// its coordinate in map b (section 4.3): 0 is a's own coordinate, steps + 1 is b's, and the
+/// in-between point s = 1 .. steps lies at t = s / (steps + 1) and is looked up in the nearer map
+/// (a for t < 1/2, b from 1/2 on: "the first half in map a, the second in map b").
+/// Returns (coordinate, 0 for map a or 1 for map b). GLSL twin: the same name.
+template <typename T>
+glm::vec<4, T> lightwave_integrated_step(const glm::vec<3, T>& coordinate_a, const glm::vec<3, T>& coordinate_b, int lookup, int steps) {
+  const T t = T(lookup) / T(steps + 1);
+  const glm::vec<3, T> coordinate = coordinate_a + (coordinate_b - coordinate_a) * t;
+  return {coordinate, T(2 * lookup >= steps + 1 ? 1 : 0)};
+}
+
+/// Eq. 5.2, the "faked indirect" colour: direct * 0.5 * shadow + direct * (m - 0.5).
+template <typename T, glm::qualifier Q>
+glm::vec<3, T, Q> lightwave_faked_indirect(const glm::vec<3, T, Q>& direct, T shadow, T multiplier) {
+  return direct * (T(0.5) * shadow) + direct * (multiplier - T(0.5));
+}
+
+/// Alg. 1, as SEED_NOTES fixes it: the percentage of similarity of two images given as `count`
+/// 8-bit channel values each: 100 * mean over channels of (min + 1) / (max + 1). (The printed
+/// pseudo-code divides the larger by the smaller, which contradicts its own example: 200 against
+/// 100 is "about 50% different" only as 101 / 201.) Identical images give 100.
+inline double lightwave_similarity(const std::uint8_t* a, const std::uint8_t* b, std::size_t count) {
+  if (count == 0) return 100.0;
+  double similar = 0.0;
+  for (std::size_t i = 0; i < count; ++i) {
+    const double low = std::fmin(a[i], b[i]), high = std::fmax(a[i], b[i]);
+    similar += (low + 1.0) / (high + 1.0);
+  }
+  return 100.0 * similar / static_cast<double>(count);
+}
+
+/// Eq. 5.3: rank = fps_gain / (100 - similarity_percent), Table 5.10's ranking value
+/// (e.g. (161 - 55) / (100 - 98.563) = 73.76). Identical images (100%) rank infinitely high.
+inline double lightwave_rank(double fps_gain, double similarity_percent) {
+  return fps_gain / (100.0 - similarity_percent);
+}
+
+}  // namespace vplkit

@@ -1,0 +1,84 @@
+// GLSL twin of include/vplkit/lightwave.hpp: the Light Wave layout, lobe, Eq. 4.5 and the
+// integrated-shadow stepping of paper 003. The image comparison (Alg. 1) and the ranking
+// (Eq. 5.3) are host-side evaluations of whole images and have no shader twin.
+#ifndef VPLKIT_LIGHTWAVE_GLSL
+#define VPLKIT_LIGHTWAVE_GLSL
+
+#include "lib/polynomial_math.glsl"
+
+int lightwave_ray_count(int angle_deg) { return (90 / angle_deg) * (360 / angle_deg) + 1; }
+
+int lightwave_vpl_count(int angle_deg, int per_ray) { return per_ray * lightwave_ray_count(angle_deg); }
+
+float lightwave_attenuation(int hemisphere) {
+  float attenuation = 0.05;
+  for (int h = 0; h < hemisphere; ++h) attenuation *= 2.0;
+  return attenuation;
+}
+
+float lightwave_lobe(float cos_angle) { return clamp((cos_angle + 0.5) / 1.5, 0.0, 1.0); }
+
+struct lightwave_layout_settings {
+  vec3 light_position;
+  vec3 light_direction;
+  int angle_deg;
+  int per_ray;
+  float max_distance;
+};
+
+struct lightwave_vpl {
+  vec3 position;
+  vec3 normal;
+  float attenuation;
+};
+
+lightwave_vpl lightwave_layout_vpl(int index, lightwave_layout_settings settings) {
+  int rays = lightwave_ray_count(settings.angle_deg);
+  int azimuths = 360 / settings.angle_deg;
+  int hemisphere = index / rays;
+  int ray = index - hemisphere * rays;
+  int polar_step = ray == 0 ? 0 : (ray - 1) / azimuths + 1;
+  int azimuth_step = ray == 0 ? 0 : (ray - 1) - (polar_step - 1) * azimuths;
+  vec3 w = settings.light_direction;
+  vec3 helper = abs(w.y) < 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
+  vec3 u = normalize(cross(helper, w));
+  vec3 v = cross(w, u);
+  vec2 polar = direction_from_turns(float(polar_step * settings.angle_deg) / 360.0);
+  vec2 azimuth = direction_from_turns(float(azimuth_step * settings.angle_deg) / 360.0);
+  vec3 direction = w * polar.x + (u * azimuth.x + v * azimuth.y) * polar.y;
+  float fraction = 0.5;
+  for (int h = 0; h < hemisphere; ++h) fraction *= 0.5;
+  return lightwave_vpl(settings.light_position + direction * (settings.max_distance * (1.0 - fraction)), direction,
+                       lightwave_attenuation(hemisphere));
+}
+
+struct lightwave_shading_settings {
+  float specular_strength;
+  int specular_exponent;
+};
+
+vec3 lightwave_vpl_contribution(vec3 x, vec3 n, vec3 albedo, vec3 eye, lightwave_vpl vpl, lightwave_shading_settings settings) {
+  vec3 to_vpl = normalize(vpl.position - x);
+  float object_term = max(0.0, dot(n, to_vpl));
+  float light_term = lightwave_lobe(dot(vpl.normal, -to_vpl));
+  float strength = max(0.0, 1.0 - vpl.attenuation);
+  vec3 reflected = -to_vpl - 2.0 * dot(n, -to_vpl) * n;
+  float mirror = max(0.0, dot(reflected, normalize(eye - x)));
+  float specular = object_term > 0.0 ? settings.specular_strength : 0.0;
+  for (int i = 0; i < settings.specular_exponent; ++i) specular *= mirror;
+  return albedo * (object_term * light_term * strength) + vec3(specular);
+}
+
+int lightwave_integrated_shadow_count(int steps, int maps) { return (steps + 2) * (maps * (maps - 1) / 2); }
+
+vec4 lightwave_integrated_step(vec3 coordinate_a, vec3 coordinate_b, int lookup, int steps) {
+  float t = float(lookup) / float(steps + 1);
+  vec3 coordinate = coordinate_a + (coordinate_b - coordinate_a) * t;
+  return vec4(coordinate, 2 * lookup >= steps + 1 ? 1.0 : 0.0);
+}
+
+vec3 lightwave_faked_indirect(vec3 direct, float shadow, float multiplier) {
+  return direct * (0.5 * shadow) + direct * (multiplier - 0.5);
+}
+
+#endif

@@ -1,0 +1,157 @@
+// CPU/GPU parity of the Light Wave kernels (paper 003): the layout, the lobe and attenuation, the
+// integrated-shadow stepping, Eq. 5.2, and Eq. 4.5 summed over a VPL texture in the vertex stage
+// (transform feedback), as the thesis evaluates it per vertex.
+#include <doctest/doctest.h>
+
+#include <random>
+
+#include <vplkit/lightwave.hpp>
+
+#include "frontend/render_target.hpp"
+#include "tests/parity/parity_harness.hpp"
+
+using namespace vplkit;
+using namespace vplkit::parity;
+
+namespace {
+
+void set_layout(const program& p, const lightwave_layout_settings<float>& s) {
+  p.set("layout_settings.light_position", s.light_position);
+  p.set("layout_settings.light_direction", s.light_direction);
+  p.set("layout_settings.angle_deg", s.angle_deg);
+  p.set("layout_settings.per_ray", s.per_ray);
+  p.set("layout_settings.max_distance", s.max_distance);
+}
+
+lightwave_layout_settings<float> test_layout() {
+  lightwave_layout_settings<float> s;
+  s.light_position = {0.2f, 1.9f, -0.3f};
+  s.light_direction = glm::normalize(glm::vec3(0.1f, -1.0f, 0.2f));
+  s.angle_deg = 5;
+  s.per_ray = 5;
+  s.max_distance = 2.5f;
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("parity: lightwave_layout_vpl for all 6485 VPLs of the thesis's layout") {
+  const lightwave_layout_settings<float> layout = test_layout();
+  kernel_inputs inputs;
+  inputs.width = 128;
+  inputs.height = 51;  // 6528 texels >= 6485
+  inputs.uints.assign(1, std::vector<glm::uvec4>(inputs.size()));
+  for (std::size_t i = 0; i < inputs.size(); ++i) inputs.uints[0][i] = glm::uvec4(static_cast<unsigned>(std::min<std::size_t>(i, 6484)), 0u, 0u, 0u);
+  kernel_source source;
+  source.name = "lightwave_layout_vpl";
+  source.includes = {"lib/lightwave.glsl"};
+  source.declarations = "uniform lightwave_layout_settings layout_settings;\n";
+  source.body = "lightwave_vpl vpl = lightwave_layout_vpl(int(uin0.x), layout_settings);\n"
+                "fout0 = vec4(vpl.position, vpl.attenuation);\nfout1 = vec4(vpl.normal, float(lightwave_vpl_count(layout_settings.angle_deg, layout_settings.per_ray)));";
+  source.float_outputs = 2;
+  const kernel_outputs gpu = run_fragment(source, inputs, [&](const program& p) { set_layout(p, layout); });
+  std::vector<glm::vec4> positions(inputs.size()), normals(inputs.size());
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const lightwave_vpl<float> vpl = lightwave_layout_vpl(static_cast<int>(inputs.uints[0][i].x), layout);
+    positions[i] = glm::vec4(vpl.position, vpl.attenuation);
+    normals[i] = glm::vec4(vpl.normal, static_cast<float>(lightwave_vpl_count(layout.angle_deg, layout.per_ray)));
+  }
+  // Integer layout arithmetic, the polynomial sin/cos, a normalise (sqrt and divide) and a cross
+  // product: a few ulp, and values near 0 from cancelling terms: 1e-6 absolute.
+  const tolerance bounds{1e-6f, 0.0f, 8, 0.0, "polynomial sin/cos, normalize, cross"};
+  require_parity(compare("lightwave_layout_vpl position, attenuation", gpu.floats[0], positions, inputs, bounds));
+  require_parity(compare("lightwave_layout_vpl normal, count", gpu.floats[1], normals, inputs, bounds));
+}
+
+TEST_CASE("parity: lightwave_lobe, lightwave_attenuation, lightwave_integrated_step, lightwave_faked_indirect") {
+  kernel_inputs inputs;
+  inputs.width = 64;
+  inputs.height = 64;
+  inputs.floats.assign(2, std::vector<glm::vec4>(inputs.size()));
+  std::mt19937 random(30);
+  std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    inputs.floats[0][i] = glm::vec4(uniform(random), uniform(random), uniform(random), uniform(random));
+    inputs.floats[1][i] = glm::vec4(uniform(random), uniform(random), static_cast<float>(i % 8), static_cast<float>(i % 13));
+  }
+  kernel_source source;
+  source.name = "lightwave small kernels";
+  source.includes = {"lib/lightwave.glsl"};
+  source.body = "int lookup = int(fin1.w), steps = int(fin1.z) + 1;\n"
+                "fout0 = vec4(lightwave_lobe(fin0.x), lightwave_attenuation(int(fin1.z)), lightwave_faked_indirect(fin0.yzw, fin1.x, 1.3).xy);\n"
+                "fout1 = lightwave_integrated_step(fin0.xyz, fin1.xyw, min(lookup, steps + 1), steps);";
+  source.float_outputs = 2;
+  const kernel_outputs gpu = run_fragment(source, inputs);
+  std::vector<glm::vec4> first(inputs.size()), second(inputs.size());
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const glm::vec4 a = inputs.floats[0][i], b = inputs.floats[1][i];
+    const int lookup = static_cast<int>(b.w), steps = static_cast<int>(b.z) + 1;
+    first[i] = glm::vec4(lightwave_lobe(a.x), lightwave_attenuation<float>(static_cast<int>(b.z)),
+                         glm::vec2(lightwave_faked_indirect(glm::vec3(a.y, a.z, a.w), b.x, 1.3f)));
+    second[i] = lightwave_integrated_step(glm::vec3(a), glm::vec3(b.x, b.y, b.w), std::min(lookup, steps + 1), steps);
+  }
+  // One divide in the lobe and in the step (llvmpipe's divide need not be correctly rounded):
+  // 4 ulp; the map choice (w) is an integer decision and must match.
+  require_parity(compare("lobe, attenuation, faked indirect", gpu.floats[0], first, inputs, {1e-7f, 0.0f, 4, 0.0, "one divide"}));
+  require_parity(compare("lightwave_integrated_step", gpu.floats[1], second, inputs, {1e-7f, 0.0f, 4, 0.0, "one divide"}));
+}
+
+TEST_CASE("parity: Eq. 4.5 summed over 1625 VPLs per vertex, in the vertex stage through transform feedback") {
+  test_shaders();
+  lightwave_layout_settings<float> layout = test_layout();
+  layout.angle_deg = 10;  // 1625 VPLs: the thesis's loop, smaller
+  const int count = lightwave_vpl_count(layout.angle_deg, layout.per_ray);
+  std::vector<lightwave_vpl<float>> vpls;
+  lightwave_layout(layout, std::back_inserter(vpls));
+  // VPLs in a 2-texel-wide float texture: [position | attenuation], [normal | -].
+  std::vector<glm::vec4> texels(static_cast<std::size_t>(count) * 2);
+  for (int i = 0; i < count; ++i) {
+    texels[static_cast<std::size_t>(i) * 2] = glm::vec4(vpls[static_cast<std::size_t>(i)].position, vpls[static_cast<std::size_t>(i)].attenuation);
+    texels[static_cast<std::size_t>(i) * 2 + 1] = glm::vec4(vpls[static_cast<std::size_t>(i)].normal, 0.0f);
+  }
+  const texture_2d vpl_texture(2, count, texel_format::rgba32f, texels.data());
+  const lightwave_shading_settings<float> shading;
+  const glm::vec3 eye(0.0f, 1.0f, 3.8f);
+  kernel_inputs inputs;
+  inputs.width = 32;
+  inputs.height = 16;
+  inputs.floats.assign(3, std::vector<glm::vec4>(inputs.size()));
+  std::mt19937 random(31);
+  std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    inputs.floats[0][i] = glm::vec4(uniform(random), uniform(random) * 0.5f + 0.5f, uniform(random), 0.0f);
+    inputs.floats[1][i] = glm::vec4(glm::normalize(glm::vec3(uniform(random), uniform(random), uniform(random))), 0.0f);
+    inputs.floats[2][i] = glm::vec4(0.5f * (uniform(random) + 1.0f), 0.5f * (uniform(random) + 1.0f), 0.5f * (uniform(random) + 1.0f), 0.0f);
+  }
+  kernel_source source;
+  source.name = "lightwave_vertex_indirect";
+  source.includes = {"lib/lightwave.glsl"};
+  source.declarations = "uniform sampler2D vpl_texture;\nuniform int vpl_count;\nuniform vec3 eye;\n"
+                        "uniform lightwave_shading_settings shading;\n";
+  source.body = R"(
+    vec3 sum = vec3(0.0);
+    for (int i = 0; i < vpl_count; ++i) {
+      vec4 position_attenuation = texelFetch(vpl_texture, ivec2(0, i), 0);
+      lightwave_vpl vpl = lightwave_vpl(position_attenuation.xyz, texelFetch(vpl_texture, ivec2(1, i), 0).xyz, position_attenuation.w);
+      sum += lightwave_vpl_contribution(fin0.xyz, fin1.xyz, fin2.xyz, eye, vpl, shading);
+    }
+    fout0 = vec4(sum / float(vpl_count), 0.0);)";
+  source.float_outputs = 1;
+  const kernel_outputs gpu = run_vertex(source, inputs, [&](const program& p) {
+    p.set("vpl_texture", 0);
+    vpl_texture.bind(0);
+    p.set("vpl_count", count);
+    p.set("eye", eye);
+    p.set("shading.specular_strength", shading.specular_strength);
+    p.set("shading.specular_exponent", shading.specular_exponent);
+  });
+  std::vector<glm::vec4> cpu(inputs.size());
+  for (std::size_t i = 0; i < inputs.size(); ++i)
+    cpu[i] = glm::vec4(lightwave_vertex_indirect(glm::vec3(inputs.floats[0][i]), glm::vec3(inputs.floats[1][i]), glm::vec3(inputs.floats[2][i]),
+                                                 eye, [&](int index) { return vpls[static_cast<std::size_t>(index)]; }, count, shading),
+                       0.0f);
+  // 1625 terms, each with two normalisations (sqrt, divide) and the lobe's divide, summed in the
+  // same order and divided by the count: 1e-5 relative, or 1e-7 absolute near 0.
+  require_parity(compare("lightwave_vertex_indirect (vertex stage)", gpu.floats[0], cpu, inputs,
+                         {1e-7f, 1e-5f, 64, 0.0, "1625 terms of a few-ulp Eq. 4.5"}, 3));
+}
