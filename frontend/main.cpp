@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <iomanip>
 #include <regex>
 
 #include <vplkit/version.hpp>
@@ -13,6 +14,7 @@
 #include "frontend/debug_output.hpp"
 #include "frontend/error.hpp"
 #include "frontend/image_io.hpp"
+#include "frontend/lightwave_pipeline.hpp"
 #include "frontend/obj_loader.hpp"
 #include "frontend/program.hpp"
 #include "frontend/render_images.hpp"
@@ -53,23 +55,35 @@ CLI::Validator positive_number(const std::string& what) {
 
 struct render_options {
   std::string scene_name = "cornell-box";
+  bool scene_given = false;  // the default scene and size depend on the technique
+  bool size_given = false;
   std::string size_text = "512";
   std::string format = "rgba16f";
   std::string filter = "separable";
   std::string shader_dir;
   vplkit::rsm_pipeline_settings settings;
+  vplkit::lightwave_settings lightwave;
 };
 
 void add_render_options(CLI::App& command, render_options& options) {
   std::vector<std::string> techniques;
   for (const vplkit::rsm_technique& technique : vplkit::rsm_techniques()) techniques.push_back(technique.name);
+  for (const vplkit::lightwave_technique& technique : vplkit::lightwave_techniques()) techniques.push_back(technique.name);
   vplkit::rsm_pipeline_settings& s = options.settings;
-  command.add_option("--technique", s.technique, "rendering technique")->check(CLI::IsMember(techniques))->capture_default_str();
-  command.add_option("--scene", options.scene_name, "built-in scene (cornell-box, indirect-shadow, instanced) or an .obj file")
-      ->capture_default_str();
-  command.add_option("--size", options.size_text, "final image size, N or WxH")
-      ->check(CLI::Validator([&](std::string& text) { return parse_size(text, s.width, s.height); }, "N|WxH"))
-      ->capture_default_str();
+  vplkit::lightwave_settings& lw = options.lightwave;
+  command.add_option("--technique", s.technique, "rendering technique (rsm-*: paper 000, lightwave-*: paper 003)")
+      ->check(CLI::IsMember(techniques))->capture_default_str();
+  command.add_option("--scene", options.scene_name,
+                     "built-in scene (cornell-box, indirect-shadow, instanced, boxes, teapot, teapots) or an .obj file "
+                     "[cornell-box; boxes for lightwave-*]")
+      ->each([&](const std::string&) { options.scene_given = true; });
+  command.add_option("--size", options.size_text, "final image size, N or WxH [512; 1280x720 for lightwave-*]")
+      ->check(CLI::Validator(
+          [&](std::string& text) {
+            options.size_given = true;
+            return parse_size(text, s.width, s.height);
+          },
+          "N|WxH"));
   command.add_option("--rsm-size", s.rsm_size, "square RSM resolution")->check(CLI::Range(1, max_image_side))->capture_default_str();
   command.add_option("--indirect-divisor", s.indirect_divisor, "indirect buffer = image / this per axis (2: half, 1: full)")
       ->check(CLI::IsMember({1, 2, 4, 8}))->capture_default_str();
@@ -88,12 +102,34 @@ void add_render_options(CLI::App& command, render_options& options) {
       ->check(positive_number("scene units"))->capture_default_str();
   command.add_option("--post-filter", options.filter, "bilateral post filter: full 2D kernel or separable")
       ->check(CLI::IsMember({"full", "separable"}))->capture_default_str();
+  command.add_option("--ray-angle", lw.angle_deg, "Light Wave: degrees between VPL rays (divides 90 and 360)")->capture_default_str();
+  command.add_option("--vpls-per-ray", lw.per_ray, "Light Wave: VPLs per ray (stacked hemispheres)")->capture_default_str();
+  command.add_option("--vpl-max-distance", lw.max_distance, "Light Wave: distance the hemispheres approach (0: from the scene's size)")
+      ->capture_default_str();
+  command.add_option("--shadow-maps", lw.accurate_maps, "Light Wave: VPL shadow maps of the accurate shadows")->capture_default_str();
+  command.add_option("--integrated-steps", lw.integrated_steps, "Light Wave: in-between lookups per pair of maps")->capture_default_str();
+  command.add_option("--shadow-map-scale", lw.shadow_map_scale, "Light Wave: shadow map size in screens")->capture_default_str();
+  command.add_option("--faked-multiplier", lw.faked_multiplier, "Light Wave: m of Eq. 5.2")->capture_default_str();
   command.add_option("--shader-dir", options.shader_dir,
                      "folder with the vplkit shaders (default: $VPLKIT_SHADER_DIR, then the built-in path)");
 }
 
+bool is_lightwave(const render_options& options) { return options.settings.technique.rfind("lightwave-", 0) == 0; }
+
 void finish_settings(render_options& options) {
   vplkit::rsm_pipeline_settings& s = options.settings;
+  if (is_lightwave(options)) {
+    if (!options.scene_given) options.scene_name = "boxes";
+    vplkit::lightwave_settings& lw = options.lightwave;
+    lw.technique = s.technique;
+    if (options.size_given) {
+      lw.width = s.width;
+      lw.height = s.height;
+    }
+    lw.format = options.format == "rgba32f" ? vplkit::texel_format::rgba32f : vplkit::texel_format::rgba16f;
+    lw.irradiance = s.irradiance;
+    lw.seed = s.radial.seed;
+  }
   s.format = options.format == "rgba32f" ? vplkit::texel_format::rgba32f : vplkit::texel_format::rgba16f;
   s.filter = options.filter == "separable" ? vplkit::post_filter::separable : vplkit::post_filter::full;
   s.disk.max_radius = s.radial.max_radius;
@@ -132,8 +168,36 @@ vplkit::rsm_frame render_frame(const vplkit::shader_library& shaders, const vplk
   return pipeline.render();
 }
 
+int run_lightwave(render_options& options, std::string out) {
+  const vplkit::lightwave_settings& settings = options.lightwave;
+  if (out.empty()) out = "output/" + fs::path(options.scene_name).stem().string() + "-" + settings.technique + ".png";
+  const fs::path out_path(out);
+  if (out_path.extension() != ".png") throw vplkit::error("--out must name a .png file, got '" + out + "'");
+  if (const std::string problem = vplkit::validate(settings); !problem.empty()) throw vplkit::error(problem);
+  auto context = vplkit::create_headless_context();
+  const vplkit::shader_library shaders(shader_dir(options));
+  const vplkit::scene source = load_scene(options.scene_name);
+  vplkit::lightwave_pipeline pipeline(shaders, source, settings);
+  // The first frame pays for llvmpipe's shader JIT and its first timer query is garbage; the
+  // light is then "moved" onto itself to time a rebuild, and a third frame has nothing to rebuild.
+  pipeline.render();
+  pipeline.set_light(source.light.spot);
+  const vplkit::lightwave_frame first = pipeline.render();
+  const vplkit::lightwave_frame frame = pipeline.render();
+  vplkit::write_png(out_path, frame.width, frame.height, vplkit::to_srgb8(frame.radiance, frame.width, frame.height));
+  const double mebibytes = static_cast<double>(pipeline.shadow_map_bytes()) / (1024.0 * 1024.0);
+  std::cout << "scene " << source.name << " (" << source.geometry.triangle_count() << " triangles), technique " << settings.technique << ", "
+            << frame.width << "x" << frame.height << ", " << pipeline.vpl_count() << " VPLs (" << settings.angle_deg << " degrees, "
+            << settings.per_ray << " per ray)\nshadow maps: " << std::fixed << std::setprecision(2) << mebibytes << " MB (Eq. 5.4/5.5)\n"
+            << "a frame after the light moved (VPLs and shadow maps rebuilt):\n"
+            << vplkit::format_pass_table(first.pass_times) << "next frames (nothing moved):\n"
+            << vplkit::format_pass_table(frame.pass_times) << "wrote " << fs::absolute(out_path).string() << "\n";
+  return 0;
+}
+
 int run_render(render_options& options, std::string out) {
   finish_settings(options);
+  if (is_lightwave(options)) return run_lightwave(options, out);
   const vplkit::rsm_technique& technique = vplkit::find_rsm_technique(options.settings.technique);
   if (out.empty()) out = "output/" + fs::path(options.scene_name).stem().string() + "-" + technique.name + ".png";
   const fs::path out_path(out);
@@ -186,6 +250,7 @@ int run_render(render_options& options, std::string out) {
 
 int run_view(render_options& options, int frames) {
   finish_settings(options);
+  if (is_lightwave(options)) throw vplkit::error("view shows the RSM techniques; render the Light Wave ones with vplkit render");
   vplkit::window_context window(options.settings.width, options.settings.height, "vplkit - " + options.scene_name);
   const vplkit::shader_library shaders(shader_dir(options));
   vplkit::rsm_pipeline pipeline(shaders, load_scene(options.scene_name), options.settings);

@@ -10,7 +10,8 @@ mesh_buffers::mesh_buffers(const mesh& source)
     : vertex_array_(generate_vertex_array()),
       vertices_(generate_buffer()),
       indices_(generate_buffer()),
-      index_count_(static_cast<GLsizei>(source.indices.size())) {
+      index_count_(static_cast<GLsizei>(source.indices.size())),
+      vertex_count_(static_cast<GLsizei>(source.vertices.size())) {
   glBindVertexArray(vertex_array_.get());
   glBindBuffer(GL_ARRAY_BUFFER, vertices_.get());
   glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(source.vertices.size() * sizeof(vertex)),
@@ -32,6 +33,12 @@ mesh_buffers::mesh_buffers(const mesh& source)
 void mesh_buffers::draw() const {
   glBindVertexArray(vertex_array_.get());
   glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+  glBindVertexArray(0);
+}
+
+void mesh_buffers::draw_points() const {
+  glBindVertexArray(vertex_array_.get());
+  glDrawArrays(GL_POINTS, 0, vertex_count_);
   glBindVertexArray(0);
 }
 

@@ -1,9 +1,18 @@
 #include "frontend/scene.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <tuple>
 #include <limits>
 
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <queue>
+
 #include "frontend/error.hpp"
+#include "frontend/obj_loader.hpp"
 
 namespace vplkit {
 
@@ -126,12 +135,145 @@ scene make_instanced_scene() {
   return s;
 }
 
-std::vector<std::string> built_in_scene_names() { return {"cornell-box", "indirect-shadow", "instanced"}; }
+scene make_boxes_scene() {
+  scene s;
+  s.name = "boxes";
+  add_box(s.geometry, {0.0f, -0.05f, 0.0f}, {3.0f, 0.1f, 3.0f}, 0.0f, white);                  // the floor slab
+  add_box(s.geometry, {-0.45f, 0.35f, -0.2f}, {0.5f, 0.7f, 0.5f}, 20.0f, red);                // a tall red box
+  add_box(s.geometry, {0.45f, 0.2f, 0.25f}, {0.6f, 0.4f, 0.6f}, -15.0f, green);               // a low green box
+  s.view.position = {0.0f, 1.6f, 3.2f};
+  s.view.target = {0.0f, 0.2f, 0.0f};
+  s.view.vertical_fov_degrees = 45.0f;
+  s.light.kind = light_kind::spot;
+  s.light.spot.position = {0.6f, 2.2f, 0.8f};
+  s.light.spot.direction = glm::normalize(glm::vec3(-0.6f, -2.2f, -0.8f));
+  s.light.spot.intensity = glm::vec3(8.0f);
+  s.light.spot.cos_inner = std::cos(glm::radians(35.0f));
+  s.light.spot.cos_outer = std::cos(glm::radians(50.0f));
+  return s;
+}
+
+mesh refine_longest_edges(const mesh& source, std::size_t target_triangles) {
+  // Weld: one vertex per distinct position.
+  mesh welded;
+  std::map<std::tuple<float, float, float>, std::uint32_t> index_of;
+  std::vector<glm::vec3> normal_sums;
+  for (std::size_t corner = 0; corner < source.indices.size(); ++corner) {
+    const vertex& v = source.vertices[source.indices[corner]];
+    const auto key = std::make_tuple(v.position.x, v.position.y, v.position.z);
+    auto [found, inserted] = index_of.emplace(key, static_cast<std::uint32_t>(welded.vertices.size()));
+    if (inserted) {
+      welded.vertices.push_back(v);
+      normal_sums.push_back(glm::vec3(0.0f));
+    }
+    normal_sums[found->second] += v.normal;
+    welded.indices.push_back(found->second);
+  }
+  for (std::size_t i = 0; i < welded.vertices.size(); ++i)
+    if (glm::length(normal_sums[i]) > 0.0f) welded.vertices[i].normal = glm::normalize(normal_sums[i]);
+
+  // Triangles as index triples; edges (low, high) -> the triangles that have them.
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  for (std::size_t t = 0; t + 2 < welded.indices.size(); t += 3)
+    triangles.push_back({welded.indices[t], welded.indices[t + 1], welded.indices[t + 2]});
+  using edge = std::pair<std::uint32_t, std::uint32_t>;
+  const auto key_of = [](std::uint32_t a, std::uint32_t b) { return a < b ? edge(a, b) : edge(b, a); };
+  std::map<edge, std::vector<std::size_t>> edges;
+  const auto length_of = [&](const edge& e) { return glm::length(welded.vertices[e.first].position - welded.vertices[e.second].position); };
+  std::priority_queue<std::pair<float, edge>> longest;
+  const auto add_triangle_edges = [&](std::size_t t) {
+    for (int k = 0; k < 3; ++k) {
+      const edge e = key_of(triangles[t][static_cast<std::size_t>(k)], triangles[t][static_cast<std::size_t>((k + 1) % 3)]);
+      edges[e].push_back(t);
+      longest.emplace(length_of(e), e);
+    }
+  };
+  for (std::size_t t = 0; t < triangles.size(); ++t) add_triangle_edges(t);
+  const auto remove_triangle_edges = [&](std::size_t t) {
+    for (int k = 0; k < 3; ++k) {
+      auto& list = edges[key_of(triangles[t][static_cast<std::size_t>(k)], triangles[t][static_cast<std::size_t>((k + 1) % 3)])];
+      list.erase(std::remove(list.begin(), list.end(), t), list.end());
+    }
+  };
+  while (triangles.size() < target_triangles && !longest.empty()) {
+    const edge e = longest.top().second;
+    longest.pop();
+    const auto found = edges.find(e);
+    if (found == edges.end() || found->second.empty()) continue;  // split already
+    const std::vector<std::size_t> sharing = found->second;
+    const vertex& a = welded.vertices[e.first];
+    const vertex& b = welded.vertices[e.second];
+    const glm::vec3 normal_sum = a.normal + b.normal;
+    const vertex middle{0.5f * (a.position + b.position), glm::length(normal_sum) > 0.0f ? glm::normalize(normal_sum) : a.normal,
+                        0.5f * (a.albedo + b.albedo)};
+    const auto m = static_cast<std::uint32_t>(welded.vertices.size());
+    welded.vertices.push_back(middle);
+    for (std::size_t t : sharing) {
+      remove_triangle_edges(t);
+      std::array<std::uint32_t, 3> tri = triangles[t];
+      // Rotate so that the split edge is (tri[0], tri[1]), keeping the winding.
+      while (key_of(tri[0], tri[1]) != e) tri = {tri[1], tri[2], tri[0]};
+      triangles[t] = {tri[0], m, tri[2]};
+      triangles.push_back({m, tri[1], tri[2]});
+      add_triangle_edges(t);
+      add_triangle_edges(triangles.size() - 1);
+    }
+    edges.erase(e);
+  }
+  mesh refined;
+  refined.vertices = std::move(welded.vertices);
+  for (const auto& tri : triangles) refined.indices.insert(refined.indices.end(), tri.begin(), tri.end());
+  return refined;
+}
+
+scene make_teapot_scene(int copies) {
+  namespace fs = std::filesystem;
+  const char* from_environment = std::getenv("VPLKIT_MESH_DIR");
+  const fs::path folder = from_environment && *from_environment ? fs::path(from_environment) : fs::path(VPLKIT_SOURCE_MESH_DIR);
+  const fs::path path = folder / "teapot.obj";
+  if (!fs::exists(path))
+    throw error("scene " + std::string(copies == 1 ? "teapot" : "teapots") + " needs " + path.string() +
+                " (scripts/setup.sh fetches the npm package teapot and converts it; or set VPLKIT_MESH_DIR)");
+  mesh teapot = refine_longest_edges(load_obj(path), 6565);
+  // The npm teapot is about 6.4 units wide; scale it to 0.6 and stand it on the floor.
+  const bounding_box box = bounds(teapot);
+  const float scale = 0.6f / std::max(box.maximum.x - box.minimum.x, 1e-6f);
+  scene s;
+  s.name = copies == 1 ? "teapot" : "teapots";
+  const int columns = copies == 1 ? 1 : 5;
+  for (int copy = 0; copy < copies; ++copy) {
+    const glm::vec3 offset(copies == 1 ? 0.0f : -1.4f + 0.7f * static_cast<float>(copy % columns), 0.0f,
+                           copies == 1 ? 0.0f : -0.35f + 0.7f * static_cast<float>(copy / columns));
+    const auto base = static_cast<std::uint32_t>(s.geometry.vertices.size());
+    for (vertex v : teapot.vertices) {
+      v.position = (v.position - glm::vec3(box.centre().x, box.minimum.y, box.centre().z)) * scale + offset;
+      v.albedo = copy % 2 == 0 ? glm::vec3(0.8f, 0.7f, 0.3f) : glm::vec3(0.3f, 0.5f, 0.8f);
+      s.geometry.vertices.push_back(v);
+    }
+    for (std::uint32_t index : teapot.indices) s.geometry.indices.push_back(base + index);
+  }
+  add_box(s.geometry, {0.0f, -0.05f, 0.0f}, {copies == 1 ? 3.0f : 4.5f, 0.1f, 3.0f}, 0.0f, white);
+  s.view.position = {0.0f, 1.4f, copies == 1 ? 2.0f : 3.4f};
+  s.view.target = {0.0f, 0.2f, 0.0f};
+  s.view.vertical_fov_degrees = 45.0f;
+  s.light.kind = light_kind::spot;
+  s.light.spot.position = {0.7f, 2.4f, 0.9f};
+  s.light.spot.direction = glm::normalize(glm::vec3(-0.7f, -2.4f, -0.9f));
+  s.light.spot.intensity = glm::vec3(8.0f);
+  s.light.spot.cos_inner = std::cos(glm::radians(40.0f));
+  s.light.spot.cos_outer = std::cos(glm::radians(55.0f));
+  return s;
+}
+
+std::vector<std::string> built_in_scene_names() { return {"cornell-box", "indirect-shadow", "instanced", "boxes", "teapot", "teapots"}; }
 
 scene built_in_scene(const std::string& name) {
   if (name == "cornell-box") return make_cornell_box();
   if (name == "indirect-shadow") return make_indirect_shadow_scene();
   if (name == "instanced") return make_instanced_scene();
+  if (name == "boxes") return make_boxes_scene();
+  if (name == "teapot") return make_teapot_scene(1);
+  if (name == "teapots") return make_teapot_scene(10);
   std::string known;
   for (const std::string& candidate : built_in_scene_names()) known += (known.empty() ? "" : ", ") + candidate;
   throw error("unknown scene '" + name + "' (built-in scenes: " + known + ", or a path to an .obj file)");

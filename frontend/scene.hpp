@@ -77,6 +77,20 @@ scene make_indirect_shadow_scene();
 /// the scale of the thesis's Sponza (262k), for timing the geometry passes.
 scene make_instanced_scene();
 
+/// Light Wave's box scene (paper 003): three boxes, 36 triangles, a spot light above them.
+scene make_boxes_scene();
+
+/// Light Wave's teapot scenes: the npm `teapot` mesh (992 triangles, meshes/teapot.obj from the
+/// setup script) refined by longest-edge bisection to the thesis's 6565 triangles, on a floor;
+/// `copies` = 10 gives the ten-teapot scene (65,650 triangles plus the floor).
+/// Throws vplkit::error naming the missing file when the mesh has not been fetched.
+scene make_teapot_scene(int copies);
+
+/// Splits the longest edge of the mesh (and both triangles beside it, so no crack opens) until
+/// it has at least `target_triangles`. Vertices at the same position are welded first; a new
+/// vertex takes the mean position, normal (renormalised) and albedo of its edge.
+mesh refine_longest_edges(const mesh& source, std::size_t target_triangles);
+
 /// Throws vplkit::error listing the known names when `name` is not one of them.
 scene built_in_scene(const std::string& name);
 

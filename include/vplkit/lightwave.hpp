@@ -134,8 +134,10 @@ glm::vec<3, T, Q> lightwave_vpl_contribution(const glm::vec<3, T, Q>& x, const g
   // Phong: the reflection of the incoming direction -to_vpl about n, against the view direction.
   const glm::vec<3, T, Q> reflected = -to_vpl - T(2) * glm::dot(n, -to_vpl) * n;
   const T mirror = glm::max(T(0), glm::dot(reflected, glm::normalize(eye - x)));
-  T specular = object_term > T(0) ? settings.specular_strength : T(0);
-  for (int i = 0; i < settings.specular_exponent; ++i) specular *= mirror;
+  // pow, not a loop of multiplies: this runs inside the loop over thousands of VPLs, and
+  // llvmpipe caps the iterations of nested loops (65535 in total), past which the inner loop
+  // silently stops (measured: 6485 VPLs x 16 multiplies gave 46% less light than the CPU).
+  const T specular = object_term > T(0) ? settings.specular_strength * std::pow(mirror, T(settings.specular_exponent)) : T(0);
   return albedo * (object_term * light_term * strength) + glm::vec<3, T, Q>(specular);
 }
 

@@ -64,8 +64,8 @@ vec3 lightwave_vpl_contribution(vec3 x, vec3 n, vec3 albedo, vec3 eye, lightwave
   float strength = max(0.0, 1.0 - vpl.attenuation);
   vec3 reflected = -to_vpl - 2.0 * dot(n, -to_vpl) * n;
   float mirror = max(0.0, dot(reflected, normalize(eye - x)));
-  float specular = object_term > 0.0 ? settings.specular_strength : 0.0;
-  for (int i = 0; i < settings.specular_exponent; ++i) specular *= mirror;
+  // pow, not a loop: see the C++ twin (llvmpipe caps nested loop iterations).
+  float specular = object_term > 0.0 ? settings.specular_strength * pow(mirror, float(settings.specular_exponent)) : 0.0;
   return albedo * (object_term * light_term * strength) + vec3(specular);
 }
 

@@ -1,0 +1,125 @@
+// The Light Wave pipeline of paper 003 (chapter 4): VPLs on hemispheres around the spot light
+// (laid out on the CPU by the lightwave kernels and uploaded to a float texture), shadow maps for
+// the light and for some VPLs in one depth texture array, and one main pass whose vertex stage
+// sums Eq. 4.5 over every VPL and whose fragment stage combines direct and indirect light with
+// their shadows (Eq. 4.9). VPLs and shadow maps are rebuilt only when the light or the scene
+// moves, as in the thesis.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include <vplkit/irradiance.hpp>
+#include <vplkit/lightwave.hpp>
+
+#include "frontend/gpu_timer.hpp"
+#include "frontend/mesh_buffers.hpp"
+#include "frontend/program.hpp"
+#include "frontend/render_target.hpp"
+#include "frontend/scene.hpp"
+
+namespace vplkit {
+
+enum class lightwave_mode { direct = 0, faked = 1, unshadowed = 2, accurate = 3, integrated = 4 };
+
+struct lightwave_technique {
+  const char* name = "";
+  lightwave_mode mode = lightwave_mode::accurate;
+  const char* description = "";
+};
+
+/// lightwave-direct, lightwave-faked, lightwave-unshadowed, lightwave-accurate, lightwave-integrated.
+const std::vector<lightwave_technique>& lightwave_techniques();
+const lightwave_technique& find_lightwave_technique(const std::string& name);
+
+/// Every setting, with the thesis's defaults.
+struct lightwave_settings {
+  std::string technique = "lightwave-accurate";
+  int width = 1280;            ///< the thesis: 1280 x 720
+  int height = 720;
+  int angle_deg = 5;           ///< between VPL rays
+  int per_ray = 5;             ///< VPLs per ray (stacked hemispheres)
+  /// Distance the hemispheres approach; 0 = the distance from the light to the farthest corner
+  /// of the scene's bounding box (the thesis: "varies based off the dimensions of the scene").
+  float max_distance = 0.0f;
+  int accurate_maps = 20;      ///< shadow maps from random VPLs (accurate shadows)
+  int integrated_maps = 5;     ///< shadow maps from the innermost hemisphere (integrated shadows)
+  int integrated_steps = 10;   ///< in-between lookups per pair of maps (2, 4, 6, 10 in the thesis)
+  float shadow_map_scale = 3.0f;  ///< shadow map size = this x the screen (the thesis: 3)
+  /// Field of view of a VPL's shadow map, degrees (the thesis does not give it). 120 degrees
+  /// covers the part of the 240-degree lobe where it is at least 2/3 of its peak; fragments
+  /// outside a map's frustum count as lit by that VPL.
+  float vpl_field_of_view = 120.0f;
+  float faked_multiplier = 1.3f;  ///< m of Eq. 5.2 (the thesis: 1.1 .. 1.5; 1.3 ranked best)
+  std::uint32_t seed = 1;         ///< draws the VPLs of the accurate shadow maps
+  lightwave_shading_settings<float> shading;
+  irradiance_settings<float> irradiance;
+  texel_format format = texel_format::rgba16f;
+};
+
+/// Empty when usable, else the reason.
+std::string validate(const lightwave_settings& settings);
+
+/// Bytes of a depth texture array of `maps` layers of width x height 32-bit depths: the memory
+/// figure of Eq. 5.4 / 5.5 (3840 x 2160 x 21 x 4 bytes = 664.45 MiB).
+std::uint64_t lightwave_shadow_map_bytes(int width, int height, int maps);
+
+/// Indices of the VPLs that get shadow maps: `count` distinct VPLs drawn with the seed
+/// (accurate), or the axis VPL and four at a quarter turn apart, 45 degrees off the axis, of
+/// the innermost hemisphere (integrated: "equidistant, for maximum coverage").
+std::vector<int> lightwave_shadow_vpls(lightwave_mode mode, const lightwave_settings& settings);
+
+struct lightwave_frame {
+  int width = 0;
+  int height = 0;
+  std::vector<float> radiance;  ///< RGBA, rows bottom-up
+  std::vector<pass_time> pass_times;
+};
+
+class lightwave_pipeline {
+ public:
+  lightwave_pipeline(const shader_library& shaders, const scene& source, const lightwave_settings& settings);
+  lightwave_frame render();
+  /// Moves the spot light: VPLs and shadow maps are rebuilt on the next frame.
+  void set_light(const spot_light<float>& light);
+  /// How many times VPLs and shadow maps have been built (1 after the first frame).
+  int rebuilds() const { return rebuilds_; }
+  std::uint64_t shadow_map_bytes() const;
+  int vpl_count() const { return lightwave_vpl_count(settings_.angle_deg, settings_.per_ray); }
+  const std::vector<lightwave_vpl<float>>& vpls() const { return vpls_; }
+  const lightwave_layout_settings<float>& layout() const { return layout_; }
+  /// Runs the main pass's vertex stage on the scene's vertices with transform feedback and
+  /// returns each vertex's indirect colour (the parity test compares it with the CPU sum).
+  std::vector<glm::vec3> capture_vertex_indirect();
+  const scene& source() const { return scene_; }
+  const lightwave_settings& settings() const { return settings_; }
+
+ private:
+  void rebuild();
+  void set_vertex_uniforms(const program& target) const;
+
+  scene scene_;
+  lightwave_settings settings_;
+  lightwave_technique technique_;
+  lightwave_layout_settings<float> layout_;
+  std::vector<lightwave_vpl<float>> vpls_;
+  std::vector<glm::mat4> shadow_matrices_;
+  mesh_buffers mesh_;
+  program depth_program_;
+  program main_program_;
+  program capture_program_;
+  gl_texture vpl_texture_;
+  gl_texture shadow_maps_;
+  gl_framebuffer shadow_framebuffer_;
+  glm::ivec2 shadow_size_{0};
+  int shadow_layers_ = 1;
+  framebuffer target_;
+  gpu_timer timer_;
+  bool dirty_ = true;
+  int rebuilds_ = 0;
+};
+
+}  // namespace vplkit

@@ -1,0 +1,39 @@
+#version 330 core
+// Light Wave main pass, vertex stage (paper 003, section 4.2): the indirect colour of each vertex
+// from all VPLs (Eq. 4.5, lib/lightwave.glsl), read from a float texture: texel (0, i) holds
+// [position | attenuation] of VPL i, texel (1, i) its [normal | -]. No [0, 1] encoding (Eq. 4.3,
+// 4.4) is needed with float textures.
+#include "lib/lightwave.glsl"
+
+layout(location = 0) in vec3 position;
+layout(location = 1) in vec3 normal;
+layout(location = 2) in vec3 albedo;
+
+uniform mat4 view_projection;
+uniform vec3 eye;
+uniform sampler2D vpl_texture;
+uniform int vpl_count;
+uniform lightwave_shading_settings shading;
+
+out vec3 world_position;
+out vec3 world_normal;
+out vec3 surface_albedo;
+out vec3 vertex_indirect;
+
+void main() {
+  vec3 n = normalize(normal);
+  vec3 sum = vec3(0.0);
+#if VPLKIT_LIGHTWAVE_INDIRECT
+  for (int i = 0; i < vpl_count; ++i) {
+    vec4 position_attenuation = texelFetch(vpl_texture, ivec2(0, i), 0);
+    lightwave_vpl vpl = lightwave_vpl(position_attenuation.xyz, texelFetch(vpl_texture, ivec2(1, i), 0).xyz, position_attenuation.w);
+    sum += lightwave_vpl_contribution(position, n, albedo, eye, vpl, shading);
+  }
+  sum /= float(max(vpl_count, 1));
+#endif
+  vertex_indirect = sum;
+  world_position = position;
+  world_normal = n;
+  surface_albedo = albedo;
+  gl_Position = view_projection * vec4(position, 1.0);
+}
