@@ -113,6 +113,26 @@ file(WRITE "${WORK}/good.obj" "v -1 0 -1\nv 1 0 -1\nv 0 1 0\nf 1 2 3\n")
 expect_success("an OBJ scene renders" "scene good \\(3 triangles\\)" "${VPLKIT}" render --scene "${WORK}/good.obj" --size 16 --rsm-size 32
                --out "${WORK}/good.png")
 
+# Light Wave (paper 003): every mode renders; bad settings are named.
+foreach(technique lightwave-direct lightwave-faked lightwave-unshadowed lightwave-accurate lightwave-integrated)
+  expect_success("render --technique ${technique}" "technique ${technique}.*shadow maps: [0-9.]+ MB.*wrote .*/${technique}\\.png"
+                 "${VPLKIT}" render --technique ${technique} --size 64x36 --shadow-map-scale 1 --out "${WORK}/${technique}.png")
+endforeach()
+expect_failure("Light Wave ray angle that does not divide 90" "must divide 90 and 360" "${WORK}/lw1.png"
+               "${VPLKIT}" render --technique lightwave-accurate --ray-angle 7 --size 32 --out "${WORK}/lw1.png")
+expect_failure("Light Wave zero VPLs per ray" "VPLs per ray must be in" "${WORK}/lw2.png"
+               "${VPLKIT}" render --technique lightwave-accurate --vpls-per-ray 0 --size 32 --out "${WORK}/lw2.png")
+expect_failure("Light Wave more maps than VPLs" "more accurate shadow maps \\(20\\) than VPLs \\(5\\)" "${WORK}/lw3.png"
+               "${VPLKIT}" render --technique lightwave-accurate --ray-angle 90 --vpls-per-ray 1 --size 32 --out "${WORK}/lw3.png")
+expect_failure("Light Wave negative steps" "integrated steps must be >= 0" "${WORK}/lw4.png"
+               "${VPLKIT}" render --technique lightwave-integrated --integrated-steps -1 --size 32 --out "${WORK}/lw4.png")
+expect_failure("Light Wave shadow maps beyond GL_MAX_TEXTURE_SIZE" "GL_MAX_TEXTURE_SIZE" "${WORK}/lw5.png"
+               "${VPLKIT}" render --technique lightwave-accurate --shadow-map-scale 100 --size 320x180 --out "${WORK}/lw5.png")
+expect_failure("Light Wave shadow maps beyond memory" "GL_OUT_OF_MEMORY" "${WORK}/lw6.png"
+               "${VPLKIT}" render --technique lightwave-accurate --shadow-map-scale 12 --size 1280x720 --out "${WORK}/lw6.png")
+expect_failure("Light Wave with a directional light" "Light Wave needs a spot light" "${WORK}/lw7.png"
+               "${VPLKIT}" render --technique lightwave-accurate --scene indirect-shadow --size 32 --out "${WORK}/lw7.png")
+
 # No GL context: a window without a display.
 expect_failure("no GL context (window without a display)" "no GL context: GLFW" ""
                ${CMAKE_COMMAND} -E env --unset=DISPLAY --unset=WAYLAND_DISPLAY "${VPLKIT}" info --context window)

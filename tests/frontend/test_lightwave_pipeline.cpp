@@ -142,6 +142,32 @@ TEST_CASE("the VPLs that get shadow maps: reproducible random draws, and the inn
   }
 }
 
+TEST_CASE("longest-edge refinement reaches the count, keeps the surface closed, splits the longest edges first") {
+  mesh cube;
+  add_box(cube, glm::vec3(0.0f), glm::vec3(1.0f, 2.0f, 4.0f), 0.0f, glm::vec3(0.5f));
+  const mesh refined = refine_longest_edges(cube, 500);
+  CHECK(refined.triangle_count() >= 500);
+  CHECK(refined.triangle_count() <= 501);  // each split adds 2 triangles on a closed surface
+  // Closed: every edge is shared by exactly two triangles, in opposite directions (no cracks).
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;
+  for (std::size_t t = 0; t < refined.indices.size(); t += 3)
+    for (int k = 0; k < 3; ++k) ++directed[{refined.indices[t + static_cast<std::size_t>(k)], refined.indices[t + static_cast<std::size_t>((k + 1) % 3)]}];
+  for (const auto& [edge, count] : directed) {
+    REQUIRE(count == 1);
+    REQUIRE(directed.count({edge.second, edge.first}) == 1);
+  }
+  // The area is unchanged and every triangle keeps its orientation (normals outward).
+  double area = 0.0;
+  for (std::size_t t = 0; t < refined.indices.size(); t += 3) {
+    const glm::vec3 a = refined.vertices[refined.indices[t]].position, b = refined.vertices[refined.indices[t + 1]].position,
+                    c = refined.vertices[refined.indices[t + 2]].position;
+    const glm::vec3 cross = glm::cross(b - a, c - a);
+    area += 0.5 * glm::length(cross);
+    REQUIRE(glm::dot(cross, (a + b + c) / 3.0f) > 0.0f);  // outward for a box centred at 0
+  }
+  CHECK(area == doctest::Approx(2.0 * (1 * 2 + 1 * 4 + 2 * 4)).epsilon(1e-5));
+}
+
 TEST_CASE("Light Wave settings errors name the setting") {
   const auto message = [](lightwave_settings settings) {
     try {

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "frontend/lightwave_pipeline.hpp"
 #include "frontend/obj_loader.hpp"
 #include "frontend/rsm_pipeline.hpp"
 #include "tests/parity/parity_harness.hpp"
@@ -73,6 +74,23 @@ TEST_CASE("assimp-testmodels: spider.obj (MTL colours) and WusonOBJ.obj") {
   const mesh wuson = load_obj(assimp_dir() / "OBJ" / "WusonOBJ.obj");
   CHECK(wuson.triangle_count() > 1000);
   check_renders(wuson, "wuson");
+}
+
+TEST_CASE("Light Wave teapot scenes: 6565 triangles per teapot (the thesis's), ten of them, render") {
+  const scene one = make_teapot_scene(1);
+  CHECK(one.geometry.triangle_count() == 6565 + 12);  // plus the floor box
+  const scene ten = make_teapot_scene(10);
+  CHECK(ten.geometry.triangle_count() == 65650 + 12);
+  lightwave_settings settings;
+  settings.width = 48;
+  settings.height = 27;
+  settings.angle_deg = 30;  // 185 VPLs: the thesis's fast configuration of Table 5.15
+  settings.shadow_map_scale = 1.0f;
+  lightwave_pipeline pipeline(parity::test_shaders(), one, settings);
+  const lightwave_frame frame = pipeline.render();
+  std::size_t lit = 0;
+  for (std::size_t i = 0; i < frame.radiance.size(); i += 4) lit += frame.radiance[i] > 0.0f;
+  CHECK(lit > 48u * 27u / 4u);
 }
 
 int main(int argc, char** argv) {
