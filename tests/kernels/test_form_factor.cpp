@@ -1,0 +1,281 @@
+// Form factors and the final-gathering sum (paper 004): closed-form configuration factors from
+// the heat-transfer literature, Monte Carlo, closed surfaces, clipping, winding, convergence of
+// the point-to-point kernel, the cube-map geometry, and an object approaching a wall.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <vplkit/final_gather.hpp>
+#include <vplkit/form_factor.hpp>
+
+using namespace vplkit;
+
+namespace {
+
+constexpr double pi = 3.14159265358979323846;
+
+// Howell, "A Catalog of Radiation Heat Transfer Configuration Factors" (3rd ed.), factor B-3:
+// plane element dA1 to a plane parallel rectangle a x b at distance c, the normal of the element
+// passing through a corner of the rectangle; X = a / c, Y = b / c.
+double parallel_rectangle(double a, double b, double c) {
+  const double x = a / c, y = b / c;
+  return (x / std::sqrt(1 + x * x) * std::atan(y / std::sqrt(1 + x * x)) + y / std::sqrt(1 + y * y) * std::atan(x / std::sqrt(1 + y * y))) /
+         (2 * pi);
+}
+
+// Howell's factor B-2: plane element dA1 to a rectangle a x b in a plane perpendicular to the
+// element's, the rectangle's side a lying in the element's plane at distance c, the element
+// opposite one end of it; with X = b / a, Y = c / a:
+// F = (atan(1 / Y) - Y / sqrt(X^2 + Y^2) atan(1 / sqrt(X^2 + Y^2))) / (2 pi).
+double perpendicular_rectangle(double a, double b, double c) {
+  const double x = b / a, y = c / a;
+  return (std::atan(1 / y) - y / std::sqrt(x * x + y * y) * std::atan(1 / std::sqrt(x * x + y * y))) / (2 * pi);
+}
+
+glm::dvec3 random_unit(std::mt19937& random) {
+  std::normal_distribution<double> normal;
+  return glm::normalize(glm::dvec3(normal(random), normal(random), normal(random)));
+}
+
+}  // namespace
+
+TEST_CASE("polygon_form_factor equals Howell's B-3 (parallel rectangle) to 1e-9 in double, 2e-6 in float") {
+  for (const auto& [a, b, c] : std::vector<std::array<double, 3>>{{1, 1, 1}, {2, 0.5, 1}, {0.1, 0.3, 2}, {5, 7, 0.2}, {1e-3, 1e-3, 1}}) {
+    const double exact = parallel_rectangle(a, b, c);
+    const glm::dvec3 x(0.0), n(0, 0, 1);
+    const double f = polygon_form_factor(x, n, glm::dvec3(0, 0, c), glm::dvec3(a, 0, c), glm::dvec3(a, b, c), glm::dvec3(0, b, c));
+    CAPTURE(a);
+    CAPTURE(b);
+    CAPTURE(c);
+    CHECK(f == doctest::Approx(exact).epsilon(1e-9));
+    const float ff = polygon_form_factor(glm::vec3(0.0f), glm::vec3(0, 0, 1), glm::vec3(0, 0, c), glm::vec3(a, 0, c), glm::vec3(a, b, c), glm::vec3(0, b, c));
+    CHECK(ff == doctest::Approx(exact).epsilon(2e-6));
+  }
+}
+
+TEST_CASE("polygon_form_factor equals Howell's B-2 (perpendicular rectangle) to 1e-9 in double, 2e-6 in float") {
+  for (const auto& [a, b, c] : std::vector<std::array<double, 3>>{{1, 1, 1}, {2, 0.5, 1}, {0.3, 3, 0.5}, {4, 4, 0.1}}) {
+    const double exact = perpendicular_rectangle(a, b, c);
+    // Element at the origin facing +z; the rectangle in the plane y = c, x in [0, a], z in [0, b].
+    const double f = polygon_form_factor(glm::dvec3(0.0), glm::dvec3(0, 0, 1), glm::dvec3(0, c, 0), glm::dvec3(a, c, 0), glm::dvec3(a, c, b),
+                                         glm::dvec3(0, c, b));
+    CAPTURE(a);
+    CAPTURE(c);
+    CHECK(f == doctest::Approx(exact).epsilon(1e-9));
+    const float ff = polygon_form_factor(glm::vec3(0.0f), glm::vec3(0, 0, 1), glm::vec3(0, c, 0), glm::vec3(a, c, 0), glm::vec3(a, c, b), glm::vec3(0, c, b));
+    CHECK(ff == doctest::Approx(exact).epsilon(2e-6));
+  }
+}
+
+TEST_CASE("polygon_form_factor agrees with a Monte Carlo integral of the point kernel, clipping included") {
+  std::mt19937 random(40);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  for (int trial = 0; trial < 6; ++trial) {
+    // A random planar parallelogram near a random point and normal: partly below the tangent
+    // plane in some trials.
+    const glm::dvec3 x(0.0), n = random_unit(random);
+    const glm::dvec3 origin = random_unit(random) * (1.0 + uniform(random)), e1 = random_unit(random) * 0.8, e2 = random_unit(random) * 0.8;
+    const glm::dvec3 normal = glm::normalize(glm::cross(e1, e2));
+    const double area = glm::length(glm::cross(e1, e2));
+    const int samples = 200000;
+    double sum = 0.0, sum_squares = 0.0;
+    for (int s = 0; s < samples; ++s) {
+      const glm::dvec3 y = origin + e1 * uniform(random) + e2 * uniform(random);
+      // A two-sided emitter: the form factor to the quad does not depend on which side faces x.
+      const double k = std::max(point_form_factor(x, n, y, normal), point_form_factor(x, n, y, -normal)) * area;
+      sum += k;
+      sum_squares += k * k;
+    }
+    const double mean = sum / samples, sigma = std::sqrt((sum_squares / samples - mean * mean) / samples);
+    const double f = polygon_form_factor(x, n, origin, origin + e1, origin + e1 + e2, origin + e2);
+    CAPTURE(trial);
+    CAPTURE(mean);
+    CAPTURE(f);
+    CHECK(std::fabs(f - mean) <= 4.0 * sigma + 1e-12);
+  }
+}
+
+TEST_CASE("the six faces of a closed cube around a point give F = 1, for any normal") {
+  std::mt19937 random(41);
+  std::uniform_real_distribution<double> uniform(-0.9, 0.9);
+  const glm::dvec3 c[8] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}};
+  const int faces[6][4] = {{0, 1, 2, 3}, {4, 5, 6, 7}, {0, 1, 5, 4}, {3, 2, 6, 7}, {0, 3, 7, 4}, {1, 2, 6, 5}};
+  for (int trial = 0; trial < 200; ++trial) {
+    const glm::dvec3 x(uniform(random), uniform(random), uniform(random)), n = random_unit(random);
+    double total = 0.0;
+    for (const auto& face : faces) total += polygon_form_factor(x, n, c[face[0]], c[face[1]], c[face[2]], c[face[3]]);
+    REQUIRE(total == doctest::Approx(1.0).epsilon(1e-9));
+  }
+}
+
+TEST_CASE("a quad rotated through the tangent plane falls continuously to 0; either winding gives the same F") {
+  const glm::dvec3 x(0.0), n(0, 0, 1);
+  double previous = -1.0;
+  for (int step = 0; step <= 400; ++step) {
+    // A unit square at distance 1, tilted about the x axis through the point (0, 1, 0.3) until
+    // it lies entirely below the tangent plane.
+    const double angle = pi * step / 400.0;
+    const glm::dvec3 centre(0.0, 1.0, 0.3);
+    const glm::dvec3 u(1, 0, 0), v(0, std::cos(angle), std::sin(angle));
+    const glm::dvec3 q0 = centre - 0.5 * u - 0.5 * v, q1 = centre + 0.5 * u - 0.5 * v, q2 = centre + 0.5 * u + 0.5 * v, q3 = centre - 0.5 * u + 0.5 * v;
+    const double f = polygon_form_factor(x, n, q0, q1, q2, q3);
+    REQUIRE(f >= 0.0);
+    REQUIRE(f == doctest::Approx(polygon_form_factor(x, n, q3, q2, q1, q0)).epsilon(1e-12));  // winding
+    if (previous >= 0.0) REQUIRE(std::fabs(f - previous) < 0.01);  // no jump at the crossing
+    previous = f;
+  }
+  // Entirely below: nothing; the paper's unclipped variant disagrees with the clipped one only
+  // when the quad straddles the plane.
+  CHECK(polygon_form_factor(x, n, glm::dvec3(0, 0, -1), glm::dvec3(1, 0, -1), glm::dvec3(1, 1, -1), glm::dvec3(0, 1, -1)) == 0.0);
+  const glm::dvec3 a(-1, -1, 1), b(-1, 1, 1), c(1, 1, 1), d(1, -1, 1);  // counter-clockwise seen from x
+  CHECK(polygon_form_factor_unclipped(x, n, a, b, c, d) == doctest::Approx(polygon_form_factor(x, n, a, b, c, d)).epsilon(1e-12));
+  const glm::dvec3 s0(-1, 1, -0.5), s1(-1, 1, 1), s2(1, 1, 1), s3(1, 1, -0.5);  // straddles the tangent plane
+  CHECK(std::fabs(polygon_form_factor_unclipped(x, n, s0, s1, s2, s3) - polygon_form_factor(x, n, s0, s1, s2, s3)) > 0.01);
+  // Degenerate quads (all corners on a line, or at one point): 0, not NaN.
+  CHECK(polygon_form_factor(x, n, glm::dvec3(0, 0, 1), glm::dvec3(1, 0, 1), glm::dvec3(2, 0, 1), glm::dvec3(3, 0, 1)) == 0.0);
+  CHECK(polygon_form_factor(x, n, glm::dvec3(0, 0, 1), glm::dvec3(0, 0, 1), glm::dvec3(0, 0, 1), glm::dvec3(0, 0, 1)) == 0.0);
+}
+
+TEST_CASE("point_form_factor x area converges to the polygon form factor as the quad shrinks, and diverges near it") {
+  const glm::dvec3 x(0.0), n(0, 0, 1), ny(0, 0, -1);
+  double previous_error = 1e30;
+  for (double size : {0.8, 0.4, 0.2, 0.1, 0.05, 0.025}) {
+    const double h = 0.5 * size;
+    const double polygon = polygon_form_factor(x, n, glm::dvec3(-h, -h, 1), glm::dvec3(h, -h, 1), glm::dvec3(h, h, 1), glm::dvec3(-h, h, 1));
+    const double point = point_form_factor(x, n, glm::dvec3(0, 0, 1), ny) * size * size;
+    const double error = std::fabs(point / polygon - 1.0);
+    CAPTURE(size);
+    CHECK(error < previous_error);  // O(size^2)
+    previous_error = error;
+  }
+  CHECK(previous_error < 1e-3);
+  // Near the quad the point kernel explodes (1 / r^2), the polygon stays below 1.
+  const double near = 0.01;
+  const double polygon = polygon_form_factor(x, n, glm::dvec3(-0.5, -0.5, near), glm::dvec3(0.5, -0.5, near), glm::dvec3(0.5, 0.5, near), glm::dvec3(-0.5, 0.5, near));
+  const double point = point_form_factor(x, n, glm::dvec3(0, 0, near), ny) * 1.0;
+  CHECK(polygon < 1.0);
+  CHECK(point / polygon > 1000.0);
+}
+
+TEST_CASE("cube-map geometry: texels round-trip, faces are right-handed, corners tile the faces") {
+  for (int resolution : {1, 2, 4, 16}) {
+    for (int face = 0; face < 6; ++face) {
+      glm::dvec3 major, s, t;
+      cube_face_axes(face, major, s, t);
+      CHECK(glm::cross(s, t) == -major);  // the view (s, t, -major) is a rotation
+      for (int j = 0; j < resolution; ++j)
+        for (int i = 0; i < resolution; ++i)
+          REQUIRE(cube_texel_of(cube_texel_direction<double>(face, i, j, resolution), resolution) == glm::ivec3(face, i, j));
+    }
+  }
+  // The corners of texel (i, j) are the centre plus and minus half a texel.
+  const glm::dvec3 centre = cube_texel_direction<double>(4, 1, 2, 4);
+  CHECK(cube_corner_direction<double>(4, 1, 2, 4) + cube_corner_direction<double>(4, 2, 3, 4) == 2.0 * centre);
+}
+
+namespace {
+
+// A synthetic distance cube map around o in the box [-1, 1]^3 whose six walls have constant
+// radiances: each M x M texel averages 16 x 16 rays (what the GL pipeline's downsampling does).
+struct box_cube_map {
+  int resolution;
+  glm::dvec3 o;
+  std::vector<glm::dvec4> texels;
+  static glm::dvec3 wall_radiance(int axis, bool positive) {
+    const glm::dvec3 radiances[6] = {{0.9, 0.1, 0.1}, {0.1, 0.9, 0.1}, {0.8, 0.8, 0.8}, {0.5, 0.5, 0.5}, {0.2, 0.2, 0.9}, {0.7, 0.7, 0.2}};
+    return radiances[axis * 2 + (positive ? 0 : 1)];
+  }
+  static glm::dvec4 trace(const glm::dvec3& from, const glm::dvec3& direction) {
+    double nearest = 1e30;
+    glm::dvec3 radiance(0.0);
+    for (int axis = 0; axis < 3; ++axis)
+      for (bool positive : {true, false}) {
+        const double wall = positive ? 1.0 : -1.0;
+        if (direction[axis] == 0.0) continue;
+        const double distance = (wall - from[axis]) / direction[axis];
+        if (distance > 0.0 && distance < nearest) {
+          nearest = distance;
+          radiance = wall_radiance(axis, positive);
+        }
+      }
+    return {radiance, nearest};
+  }
+  box_cube_map(int m, glm::dvec3 reference) : resolution(m), o(reference), texels(static_cast<std::size_t>(6 * m * m)) {
+    const int fine = 16;
+    for (int face = 0; face < 6; ++face)
+      for (int j = 0; j < m; ++j)
+        for (int i = 0; i < m; ++i) {
+          glm::dvec4 sum(0.0);
+          for (int b = 0; b < fine; ++b)
+            for (int a = 0; a < fine; ++a)
+              sum += trace(o, glm::normalize(cube_face_direction(face, glm::dvec2((2.0 * (i * fine + a) + 1) / (m * fine) - 1, (2.0 * (j * fine + b) + 1) / (m * fine) - 1))));
+          texels[static_cast<std::size_t>((face * m + j) * m + i)] = sum / double(fine * fine);
+        }
+  }
+  glm::dvec4 operator()(int face, int i, int j) const { return texels[static_cast<std::size_t>((face * resolution + j) * resolution + i)]; }
+};
+
+// The exact irradiance at (x, n) inside the box: every wall is a planar rectangle.
+glm::dvec3 box_reference(const glm::dvec3& x, const glm::dvec3& n) {
+  const glm::dvec3 c[8] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}};
+  // (axis, positive) -> corners.
+  const int faces[6][4] = {{1, 2, 6, 5}, {0, 3, 7, 4}, {3, 2, 6, 7}, {0, 1, 5, 4}, {4, 5, 6, 7}, {0, 1, 2, 3}};
+  glm::dvec3 e(0.0);
+  for (int f = 0; f < 6; ++f)
+    e += box_cube_map::wall_radiance(f / 2, f % 2 == 0) * (pi * polygon_form_factor(x, n, c[faces[f][0]], c[faces[f][1]], c[faces[f][2]], c[faces[f][3]]));
+  return e;
+}
+
+}  // namespace
+
+TEST_CASE("final gathering in a closed environment of radiance 1 gives E = pi anywhere inside (polygon)") {
+  // Constant distance: the quads form a closed polyhedron around o; every x inside sees all of it.
+  const int m = 4;
+  const auto constant = [](int, int, int) { return glm::dvec4(1.0, 1.0, 1.0, 2.0); };
+  std::mt19937 random(42);
+  std::uniform_real_distribution<double> uniform(-0.5, 0.5);
+  for (int trial = 0; trial < 50; ++trial) {
+    const glm::dvec3 x(uniform(random), uniform(random), uniform(random)), n = random_unit(random);
+    const glm::dvec3 e = final_gather_irradiance<gather_form_factor::polygon>(x, n, glm::dvec3(0.0), m, constant);
+    REQUIRE(e.x == doctest::Approx(pi).epsilon(1e-9));
+  }
+}
+
+TEST_CASE("an object approaching a wall: the polygon gather stays close to the exact irradiance, the point gather spikes") {
+  // Sample points on a sphere of radius 0.25 around o, o moving towards the +x wall; the exact
+  // reference integrates every wall (no self-shadowing, the paper's assumption).
+  const int m = 4;
+  std::mt19937 random(43);
+  std::vector<glm::dvec3> directions;
+  for (int k = 0; k < 200; ++k) directions.push_back(random_unit(random));
+  // And the points of the object that look straight at a virtual light of the wall's face: the
+  // texel centre directions of face +x.
+  for (int j = 0; j < m; ++j)
+    for (int i = 0; i < m; ++i) directions.push_back(glm::normalize(cube_texel_direction<double>(0, i, j, m)));
+  double worst_polygon = 1.0, worst_point = 1.0;
+  for (double gap : {0.7, 0.4, 0.2, 0.1, 0.05, 0.02, 0.01}) {
+    const glm::dvec3 o(1.0 - 0.25 - gap, 0.0, 0.0);
+    const box_cube_map cube(m, o);
+    double polygon_max = 0.0, point_max = 0.0, polygon_min = 1e30;
+    for (const glm::dvec3& d : directions) {
+      const glm::dvec3 x = o + 0.25 * d, n = d;
+      const double reference = glm::dot(box_reference(x, n), glm::dvec3(1.0));
+      const double polygon = glm::dot(final_gather_irradiance<gather_form_factor::polygon>(x, n, o, m, cube), glm::dvec3(1.0));
+      const double point = glm::dot(final_gather_irradiance<gather_form_factor::point>(x, n, o, m, cube), glm::dvec3(1.0));
+      polygon_max = std::max(polygon_max, polygon / reference);
+      polygon_min = std::min(polygon_min, polygon / reference);
+      point_max = std::max(point_max, point / reference);
+    }
+    MESSAGE("gap " << gap << ": polygon/reference in [" << polygon_min << ", " << polygon_max << "], point/reference max " << point_max);
+    worst_polygon = std::max({worst_polygon, polygon_max, 1.0 / polygon_min});
+    worst_point = std::max(worst_point, point_max);
+  }
+  // Measured: polygon within [0.984, 1.014] of the reference at every gap; point up to 6.2x at
+  // a gap of 0.01 (3.8x at 0.02). Bounds with margin:
+  CHECK(worst_polygon < 1.05);
+  CHECK(worst_point > 4.0);
+}
