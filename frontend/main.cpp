@@ -13,6 +13,7 @@
 #include "frontend/context.hpp"
 #include "frontend/debug_output.hpp"
 #include "frontend/error.hpp"
+#include "frontend/final_gather_pipeline.hpp"
 #include "frontend/image_io.hpp"
 #include "frontend/lightwave_pipeline.hpp"
 #include "frontend/obj_loader.hpp"
@@ -63,12 +64,32 @@ struct render_options {
   std::string shader_dir;
   vplkit::rsm_pipeline_settings settings;
   vplkit::lightwave_settings lightwave;
+  vplkit::final_gather_settings final_gather;
+  std::string object = "sphere";
+  std::string object_position_text = "0,0.7,0";
+  glm::vec3 object_position{0.0f, 0.7f, 0.0f};
+  float object_size = 0.5f;
 };
+
+// "x,y,z"
+std::string parse_position(const std::string& text, glm::vec3& position) {
+  static const std::regex pattern(R"(\s*([-+0-9.eE]+)\s*,\s*([-+0-9.eE]+)\s*,\s*([-+0-9.eE]+)\s*)");
+  std::smatch match;
+  if (!std::regex_match(text, match, pattern)) return "expected x,y,z (for example 0,0.7,0), got '" + text + "'";
+  try {
+    position = glm::vec3(std::stof(match[1]), std::stof(match[2]), std::stof(match[3]));
+  } catch (const std::exception&) {
+    return "expected three numbers x,y,z, got '" + text + "'";
+  }
+  if (!std::isfinite(position.x) || !std::isfinite(position.y) || !std::isfinite(position.z)) return "the position must be finite";
+  return {};
+}
 
 void add_render_options(CLI::App& command, render_options& options) {
   std::vector<std::string> techniques;
   for (const vplkit::rsm_technique& technique : vplkit::rsm_techniques()) techniques.push_back(technique.name);
   for (const vplkit::lightwave_technique& technique : vplkit::lightwave_techniques()) techniques.push_back(technique.name);
+  for (const vplkit::final_gather_technique& technique : vplkit::final_gather_techniques()) techniques.push_back(technique.name);
   vplkit::rsm_pipeline_settings& s = options.settings;
   vplkit::lightwave_settings& lw = options.lightwave;
   command.add_option("--technique", s.technique, "rendering technique (rsm-*: paper 000, lightwave-*: paper 003)")
@@ -110,11 +131,23 @@ void add_render_options(CLI::App& command, render_options& options) {
   command.add_option("--integrated-steps", lw.integrated_steps, "Light Wave: in-between lookups per pair of maps")->capture_default_str();
   command.add_option("--shadow-map-scale", lw.shadow_map_scale, "Light Wave: shadow map size in screens")->capture_default_str();
   command.add_option("--faked-multiplier", lw.faked_multiplier, "Light Wave: m of Eq. 5.2")->capture_default_str();
+  vplkit::final_gather_settings& fg = options.final_gather;
+  command.add_option("--object", options.object, "final gathering: the dynamic object, sphere or an .obj file (meshes/bunny.obj)")
+      ->capture_default_str();
+  command.add_option("--object-position", options.object_position_text, "final gathering: the object's centre x,y,z (the room is [-1,1]x[0,2]x[-1,1])")
+      ->check(CLI::Validator([&](std::string& text) { return parse_position(text, options.object_position); }, "x,y,z"))
+      ->capture_default_str();
+  command.add_option("--object-size", options.object_size, "final gathering: the object's size across")->check(positive_number("scene units"))->capture_default_str();
+  command.add_option("--cube-resolution", fg.resolution, "final gathering: M, the small cube map's face resolution (4 or 2)")->capture_default_str();
+  command.add_option("--face-size", fg.face_size, "final gathering: the cube map's face size before averaging")->capture_default_str();
   command.add_option("--shader-dir", options.shader_dir,
                      "folder with the vplkit shaders (default: $VPLKIT_SHADER_DIR, then the built-in path)");
 }
 
 bool is_lightwave(const render_options& options) { return options.settings.technique.rfind("lightwave-", 0) == 0; }
+bool is_final_gather(const render_options& options) {
+  return options.settings.technique.rfind("finalgather-", 0) == 0 || options.settings.technique == "envmap";
+}
 
 void finish_settings(render_options& options) {
   vplkit::rsm_pipeline_settings& s = options.settings;
@@ -195,9 +228,47 @@ int run_lightwave(render_options& options, std::string out) {
   return 0;
 }
 
+int run_final_gather(render_options& options, std::string out) {
+  vplkit::final_gather_settings settings = options.final_gather;
+  settings.technique = options.settings.technique;
+  settings.width = options.settings.width;
+  settings.height = options.settings.height;
+  settings.irradiance = options.settings.irradiance;
+  settings.format = options.format == "rgba32f" ? vplkit::texel_format::rgba32f : vplkit::texel_format::rgba16f;
+  if (const std::string problem = vplkit::validate(settings); !problem.empty()) throw vplkit::error(problem);
+  if (out.empty()) out = "output/" + fs::path(options.object).stem().string() + "-" + settings.technique + ".png";
+  const fs::path out_path(out);
+  if (out_path.extension() != ".png") throw vplkit::error("--out must name a .png file, got '" + out + "'");
+  auto context = vplkit::create_headless_context();
+  const vplkit::shader_library shaders(shader_dir(options));
+  const vplkit::final_gather_scene source = vplkit::make_final_gather_scene(options.object, options.object_position, options.object_size);
+  vplkit::final_gather_pipeline pipeline(shaders, source, settings);
+  pipeline.render();  // JIT warm-up; llvmpipe's first timer query is garbage
+  const vplkit::final_gather_frame frame = pipeline.render();
+  const int w = frame.width, h = frame.height;
+  const std::vector<std::uint8_t> final_image = vplkit::to_srgb8(frame.radiance, w, h);
+  const std::vector<std::uint8_t> indirect_image = vplkit::to_srgb8(frame.indirect, w, h, vplkit::percentile_exposure(frame.indirect));
+  const fs::path indirect_path = with_suffix(out_path, "-indirect");
+  vplkit::write_png(out_path, w, h, final_image);
+  try {
+    vplkit::write_png(indirect_path, w, h, indirect_image);
+  } catch (...) {
+    std::error_code ignored;
+    fs::remove(out_path, ignored);
+    throw;
+  }
+  std::cout << "object " << source.name << " (" << source.object.triangle_count() << " triangles) at (" << source.reference_point.x << ", "
+            << source.reference_point.y << ", " << source.reference_point.z << "), technique " << settings.technique << ", " << w << "x" << h
+            << ", cube map 6 x " << settings.face_size << "^2 -> 6 x " << settings.resolution << "^2\n"
+            << vplkit::format_pass_table(frame.pass_times) << "wrote " << fs::absolute(out_path).string() << "\nwrote "
+            << fs::absolute(indirect_path).string() << "\n";
+  return 0;
+}
+
 int run_render(render_options& options, std::string out) {
   finish_settings(options);
   if (is_lightwave(options)) return run_lightwave(options, out);
+  if (is_final_gather(options)) return run_final_gather(options, out);
   const vplkit::rsm_technique& technique = vplkit::find_rsm_technique(options.settings.technique);
   if (out.empty()) out = "output/" + fs::path(options.scene_name).stem().string() + "-" + technique.name + ".png";
   const fs::path out_path(out);
@@ -250,7 +321,8 @@ int run_render(render_options& options, std::string out) {
 
 int run_view(render_options& options, int frames) {
   finish_settings(options);
-  if (is_lightwave(options)) throw vplkit::error("view shows the RSM techniques; render the Light Wave ones with vplkit render");
+  if (is_lightwave(options) || is_final_gather(options))
+    throw vplkit::error("view shows the RSM techniques; render the Light Wave and final gathering ones with vplkit render");
   vplkit::window_context window(options.settings.width, options.settings.height, "vplkit - " + options.scene_name);
   const vplkit::shader_library shaders(shader_dir(options));
   vplkit::rsm_pipeline pipeline(shaders, load_scene(options.scene_name), options.settings);

@@ -1,0 +1,19 @@
+#version 330 core
+// Final gathering, pass 1 (paper 004, section 4): one face of the cube map around the reference
+// point o: [radiance | distance from o] of the environment (the object is left out). The
+// environment's radiance is its direct light: albedo / pi * E_spot.
+#include "lib/direct_light.glsl"
+
+uniform spot_light light;
+uniform irradiance_settings irradiance;
+uniform vec3 reference_point;
+
+in vec3 world_position;
+in vec3 world_normal;
+in vec3 surface_albedo;
+layout(location = 0) out vec4 radiance_distance;
+
+void main() {
+  vec3 radiance = surface_albedo * 0.318309886183790671538 * spot_light_irradiance(world_position, normalize(world_normal), light, irradiance);
+  radiance_distance = vec4(radiance, length(world_position - reference_point));
+}

@@ -1,0 +1,121 @@
+// The final-gathering pipeline (paper 004): the shading pass against its CPU mirror for every
+// variant and M = 4 and 2, the GLSL form factors against the C++ ones, and the errors for bad
+// input.
+#include <doctest/doctest.h>
+
+#include <random>
+
+#include <vplkit/form_factor.hpp>
+
+#include "frontend/error.hpp"
+#include "frontend/final_gather_pipeline.hpp"
+#include "tests/parity/parity_harness.hpp"
+
+using namespace vplkit;
+using namespace vplkit::parity;
+
+namespace {
+
+final_gather_settings small(const char* technique, int resolution) {
+  final_gather_settings settings;
+  settings.technique = technique;
+  settings.width = settings.height = 48;
+  settings.face_size = 32;
+  settings.resolution = resolution;
+  settings.environment_resolution = 8;
+  return settings;
+}
+
+kernel_inputs pixels_of(const image_buffer& image) {
+  kernel_inputs inputs;
+  inputs.width = image.width;
+  inputs.height = image.height;
+  return inputs;
+}
+
+}  // namespace
+
+TEST_CASE("final gathering shading pass matches the CPU mirror: polygon, point, environment map; M = 4 and 2") {
+  // The object close to the green wall, so that the point variant's large terms are exercised.
+  const final_gather_scene scene = make_final_gather_scene("sphere", glm::vec3(0.55f, 0.7f, 0.1f), 0.5f);
+  for (const char* technique : {"finalgather-polygon", "finalgather-point", "envmap"}) {
+    for (int resolution : {4, 2}) {
+      final_gather_pipeline pipeline(test_shaders(), scene, small(technique, resolution));
+      const final_gather_frame frame = pipeline.render();
+      const final_gather_buffers buffers = pipeline.read_buffers();
+      const final_gather_images cpu = cpu_final_gather_shade(buffers, scene, pipeline.settings(), 2);
+      std::vector<glm::vec4> gl_radiance(frame.radiance.size() / 4), gl_indirect(frame.indirect.size() / 4);
+      std::size_t object_pixels = 0;
+      for (std::size_t i = 0; i < gl_radiance.size(); ++i) {
+        gl_radiance[i] = glm::vec4(frame.radiance[4 * i], frame.radiance[4 * i + 1], frame.radiance[4 * i + 2], frame.radiance[4 * i + 3]);
+        gl_indirect[i] = glm::vec4(frame.indirect[4 * i], frame.indirect[4 * i + 1], frame.indirect[4 * i + 2], frame.indirect[4 * i + 3]);
+        object_pixels += buffers.gbuffer[0].texels[i].w > 1.5f;
+      }
+      REQUIRE(object_pixels > 50);
+      const std::string name = std::string(technique) + " M=" + std::to_string(resolution);
+      // 6 M^2 quads, each with 4 corner distances from 16 fetches, Lambert's formula (atan2,
+      // sqrt, divides) or the point kernel: a few ulp per term over up to 96 terms: 2e-5
+      // relative, or 1e-6 absolute.
+      const tolerance bounds{1e-6f, 2e-5f, 64, 0.0, "up to 96 quads of atan2/sqrt/divide terms"};
+      require_parity(compare("final gathering indirect, " + name, gl_indirect, cpu.indirect.texels, pixels_of(cpu.indirect), bounds, 3));
+      require_parity(compare("final gathering radiance, " + name, gl_radiance, cpu.radiance.texels, pixels_of(cpu.radiance), bounds, 3));
+    }
+  }
+}
+
+TEST_CASE("parity: polygon_form_factor (clipped and unclipped) and point_form_factor") {
+  kernel_inputs inputs;
+  inputs.width = 64;
+  inputs.height = 64;
+  inputs.floats.assign(5, std::vector<glm::vec4>(inputs.size()));
+  std::mt19937 random(50);
+  std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const glm::vec3 n = glm::normalize(glm::vec3(uniform(random), uniform(random), uniform(random)));
+    const glm::vec3 origin(uniform(random), uniform(random), uniform(random) + 0.5f), e1(uniform(random), uniform(random), 0.2f * uniform(random)),
+        e2(uniform(random), uniform(random), 0.2f * uniform(random));
+    inputs.floats[0][i] = glm::vec4(n, 0.0f);
+    inputs.floats[1][i] = glm::vec4(origin, 0.0f);
+    inputs.floats[2][i] = glm::vec4(origin + e1, 0.0f);
+    inputs.floats[3][i] = glm::vec4(origin + e1 + e2, 0.0f);
+    inputs.floats[4][i] = glm::vec4(origin + e2, 0.0f);
+  }
+  kernel_source source;
+  source.name = "form factors";
+  source.includes = {"lib/form_factor.glsl"};
+  source.body = "vec3 x = vec3(0.0);\n"
+                "fout0 = vec4(polygon_form_factor(x, fin0.xyz, fin1.xyz, fin2.xyz, fin3.xyz, fin4.xyz),\n"
+                "             polygon_form_factor_unclipped(x, fin0.xyz, fin1.xyz, fin2.xyz, fin3.xyz, fin4.xyz),\n"
+                "             point_form_factor(x, fin0.xyz, fin1.xyz, normalize(cross(fin2.xyz - fin1.xyz, fin4.xyz - fin1.xyz))), 0.0);";
+  source.float_outputs = 1;
+  const kernel_outputs gpu = run_fragment(source, inputs);
+  std::vector<glm::vec4> cpu(inputs.size());
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const glm::vec3 n(inputs.floats[0][i]), c0(inputs.floats[1][i]), c1(inputs.floats[2][i]), c2(inputs.floats[3][i]), c3(inputs.floats[4][i]);
+    const glm::vec3 x(0.0f);
+    cpu[i] = glm::vec4(polygon_form_factor(x, n, c0, c1, c2, c3), polygon_form_factor_unclipped(x, n, c0, c1, c2, c3),
+                       point_form_factor(x, n, c0, glm::normalize(glm::cross(c1 - c0, c3 - c0))), 0.0f);
+  }
+  // Lambert's formula sums up to 5 signed edge terms of size O(1) (angles up to pi) that cancel
+  // to a small F: atan2 (llvmpipe's and the C library's differ by a few ulp) then gives an
+  // absolute error of a few ulp of pi whatever F is: 2e-6 absolute, or 1e-5 relative.
+  require_parity(compare("form factors", gpu.floats[0], cpu, inputs, {2e-6f, 1e-5f, 32, 0.0, "atan2 ulps of O(1) terms that cancel"}, 3));
+}
+
+TEST_CASE("final gathering errors: M not dividing the face size, a reference point outside the room, an object that fails to load") {
+  const final_gather_scene scene = make_final_gather_scene("sphere", glm::vec3(0.0f, 0.7f, 0.0f), 0.5f);
+  final_gather_settings settings = small("finalgather-polygon", 4);
+  settings.face_size = 30;
+  CHECK_THROWS_WITH_AS(final_gather_pipeline(test_shaders(), scene, settings), doctest::Contains("M = 4 does not divide the face size 30"), vplkit::error);
+  // Outside the room: the cube map sees the walls' backs and the void around them.
+  const final_gather_scene outside = make_final_gather_scene("sphere", glm::vec3(0.0f, 0.7f, 3.0f), 0.5f);
+  final_gather_pipeline pipeline(test_shaders(), outside, small("finalgather-polygon", 4));
+  CHECK_THROWS_WITH_AS(pipeline.render(), doctest::Contains("outside the room or inside geometry"), vplkit::error);
+  // An object touching a wall: the environment is nearer than the object's radius.
+  const final_gather_scene touching = make_final_gather_scene("sphere", glm::vec3(0.9f, 0.7f, 0.0f), 0.5f);
+  final_gather_pipeline touching_pipeline(test_shaders(), touching, small("finalgather-polygon", 4));
+  CHECK_THROWS_WITH_AS(touching_pipeline.render(), doctest::Contains("intersects a wall"), vplkit::error);
+  CHECK_THROWS_WITH_AS(make_final_gather_scene("/nonexistent/bunny.obj", glm::vec3(0.0f), 0.5f), doctest::Contains("cannot open the OBJ file"),
+                       vplkit::error);
+  CHECK_THROWS_WITH_AS(make_final_gather_scene("sphere", glm::vec3(0.0f), 0.0f), doctest::Contains("size must be > 0"), vplkit::error);
+}
