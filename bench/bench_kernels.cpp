@@ -7,6 +7,8 @@
 #include <random>
 #include <vector>
 
+#include <vplkit/final_gather.hpp>
+#include <vplkit/form_factor.hpp>
 #include <vplkit/hash.hpp>
 #include <vplkit/irradiance.hpp>
 #include <vplkit/micro_linear_buffer.hpp>
@@ -103,6 +105,60 @@ void gather_cost(benchmark::State& state) {
 BENCHMARK_TEMPLATE(gather_cost, vplkit::rsm_visibility::none);
 BENCHMARK_TEMPLATE(gather_cost, vplkit::rsm_visibility::alg3);
 BENCHMARK_TEMPLATE(gather_cost, vplkit::rsm_visibility::alg6);
+
+// Form factors (paper 004): the clipped polygon-to-point against the point-to-point kernel, one
+// quad each, and the whole gather over a 6 x 4 x 4 distance cube map.
+void polygon_form_factor_throughput(benchmark::State& state) {
+  std::mt19937 random(2);
+  std::uniform_real_distribution<float> uniform(-1, 1);
+  std::vector<glm::vec3> normals(1024), offsets(1024);
+  for (std::size_t i = 0; i < 1024; ++i) {
+    normals[i] = glm::normalize(glm::vec3(uniform(random), uniform(random), uniform(random)));
+    offsets[i] = glm::vec3(uniform(random), uniform(random), uniform(random)) * 0.2f;
+  }
+  for (auto _ : state) {
+    float sum = 0.0f;
+    for (std::size_t i = 0; i < 1024; ++i) {
+      const glm::vec3 c = glm::vec3(0, 0, 1) + offsets[i];
+      sum += vplkit::polygon_form_factor(glm::vec3(0.0f), normals[i], c, c + glm::vec3(0.3f, 0, 0), c + glm::vec3(0.3f, 0.3f, 0), c + glm::vec3(0, 0.3f, 0));
+    }
+    benchmark::DoNotOptimize(sum);
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * 1024);
+}
+BENCHMARK(polygon_form_factor_throughput);
+
+void point_form_factor_throughput(benchmark::State& state) {
+  std::mt19937 random(2);
+  std::uniform_real_distribution<float> uniform(-1, 1);
+  std::vector<glm::vec3> normals(1024), offsets(1024);
+  for (std::size_t i = 0; i < 1024; ++i) {
+    normals[i] = glm::normalize(glm::vec3(uniform(random), uniform(random), uniform(random)));
+    offsets[i] = glm::vec3(uniform(random), uniform(random), uniform(random)) * 0.2f;
+  }
+  for (auto _ : state) {
+    float sum = 0.0f;
+    for (std::size_t i = 0; i < 1024; ++i)
+      sum += vplkit::point_form_factor(glm::vec3(0.0f), normals[i], glm::vec3(0.15f, 0.15f, 1) + offsets[i], glm::vec3(0, 0, -1)) * 0.09f;
+    benchmark::DoNotOptimize(sum);
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * 1024);
+}
+BENCHMARK(point_form_factor_throughput);
+
+template <vplkit::gather_form_factor Kind>
+void final_gather_cost(benchmark::State& state) {
+  const auto constant = [](int face, int, int) { return glm::vec4(0.5f + 0.1f * static_cast<float>(face), 0.5f, 0.5f, 1.0f); };
+  std::uint32_t k = 0;
+  for (auto _ : state) {
+    const glm::vec3 x(0.1f * static_cast<float>(k % 5), 0.05f * static_cast<float>(k % 7), 0.0f);
+    benchmark::DoNotOptimize(vplkit::final_gather_irradiance<Kind>(x, glm::vec3(0, 1, 0), glm::vec3(0.0f), 4, constant));
+    ++k;
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()));
+}
+BENCHMARK_TEMPLATE(final_gather_cost, vplkit::gather_form_factor::polygon);
+BENCHMARK_TEMPLATE(final_gather_cost, vplkit::gather_form_factor::point);
 
 }  // namespace
 

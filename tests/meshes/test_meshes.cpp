@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "frontend/final_gather_pipeline.hpp"
 #include "frontend/lightwave_pipeline.hpp"
 #include "frontend/obj_loader.hpp"
 #include "frontend/rsm_pipeline.hpp"
@@ -91,6 +92,24 @@ TEST_CASE("Light Wave teapot scenes: 6565 triangles per teapot (the thesis's), t
   std::size_t lit = 0;
   for (std::size_t i = 0; i < frame.radiance.size(); i += 4) lit += frame.radiance[i] > 0.0f;
   CHECK(lit > 48u * 27u / 4u);
+}
+
+TEST_CASE("final gathering on the npm bunny (3674 triangles): the shading pass matches its CPU mirror") {
+  const final_gather_scene scene = make_final_gather_scene((mesh_dir() / "bunny.obj").string(), glm::vec3(-0.3f, 0.5f, 0.0f), 0.6f);
+  CHECK(scene.object.triangle_count() == 3674);
+  final_gather_settings settings;
+  settings.width = settings.height = 40;
+  settings.face_size = 32;
+  final_gather_pipeline pipeline(parity::test_shaders(), scene, settings);
+  const final_gather_frame frame = pipeline.render();
+  const final_gather_images cpu = cpu_final_gather_shade(pipeline.read_buffers(), scene, settings, 2);
+  double worst = 0.0;
+  for (std::size_t i = 0; i < cpu.indirect.texels.size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      const double g = frame.indirect[4 * i + static_cast<std::size_t>(c)], r = cpu.indirect.texels[i][c];
+      worst = std::max(worst, std::fabs(g - r) / std::max(1e-3, std::fabs(r)));
+    }
+  CHECK(worst < 2e-5);
 }
 
 int main(int argc, char** argv) {
