@@ -13,6 +13,7 @@
 #include "frontend/debug_output.hpp"
 #include "frontend/error.hpp"
 #include "frontend/obj_loader.hpp"
+#include "frontend/parallel.hpp"
 #include "frontend/settings_uniforms.hpp"
 
 namespace vplkit {
@@ -89,16 +90,6 @@ namespace {
 const final_gather_settings& checked(const final_gather_settings& settings) {
   if (const std::string problem = validate(settings); !problem.empty()) throw error("final gathering settings: " + problem);
   return settings;
-}
-
-image_buffer to_image(const framebuffer& target, std::size_t index) {
-  image_buffer image;
-  image.width = target.width();
-  image.height = target.height();
-  const std::vector<float> floats = target.read_float(index);
-  image.texels.resize(floats.size() / 4);
-  std::memcpy(image.texels.data(), floats.data(), floats.size() * sizeof(float));
-  return image;
 }
 
 // The view of face `face` from o: rows (s, t, -major), so texel (i, j) lands on pixel (i, j).
@@ -192,7 +183,7 @@ final_gather_frame final_gather_pipeline::render() {
 
   // A reference point outside the room, or an object reaching into it, shows as texels that
   // saw nothing (distance 0) or that are nearer than the object's own radius.
-  const image_buffer small = to_image(small_cube_, 0);
+  const image_buffer small = read_image(small_cube_, 0);
   float nearest = 1e30f;
   for (const glm::vec4& texel : small.texels) nearest = std::min(nearest, texel.w);
   if (!(nearest > scene_.object_radius))
@@ -248,9 +239,9 @@ final_gather_frame final_gather_pipeline::render() {
 
 final_gather_buffers final_gather_pipeline::read_buffers() const {
   final_gather_buffers buffers;
-  buffers.small_cube = to_image(small_cube_, 0);
-  if (technique_.variant == final_gather_variant::environment_map) buffers.environment_map = to_image(environment_, 0);
-  for (std::size_t i = 0; i < 3; ++i) buffers.gbuffer[i] = to_image(gbuffer_, i);
+  buffers.small_cube = read_image(small_cube_, 0);
+  if (technique_.variant == final_gather_variant::environment_map) buffers.environment_map = read_image(environment_, 0);
+  for (std::size_t i = 0; i < 3; ++i) buffers.gbuffer[i] = read_image(gbuffer_, i);
   return buffers;
 }
 
@@ -287,14 +278,7 @@ final_gather_images cpu_final_gather_shade(const final_gather_buffers& buffers, 
       out.indirect.at(pixel) = glm::vec4(indirect, 1.0f);
     }
   };
-  threads = std::clamp(threads, 1, settings.height);
-  std::vector<std::thread> workers;
-  for (int t = 1; t < threads; ++t)
-    workers.emplace_back([&, t] {
-      for (int y = t; y < settings.height; y += threads) row(y);
-    });
-  for (int y = 0; y < settings.height; y += threads) row(y);
-  for (std::thread& worker : workers) worker.join();
+  parallel_rows(settings.height, threads, row);
   return out;
 }
 

@@ -1,6 +1,7 @@
 #include "frontend/render_target.hpp"
 
 #include <cmath>
+#include <cstring>
 
 #include "frontend/debug_output.hpp"
 #include "frontend/error.hpp"
@@ -132,6 +133,16 @@ std::vector<std::uint32_t> framebuffer::read_uint(std::size_t index) const {
   glReadPixels(0, 0, width_, height_, GL_RGBA_INTEGER, GL_UNSIGNED_INT, texels.data());
   check_gl("reading back colour attachment " + std::to_string(index));
   return texels;
+}
+
+image_buffer read_image(const framebuffer& target, std::size_t index) {
+  image_buffer image;
+  image.width = target.width();
+  image.height = target.height();
+  const std::vector<float> floats = target.read_float(index);
+  image.texels.resize(floats.size() / 4);
+  std::memcpy(image.texels.data(), floats.data(), floats.size() * sizeof(float));
+  return image;
 }
 
 }  // namespace vplkit

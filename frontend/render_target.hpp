@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "frontend/gl.hpp"
 #include "frontend/gl_object.hpp"
 
@@ -58,6 +60,18 @@ class framebuffer {
   std::vector<texture_2d> colours_;
   std::vector<texture_2d> depth_;  // empty or one
 };
+
+/// A read-back render target: RGBA texels, rows bottom-up.
+struct image_buffer {
+  int width = 0;
+  int height = 0;
+  std::vector<glm::vec4> texels;
+  const glm::vec4& at(glm::ivec2 texel) const { return texels[static_cast<std::size_t>(texel.y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(texel.x)]; }
+  glm::vec4& at(glm::ivec2 texel) { return texels[static_cast<std::size_t>(texel.y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(texel.x)]; }
+};
+
+/// Colour attachment `index` of a float framebuffer as an image_buffer.
+image_buffer read_image(const framebuffer& target, std::size_t index);
 
 /// Throws vplkit::error when a texture of this size cannot be made on the current context.
 void check_texture_size(int width, int height, const std::string& what);

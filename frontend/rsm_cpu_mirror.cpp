@@ -1,5 +1,7 @@
 #include "frontend/rsm_cpu_mirror.hpp"
 
+#include "frontend/parallel.hpp"
+
 #include <algorithm>
 #include <thread>
 #include <vector>
@@ -9,19 +11,6 @@
 
 namespace vplkit {
 namespace {
-
-// Runs row(y) for every y in [0, height), rows interleaved over the threads.
-template <typename Row>
-void parallel_rows(int height, int threads, const Row& row) {
-  threads = std::clamp(threads, 1, std::max(height, 1));
-  std::vector<std::thread> workers;
-  for (int t = 1; t < threads; ++t)
-    workers.emplace_back([&, t] {
-      for (int y = t; y < height; y += threads) row(y);
-    });
-  for (int y = 0; y < height; y += threads) row(y);
-  for (std::thread& worker : workers) worker.join();
-}
 
 // Runs texel(x, y) over a width x height grid in 8 x 8 tiles, tiles interleaved over the
 // threads: neighbouring receivers sample overlapping RSM regions, so a tile reuses the cache.

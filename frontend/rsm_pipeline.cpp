@@ -113,16 +113,6 @@ const char* flag(bool value) { return value ? "1" : "0"; }
 
 bool is_directional(const scene& source) { return source.light.kind == light_kind::directional; }
 
-image_buffer to_image(const framebuffer& target, std::size_t index) {
-  image_buffer image;
-  image.width = target.width();
-  image.height = target.height();
-  const std::vector<float> floats = target.read_float(index);
-  image.texels.resize(floats.size() / 4);
-  std::memcpy(image.texels.data(), floats.data(), floats.size() * sizeof(float));
-  return image;
-}
-
 void set_light_uniforms(const program& target, const rsm_frame_constants& constants) {
   if (constants.primary.kind == light_kind::spot) set_uniforms(target, "spot", constants.primary.spot);
   else set_uniforms(target, "directional", constants.primary.directional);
@@ -268,12 +258,12 @@ rsm_frame rsm_pipeline::render() {
 rsm_pass_buffers rsm_pipeline::read_buffers() const {
   rsm_pass_buffers buffers;
   for (std::size_t i = 0; i < 3; ++i) {
-    buffers.rsm[i] = to_image(rsm_target_, i);
-    buffers.gbuffer[i] = to_image(gbuffer_target_, i);
+    buffers.rsm[i] = read_image(rsm_target_, i);
+    buffers.gbuffer[i] = read_image(gbuffer_target_, i);
   }
   if (constants_.technique.indirect) {
-    buffers.indirect = to_image(indirect_target_, 0);
-    if (settings_.filter == post_filter::separable) buffers.blurred_x = to_image(blur_x_target_, 0);
+    buffers.indirect = read_image(indirect_target_, 0);
+    if (settings_.filter == post_filter::separable) buffers.blurred_x = read_image(blur_x_target_, 0);
   }
   return buffers;
 }

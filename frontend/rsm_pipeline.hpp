@@ -91,15 +91,6 @@ struct rsm_frame_constants {
 };
 rsm_frame_constants make_frame_constants(const scene& source, const rsm_pipeline_settings& settings);
 
-/// A read-back render target: RGBA texels, rows bottom-up.
-struct image_buffer {
-  int width = 0;
-  int height = 0;
-  std::vector<glm::vec4> texels;
-  const glm::vec4& at(glm::ivec2 texel) const { return texels[static_cast<std::size_t>(texel.y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(texel.x)]; }
-  glm::vec4& at(glm::ivec2 texel) { return texels[static_cast<std::size_t>(texel.y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(texel.x)]; }
-};
-
 /// The intermediate buffers of a frame, read back for the CPU mirror and for tests.
 struct rsm_pass_buffers {
   image_buffer rsm[3];      ///< [position | depth], [normal | -], [flux | -]
