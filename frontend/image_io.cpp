@@ -27,7 +27,9 @@ void append_bytes(void* context, void* data, int size) {
   out->insert(out->end(), bytes, bytes + size);
 }
 
-void write_file_atomically(const fs::path& path, const std::vector<std::uint8_t>& bytes) {
+}  // namespace
+
+void write_bytes_atomically(const fs::path& path, const std::vector<std::uint8_t>& bytes) {
   std::error_code code;
   const fs::path parent = path.has_parent_path() ? path.parent_path() : fs::path(".");
   fs::create_directories(parent, code);
@@ -58,8 +60,6 @@ void write_file_atomically(const fs::path& path, const std::vector<std::uint8_t>
   }
 }
 
-}  // namespace
-
 std::vector<std::uint8_t> to_srgb8(const std::vector<float>& linear_rgba, int width, int height, float exposure) {
   std::vector<std::uint8_t> out(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4);
   for (int y = 0; y < height; ++y) {
@@ -80,7 +80,7 @@ void write_png(const fs::path& path, int width, int height, const std::vector<st
   std::vector<std::uint8_t> encoded;
   if (!stbi_write_png_to_func(append_bytes, &encoded, width, height, 4, rgba8.data(), width * 4))
     throw error("cannot write " + path.string() + ": PNG encoding failed");
-  write_file_atomically(path, encoded);
+  write_bytes_atomically(path, encoded);
 }
 
 }  // namespace vplkit

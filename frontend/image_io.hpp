@@ -13,6 +13,10 @@ namespace vplkit {
 /// alpha forced opaque. Values are scaled by `exposure` and clamped to [0, 1] before encoding.
 std::vector<std::uint8_t> to_srgb8(const std::vector<float>& linear_rgba, int width, int height, float exposure = 1.0f);
 
+/// Writes `bytes` to `path` whole or not at all (temporary file + rename). Throws vplkit::error
+/// naming the path.
+void write_bytes_atomically(const std::filesystem::path& path, const std::vector<std::uint8_t>& bytes);
+
 /// Writes an RGBA8 PNG. Throws vplkit::error naming the path when it cannot be written; the
 /// parent folder must exist or be creatable.
 void write_png(const std::filesystem::path& path, int width, int height, const std::vector<std::uint8_t>& rgba8);

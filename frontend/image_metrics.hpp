@@ -1,0 +1,55 @@
+// Image comparison for the quality report (`vplkit compare`): float images (PFM) and PNG, and
+// the metrics that turn "looks right" into numbers: RMSE and relative MSE on linear floats,
+// PSNR, SSIM on luminance, the Light Wave similarity (Alg. 1), a light-leak error restricted to
+// pixels a mask marks, and a false-colour error image.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace vplkit {
+
+/// A linear RGB float image, rows top-down.
+struct float_image {
+  int width = 0;
+  int height = 0;
+  std::vector<glm::vec3> pixels;
+  const glm::vec3& at(int x, int y) const { return pixels[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)]; }
+};
+
+/// From the frontend's RGBA float read-back (rows bottom-up).
+float_image float_image_from_rgba(const std::vector<float>& rgba, int width, int height);
+
+/// PFM (portable float map, RGB, little-endian), written whole or not at all.
+void write_pfm(const std::filesystem::path& path, const float_image& image);
+
+/// Reads a .pfm (linear) or a .png (sRGB, converted to linear). Throws vplkit::error naming the
+/// file and what is wrong with it.
+float_image read_image_file(const std::filesystem::path& path);
+
+struct image_metrics {
+  double rmse = 0.0;           ///< sqrt(mean over pixels and channels of (a - b)^2)
+  double relative_mse = 0.0;   ///< mean of (a - b)^2 / (b^2 + 0.01), b the reference
+  double psnr = 0.0;           ///< 10 log10(peak^2 / MSE), peak = the reference's largest value; inf when equal
+  double ssim = 1.0;           ///< mean SSIM of the luminance (see compare_images)
+  double similarity = 100.0;   ///< Light Wave Alg. 1 on 8-bit sRGB, percent
+  std::optional<double> leak_rmse;  ///< RMSE over the pixels the mask marks (> 0.5), if a mask was given
+  std::size_t leak_pixels = 0;
+};
+
+/// Compares `image` with `reference` (same size, else vplkit::error). SSIM: Wang et al. 2004 on
+/// luminance with an 11x11 Gaussian window (sigma 1.5), C1 = (0.01 L)^2, C2 = (0.03 L)^2, L the
+/// reference's largest luminance (linear images have no fixed range). `mask` (optional, same
+/// size) selects the pixels of the light-leak error.
+image_metrics compare_images(const float_image& image, const float_image& reference, const float_image* mask = nullptr);
+
+/// |luminance(a) - luminance(b)| / scale through a blue-green-yellow-red ramp, as sRGB RGBA8
+/// rows top-down (for write_png). scale <= 0: the largest difference.
+std::vector<std::uint8_t> false_colour_error(const float_image& image, const float_image& reference, float scale);
+
+}  // namespace vplkit

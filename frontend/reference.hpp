@@ -1,0 +1,86 @@
+// Ground truth on the CPU, ray cast with Intel Embree: the brute-force RSM gather of paper 000's
+// Fig. 5.1d (every pixel light of the RSM at every G-buffer point, with exact visibility or
+// without), and a one-bounce Monte Carlo reference that does not depend on the RSM (direct light
+// plus one diffuse bounce of direct light, path traced). Deterministic for a seed (per-pixel
+// hashes), multi-threaded, with a progress bar and ETA on a terminal and silence otherwise.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "frontend/image_metrics.hpp"
+#include "frontend/rsm_pipeline.hpp"
+#include "frontend/scene.hpp"
+
+namespace vplkit {
+
+/// An Embree scene of a mesh: closest hits and occlusion tests. The mesh must outlive it.
+class ray_scene {
+ public:
+  explicit ray_scene(const mesh& geometry);
+  ~ray_scene();
+  ray_scene(const ray_scene&) = delete;
+  ray_scene& operator=(const ray_scene&) = delete;
+
+  struct hit {
+    bool found = false;
+    float distance = 0.0f;
+    glm::vec3 position{0.0f};
+    glm::vec3 normal{0.0f};  ///< the triangle's interpolated shading normal, unit
+    glm::vec3 albedo{0.0f};
+  };
+  hit intersect(const glm::vec3& origin, const glm::vec3& direction, float far = 1e30f) const;
+  /// Whether anything lies on the segment from `from` to `to` (both ends excluded by a small
+  /// epsilon relative to the segment's length).
+  bool occluded(const glm::vec3& from, const glm::vec3& to) const;
+
+ private:
+  struct state;
+  std::unique_ptr<state> state_;
+  const mesh& geometry_;
+};
+
+/// Direct irradiance at (x, n) from the scene's light, with an occlusion ray.
+glm::vec3 direct_irradiance(const ray_scene& rays, const scene_light& light, const irradiance_settings<float>& irradiance,
+                            const glm::vec3& x, const glm::vec3& n);
+
+/// One diffuse bounce of direct light at (x, n): the irradiance from every surface the light
+/// reaches, estimated with `samples` cosine-weighted rays; deterministic for (seed, key).
+glm::vec3 one_bounce_irradiance(const ray_scene& rays, const scene_light& light, const irradiance_settings<float>& irradiance,
+                                const glm::vec3& x, const glm::vec3& n, int samples, std::uint32_t seed, std::uint32_t key);
+
+/// Prints a progress bar with an ETA to stderr when it is a terminal; silent otherwise.
+class progress_bar {
+ public:
+  progress_bar(std::string label, std::size_t total);
+  void advance(std::size_t done = 1);
+  void finish();
+
+ private:
+  std::string label_;
+  std::size_t total_;
+  std::atomic<std::size_t> done_{0};
+  bool terminal_;
+  double start_;
+  std::atomic<int> last_percent_{-1};
+};
+
+/// The brute-force RSM gather with (`visibility`) or without exact visibility, at every texel of
+/// the indirect buffer of `buffers` (the G-buffer points the GL gather uses): [irradiance | the
+/// fraction of the gathered irradiance that is visible (1 without visibility)].
+image_buffer reference_rsm_gather(const ray_scene& rays, const rsm_pass_buffers& buffers, const rsm_frame_constants& constants, bool visibility,
+                                  int threads);
+
+struct one_bounce_images {
+  float_image radiance;  ///< albedo / pi * (E_direct + E_one_bounce), what the camera sees
+  float_image indirect;  ///< E_one_bounce at each pixel's surface
+};
+
+/// The one-bounce Monte Carlo reference of a scene seen by its camera.
+one_bounce_images reference_one_bounce(const scene& source, int width, int height, int samples, std::uint32_t seed, int threads);
+
+}  // namespace vplkit

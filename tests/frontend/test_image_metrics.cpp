@@ -1,0 +1,127 @@
+// Image metrics (frontend/image_metrics.hpp) on known pairs: identical images, a constant offset,
+// a shifted copy; PFM round trips; the errors for bad input.
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "frontend/error.hpp"
+#include "frontend/image_io.hpp"
+#include "frontend/image_metrics.hpp"
+
+namespace fs = std::filesystem;
+using namespace vplkit;
+
+namespace {
+
+float_image gradient(int width, int height, float offset = 0.0f, int shift = 0) {
+  float_image image{width, height, std::vector<glm::vec3>(static_cast<std::size_t>(width) * static_cast<std::size_t>(height))};
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const int sx = std::clamp(x - shift, 0, width - 1);
+      const float v = 0.1f + 0.8f * static_cast<float>(sx) / static_cast<float>(width - 1);
+      image.pixels[static_cast<std::size_t>(y * width + x)] = glm::vec3(v + offset, 0.5f * v + offset, 0.25f + offset);
+    }
+  return image;
+}
+
+}  // namespace
+
+TEST_CASE("identical images: RMSE 0, PSNR infinite, SSIM 1, 100% similar, no leak") {
+  const float_image a = gradient(40, 30);
+  float_image mask = a;
+  for (auto& p : mask.pixels) p = glm::vec3(1.0f);
+  const image_metrics m = compare_images(a, a, &mask);
+  CHECK(m.rmse == 0.0);
+  CHECK(m.relative_mse == 0.0);
+  CHECK(std::isinf(m.psnr));
+  CHECK(m.ssim == doctest::Approx(1.0).epsilon(1e-12));
+  CHECK(m.similarity == 100.0);
+  CHECK(*m.leak_rmse == 0.0);
+  CHECK(m.leak_pixels == 40u * 30u);
+}
+
+TEST_CASE("a constant offset c: RMSE = c, PSNR = 20 log10(peak / c), relative MSE closed form, SSIM below 1") {
+  const float c = 0.05f;
+  const float_image reference = gradient(40, 30), offset = gradient(40, 30, c);
+  const image_metrics m = compare_images(offset, reference);
+  CHECK(m.rmse == doctest::Approx(c).epsilon(1e-5));
+  double peak = 0.0, relative = 0.0;
+  for (const glm::vec3& p : reference.pixels)
+    for (int k = 0; k < 3; ++k) {
+      peak = std::max(peak, static_cast<double>(p[k]));
+      relative += static_cast<double>(c) * c / (static_cast<double>(p[k]) * p[k] + 0.01);
+    }
+  CHECK(m.psnr == doctest::Approx(20.0 * std::log10(peak / c)).epsilon(1e-4));
+  CHECK(m.relative_mse == doctest::Approx(relative / (3.0 * 40 * 30)).epsilon(1e-4));
+  CHECK(m.ssim < 1.0);
+  CHECK(m.ssim > 0.9);  // the structure is the same; only the mean moved
+  CHECK(m.similarity < 100.0);
+}
+
+TEST_CASE("a shifted copy: RMSE from the shifted ramp, SSIM and similarity drop, the leak error counts only the mask") {
+  const int width = 64, shift = 3;
+  const float_image reference = gradient(width, 16), shifted = gradient(width, 16, 0.0f, shift);
+  const image_metrics m = compare_images(shifted, reference);
+  // Per row: x >= shift differ by 0.8 shift / (w - 1) in red, half that in green, 0 in blue;
+  // x < shift by 0.8 x / (w - 1), half in green.
+  const double step = 0.8 / (width - 1);
+  double squared = 0.0;
+  for (int x = 0; x < width; ++x) {
+    const double d = x >= shift ? step * shift : step * x;
+    squared += d * d + 0.25 * d * d;
+  }
+  CHECK(m.rmse == doctest::Approx(std::sqrt(squared / (3.0 * width))).epsilon(1e-4));
+  CHECK(m.ssim < 1.0);
+  // A mask of the left half only: the leak error is that half's.
+  float_image mask = reference;
+  for (int y = 0; y < 16; ++y)
+    for (int x = 0; x < width; ++x) mask.pixels[static_cast<std::size_t>(y * width + x)] = glm::vec3(x < width / 2 ? 1.0f : 0.0f);
+  const image_metrics masked = compare_images(shifted, reference, &mask);
+  double left = 0.0;
+  for (int x = 0; x < width / 2; ++x) {
+    const double d = x >= shift ? step * shift : step * x;
+    left += d * d + 0.25 * d * d;
+  }
+  CHECK(*masked.leak_rmse == doctest::Approx(std::sqrt(left / (3.0 * width / 2))).epsilon(1e-4));
+  CHECK(masked.leak_pixels == static_cast<std::size_t>(16 * width / 2));
+}
+
+TEST_CASE("PFM round trip, PNG reading, false colour, and errors naming the file") {
+  const fs::path folder = fs::temp_directory_path() / ("vplkit-metrics-" + std::to_string(std::random_device{}()));
+  const float_image a = gradient(17, 9);
+  write_pfm(folder / "a.pfm", a);
+  const float_image back = read_image_file(folder / "a.pfm");
+  REQUIRE(back.width == 17);
+  REQUIRE(back.height == 9);
+  CHECK(back.pixels == a.pixels);
+  // A PNG of the same image reads back within 8-bit sRGB quantisation.
+  std::vector<float> rgba;
+  for (int y = 8; y >= 0; --y)
+    for (int x = 0; x < 17; ++x) {
+      const glm::vec3 p = a.at(x, y);
+      rgba.insert(rgba.end(), {p.r, p.g, p.b, 1.0f});
+    }
+  write_png(folder / "a.png", 17, 9, to_srgb8(rgba, 17, 9));
+  CHECK(compare_images(read_image_file(folder / "a.png"), a).rmse < 0.005);
+  const std::vector<std::uint8_t> colours = false_colour_error(gradient(17, 9, 0.1f), a, 0.1f);
+  CHECK(colours[0] == 255);  // the full scale is red
+  CHECK(colours[1] == 0);
+  CHECK(false_colour_error(a, a, 1.0f)[2] == 255);  // no difference: blue
+  // Errors.
+  CHECK_THROWS_WITH_AS(read_image_file(folder / "none.pfm"), doctest::Contains("none.pfm: no such file"), vplkit::error);
+  std::ofstream(folder / "bad.pfm") << "P6\n1 1\n255\n";
+  CHECK_THROWS_WITH_AS(read_image_file(folder / "bad.pfm"), doctest::Contains("not an RGB PFM file"), vplkit::error);
+  std::ofstream(folder / "short.pfm") << "PF\n4 4\n-1.0\n1234";
+  CHECK_THROWS_WITH_AS(read_image_file(folder / "short.pfm"), doctest::Contains("ends before its 4x4 pixels"), vplkit::error);
+  std::ofstream(folder / "text.png") << "not a png";
+  CHECK_THROWS_WITH_AS(read_image_file(folder / "text.png"), doctest::Contains("not a readable PNG"), vplkit::error);
+  CHECK_THROWS_WITH_AS(read_image_file(folder / "a.jpg"), doctest::Contains("no such file"), vplkit::error);
+  std::ofstream(folder / "a.exr") << "x";
+  CHECK_THROWS_WITH_AS(read_image_file(folder / "a.exr"), doctest::Contains("unsupported image format '.exr'"), vplkit::error);
+  CHECK_THROWS_WITH_AS(compare_images(gradient(4, 4), gradient(5, 4)), doctest::Contains("different sizes (4x4 and 5x4)"), vplkit::error);
+  fs::remove_all(folder);
+}
