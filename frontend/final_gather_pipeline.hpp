@@ -108,6 +108,12 @@ class final_gather_pipeline {
   gpu_timer timer_;
 };
 
+/// The exact indirect irradiance at (x, n) in the final-gathering room without self-shadowing
+/// (the paper's assumption), summed over the RGB channels: each wall cut into `cuts` x `cuts`
+/// patches of its direct-lit radiance, gathered with the polygon form factor (exact for a
+/// planar patch) in double precision.
+double final_gather_reference(const final_gather_scene& scene, const glm::dvec3& x, const glm::dvec3& n, int cuts = 24);
+
 /// The shading pass on the CPU: [radiance | 1] and [indirect irradiance | 1] per pixel.
 struct final_gather_images {
   image_buffer radiance;

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <iostream>
 #include <iomanip>
+#include <optional>
 #include <regex>
 
 #include <vplkit/version.hpp>
@@ -15,6 +16,9 @@
 #include "frontend/error.hpp"
 #include "frontend/final_gather_pipeline.hpp"
 #include "frontend/image_io.hpp"
+#include "frontend/image_metrics.hpp"
+#include "frontend/reference.hpp"
+#include "frontend/rsm_cpu_mirror.hpp"
 #include "frontend/lightwave_pipeline.hpp"
 #include "frontend/obj_loader.hpp"
 #include "frontend/program.hpp"
@@ -319,6 +323,51 @@ int run_render(render_options& options, std::string out) {
   return 0;
 }
 
+int run_compare(const std::string& image_path, const std::string& reference_path, const std::string& mask_path, const std::string& error_path,
+                float error_scale) {
+  if (!error_path.empty() && fs::path(error_path).extension() != ".png")
+    throw vplkit::error("--error-image must name a .png file, got '" + error_path + "'");
+  const vplkit::float_image image = vplkit::read_image_file(image_path);
+  const vplkit::float_image reference = vplkit::read_image_file(reference_path);
+  std::optional<vplkit::float_image> mask;
+  if (!mask_path.empty()) mask = vplkit::read_image_file(mask_path);
+  const vplkit::image_metrics m = vplkit::compare_images(image, reference, mask ? &*mask : nullptr);
+  if (!error_path.empty())
+    vplkit::write_png(error_path, image.width, image.height, vplkit::false_colour_error(image, reference, error_scale));
+  std::cout << std::setprecision(6) << "| metric | value |\n|---|---:|\n| RMSE | " << m.rmse << " |\n| relative MSE | " << m.relative_mse
+            << " |\n| PSNR (dB) | " << m.psnr << " |\n| SSIM (luminance) | " << m.ssim << " |\n| similarity (Alg. 1, %) | " << m.similarity << " |\n";
+  if (m.leak_rmse) std::cout << "| light-leak RMSE (" << m.leak_pixels << " masked pixels) | " << *m.leak_rmse << " |\n";
+  if (!error_path.empty()) std::cout << "wrote " << fs::absolute(error_path).string() << "\n";
+  return 0;
+}
+
+int run_reference(render_options& options, int samples, std::uint32_t seed, std::string out) {
+  finish_settings(options);
+  if (out.empty()) out = "output/" + fs::path(options.scene_name).stem().string() + "-reference.pfm";
+  const fs::path out_path(out);
+  if (out_path.extension() != ".pfm") throw vplkit::error("--out must name a .pfm file (a .png is written next to it), got '" + out + "'");
+  if (samples < 1) throw vplkit::error("--samples must be >= 1");
+  const vplkit::scene source = load_scene(options.scene_name);
+  const int w = options.settings.width, h = options.settings.height;
+  const vplkit::one_bounce_images images = vplkit::reference_one_bounce(source, w, h, samples, seed, vplkit::hardware_threads());
+  // PFM and PNG of the final image, PFM of the indirect irradiance: written only after all is done.
+  const fs::path png = out_path.parent_path() / (out_path.stem().string() + ".png");
+  const fs::path indirect = with_suffix(out_path, "-indirect");
+  std::vector<float> rgba;
+  for (int y = h - 1; y >= 0; --y)
+    for (int x = 0; x < w; ++x) {
+      const glm::vec3 p = images.radiance.at(x, y);
+      rgba.insert(rgba.end(), {p.r, p.g, p.b, 1.0f});
+    }
+  vplkit::write_pfm(out_path, images.radiance);
+  vplkit::write_pfm(indirect, images.indirect);
+  vplkit::write_png(png, w, h, vplkit::to_srgb8(rgba, w, h));
+  std::cout << "scene " << source.name << ", one-bounce Monte Carlo reference, " << w << "x" << h << ", " << samples << " bounce rays per pixel, seed "
+            << seed << "\nwrote " << fs::absolute(out_path).string() << "\nwrote " << fs::absolute(indirect).string() << "\nwrote "
+            << fs::absolute(png).string() << "\n";
+  return 0;
+}
+
 int run_view(render_options& options, int frames) {
   finish_settings(options);
   if (is_lightwave(options) || is_final_gather(options))
@@ -373,6 +422,25 @@ int main(int argc, char** argv) {
   view->add_option("--frames", frames, "close after this many frames (0: when the window is closed)")
       ->check(CLI::NonNegativeNumber)->capture_default_str();
 
+  std::string compare_image, compare_reference, compare_mask, compare_error;
+  float error_scale = 0.0f;
+  CLI::App* compare = app.add_subcommand("compare", "compare an image with a reference (.pfm linear or .png sRGB)");
+  compare->add_option("image", compare_image, "the image to judge")->required();
+  compare->add_option("reference", compare_reference, "the reference")->required();
+  compare->add_option("--mask", compare_mask, "pixels (luminance > 0.5) for the light-leak error, e.g. a reference's visibility mask");
+  compare->add_option("--error-image", compare_error, "write the false-colour error image (.png)");
+  compare->add_option("--error-scale", error_scale, "luminance difference shown as full red (0: the largest)")->capture_default_str();
+
+  render_options reference_settings;
+  int reference_samples = 64;
+  std::uint32_t reference_seed = 1;
+  std::string reference_out;
+  CLI::App* reference = app.add_subcommand("reference", "render the one-bounce Monte Carlo reference (Embree) of a scene");
+  add_render_options(*reference, reference_settings);
+  reference->add_option("--samples", reference_samples, "bounce rays per pixel")->check(CLI::Range(1, 1 << 20))->capture_default_str();
+  reference->add_option("--reference-seed", reference_seed, "seed of the Monte Carlo estimate")->capture_default_str();
+  reference->add_option("--out", reference_out, "output .pfm (a .png and -indirect.pfm go next to it)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& parse_error) {
@@ -383,7 +451,9 @@ int main(int argc, char** argv) {
     if (info->parsed()) return run_info(context_kind);
     if (render->parsed()) return run_render(render_settings, out);
     if (view->parsed()) return run_view(view_settings, frames);
-    std::cerr << "vplkit: error: a subcommand is required: info, render or view (see vplkit --help)\n";
+    if (compare->parsed()) return run_compare(compare_image, compare_reference, compare_mask, compare_error, error_scale);
+    if (reference->parsed()) return run_reference(reference_settings, reference_samples, reference_seed, reference_out);
+    std::cerr << "vplkit: error: a subcommand is required: info, render, view, compare or reference (see vplkit --help)\n";
     return 2;
   } catch (const std::exception& failure) {
     std::cerr << "vplkit: error: " << failure.what() << "\n";

@@ -154,6 +154,23 @@ if(EXISTS "${WORK}/fg2.png" OR EXISTS "${WORK}/fg2-indirect.png")
   math(EXPR failures "${failures} + 1")
 endif()
 
+# Ground truth: the reference renderer and the comparison (issue 6).
+expect_success("reference writes PFM and PNG" "wrote .*/ref\\.pfm.*wrote .*/ref-indirect\\.pfm.*wrote .*/ref\\.png"
+               "${VPLKIT}" reference --size 24 --samples 8 --out "${WORK}/ref.pfm")
+expect_success("compare an image with itself" "\\| RMSE \\| 0 \\|.*\\| similarity \\(Alg. 1, %\\) \\| 100 \\|"
+               "${VPLKIT}" compare "${WORK}/ref.pfm" "${WORK}/ref.pfm")
+expect_success("compare with a mask and an error image" "light-leak RMSE.*wrote .*/err\\.png"
+               "${VPLKIT}" compare "${WORK}/ref.png" "${WORK}/ref.pfm" --mask "${WORK}/ref.pfm" --error-image "${WORK}/err.png")
+expect_failure("compare images of different sizes" "different sizes \\(24x24 and 48x32\\)" "${WORK}/err2.png"
+               "${VPLKIT}" compare "${WORK}/ref.pfm" "${WORK}/small.png" --error-image "${WORK}/err2.png")
+expect_failure("compare an unreadable file" "${WORK}/missing\\.pfm: no such file" "" "${VPLKIT}" compare "${WORK}/missing.pfm" "${WORK}/ref.pfm")
+file(WRITE "${WORK}/bad.pfm" "P6 garbage")
+expect_failure("compare a malformed PFM" "bad\\.pfm: not an RGB PFM file" "" "${VPLKIT}" compare "${WORK}/bad.pfm" "${WORK}/ref.pfm")
+expect_failure("compare an unsupported format" "unsupported image format '.obj'" "" "${VPLKIT}" compare "${WORK}/good.obj" "${WORK}/ref.pfm")
+expect_failure("reference of a scene it cannot load" "bad\\.obj:4: face vertex index 9" "${WORK}/bad-ref.pfm"
+               "${VPLKIT}" reference --scene "${WORK}/bad.obj" --size 16 --out "${WORK}/bad-ref.pfm")
+expect_failure("reference output not a .pfm" "--out must name a .pfm file" "" "${VPLKIT}" reference --size 16 --out "${WORK}/ref.png")
+
 # No GL context: a window without a display.
 expect_failure("no GL context (window without a display)" "no GL context: GLFW" ""
                ${CMAKE_COMMAND} -E env --unset=DISPLAY --unset=WAYLAND_DISPLAY "${VPLKIT}" info --context window)

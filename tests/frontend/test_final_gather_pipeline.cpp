@@ -122,37 +122,6 @@ TEST_CASE("final gathering errors: M not dividing the face size, a reference poi
   CHECK_THROWS_WITH_AS(make_final_gather_scene("sphere", glm::vec3(0.0f), 0.0f), doctest::Contains("size must be > 0"), vplkit::error);
 }
 
-namespace {
-
-// The exact indirect irradiance at (x, n) in the final-gathering room, without self-shadowing
-// (the paper's assumption): each wall cut into 24 x 24 patches of its direct-lit radiance,
-// gathered with the polygon form factor (exact for each planar patch) in double precision.
-double room_reference(const final_gather_scene& scene, const glm::dvec3& x, const glm::dvec3& n) {
-  double total = 0.0;
-  const int cuts = 24;
-  for (std::size_t quad = 0; quad + 3 < scene.room.vertices.size(); quad += 4) {
-    const glm::dvec3 a(scene.room.vertices[quad].position), b(scene.room.vertices[quad + 1].position), d(scene.room.vertices[quad + 3].position);
-    const glm::dvec3 normal(scene.room.vertices[quad].normal), albedo(scene.room.vertices[quad].albedo);
-    const glm::dvec3 u = (b - a) / double(cuts), v = (d - a) / double(cuts);
-    spot_light<double> light;
-    light.position = scene.light.position;
-    light.direction = scene.light.direction;
-    light.intensity = scene.light.intensity;
-    light.cos_inner = scene.light.cos_inner;
-    light.cos_outer = scene.light.cos_outer;
-    for (int j = 0; j < cuts; ++j)
-      for (int i = 0; i < cuts; ++i) {
-        const glm::dvec3 corner = a + u * double(i) + v * double(j);
-        const glm::dvec3 radiance = albedo / 3.14159265358979323846 * spot_light_irradiance(corner + 0.5 * (u + v), normal, light);
-        total += glm::dot(radiance, glm::dvec3(1.0)) * 3.14159265358979323846 *
-                 polygon_form_factor(x, n, corner, corner + u, corner + u + v, corner + v);
-      }
-  }
-  return total;
-}
-
-}  // namespace
-
 TEST_CASE("the object approaching a wall: polygon stays near the exact irradiance, point spikes (max over the object's pixels)") {
   double polygon_worst = 1.0, point_worst = 1.0;
   for (float x_position : {0.3f, 0.55f, 0.65f, 0.7f, 0.73f, 0.74f}) {  // gaps to the wall 0.45 .. 0.01
@@ -168,7 +137,7 @@ TEST_CASE("the object approaching a wall: polygon stays near the exact irradianc
       for (std::size_t i = 0; i < buffers.gbuffer[0].texels.size(); ++i) {
         const glm::vec4 position_kind = buffers.gbuffer[0].texels[i];
         if (position_kind.w < 1.5f) continue;
-        const double reference = room_reference(scene, glm::dvec3(position_kind), glm::dvec3(buffers.gbuffer[1].texels[i]));
+        const double reference = final_gather_reference(scene, glm::dvec3(position_kind), glm::dvec3(buffers.gbuffer[1].texels[i]));
         if (reference < 1e-3) continue;
         const double gathered = static_cast<double>(frame.indirect[4 * i]) + frame.indirect[4 * i + 1] + frame.indirect[4 * i + 2];
         const double ratio = gathered / reference;
