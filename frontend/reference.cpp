@@ -110,6 +110,12 @@ glm::vec3 direct_irradiance(const ray_scene& rays, const scene_light& light, con
 
 glm::vec3 one_bounce_irradiance(const ray_scene& rays, const scene_light& light, const irradiance_settings<float>& irradiance, const glm::vec3& x,
                                 const glm::vec3& n, int samples, std::uint32_t seed, std::uint32_t key) {
+  return one_bounce_irradiance(rays, rays, light, irradiance, x, n, samples, seed, key);
+}
+
+glm::vec3 one_bounce_irradiance(const ray_scene& bounce_rays, const ray_scene& light_rays, const scene_light& light,
+                                const irradiance_settings<float>& irradiance, const glm::vec3& x, const glm::vec3& n, int samples,
+                                std::uint32_t seed, std::uint32_t key) {
   // Cosine-weighted directions about n: the estimator of the irradiance integral is pi times the
   // mean of the radiances found.
   const glm::vec3 helper = std::abs(n.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
@@ -121,9 +127,9 @@ glm::vec3 one_bounce_irradiance(const ray_scene& rays, const scene_light& light,
     const float r1 = uniform_float_from_bits(h), r2 = uniform_float_from_bits(hash_uint32(h));
     const float radius = std::sqrt(r1), angle = 6.28318530717958647692f * r2;
     const glm::vec3 direction = glm::normalize(u * (radius * std::cos(angle)) + v * (radius * std::sin(angle)) + n * std::sqrt(std::max(0.0f, 1.0f - r1)));
-    const ray_scene::hit y = rays.intersect(x + n * 1e-4f, direction);
+    const ray_scene::hit y = bounce_rays.intersect(x + n * 1e-4f, direction);
     if (!y.found || glm::dot(y.normal, direction) >= 0.0f) continue;  // nothing, or the back of a surface
-    sum += y.albedo * 0.318309886183790671538f * direct_irradiance(rays, light, irradiance, y.position, y.normal);
+    sum += y.albedo * 0.318309886183790671538f * direct_irradiance(light_rays, light, irradiance, y.position, y.normal);
   }
   return sum * (3.14159265358979323846f / static_cast<float>(std::max(samples, 1)));
 }

@@ -53,6 +53,13 @@ glm::vec3 direct_irradiance(const ray_scene& rays, const scene_light& light, con
 glm::vec3 one_bounce_irradiance(const ray_scene& rays, const scene_light& light, const irradiance_settings<float>& irradiance,
                                 const glm::vec3& x, const glm::vec3& n, int samples, std::uint32_t seed, std::uint32_t key);
 
+/// The same with separate scenes for the bounce rays (`bounce_rays`: what blocks the view of the
+/// environment, e.g. the environment plus a dynamic object, for self-shadowing) and for the
+/// direct light of the surfaces they reach (`light_rays`).
+glm::vec3 one_bounce_irradiance(const ray_scene& bounce_rays, const ray_scene& light_rays, const scene_light& light,
+                                const irradiance_settings<float>& irradiance, const glm::vec3& x, const glm::vec3& n, int samples,
+                                std::uint32_t seed, std::uint32_t key);
+
 /// Prints a progress bar with an ETA to stderr when it is a terminal; silent otherwise.
 class progress_bar {
  public:
