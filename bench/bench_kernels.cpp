@@ -108,19 +108,25 @@ BENCHMARK_TEMPLATE(gather_cost, vplkit::rsm_visibility::alg6);
 
 // Form factors (paper 004): the clipped polygon-to-point against the point-to-point kernel, one
 // quad each, and the whole gather over a 6 x 4 x 4 distance cube map.
-void polygon_form_factor_throughput(benchmark::State& state) {
-  std::mt19937 random(2);
-  std::uniform_real_distribution<float> uniform(-1, 1);
-  std::vector<glm::vec3> normals(1024), offsets(1024);
-  for (std::size_t i = 0; i < 1024; ++i) {
-    normals[i] = glm::normalize(glm::vec3(uniform(random), uniform(random), uniform(random)));
-    offsets[i] = glm::vec3(uniform(random), uniform(random), uniform(random)) * 0.2f;
+struct form_factor_inputs {
+  std::vector<glm::vec3> normals = std::vector<glm::vec3>(1024), offsets = std::vector<glm::vec3>(1024);
+  form_factor_inputs() {
+    std::mt19937 random(2);
+    std::uniform_real_distribution<float> uniform(-1, 1);
+    for (std::size_t i = 0; i < 1024; ++i) {
+      normals[i] = glm::normalize(glm::vec3(uniform(random), uniform(random), uniform(random)));
+      offsets[i] = glm::vec3(uniform(random), uniform(random), uniform(random)) * 0.2f;
+    }
   }
+};
+
+void polygon_form_factor_throughput(benchmark::State& state) {
+  const form_factor_inputs in;
   for (auto _ : state) {
     float sum = 0.0f;
     for (std::size_t i = 0; i < 1024; ++i) {
-      const glm::vec3 c = glm::vec3(0, 0, 1) + offsets[i];
-      sum += vplkit::polygon_form_factor(glm::vec3(0.0f), normals[i], c, c + glm::vec3(0.3f, 0, 0), c + glm::vec3(0.3f, 0.3f, 0), c + glm::vec3(0, 0.3f, 0));
+      const glm::vec3 c = glm::vec3(0, 0, 1) + in.offsets[i];
+      sum += vplkit::polygon_form_factor(glm::vec3(0.0f), in.normals[i], c, c + glm::vec3(0.3f, 0, 0), c + glm::vec3(0.3f, 0.3f, 0), c + glm::vec3(0, 0.3f, 0));
     }
     benchmark::DoNotOptimize(sum);
   }
@@ -129,17 +135,11 @@ void polygon_form_factor_throughput(benchmark::State& state) {
 BENCHMARK(polygon_form_factor_throughput);
 
 void point_form_factor_throughput(benchmark::State& state) {
-  std::mt19937 random(2);
-  std::uniform_real_distribution<float> uniform(-1, 1);
-  std::vector<glm::vec3> normals(1024), offsets(1024);
-  for (std::size_t i = 0; i < 1024; ++i) {
-    normals[i] = glm::normalize(glm::vec3(uniform(random), uniform(random), uniform(random)));
-    offsets[i] = glm::vec3(uniform(random), uniform(random), uniform(random)) * 0.2f;
-  }
+  const form_factor_inputs in;
   for (auto _ : state) {
     float sum = 0.0f;
     for (std::size_t i = 0; i < 1024; ++i)
-      sum += vplkit::point_form_factor(glm::vec3(0.0f), normals[i], glm::vec3(0.15f, 0.15f, 1) + offsets[i], glm::vec3(0, 0, -1)) * 0.09f;
+      sum += vplkit::point_form_factor(glm::vec3(0.0f), in.normals[i], glm::vec3(0.15f, 0.15f, 1) + in.offsets[i], glm::vec3(0, 0, -1)) * 0.09f;
     benchmark::DoNotOptimize(sum);
   }
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * 1024);

@@ -45,6 +45,12 @@ std::string fixed(double value, int digits) {
   return out.str();
 }
 
+// "| ms | RMSE | rel. MSE | PSNR | SSIM | % similar" cells of a table row.
+std::string metric_cells(double ms, const image_metrics& m) {
+  return " | " + fixed(ms, 1) + " | " + fixed(m.rmse, 4) + " | " + fixed(m.relative_mse, 4) + " | " + fixed(m.psnr, 2) + " | " + fixed(m.ssim, 4) +
+         " | " + fixed(m.similarity, 2);
+}
+
 template <typename Render>
 double median_ms(int repeat, Render&& render) {
   std::vector<double> times;
@@ -147,9 +153,7 @@ int main(int argc, char** argv) {
         const double ms = median_ms(repeat, [&] { frame = pipeline.render(); });
         const float_image image = float_image_from_rgba(frame.radiance, size, size);
         row r{scene_name, v.label, ms, compare_images(image, reference.radiance, &mask)};
-        md << "| " << v.label << " | " << fixed(ms, 1) << " | " << fixed(r.metrics.rmse, 4) << " | " << fixed(r.metrics.relative_mse, 4) << " | "
-           << fixed(r.metrics.psnr, 2) << " | " << fixed(r.metrics.ssim, 4) << " | " << fixed(r.metrics.similarity, 2) << " | "
-           << fixed(*r.metrics.leak_rmse, 4) << " |\n";
+        md << "| " << v.label << metric_cells(ms, r.metrics) << " | " << fixed(*r.metrics.leak_rmse, 4) << " |\n";
         if (v.technique == "rsm-alg6" || v.technique == "rsm-original")
           write_strip(fs::path(out) / (scene_name + "-" + v.technique + (v.disk_samples == 150 ? "-150" : "") + ".png"), image, reference.radiance);
         rows.push_back(r);
@@ -178,8 +182,7 @@ int main(int argc, char** argv) {
         const double ms = median_ms(repeat, [&] { frame = pipeline.render(); });
         const float_image image = float_image_from_rgba(frame.radiance, size, size);
         row r{scene_name, technique.name, ms, compare_images(image, reference.radiance)};
-        md << "| " << technique.name << " | " << fixed(ms, 1) << " | " << fixed(r.metrics.rmse, 4) << " | " << fixed(r.metrics.relative_mse, 4) << " | "
-           << fixed(r.metrics.psnr, 2) << " | " << fixed(r.metrics.ssim, 4) << " | " << fixed(r.metrics.similarity, 2) << " |\n";
+        md << "| " << technique.name << metric_cells(ms, r.metrics) << " |\n";
         if (technique.mode == lightwave_mode::accurate) write_strip(fs::path(out) / (scene_name + "-lightwave-accurate.png"), image, reference.radiance);
         rows.push_back(r);
       }

@@ -197,8 +197,7 @@ void lightwave_pipeline::rebuild() {
   const float aspect = static_cast<float>(shadow_size_.x) / static_cast<float>(shadow_size_.y);
   const float near_plane = 0.01f * radius, far_plane = glm::length(light.position - box.centre()) + 2.0f * radius;
   shadow_matrices_.clear();
-  const float light_half_angle = glm::min(std::acos(glm::clamp(light.cos_outer, -1.0f, 1.0f)) + glm::radians(2.0f), glm::radians(85.0f));
-  shadow_matrices_.push_back(glm::perspective(2.0f * light_half_angle, aspect, near_plane, far_plane) * look_along(light.position, light.direction));
+  shadow_matrices_.push_back(glm::perspective(2.0f * spot_light_frustum_half_angle(light), aspect, near_plane, far_plane) * look_along(light.position, light.direction));
   for (int index : lightwave_shadow_vpls(technique_.mode, settings_)) {
     const lightwave_vpl<float>& vpl = vpls_[static_cast<std::size_t>(index)];
     shadow_matrices_.push_back(glm::perspective(glm::radians(settings_.vpl_field_of_view), aspect, near_plane, far_plane + max_distance) *

@@ -18,7 +18,7 @@
 #include "frontend/image_io.hpp"
 #include "frontend/image_metrics.hpp"
 #include "frontend/reference.hpp"
-#include "frontend/rsm_cpu_mirror.hpp"
+#include "frontend/parallel.hpp"
 #include "frontend/lightwave_pipeline.hpp"
 #include "frontend/obj_loader.hpp"
 #include "frontend/program.hpp"

@@ -80,6 +80,10 @@ mesh load_obj(const fs::path& path) {
     throw error(path.string() + ": " + (reader.Error().empty() ? std::string("tinyobjloader could not parse it") : reader.Error()));
   const tinyobj::attrib_t& attributes = reader.GetAttrib();
   const auto& materials = reader.GetMaterials();
+  const auto corner_of = [&](const tinyobj::index_t& index) {
+    const auto i = static_cast<std::size_t>(index.vertex_index);
+    return glm::vec3(attributes.vertices[3 * i], attributes.vertices[3 * i + 1], attributes.vertices[3 * i + 2]);
+  };
   // Where the file has no normals, each corner takes the area-weighted mean of the normals of
   // the faces around its position (smooth shading, as the meshes were scanned or modelled).
   std::vector<glm::vec3> smooth_normals(attributes.vertices.size() / 3, glm::vec3(0.0f));
@@ -87,10 +91,7 @@ mesh load_obj(const fs::path& path) {
     const auto& indices = shape.mesh.indices;
     for (std::size_t face = 0; face + 2 < indices.size(); face += 3) {
       glm::vec3 corner[3];
-      for (int k = 0; k < 3; ++k) {
-        const auto i = static_cast<std::size_t>(indices[face + static_cast<std::size_t>(k)].vertex_index);
-        corner[k] = {attributes.vertices[3 * i], attributes.vertices[3 * i + 1], attributes.vertices[3 * i + 2]};
-      }
+      for (int k = 0; k < 3; ++k) corner[k] = corner_of(indices[face + static_cast<std::size_t>(k)]);
       const glm::vec3 area_weighted = glm::cross(corner[1] - corner[0], corner[2] - corner[0]);
       for (int k = 0; k < 3; ++k)
         smooth_normals[static_cast<std::size_t>(indices[face + static_cast<std::size_t>(k)].vertex_index)] += area_weighted;
@@ -101,10 +102,7 @@ mesh load_obj(const fs::path& path) {
     const auto& indices = shape.mesh.indices;
     for (std::size_t face = 0; face + 2 < indices.size(); face += 3) {
       glm::vec3 corner[3];
-      for (int k = 0; k < 3; ++k) {
-        const auto i = static_cast<std::size_t>(indices[face + static_cast<std::size_t>(k)].vertex_index);
-        corner[k] = {attributes.vertices[3 * i], attributes.vertices[3 * i + 1], attributes.vertices[3 * i + 2]};
-      }
+      for (int k = 0; k < 3; ++k) corner[k] = corner_of(indices[face + static_cast<std::size_t>(k)]);
       glm::vec3 face_normal = glm::cross(corner[1] - corner[0], corner[2] - corner[0]);
       const float area = glm::length(face_normal);
       if (!(area > 0.0f)) continue;  // degenerate triangle: nothing to shade

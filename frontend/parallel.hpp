@@ -8,6 +8,9 @@
 
 namespace vplkit {
 
+/// Number of threads to use for "all cores".
+inline int hardware_threads() { return static_cast<int>(std::max(1u, std::thread::hardware_concurrency())); }
+
 template <typename Row>
 void parallel_rows(int height, int threads, const Row& row) {
   threads = std::clamp(threads, 1, std::max(height, 1));

@@ -81,8 +81,6 @@ struct filter_taps {
 
 }  // namespace
 
-int hardware_threads() { return static_cast<int>(std::max(1u, std::thread::hardware_concurrency())); }
-
 image_buffer cpu_gather_pass(const rsm_pass_buffers& buffers, const rsm_frame_constants& constants, int threads) {
   image_buffer out;
   out.width = constants.indirect_size.x;
@@ -95,10 +93,6 @@ image_buffer cpu_gather_pass(const rsm_pass_buffers& buffers, const rsm_frame_co
     const glm::vec4 position_depth = buffers.gbuffer[0].at(sample);
     if (!(position_depth.w < 0.0f)) return;
     const glm::vec3 position(position_depth);
-    if (!(transform_point(constants.gather.light_view, position).z < 0.0f)) {  // behind the light: see gather.frag
-      out.at(texel) = glm::vec4(0.0f, 0.0f, 0.0f, position_depth.w);
-      return;
-    }
     const gather_receiver<float> receiver{position, glm::vec3(buffers.gbuffer[2].at(sample)),
                                           map_coordinate(constants.light.view_projection, position, constants.gather.rsm_size),
                                           glm::uvec2(texel)};

@@ -4,6 +4,7 @@
 // Rows are split across threads; every texel is computed exactly as in its shader.
 #pragma once
 
+#include "frontend/parallel.hpp"
 #include "frontend/rsm_pipeline.hpp"
 
 namespace vplkit {
@@ -24,8 +25,5 @@ struct post_images {
 /// output (separable filter).
 post_images cpu_post_pass(const image_buffer& filtered_input, const rsm_pass_buffers& buffers,
                           const rsm_frame_constants& constants, int threads);
-
-/// Number of threads to use for "all cores".
-int hardware_threads();
 
 }  // namespace vplkit

@@ -58,8 +58,7 @@ light_frustum make_light_frustum(const scene& source, int rsm_size) {
     const spot_light<float>& light = source.light.spot;
     const glm::vec3 up = std::abs(light.direction.y) > 0.99f ? glm::vec3(0, 0, -1) : glm::vec3(0, 1, 0);
     frustum.view = glm::lookAt(light.position, light.position + light.direction, up);
-    // A square frustum whose half-angle is the outer cone plus a small margin.
-    const float half_angle = glm::min(std::acos(glm::clamp(light.cos_outer, -1.0f, 1.0f)) + glm::radians(2.0f), glm::radians(85.0f));
+    const float half_angle = spot_light_frustum_half_angle(light);
     frustum.tan_half_fov = std::tan(half_angle);
     const float far_plane = glm::length(light.position - box.centre()) + 2.0f * radius;
     frustum.view_projection = glm::perspective(2.0f * half_angle, 1.0f, 0.01f * radius, far_plane) * frustum.view;

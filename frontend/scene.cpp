@@ -265,6 +265,10 @@ scene make_teapot_scene(int copies) {
   return s;
 }
 
+float spot_light_frustum_half_angle(const spot_light<float>& light) {
+  return glm::min(std::acos(glm::clamp(light.cos_outer, -1.0f, 1.0f)) + glm::radians(2.0f), glm::radians(85.0f));
+}
+
 std::vector<std::string> built_in_scene_names() { return {"cornell-box", "indirect-shadow", "instanced", "boxes", "teapot", "teapots"}; }
 
 scene built_in_scene(const std::string& name) {

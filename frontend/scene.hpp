@@ -58,6 +58,10 @@ struct scene {
   scene_light light;
 };
 
+/// Half-angle of a square shadow-map frustum that holds a spot light's outer cone, with a
+/// 2-degree margin, at most 85 degrees.
+float spot_light_frustum_half_angle(const spot_light<float>& light);
+
 /// Names accepted by built_in_scene, for help texts and messages.
 std::vector<std::string> built_in_scene_names();
 

@@ -31,13 +31,6 @@ void main() {
     indirect = vec4(0.0);
     return;
   }
-  // A receiver behind the light (eye z >= 0) has no projection onto the RSM: the perspective
-  // divide mirrors it, and sampling around the mirrored point lit a blob on the Cornell box's
-  // ceiling. The RSM has nothing to say about it: no indirect light.
-  if (!(transform_point(settings.light_view, position_depth.xyz).z < 0.0)) {
-    indirect = vec4(0.0, 0.0, 0.0, position_depth.w);
-    return;
-  }
   gather_receiver receiver = gather_receiver(position_depth.xyz, texelFetch(gbuffer_normal, sample_texel, 0).xyz,
                                              map_coordinate(light_view_projection, position_depth.xyz, settings.rsm_size),
                                              uvec2(texel));

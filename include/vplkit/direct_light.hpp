@@ -47,6 +47,14 @@ const char* validate(const spot_light<T>& light) {
   return nullptr;
 }
 
+/// The cone's falloff for the cosine of the angle off the axis: a smoothstep from cos_outer (0)
+/// to cos_inner (1).
+template <typename T>
+T spot_light_cone(const spot_light<T>& light, T cos_axis) {
+  const T t = glm::clamp((cos_axis - light.cos_outer) / (light.cos_inner - light.cos_outer), T(0), T(1));
+  return t * t * (T(3) - T(2) * t);
+}
+
 /// Irradiance at (x, n) from the spot light, without visibility.
 template <typename T, glm::qualifier Q, typename S = T>
 glm::vec<3, T, Q> spot_light_irradiance(const glm::vec<3, T, Q>& x, const glm::vec<3, T, Q>& n,
@@ -57,9 +65,7 @@ glm::vec<3, T, Q> spot_light_irradiance(const glm::vec<3, T, Q>& x, const glm::v
   const T distance_squared = glm::max(glm::dot(to_light, to_light), min_distance * min_distance);
   const glm::vec<3, T, Q> direction_to_light = to_light / std::sqrt(distance_squared);
   const T cos_receiver = glm::max(T(0), glm::dot(n, direction_to_light));
-  const T cos_axis = -glm::dot(light.direction, direction_to_light);
-  const T t = glm::clamp((cos_axis - light.cos_outer) / (light.cos_inner - light.cos_outer), T(0), T(1));
-  const T cone = t * t * (T(3) - T(2) * t);
+  const T cone = spot_light_cone(light, -glm::dot(light.direction, direction_to_light));
   return light.intensity * (cone * cos_receiver / distance_squared);
 }
 
@@ -101,9 +107,7 @@ glm::vec<3, T, Q> spot_light_texel_flux(const glm::vec<3, T, Q>& albedo, const g
                                         const glm::vec<3, T, Q>& normal, const spot_light<T>& light,
                                         const glm::vec<2, T>& ndc, T tan_half_fov, const glm::ivec2& size) {
   const glm::vec<3, T, Q> from_light = glm::normalize(position - light.position);
-  const T cos_axis = glm::dot(light.direction, from_light);
-  const T t = glm::clamp((cos_axis - light.cos_outer) / (light.cos_inner - light.cos_outer), T(0), T(1));
-  const T cone = t * t * (T(3) - T(2) * t);
+  const T cone = spot_light_cone(light, glm::dot(light.direction, from_light));
   const T facing = glm::dot(normal, from_light) < T(0) ? T(1) : T(0);
   return albedo * light.intensity * (facing * cone * perspective_texel_solid_angle(ndc, tan_half_fov, size));
 }

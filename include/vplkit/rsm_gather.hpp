@@ -13,6 +13,10 @@
 // nothing was rendered there), are skipped and do not touch the micro linear buffer (Alg. 1,
 // line 9: visibility is computed only for samples inside the RSM).
 //
+// A receiver behind the light (light eye z >= 0) has no projection onto the RSM: the perspective
+// divide mirrors it, and sampling around the mirrored point lit a blob on the Cornell box's
+// ceiling. The RSM has nothing to say about such a receiver: the gather returns 0.
+//
 // Elevation: the thesis stores the light's eye-space depth in the RSM to evaluate the elevation
 // angle (section 4.2), and the light's view is a rigid motion, so the gather takes the vertical
 // component from the stored depths, dz = z_p - z_x, and the horizontal length from the world
@@ -98,6 +102,7 @@ glm::vec<3, T> gather_rsm(const gather_receiver<T>& receiver, Fetch&& fetch, con
                 "the disk pattern has no paths: visibility needs rsm_pattern::radial");
   glm::vec<3, T> irradiance(0);
   const T receiver_depth = transform_point(settings.light_view, receiver.position).z;
+  if (!(receiver_depth < T(0))) return irradiance;
   // One sample: fetch, visibility, Eq. 3.2, accumulate (Alg. 1 lines 9-16, Alg. 5 lines 9-15).
   auto accumulate = [&](const pattern_sample<T>& sample, micro_linear_buffer<T>& buffer) {
     const glm::ivec2 texel = glm::ivec2(glm::floor(receiver.rsm_coordinate + sample.offset));

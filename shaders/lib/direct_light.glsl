@@ -13,15 +13,18 @@ struct spot_light {
   float cos_outer;
 };
 
+float spot_light_cone(spot_light light, float cos_axis) {
+  float t = clamp((cos_axis - light.cos_outer) / (light.cos_inner - light.cos_outer), 0.0, 1.0);
+  return t * t * (3.0 - 2.0 * t);
+}
+
 vec3 spot_light_irradiance(vec3 x, vec3 n, spot_light light, irradiance_settings settings) {
   vec3 to_light = light.position - x;
   float min_distance = settings.min_distance;
   float distance_squared = max(dot(to_light, to_light), min_distance * min_distance);
   vec3 direction_to_light = to_light / sqrt(distance_squared);
   float cos_receiver = max(0.0, dot(n, direction_to_light));
-  float cos_axis = -dot(light.direction, direction_to_light);
-  float t = clamp((cos_axis - light.cos_outer) / (light.cos_inner - light.cos_outer), 0.0, 1.0);
-  float cone = t * t * (3.0 - 2.0 * t);
+  float cone = spot_light_cone(light, -dot(light.direction, direction_to_light));
   return light.intensity * (cone * cos_receiver / distance_squared);
 }
 
@@ -44,9 +47,7 @@ float perspective_texel_solid_angle(vec2 ndc, float tan_half_fov, ivec2 size) {
 vec3 spot_light_texel_flux(vec3 albedo, vec3 position, vec3 normal, spot_light light, vec2 ndc, float tan_half_fov,
                            ivec2 size) {
   vec3 from_light = normalize(position - light.position);
-  float cos_axis = dot(light.direction, from_light);
-  float t = clamp((cos_axis - light.cos_outer) / (light.cos_inner - light.cos_outer), 0.0, 1.0);
-  float cone = t * t * (3.0 - 2.0 * t);
+  float cone = spot_light_cone(light, dot(light.direction, from_light));
   float facing = dot(normal, from_light) < 0.0 ? 1.0 : 0.0;
   return albedo * light.intensity * (facing * cone * perspective_texel_solid_angle(ndc, tan_half_fov, size));
 }

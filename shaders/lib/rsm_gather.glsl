@@ -48,6 +48,7 @@ struct gather_receiver {
   uvec2 pixel;
 };
 
+// The C++ twin is the lambda `accumulate` inside gather_rsm (a function here: GLSL has no lambdas).
 void rsm_gather_accumulate(gather_receiver receiver, float receiver_depth, pattern_sample s, rsm_gather_settings settings,
                            inout micro_linear_buffer buffer, inout vec3 irradiance) {
   ivec2 texel = ivec2(floor(receiver.rsm_coordinate + s.offset));
@@ -76,6 +77,7 @@ void rsm_gather_accumulate(gather_receiver receiver, float receiver_depth, patte
 vec3 gather_rsm(gather_receiver receiver, rsm_gather_settings settings) {
   vec3 irradiance = vec3(0.0);
   float receiver_depth = transform_point(settings.light_view, receiver.position).z;
+  if (!(receiver_depth < 0.0)) return irradiance;  // behind the light: see the C++ twin
   micro_linear_buffer buffer;
 #if VPLKIT_RSM_PATTERN == 0
   radial_pixel pixel = radial_pattern_pixel(receiver.pixel, settings.radial);

@@ -92,13 +92,13 @@ expect_failure("missing shader file" "shader file not found: ${WORK}/missing-fil
                "${VPLKIT}" render --shader-dir "${WORK}/missing-file" --out "${WORK}/mf.png")
 file(COPY "${SHADERS}/" DESTINATION "${WORK}/syntax-error")
 file(READ "${WORK}/syntax-error/lib/direct_light.glsl" text)
-set(marker "float cone = t * t * (3.0 - 2.0 * t);")
+set(marker "return t * t * (3.0 - 2.0 * t);")
 string(FIND "${text}" "${marker}" offset)
 string(SUBSTRING "${text}" 0 ${offset} before)
 string(REGEX MATCHALL "\n" newlines "${before}")
 list(LENGTH newlines line)
 math(EXPR line "${line} + 1")  # the 1-based line of the marker
-string(REPLACE "${marker}" "float cone = t * t * (3.0 - 2.0 * t) +;" text "${text}")
+string(REPLACE "${marker}" "return t * t * (3.0 - 2.0 * t) +;" text "${text}")
 file(WRITE "${WORK}/syntax-error/lib/direct_light.glsl" "${text}")
 expect_failure("GLSL syntax error names the lib file and line" "GLSL compile error.*lib/direct_light\\.glsl:${line}:" "${WORK}/se.png"
                "${VPLKIT}" render --shader-dir "${WORK}/syntax-error" --out "${WORK}/se.png")

@@ -7,19 +7,14 @@
 
 #include "frontend/reference.hpp"
 #include "frontend/rsm_pipeline.hpp"
+#include "tests/closed_forms.hpp"
 #include "tests/parity/parity_harness.hpp"
 
 using namespace vplkit;
 
 namespace {
 
-constexpr double pi = 3.14159265358979323846;
-
-// Howell B-3, as in test_form_factor.cpp: element below a corner of an a x b rectangle at c.
-double parallel_rectangle(double a, double b, double c) {
-  const double x = a / c, y = b / c;
-  return (x / std::sqrt(1 + x * x) * std::atan(y / std::sqrt(1 + x * x)) + y / std::sqrt(1 + y * y) * std::atan(x / std::sqrt(1 + y * y))) / (2 * pi);
-}
+using closed_forms::parallel_rectangle;
 
 }  // namespace
 

@@ -102,6 +102,14 @@ TEST_CASE("with no occluder, Alg. 6 and Alg. 3 equal no visibility exactly") {
   }
 }
 
+TEST_CASE("a receiver behind the light (no projection onto the RSM) gathers nothing") {
+  const synthetic_rsm floor;
+  // Above the light (eye z > 0): its perspective projection would be mirrored.
+  const gather_receiver<double> above = receiver_at({0.2, light_height + 1.0, 0.1}, glm::uvec2(1, 1));
+  CHECK(gather<rsm_visibility::none>(floor, above) == glm::dvec3(0.0));
+  CHECK(gather<rsm_visibility::alg6>(floor, above) == glm::dvec3(0.0));
+}
+
 TEST_CASE("visibility never adds light") {
   synthetic_rsm scene;
   scene.block_x0 = 0.2;
