@@ -2,7 +2,7 @@
 // in the structure of paper 000's Tables 5.1-5.3, plus a parameter sweep, the full against the
 // separable post filter, and the CPU gather (the C++ mirror, all cores) against the GL gather.
 // GPU times come from GL timer queries (median of --repeat frames after a warm-up frame).
-//   build/bench/vplkit_rsm_sweep [--scene cornell-box] [--size 512] [--rsm-size 512] [--repeat 3]
+//   build/bench/vplkit_rsm_sweep [--scene atrium] [--size 512] [--rsm-size 512] [--repeat 3]
 //                                [--quick] [--out output/bench]
 // Writes rsm_sweep.csv and rsm_sweep.md into --out and prints the markdown.
 #include <CLI/CLI.hpp>
@@ -111,7 +111,7 @@ double pass(const measurement& m, const std::string& name) {
 
 int main(int argc, char** argv) {
   CLI::App app{"RSM pipeline sweep (paper 000, Tables 5.1-5.3)"};
-  std::string scene_name = "cornell-box", out = "output/bench";
+  std::string scene_name = "atrium", out = "output/bench";
   int size = 512, rsm_size = 512, repeat = 3;
   bool quick = false;
   app.add_option("--scene", scene_name, "built-in scene or .obj file")->capture_default_str();
@@ -131,8 +131,6 @@ int main(int argc, char** argv) {
     rsm_pipeline_settings base;
     base.width = base.height = size;
     base.rsm_size = rsm_size;
-    base.radial.max_radius = static_cast<float>(rsm_size) / 8.0f;
-    base.disk.max_radius = base.radial.max_radius;
     base.filter = post_filter::separable;
     std::vector<measurement> rows;
     std::ostringstream md;

@@ -44,6 +44,17 @@ float_image float_image_from_rgba(const std::vector<float>& rgba, int width, int
   return image;
 }
 
+std::vector<float> rgba_from_float_image(const float_image& image) {
+  std::vector<float> rgba;
+  rgba.reserve(image.pixels.size() * 4);
+  for (int y = image.height - 1; y >= 0; --y)
+    for (int x = 0; x < image.width; ++x) {
+      const glm::vec3 p = image.at(x, y);
+      rgba.insert(rgba.end(), {p.r, p.g, p.b, 1.0f});
+    }
+  return rgba;
+}
+
 void write_pfm(const fs::path& path, const float_image& image) {
   std::ostringstream header;
   header << "PF\n" << image.width << " " << image.height << "\n-1.0\n";
@@ -99,6 +110,28 @@ float_image read_image_file(const fs::path& path) {
   throw error(path.string() + ": unsupported image format '" + extension + "' (use .pfm or .png)");
 }
 
+relative_error relative_error_of(const float_image& image, const float_image& reference, const float_image* mask) {
+  require_same_size(image, reference, "relative error");
+  if (mask) require_same_size(*mask, reference, "relative error (mask)");
+  double squared = 0.0, sum_image = 0.0, sum_reference = 0.0;
+  relative_error result;
+  for (std::size_t i = 0; i < image.pixels.size(); ++i) {
+    if (mask && !(luminance_of(mask->pixels[i]) > 0.5f)) continue;
+    for (int c = 0; c < 3; ++c) {
+      const double a = image.pixels[i][c], b = reference.pixels[i][c];
+      squared += (a - b) * (a - b);
+      sum_image += a;
+      sum_reference += b;
+    }
+    ++result.pixels;
+  }
+  if (result.pixels == 0 || !(sum_reference > 0.0)) return result;
+  const double n = 3.0 * static_cast<double>(result.pixels), mean = sum_reference / n;
+  result.rmse = std::sqrt(squared / n) / mean;
+  result.bias = (sum_image - sum_reference) / sum_reference;
+  return result;
+}
+
 image_metrics compare_images(const float_image& image, const float_image& reference, const float_image* mask) {
   require_same_size(image, reference, "compare");
   if (mask) require_same_size(*mask, reference, "compare (mask)");
@@ -121,6 +154,8 @@ image_metrics compare_images(const float_image& image, const float_image& refere
   m.relative_mse = relative / (3.0 * static_cast<double>(count));
   m.psnr = mse > 0.0 ? 10.0 * std::log10(std::max(peak, 1e-12) * std::max(peak, 1e-12) / mse) : std::numeric_limits<double>::infinity();
   if (mask) m.leak_rmse = m.leak_pixels > 0 ? std::sqrt(leak_squared / (3.0 * static_cast<double>(m.leak_pixels))) : 0.0;
+  m.relative = relative_error_of(image, reference);
+  if (mask) m.masked = relative_error_of(image, reference, mask);
 
   // SSIM on luminance, Gaussian window 11 x 11, sigma 1.5 (Wang et al. 2004), clipped at borders.
   const int w = image.width, h = image.height, radius = 5;

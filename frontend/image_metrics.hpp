@@ -25,12 +25,27 @@ struct float_image {
 /// From the frontend's RGBA float read-back (rows bottom-up).
 float_image float_image_from_rgba(const std::vector<float>& rgba, int width, int height);
 
+/// Back to RGBA floats with rows bottom-up (alpha 1), e.g. for to_srgb8.
+std::vector<float> rgba_from_float_image(const float_image& image);
+
 /// PFM (portable float map, RGB, little-endian), written whole or not at all.
 void write_pfm(const std::filesystem::path& path, const float_image& image);
 
 /// Reads a .pfm (linear) or a .png (sRGB, converted to linear). Throws vplkit::error naming the
 /// file and what is wrong with it.
 float_image read_image_file(const std::filesystem::path& path);
+
+/// An error relative to the reference's level: RMSE and signed mean difference, each divided by
+/// the reference's mean, over all three channels of the pixels counted.
+struct relative_error {
+  double rmse = 0.0;   ///< sqrt(mean (a - b)^2) / mean b
+  double bias = 0.0;   ///< (mean a - mean b) / mean b: > 0 too bright, < 0 too dark
+  std::size_t pixels = 0;
+};
+
+/// Over the pixels `mask` marks (luminance > 0.5), every pixel without a mask. Throws
+/// vplkit::error on a size mismatch; 0 for both when no pixel counts or the reference's mean is 0.
+relative_error relative_error_of(const float_image& image, const float_image& reference, const float_image* mask = nullptr);
 
 struct image_metrics {
   double rmse = 0.0;           ///< sqrt(mean over pixels and channels of (a - b)^2)
@@ -40,6 +55,8 @@ struct image_metrics {
   double similarity = 100.0;   ///< Light Wave Alg. 1 on 8-bit sRGB, percent
   std::optional<double> leak_rmse;  ///< RMSE over the pixels the mask marks (> 0.5), if a mask was given
   std::size_t leak_pixels = 0;
+  relative_error relative;                 ///< over every pixel
+  std::optional<relative_error> masked;    ///< over the mask's pixels, if a mask was given
 };
 
 /// Compares `image` with `reference` (same size, else vplkit::error). SSIM: Wang et al. 2004 on

@@ -8,6 +8,8 @@
 #include <iomanip>
 #include <optional>
 #include <regex>
+#include <functional>
+#include <sstream>
 
 #include <vplkit/version.hpp>
 
@@ -47,6 +49,12 @@ std::string parse_size(const std::string& text, int& width, int& height) {
   return {};
 }
 
+std::string format_number(float value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
+
 CLI::Validator positive_number(const std::string& what) {
   return CLI::Validator(
       [what](std::string& text) {
@@ -69,6 +77,10 @@ struct render_options {
   vplkit::rsm_pipeline_settings settings;
   vplkit::lightwave_settings lightwave;
   vplkit::final_gather_settings final_gather;
+  std::string preset = "default";             // rsm_gather_preset: "default" or "thesis"
+  std::optional<int> paths, samples_per_path, slots;  // explicit values override the preset
+  std::optional<float> radius, max_radius_texels;
+  bool raw_indirect = false;
   std::string object = "sphere";
   std::string object_position_text = "0,0.7,0";
   glm::vec3 object_position{0.0f, 0.7f, 0.0f};
@@ -114,12 +126,27 @@ void add_render_options(CLI::App& command, render_options& options) {
       ->check(CLI::IsMember({1, 2, 4, 8}))->capture_default_str();
   command.add_option("--format", options.format, "float format of every render target")
       ->check(CLI::IsMember({"rgba16f", "rgba32f"}))->capture_default_str();
-  command.add_option("--paths", s.radial.paths, "radial pattern: paths")->check(CLI::Range(1, 256))->capture_default_str();
-  command.add_option("--samples-per-path", s.radial.samples_per_path, "radial pattern: samples per path")
-      ->check(CLI::Range(1, 256))->capture_default_str();
-  command.add_option("--max-radius", s.radial.max_radius, "sampling radius in RSM texels (radial and disk)")
-      ->check(positive_number("RSM texels"))->capture_default_str();
-  command.add_option("--slots", s.slots, "micro linear buffer slots")->check(CLI::Range(1, 16))->capture_default_str();
+  const vplkit::rsm_gather_preset<float> defaults = vplkit::default_rsm_gather_preset<float>();
+  const vplkit::rsm_gather_preset<float> thesis = vplkit::thesis_rsm_gather_preset<float>();
+  command.add_option("--preset", options.preset,
+                     "RSM gather: default (radius " + format_number(defaults.radius_fraction) + " of the RSM, " + std::to_string(defaults.paths) + "x" +
+                         std::to_string(defaults.samples_per_path) + " samples, " + std::to_string(defaults.slots) + " slots; docs/rsm-study.md) or thesis (" +
+                         format_number(thesis.radius_fraction) + ", " + std::to_string(thesis.paths) + "x" + std::to_string(thesis.samples_per_path) +
+                         ", " + std::to_string(thesis.slots) + " slots); the options below override it")
+      ->check(CLI::IsMember({"default", "thesis"}))->capture_default_str();
+  command.add_option("--paths", options.paths, "radial pattern: paths [preset]")->check(CLI::Range(1, 256));
+  command.add_option("--samples-per-path", options.samples_per_path, "radial pattern: samples per path [preset]")->check(CLI::Range(1, 256));
+  command.add_option("--radius", options.radius, "sampling radius (radial and disk) as a fraction of the RSM side [preset]")
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            double value = 0.0;
+            return CLI::detail::lexical_cast(text, value) && value > 0.0 && value <= 2.0 ? std::string()
+                                                                                        : "must be a number in (0, 2], got '" + text + "'";
+          },
+          "(0, 2]"));
+  command.add_option("--max-radius", options.max_radius_texels, "sampling radius in RSM texels (instead of --radius)")
+      ->check(positive_number("RSM texels"));
+  command.add_option("--slots", options.slots, "micro linear buffer slots [preset]")->check(CLI::Range(1, 16));
   command.add_option("--disk-samples", s.disk.samples, "original RSM: samples")->check(CLI::Range(1, 65536))->capture_default_str();
   command.add_option("--seed", s.radial.seed, "seed of the sampling patterns")->capture_default_str();
   command.add_option("--min-distance", s.irradiance.min_distance,
@@ -169,8 +196,51 @@ void finish_settings(render_options& options) {
   }
   s.format = options.format == "rgba32f" ? vplkit::texel_format::rgba32f : vplkit::texel_format::rgba16f;
   s.filter = options.filter == "separable" ? vplkit::post_filter::separable : vplkit::post_filter::full;
-  s.disk.max_radius = s.radial.max_radius;
+  s.apply(options.preset == "thesis" ? vplkit::thesis_rsm_gather_preset<float>() : vplkit::default_rsm_gather_preset<float>());
+  if (options.paths) s.radial.paths = *options.paths;
+  if (options.samples_per_path) s.radial.samples_per_path = *options.samples_per_path;
+  if (options.slots) s.slots = *options.slots;
+  if (options.radius && options.max_radius_texels) throw vplkit::error("give the sampling radius once: --radius (a fraction of the RSM side) or --max-radius (texels)");
+  if (options.radius) s.radius = *options.radius;
+  if (options.max_radius_texels) s.radius = *options.max_radius_texels / static_cast<float>(s.rsm_size);
   s.disk.seed = s.radial.seed;
+}
+
+// Files written all or nothing: each whole (temporary file and rename), and if one fails, the
+// ones already written by this run are removed.
+struct output_file {
+  fs::path path;
+  std::function<void(const fs::path&)> write;
+};
+
+void write_all(const std::vector<output_file>& files) {
+  std::vector<fs::path> written;
+  try {
+    for (const output_file& file : files) {
+      file.write(file.path);
+      written.push_back(file.path);
+    }
+  } catch (...) {
+    std::error_code ignored;
+    for (const fs::path& path : written) fs::remove(path, ignored);
+    throw;
+  }
+}
+
+output_file png_file(fs::path path, int width, int height, std::vector<std::uint8_t> pixels) {
+  return {std::move(path), [width, height, pixels = std::move(pixels)](const fs::path& target) { vplkit::write_png(target, width, height, pixels); }};
+}
+
+output_file pfm_file(fs::path path, vplkit::float_image image) {
+  return {std::move(path), [image = std::move(image)](const fs::path& target) { vplkit::write_pfm(target, image); }};
+}
+
+// An image_buffer (rows bottom-up, as GL reads them) as a float_image (rows top-down).
+vplkit::float_image float_image_of(const vplkit::image_buffer& buffer) {
+  std::vector<float> rgba;
+  rgba.reserve(buffer.texels.size() * 4);
+  for (const glm::vec4& texel : buffer.texels) rgba.insert(rgba.end(), {texel.r, texel.g, texel.b, 1.0f});
+  return vplkit::float_image_from_rgba(rgba, buffer.width, buffer.height);
 }
 
 vplkit::scene load_scene(const std::string& name) {
@@ -186,6 +256,8 @@ fs::path shader_dir(const render_options& options) {
 fs::path with_suffix(const fs::path& path, const std::string& suffix) {
   return path.parent_path() / (path.stem().string() + suffix + path.extension().string());
 }
+
+fs::path with_extension(fs::path path, const std::string& extension) { return path.replace_extension(extension); }
 
 int run_info(const std::string& context_kind) {
   std::unique_ptr<vplkit::gl_context> context;
@@ -282,44 +354,43 @@ int run_render(render_options& options, std::string out) {
   auto context = vplkit::create_headless_context();
   const vplkit::shader_library shaders(shader_dir(options));
   const vplkit::scene source = load_scene(options.scene_name);
-  const vplkit::rsm_frame frame = render_frame(shaders, source, options.settings);
+  vplkit::rsm_pipeline pipeline(shaders, source, options.settings);
+  // The first frame pays for llvmpipe's shader JIT, and llvmpipe's first GL_TIME_ELAPSED query
+  // reads a garbage start time (seen: 282 s); the pass table reports a warmed-up frame.
+  pipeline.render();
+  const vplkit::rsm_frame frame = pipeline.render();
+  const vplkit::rsm_pass_buffers raw = options.raw_indirect ? pipeline.read_buffers() : vplkit::rsm_pass_buffers{};
   const int w = frame.width, h = frame.height;
 
   // Everything is rendered before anything is written, so a failure leaves no partial set.
-  std::vector<std::pair<fs::path, std::vector<std::uint8_t>>> images;
-  images.emplace_back(out_path, vplkit::to_srgb8(frame.radiance, w, h));
+  std::vector<output_file> files;
+  files.push_back(png_file(out_path, w, h, vplkit::to_srgb8(frame.radiance, w, h)));
   if (technique.indirect) {
     const float exposure = vplkit::percentile_exposure(frame.indirect);
-    images.emplace_back(with_suffix(out_path, "-indirect"), vplkit::to_srgb8(frame.indirect, w, h, exposure));
+    files.push_back(png_file(with_suffix(out_path, "-indirect"), w, h, vplkit::to_srgb8(frame.indirect, w, h, exposure)));
     if (technique.visibility != vplkit::rsm_visibility::none) {
       vplkit::rsm_pipeline_settings without = options.settings;
       without.technique = "rsm-radial";
       const vplkit::rsm_frame reference = render_frame(shaders, source, without);
       // Amplified 8x relative to the indirect image's exposure, as in Fig. 5.1c.
-      images.emplace_back(with_suffix(out_path, "-visibility-difference"),
-                          vplkit::to_srgb8(vplkit::luminance_difference(reference.indirect, frame.indirect, 8.0f * exposure), w, h));
+      files.push_back(png_file(with_suffix(out_path, "-visibility-difference"), w, h,
+                               vplkit::to_srgb8(vplkit::luminance_difference(reference.indirect, frame.indirect, 8.0f * exposure), w, h)));
     }
   }
-  // Each file is written whole (write_png); if a later one fails, the earlier ones of this run
-  // are removed too, so a failure leaves no partial set of images.
-  std::vector<fs::path> written;
-  try {
-    for (const auto& [path, pixels] : images) {
-      vplkit::write_png(path, w, h, pixels);
-      written.push_back(path);
-    }
-  } catch (...) {
-    std::error_code ignored;
-    for (const fs::path& path : written) fs::remove(path, ignored);
-    throw;
+  // The indirect irradiance, linear, at the image's size after the post filter (0 for direct light only).
+  files.push_back(pfm_file(with_extension(with_suffix(out_path, "-indirect"), ".pfm"), vplkit::float_image_from_rgba(frame.indirect, w, h)));
+  if (options.raw_indirect) {
+    if (!technique.indirect) throw vplkit::error("--raw-indirect: technique " + std::string(technique.name) + " gathers no indirect light");
+    files.push_back(pfm_file(with_extension(with_suffix(out_path, "-raw-indirect"), ".pfm"), float_image_of(raw.indirect)));
   }
+  write_all(files);
 
   std::cout << "scene " << source.name << " (" << source.geometry.triangle_count() << " triangles), technique "
             << technique.name << ", " << w << "x" << h << ", RSM " << options.settings.rsm_size << "^2, indirect "
             << (w + options.settings.indirect_divisor - 1) / options.settings.indirect_divisor << "x"
             << (h + options.settings.indirect_divisor - 1) / options.settings.indirect_divisor << "\n"
             << vplkit::format_pass_table(frame.pass_times);
-  for (const auto& image : images) std::cout << "wrote " << fs::absolute(image.first).string() << "\n";
+  for (const output_file& file : files) std::cout << "wrote " << fs::absolute(file.path).string() << "\n";
   return 0;
 }
 
@@ -336,13 +407,85 @@ int run_compare(const std::string& image_path, const std::string& reference_path
     vplkit::write_png(error_path, image.width, image.height, vplkit::false_colour_error(image, reference, error_scale));
   std::cout << std::setprecision(6) << "| metric | value |\n|---|---:|\n| RMSE | " << m.rmse << " |\n| relative MSE | " << m.relative_mse
             << " |\n| PSNR (dB) | " << m.psnr << " |\n| SSIM (luminance) | " << m.ssim << " |\n| similarity (Alg. 1, %) | " << m.similarity << " |\n";
-  if (m.leak_rmse) std::cout << "| light-leak RMSE (" << m.leak_pixels << " masked pixels) | " << *m.leak_rmse << " |\n";
+  std::cout << "| relative RMSE (RMSE / reference mean) | " << m.relative.rmse << " |\n| relative bias ((mean - reference mean) / reference mean) | "
+            << m.relative.bias << " |\n";
+  if (m.leak_rmse) std::cout << "| masked RMSE (" << m.leak_pixels << " pixels, e.g. a leak region) | " << *m.leak_rmse << " |\n";
+  if (m.masked)
+    std::cout << "| masked relative RMSE (" << m.masked->pixels << " pixels) | " << m.masked->rmse << " |\n| masked relative bias | " << m.masked->bias << " |\n";
   if (!error_path.empty()) std::cout << "wrote " << fs::absolute(error_path).string() << "\n";
   return 0;
 }
 
-int run_reference(render_options& options, int samples, std::uint32_t seed, std::string out) {
+struct reference_options {
+  std::string method = "monte-carlo";
+  std::string visibility = "exact";
+  bool visibility_given = false;
+  bool samples_given = false;
+  int samples = 64;
+  std::uint32_t seed = 1;
+  int receiver_stride = 1;
+  std::string out;
+};
+
+// The brute-force RSM gather (paper 000, Fig. 5.1d) of the frame `vplkit render` draws with the
+// same scene, size, RSM size, indirect divisor and format, at the receivers of its indirect buffer.
+int run_rsm_brute_force(render_options& options, const reference_options& reference) {
+  if (reference.samples_given) throw vplkit::error("--samples is an option of --method monte-carlo");
+  const std::string out = reference.out.empty()
+                              ? "output/" + fs::path(options.scene_name).stem().string() + "-rsm-brute-force-" + reference.visibility + ".pfm"
+                              : reference.out;
+  const fs::path out_path(out);
+  if (out_path.extension() != ".pfm") throw vplkit::error("--out must name a .pfm file (a .png and -receivers.pfm go next to it), got '" + out + "'");
+  options.settings.technique = "rsm-radial";  // the RSM and the G-buffer do not depend on the gather
+  if (const std::string problem = vplkit::validate(options.settings); !problem.empty()) throw vplkit::error(problem);
+  auto context = vplkit::create_headless_context();
+  const vplkit::shader_library shaders(shader_dir(options));
+  const vplkit::scene source = load_scene(options.scene_name);
+  vplkit::rsm_pipeline pipeline(shaders, source, options.settings);
+  pipeline.render();
+  const vplkit::rsm_pass_buffers buffers = pipeline.read_buffers();
+  const vplkit::ray_scene rays(source.geometry);
+  vplkit::rsm_brute_force_options brute_force;
+  brute_force.exact_visibility = reference.visibility == "exact";
+  brute_force.receiver_stride = reference.receiver_stride;
+  brute_force.threads = vplkit::hardware_threads();
+  const vplkit::image_buffer gathered = vplkit::reference_rsm_gather(rays, buffers, pipeline.constants(), brute_force);
+  // The mask: receivers the RSM gather covers, among those computed.
+  const std::vector<std::uint8_t> covered = vplkit::rsm_covered_receivers(buffers, pipeline.constants());
+  vplkit::image_buffer mask = gathered;
+  std::size_t counted = 0;
+  for (int y = 0; y < mask.height; ++y)
+    for (int x = 0; x < mask.width; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(mask.width) + static_cast<std::size_t>(x);
+      const bool computed = x % reference.receiver_stride == 0 && y % reference.receiver_stride == 0;
+      const bool in = computed && covered[i];
+      mask.texels[i] = glm::vec4(in ? 1.0f : 0.0f);
+      counted += in;
+    }
+  const vplkit::float_image irradiance = float_image_of(gathered);
+  const std::vector<float> rgba = vplkit::rgba_from_float_image(irradiance);
+  const fs::path png = with_extension(out_path, ".png"), receivers = with_extension(with_suffix(out_path, "-receivers"), ".pfm");
+  write_all({pfm_file(out_path, irradiance), png_file(png, irradiance.width, irradiance.height,
+                                                      vplkit::to_srgb8(rgba, irradiance.width, irradiance.height, vplkit::percentile_exposure(rgba))),
+             pfm_file(receivers, float_image_of(mask))});
+  std::cout << "scene " << source.name << ", brute-force RSM gather with " << (brute_force.exact_visibility ? "exact (ray-cast)" : "no") << " visibility, RSM "
+            << options.settings.rsm_size << "^2, at the " << gathered.width << "x" << gathered.height << " receivers of the indirect buffer of a "
+            << options.settings.width << "x" << options.settings.height << " frame (every " << reference.receiver_stride << ". per axis), " << counted
+            << " covered by the RSM gather (in front of the light, inside its frustum)\n"
+            << "compare with `vplkit render --raw-indirect` of the same frame: vplkit compare <out>-raw-indirect.pfm " << out_path.string() << " --mask "
+            << receivers.string() << "\nwrote " << fs::absolute(out_path).string() << "\nwrote " << fs::absolute(png).string() << "\nwrote "
+            << fs::absolute(receivers).string() << "\n";
+  return 0;
+}
+
+int run_reference(render_options& options, const reference_options& reference) {
   finish_settings(options);
+  if (reference.method == "rsm-brute-force") return run_rsm_brute_force(options, reference);
+  if (reference.visibility_given) throw vplkit::error("--visibility is an option of --method rsm-brute-force");
+  if (reference.receiver_stride != 1) throw vplkit::error("--receiver-stride is an option of --method rsm-brute-force");
+  std::string out = reference.out;
+  const int samples = reference.samples;
+  const std::uint32_t seed = reference.seed;
   if (out.empty()) out = "output/" + fs::path(options.scene_name).stem().string() + "-reference.pfm";
   const fs::path out_path(out);
   if (out_path.extension() != ".pfm") throw vplkit::error("--out must name a .pfm file (a .png is written next to it), got '" + out + "'");
@@ -351,17 +494,10 @@ int run_reference(render_options& options, int samples, std::uint32_t seed, std:
   const int w = options.settings.width, h = options.settings.height;
   const vplkit::one_bounce_images images = vplkit::reference_one_bounce(source, w, h, samples, seed, vplkit::hardware_threads());
   // PFM and PNG of the final image, PFM of the indirect irradiance: written only after all is done.
-  const fs::path png = out_path.parent_path() / (out_path.stem().string() + ".png");
+  const fs::path png = with_extension(out_path, ".png");
   const fs::path indirect = with_suffix(out_path, "-indirect");
-  std::vector<float> rgba;
-  for (int y = h - 1; y >= 0; --y)
-    for (int x = 0; x < w; ++x) {
-      const glm::vec3 p = images.radiance.at(x, y);
-      rgba.insert(rgba.end(), {p.r, p.g, p.b, 1.0f});
-    }
-  vplkit::write_pfm(out_path, images.radiance);
-  vplkit::write_pfm(indirect, images.indirect);
-  vplkit::write_png(png, w, h, vplkit::to_srgb8(rgba, w, h));
+  write_all({pfm_file(out_path, images.radiance), pfm_file(indirect, images.indirect),
+             png_file(png, w, h, vplkit::to_srgb8(vplkit::rgba_from_float_image(images.radiance), w, h))});
   std::cout << "scene " << source.name << ", one-bounce Monte Carlo reference, " << w << "x" << h << ", " << samples << " bounce rays per pixel, seed "
             << seed << "\nwrote " << fs::absolute(out_path).string() << "\nwrote " << fs::absolute(indirect).string() << "\nwrote "
             << fs::absolute(png).string() << "\n";
@@ -412,6 +548,8 @@ int main(int argc, char** argv) {
   std::string out;
   CLI::App* render = app.add_subcommand("render", "render a scene headless (OSMesa) to PNG images");
   add_render_options(*render, render_settings);
+  render->add_flag("--raw-indirect", render_settings.raw_indirect, "also write <out>-raw-indirect.pfm: the unfiltered gather at the indirect buffer's "
+                                                                  "receivers (compare it with vplkit reference --method rsm-brute-force)");
   render->add_option("--out", out, "final image path (.png; folders are created) [output/<scene>-<technique>.png]; "
                                    "the indirect and difference images go next to it");
 
@@ -427,19 +565,29 @@ int main(int argc, char** argv) {
   CLI::App* compare = app.add_subcommand("compare", "compare an image with a reference (.pfm linear or .png sRGB)");
   compare->add_option("image", compare_image, "the image to judge")->required();
   compare->add_option("reference", compare_reference, "the reference")->required();
-  compare->add_option("--mask", compare_mask, "pixels (luminance > 0.5) for the light-leak error, e.g. a reference's visibility mask");
+  compare->add_option("--mask", compare_mask, "pixels (luminance > 0.5) for the light-leak error and the masked relative errors, e.g. the "
+                                             "-receivers.pfm of vplkit reference --method rsm-brute-force");
   compare->add_option("--error-image", compare_error, "write the false-colour error image (.png)");
   compare->add_option("--error-scale", error_scale, "luminance difference shown as full red (0: the largest)")->capture_default_str();
 
   render_options reference_settings;
-  int reference_samples = 64;
-  std::uint32_t reference_seed = 1;
-  std::string reference_out;
+  reference_options reference_choice;
   CLI::App* reference = app.add_subcommand("reference", "render the one-bounce Monte Carlo reference (Embree) of a scene");
   add_render_options(*reference, reference_settings);
-  reference->add_option("--samples", reference_samples, "bounce rays per pixel")->check(CLI::Range(1, 1 << 20))->capture_default_str();
-  reference->add_option("--reference-seed", reference_seed, "seed of the Monte Carlo estimate")->capture_default_str();
-  reference->add_option("--out", reference_out, "output .pfm (a .png and -indirect.pfm go next to it)");
+  reference->add_option("--method", reference_choice.method,
+                         "monte-carlo: one-bounce path tracing of the final image (Embree); rsm-brute-force: every lit RSM texel at every "
+                         "receiver of the frame's indirect buffer (the thesis's Fig. 5.1d)")
+      ->check(CLI::IsMember({"monte-carlo", "rsm-brute-force"}))->capture_default_str();
+  reference->add_option("--visibility", reference_choice.visibility, "rsm-brute-force: exact (a ray per pixel light) or none")
+      ->check(CLI::IsMember({"exact", "none"}))->capture_default_str()->each([&](const std::string&) { reference_choice.visibility_given = true; });
+  reference->add_option("--receiver-stride", reference_choice.receiver_stride, "rsm-brute-force: compute every N-th receiver per axis (the others are 0 and "
+                                                                               "outside the -receivers.pfm mask)")
+      ->check(CLI::Range(1, 64))->capture_default_str();
+  reference->add_option("--samples", reference_choice.samples, "monte-carlo: bounce rays per pixel")->check(CLI::Range(1, 1 << 20))->capture_default_str()
+      ->each([&](const std::string&) { reference_choice.samples_given = true; });
+  reference->add_option("--reference-seed", reference_choice.seed, "monte-carlo: seed of the estimate")->capture_default_str();
+  reference->add_option("--out", reference_choice.out, "output .pfm (monte-carlo: the final image, with -indirect.pfm and a .png next to it; "
+                                                       "rsm-brute-force: the indirect irradiance, with a .png and -receivers.pfm)");
 
   try {
     app.parse(argc, argv);
@@ -452,7 +600,7 @@ int main(int argc, char** argv) {
     if (render->parsed()) return run_render(render_settings, out);
     if (view->parsed()) return run_view(view_settings, frames);
     if (compare->parsed()) return run_compare(compare_image, compare_reference, compare_mask, compare_error, error_scale);
-    if (reference->parsed()) return run_reference(reference_settings, reference_samples, reference_seed, reference_out);
+    if (reference->parsed()) return run_reference(reference_settings, reference_choice);
     std::cerr << "vplkit: error: a subcommand is required: info, render, view, compare or reference (see vplkit --help)\n";
     return 2;
   } catch (const std::exception& failure) {

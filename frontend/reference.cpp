@@ -11,6 +11,8 @@
 #include <vplkit/direct_light.hpp>
 #include <vplkit/hash.hpp>
 #include <vplkit/irradiance.hpp>
+#include <vplkit/rsm_gather.hpp>
+#include <vplkit/transform.hpp>
 
 #include "frontend/error.hpp"
 #include "frontend/parallel.hpp"
@@ -160,34 +162,69 @@ void progress_bar::finish() {
   if (terminal_) std::fprintf(stderr, "\r%s done in %.1fs%40s\n", label_.c_str(), now_seconds() - start_, "");
 }
 
-image_buffer reference_rsm_gather(const ray_scene& rays, const rsm_pass_buffers& buffers, const rsm_frame_constants& constants, bool visibility,
-                                  int threads) {
+namespace {
+
+glm::ivec2 gbuffer_texel_of(glm::ivec2 texel, const rsm_frame_constants& constants) {
+  return glm::min(texel * constants.indirect_divisor, constants.image_size - 1);
+}
+
+image_buffer empty_indirect(const rsm_frame_constants& constants) {
   image_buffer out;
   out.width = constants.indirect_size.x;
   out.height = constants.indirect_size.y;
   out.texels.assign(static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height), glm::vec4(0.0f));
+  return out;
+}
+
+// The ray that decides whether pixel light (q, nq) lights receiver (p, n): both ends lifted off
+// their surfaces by a small offset along their normals, so that neither surface blocks its own
+// end.
+bool light_occluded(const ray_scene& rays, const glm::vec3& p, const glm::vec3& n, const glm::vec3& q, const glm::vec3& nq) {
+  return rays.occluded(p + n * 1e-3f, q + nq * 1e-3f);
+}
+
+}  // namespace
+
+image_buffer reference_rsm_gather(const ray_scene& rays, const rsm_pass_buffers& buffers, const rsm_frame_constants& constants,
+                                  const rsm_brute_force_options& options) {
+  if (options.receiver_stride < 1) throw error("brute-force RSM gather: receiver_stride must be >= 1");
+  if (!(options.max_radius >= 0.0f)) throw error("brute-force RSM gather: max_radius must be >= 0");
+  image_buffer out = empty_indirect(constants);
   // Every lit RSM texel is a pixel light.
   struct light_texel {
     glm::vec3 position, normal, flux;
+    glm::vec2 texel_centre;
   };
   std::vector<light_texel> lights;
   const image_buffer& positions = buffers.rsm[0];
-  for (std::size_t i = 0; i < positions.texels.size(); ++i)
-    if (positions.texels[i].w < 0.0f && glm::vec3(buffers.rsm[2].texels[i]) != glm::vec3(0.0f))
-      lights.push_back({glm::vec3(positions.texels[i]), glm::vec3(buffers.rsm[1].texels[i]), glm::vec3(buffers.rsm[2].texels[i])});
-  progress_bar progress(visibility ? "brute-force RSM gather with visibility" : "brute-force RSM gather", static_cast<std::size_t>(out.height));
-  parallel_rows(out.height, threads, [&](int y) {
-    for (int x = 0; x < out.width; ++x) {
-      const glm::ivec2 sample = glm::min(glm::ivec2(x, y) * constants.indirect_divisor, constants.image_size - 1);
+  for (int y = 0; y < positions.height; ++y)
+    for (int x = 0; x < positions.width; ++x) {
+      const glm::ivec2 t(x, y);
+      if (positions.at(t).w < 0.0f && glm::vec3(buffers.rsm[2].at(t)) != glm::vec3(0.0f))
+        lights.push_back({glm::vec3(positions.at(t)), glm::vec3(buffers.rsm[1].at(t)), glm::vec3(buffers.rsm[2].at(t)), glm::vec2(t) + 0.5f});
+    }
+  const int stride = options.receiver_stride;
+  const int rows = (out.height + stride - 1) / stride;
+  progress_bar progress(options.exact_visibility ? "brute-force RSM gather with visibility" : "brute-force RSM gather", static_cast<std::size_t>(rows));
+  const float radius_squared = options.max_radius * options.max_radius;
+  parallel_rows(rows, options.threads, [&](int row) {
+    const int y = row * stride;
+    for (int x = 0; x < out.width; x += stride) {
+      const glm::ivec2 sample = gbuffer_texel_of(glm::ivec2(x, y), constants);
       const glm::vec4 position_depth = buffers.gbuffer[0].at(sample);
       if (!(position_depth.w < 0.0f)) continue;
       const glm::vec3 p(position_depth), n(buffers.gbuffer[2].at(sample));
+      const glm::vec2 projection = map_coordinate(constants.light.view_projection, p, constants.gather.rsm_size);
       glm::vec3 all(0.0f), seen(0.0f);
       for (const light_texel& light : lights) {
+        if (radius_squared > 0.0f) {
+          const glm::vec2 d = light.texel_centre - projection;
+          if (glm::dot(d, d) > radius_squared) continue;
+        }
         const glm::vec3 e = pixel_light_irradiance(p, n, light.position, light.normal, light.flux, constants.gather.irradiance);
         if (e == glm::vec3(0.0f)) continue;
         all += e;
-        if (!visibility || !rays.occluded(p + n * 1e-3f, light.position + light.normal * 1e-3f)) seen += e;
+        if (!options.exact_visibility || !light_occluded(rays, p, n, light.position, light.normal)) seen += e;
       }
       const float total = all.x + all.y + all.z;
       out.at(glm::ivec2(x, y)) = glm::vec4(seen * 0.318309886183790671538f, total > 0.0f ? (seen.x + seen.y + seen.z) / total : 1.0f);
@@ -196,6 +233,64 @@ image_buffer reference_rsm_gather(const ray_scene& rays, const rsm_pass_buffers&
   });
   progress.finish();
   return out;
+}
+
+namespace {
+
+// The visibility object of gather_rsm_with: a ray per sample.
+struct ray_cast_visibility {
+  const ray_scene& rays;
+  void begin_path() {}
+  float operator()(const gather_receiver<float>& receiver, float, const rsm_texel<float>& light) const {
+    return light_occluded(rays, receiver.position, receiver.normal, light.position, light.normal) ? 0.0f : 1.0f;
+  }
+};
+
+}  // namespace
+
+image_buffer gather_with_ray_cast_visibility(const ray_scene& rays, const rsm_pass_buffers& buffers, const rsm_frame_constants& constants,
+                                             int receiver_stride, int threads) {
+  if (receiver_stride < 1) throw error("gather with ray-cast visibility: receiver_stride must be >= 1");
+  image_buffer out = empty_indirect(constants);
+  const image_buffer* rsm = buffers.rsm;
+  const auto fetch = [rsm](glm::ivec2 texel) {
+    const glm::vec4 position_depth = rsm[0].at(texel);
+    return rsm_texel<float>{glm::vec3(position_depth), position_depth.w, glm::vec3(rsm[1].at(texel)), glm::vec3(rsm[2].at(texel))};
+  };
+  const int rows = (out.height + receiver_stride - 1) / receiver_stride;
+  parallel_rows(rows, threads, [&](int row) {
+    const int y = row * receiver_stride;
+    for (int x = 0; x < out.width; x += receiver_stride) {
+      const glm::ivec2 texel(x, y);
+      const glm::vec4 position_depth = buffers.gbuffer[0].at(gbuffer_texel_of(texel, constants));
+      if (!(position_depth.w < 0.0f)) continue;
+      const glm::vec3 position(position_depth);
+      const gather_receiver<float> receiver{position, glm::vec3(buffers.gbuffer[2].at(gbuffer_texel_of(texel, constants))),
+                                            map_coordinate(constants.light.view_projection, position, constants.gather.rsm_size),
+                                            glm::uvec2(texel)};
+      const glm::vec3 e = constants.technique.pattern == rsm_pattern::disk
+                              ? gather_rsm_with<rsm_pattern::disk>(receiver, fetch, constants.gather, ray_cast_visibility{rays})
+                              : gather_rsm_with<rsm_pattern::radial>(receiver, fetch, constants.gather, ray_cast_visibility{rays});
+      out.at(texel) = glm::vec4(e, position_depth.w);
+    }
+  });
+  return out;
+}
+
+std::vector<std::uint8_t> rsm_covered_receivers(const rsm_pass_buffers& buffers, const rsm_frame_constants& constants) {
+  std::vector<std::uint8_t> covered(static_cast<std::size_t>(constants.indirect_size.x) * static_cast<std::size_t>(constants.indirect_size.y), 0);
+  for (int y = 0; y < constants.indirect_size.y; ++y)
+    for (int x = 0; x < constants.indirect_size.x; ++x) {
+      const glm::vec4 position_depth = buffers.gbuffer[0].at(gbuffer_texel_of(glm::ivec2(x, y), constants));
+      if (!(position_depth.w < 0.0f)) continue;
+      const glm::vec3 p(position_depth);
+      const glm::vec2 projection = map_coordinate(constants.light.view_projection, p, constants.gather.rsm_size);
+      const bool in_front = transform_point(constants.gather.light_view, p).z < 0.0f;
+      const bool inside = projection.x >= 0.0f && projection.y >= 0.0f && projection.x < static_cast<float>(constants.gather.rsm_size.x) &&
+                          projection.y < static_cast<float>(constants.gather.rsm_size.y);
+      covered[static_cast<std::size_t>(y) * static_cast<std::size_t>(constants.indirect_size.x) + static_cast<std::size_t>(x)] = in_front && inside ? 1 : 0;
+    }
+  return covered;
 }
 
 one_bounce_images reference_one_bounce(const scene& source, int width, int height, int samples, std::uint32_t seed, int threads) {

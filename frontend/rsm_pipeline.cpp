@@ -1,5 +1,6 @@
 #include "frontend/rsm_pipeline.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <cstring>
 
@@ -32,6 +33,17 @@ const rsm_technique& find_rsm_technique(const std::string& name) {
   throw error("unknown technique '" + name + "' (known: " + known + ")");
 }
 
+namespace {
+
+// The patterns with their radius in texels: settings.radius is a fraction of the RSM side.
+std::pair<radial_pattern_settings<float>, disk_pattern_settings<float>> patterns_in_texels(const rsm_pipeline_settings& settings) {
+  std::pair<radial_pattern_settings<float>, disk_pattern_settings<float>> patterns{settings.radial, settings.disk};
+  patterns.first.max_radius = patterns.second.max_radius = settings.radius * static_cast<float>(settings.rsm_size);
+  return patterns;
+}
+
+}  // namespace
+
 std::string validate(const rsm_pipeline_settings& settings) {
   const auto in_range = [](int value, int low, int high) { return value >= low && value <= high; };
   if (!in_range(settings.width, 1, 16384) || !in_range(settings.height, 1, 16384)) return "image size must be in [1, 16384] per side";
@@ -44,7 +56,9 @@ std::string validate(const rsm_pipeline_settings& settings) {
   } catch (const error& failure) {
     return failure.what();
   }
-  for (const char* problem : {validate(settings.radial), validate(settings.disk), validate_slot_count(settings.slots),
+  if (!(settings.radius > 0.0f && settings.radius <= 2.0f)) return "radius must be in (0, 2] (a fraction of the RSM side)";
+  const auto [radial, disk] = patterns_in_texels(settings);
+  for (const char* problem : {validate(radial), validate(disk), validate_slot_count(settings.slots),
                               validate(settings.irradiance), validate(settings.shadow), validate(settings.bilateral)})
     if (problem) return problem;
   return {};
@@ -89,8 +103,9 @@ rsm_frame_constants make_frame_constants(const scene& source, const rsm_pipeline
   constants.light = make_light_frustum(source, settings.rsm_size);
   constants.primary = source.light;
   constants.gather.irradiance = settings.irradiance;
-  constants.gather.radial = make_radial_pattern_constants(settings.radial);
-  constants.gather.disk = settings.disk;
+  const auto [radial, disk] = patterns_in_texels(settings);
+  constants.gather.radial = make_radial_pattern_constants(radial);
+  constants.gather.disk = disk;
   constants.gather.slots = make_elevation_slots<float>(settings.slots);
   constants.gather.light_view = constants.light.view;
   constants.gather.rsm_size = glm::ivec2(settings.rsm_size);
@@ -193,6 +208,17 @@ rsm_pipeline::rsm_pipeline(const shader_library& shaders, const scene& source, c
 }
 
 rsm_frame rsm_pipeline::render() {
+  draw();
+  rsm_frame frame;
+  frame.width = settings_.width;
+  frame.height = settings_.height;
+  frame.radiance = post_target_.read_float(0);
+  frame.indirect = post_target_.read_float(1);
+  frame.pass_times = timer_.collect();
+  return frame;
+}
+
+void rsm_pipeline::draw() {
   const rsm_technique& technique = constants_.technique;
   glClearColor(0.0f, 0.0f, 0.0f, 0.0f);  // depth 0 marks "no surface" in every buffer
   glDisable(GL_BLEND);
@@ -244,14 +270,16 @@ rsm_frame rsm_pipeline::render() {
   timer_.end();
   glBindVertexArray(0);
   check_gl("rendering scene " + scene_.name + " with " + technique.name);
+}
 
-  rsm_frame frame;
-  frame.width = settings_.width;
-  frame.height = settings_.height;
-  frame.radiance = post_target_.read_float(0);
-  frame.indirect = post_target_.read_float(1);
-  frame.pass_times = timer_.collect();
-  return frame;
+double rsm_pipeline::draw_wall_clock_ms() {
+  glFinish();
+  const auto start = std::chrono::steady_clock::now();
+  draw();
+  glFinish();
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  timer_.collect();  // the queries of this frame are not wanted
+  return ms;
 }
 
 rsm_pass_buffers rsm_pipeline::read_buffers() const {

@@ -47,15 +47,33 @@ struct rsm_pipeline_settings {
   int indirect_divisor = 2;     ///< indirect buffer = image / divisor per axis (2: 256^2, 1: Table 5.2's 512^2)
   texel_format format = texel_format::rgba16f;  ///< every render target: rgba16f (the thesis) or rgba32f
   std::string technique = "rsm-alg6";
-  radial_pattern_settings<float> radial;        ///< 15 paths x 10 samples
+  /// r_max of the radial and disk patterns as a fraction of the RSM side: radial.max_radius and
+  /// disk.max_radius are derived from it (make_frame_constants), so the radius scales with the RSM.
+  float radius = default_rsm_gather_preset<float>().radius_fraction;
+  radial_pattern_settings<float> radial = default_radial_settings();  ///< paths x samples of the default preset
   disk_pattern_settings<float> disk;            ///< 400 samples
-  int slots = 5;                                ///< micro linear buffer slots
+  int slots = default_rsm_gather_preset<float>().slots;  ///< micro linear buffer slots
   irradiance_settings<float> irradiance;
   shadow_density_settings<float> shadow;
   bilateral_settings<float> bilateral;          ///< kernel 17
   /// Separable by default: 2 x 17 taps instead of 17^2, 7x cheaper on llvmpipe for a few percent
   /// of difference in the filtered indirect light (bench/rsm_sweep measures both).
   post_filter filter = post_filter::separable;
+
+  static radial_pattern_settings<float> default_radial_settings() {
+    radial_pattern_settings<float> radial;
+    radial.paths = default_rsm_gather_preset<float>().paths;
+    radial.samples_per_path = default_rsm_gather_preset<float>().samples_per_path;
+    return radial;
+  }
+  /// Radius, paths, samples and slots from a preset (default_rsm_gather_preset,
+  /// thesis_rsm_gather_preset); the rest stays.
+  void apply(const rsm_gather_preset<float>& preset) {
+    radius = preset.radius_fraction;
+    radial.paths = preset.paths;
+    radial.samples_per_path = preset.samples_per_path;
+    slots = preset.slots;
+  }
 };
 
 /// Empty when usable, else a message naming the bad setting.
@@ -112,6 +130,11 @@ class rsm_pipeline {
   /// Validates, loads the programs and uploads the scene. Throws vplkit::error with the reason.
   rsm_pipeline(const shader_library& shaders, const scene& source, const rsm_pipeline_settings& settings);
   rsm_frame render();
+  /// The four passes without reading anything back.
+  void draw();
+  /// draw() timed by wall clock between two glFinish calls: the frame's cost on any renderer
+  /// (llvmpipe's timer queries measure only the span of its last rasterizer tiles).
+  double draw_wall_clock_ms();
   const rsm_frame_constants& constants() const { return constants_; }
   /// The intermediate buffers of the last frame.
   rsm_pass_buffers read_buffers() const;

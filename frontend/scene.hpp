@@ -77,6 +77,25 @@ scene make_cornell_box();
 /// wall, so the panel casts an indirect shadow away from its direct one.
 scene make_indirect_shadow_scene();
 
+/// The occluder scene: a red wall lit by a spot light, a floor as the receiver, and a panel
+/// (0.7 high, 1.4 wide) standing 0.5 in front of the wall, within reach of the RSM gather: the
+/// floor behind it sees less of the wall. `dark_panel` (scene "occluder"): albedo 0.03, so the
+/// panel only blocks; otherwise ("occluder-white") it also reflects.
+scene make_occluder_scene(bool dark_panel);
+
+/// Triangle count of the atrium at its default tessellation: about the thesis's Sponza (262k).
+inline constexpr int atrium_default_tessellation = 56;
+
+/// The atrium, in the spirit of the thesis's Sponza: a 12 x 6 court with two storeys of
+/// colonnades and semicircular arches on both long sides, galleries behind them, coloured
+/// curtains hanging in every other bay, and a sun (directional light) at an angle that lights
+/// one colonnade, so that the other side and the galleries live on bounced light. `tessellation`
+/// (4..512) is the number of segments of each column, arch and curtain.
+scene make_atrium_scene(int tessellation);
+
+/// Appends a cylinder's side (no caps) standing on `base`, `segments` around, `stacks` high.
+void add_cylinder(mesh& target, glm::vec3 base, float radius, float height, int segments, int stacks, glm::vec3 albedo);
+
 /// A room with 16 x 16 instances of a 1024-triangle sphere on its floor: 262,154 triangles,
 /// the scale of the thesis's Sponza (262k), for timing the geometry passes.
 scene make_instanced_scene();

@@ -73,6 +73,34 @@ struct rsm_gather_settings {
   glm::ivec2 rsm_size = glm::ivec2(512);
 };
 
+/// The few numbers that shape the gather, with the radius relative to the RSM so that it scales
+/// with the RSM's size.
+template <typename T>
+struct rsm_gather_preset {
+  T radius_fraction;     ///< r_max of the radial and disk patterns as a fraction of the RSM's larger side
+  int paths;             ///< P
+  int samples_per_path;  ///< S
+  int slots;             ///< B, micro linear buffer slots
+};
+
+/// The defaults, chosen by the study of bench/rsm_study.cpp (docs/rsm-study.md) against the
+/// brute-force gather on four occlusion scenes: 3/4 of the RSM side is the smallest radius of
+/// the study whose gather misses at most ~1 % of the light the whole RSM delivers (1/8 missed
+/// 60-80 %, 1/2 up to 7 %), and 20 paths x 15 samples with 8 slots is the cheapest point of the
+/// study at which Alg. 6 lowers the error against exact visibility and at least halves the leak
+/// on every scene (5 slots over-occlude at 20 x 15: their error rose above no visibility's).
+template <typename T>
+constexpr rsm_gather_preset<T> default_rsm_gather_preset() {
+  return {T(0.75), 20, 15, 8};
+}
+
+/// The thesis's configuration: 15 paths x 10 samples, 5 slots; the thesis gives no radius, and
+/// 1/8 of the RSM (64 texels of 512) is what this project used before the study.
+template <typename T>
+constexpr rsm_gather_preset<T> thesis_rsm_gather_preset() {
+  return {T(0.125), 15, 10, 5};
+}
+
 /// The receiver: a G-buffer sample.
 template <typename T>
 struct gather_receiver {
@@ -82,17 +110,95 @@ struct gather_receiver {
   glm::uvec2 pixel;               ///< its pixel in the indirect buffer (seeds the pattern)
 };
 
-namespace detail {
-
-template <rsm_visibility Visibility, typename T>
-T visibility_of(micro_linear_buffer<T>& buffer, int index) {
-  if constexpr (Visibility == rsm_visibility::alg2) return micro_linear_buffer_alg2(buffer, index);
-  else if constexpr (Visibility == rsm_visibility::alg3) return micro_linear_buffer_alg3(buffer, index);
-  else if constexpr (Visibility == rsm_visibility::alg6) return glm::clamp(micro_linear_buffer_alg6(buffer, index), T(0), T(1));
-  else return T(1);
+/// Gather settings for an RSM of `rsm_size` texels from a preset: the radius in texels, the
+/// pattern constants and the slot tangents derived in one place. light_view is left as the
+/// identity: set it to the light's view matrix.
+template <typename T>
+rsm_gather_settings<T> rsm_gather_settings_from(const rsm_gather_preset<T>& preset, glm::ivec2 rsm_size) {
+  radial_pattern_settings<T> radial;
+  radial.paths = preset.paths;
+  radial.samples_per_path = preset.samples_per_path;
+  radial.max_radius = preset.radius_fraction * T(glm::max(rsm_size.x, rsm_size.y));
+  rsm_gather_settings<T> settings;
+  settings.radial = make_radial_pattern_constants(radial);
+  settings.disk.max_radius = radial.max_radius;
+  settings.slots = make_elevation_slots<T>(preset.slots);
+  settings.rsm_size = rsm_size;
+  return settings;
 }
 
+/// The settings `vplkit render` uses for an RSM of `rsm_size` texels (set light_view).
+template <typename T>
+rsm_gather_settings<T> default_rsm_gather_settings(glm::ivec2 rsm_size) {
+  return rsm_gather_settings_from(default_rsm_gather_preset<T>(), rsm_size);
+}
+
+namespace detail {
+
+/// The per-path visibility of Alg. 2, 3 and 6 (or none): a micro linear buffer, reset for every
+/// path, fed with the elevation slot of each sample (dz from the stored depths, see the top).
+template <rsm_visibility Visibility, typename T>
+struct micro_linear_buffer_visibility {
+  const elevation_slots<T>& slots;
+  micro_linear_buffer<T> buffer{};
+  void begin_path() { micro_linear_buffer_reset(buffer, slots.count); }
+  T operator()(const gather_receiver<T>& receiver, T receiver_depth, const rsm_texel<T>& light) {
+    if constexpr (Visibility == rsm_visibility::none) {
+      (void)receiver, (void)receiver_depth, (void)light;
+      return T(1);
+    } else {
+      const glm::vec<3, T> offset = light.position - receiver.position;
+      const T dz = light.eye_depth - receiver_depth;
+      const T horizontal = std::sqrt(glm::max(T(0), glm::dot(offset, offset) - dz * dz));
+      const int index = elevation_slot(dz, horizontal, slots);
+      if constexpr (Visibility == rsm_visibility::alg2) return micro_linear_buffer_alg2(buffer, index);
+      else if constexpr (Visibility == rsm_visibility::alg3) return micro_linear_buffer_alg3(buffer, index);
+      else return glm::clamp(micro_linear_buffer_alg6(buffer, index), T(0), T(1));
+    }
+  }
+};
+
 }  // namespace detail
+
+/// The gather with the visibility of each sample supplied by `visibility`, an object with
+/// `begin_path()` (called before every path of the radial pattern, once for the disk pattern)
+/// and `T operator()(const gather_receiver<T>&, T receiver_depth, const rsm_texel<T>& light)`,
+/// called for every sample that lands on a lit texel, near to far along each path. This is the
+/// one sampling loop: gather_rsm below passes the micro linear buffer, the ground truth
+/// (frontend/rsm_quality) passes a ray cast to measure the same samples with exact visibility.
+template <rsm_pattern Pattern, typename T, typename Fetch, typename Visibility>
+glm::vec<3, T> gather_rsm_with(const gather_receiver<T>& receiver, Fetch&& fetch, const rsm_gather_settings<T>& settings,
+                               Visibility&& visibility) {
+  glm::vec<3, T> irradiance(0);
+  const T receiver_depth = transform_point(settings.light_view, receiver.position).z;
+  if (!(receiver_depth < T(0))) return irradiance;
+  // One sample: fetch, visibility, Eq. 3.2, accumulate (Alg. 1 lines 9-16, Alg. 5 lines 9-15).
+  auto accumulate = [&](const pattern_sample<T>& sample) {
+    const glm::ivec2 texel = glm::ivec2(glm::floor(receiver.rsm_coordinate + sample.offset));
+    if (texel.x < 0 || texel.y < 0 || texel.x >= settings.rsm_size.x || texel.y >= settings.rsm_size.y) return;
+    const rsm_texel<T> light = fetch(texel);
+    if (!(light.eye_depth < T(0))) return;
+    const T seen = visibility(receiver, receiver_depth, light);
+    const glm::vec<3, T> e = pixel_light_irradiance(receiver.position, receiver.normal, light.position, light.normal,
+                                                    light.flux, settings.irradiance);
+    irradiance += (seen * sample.weight) * e;
+  };
+  if constexpr (Pattern == rsm_pattern::radial) {
+    const radial_pixel<T> pixel = radial_pattern_pixel(receiver.pixel, settings.radial);
+    for (int path = 0; path < settings.radial.paths; ++path) {
+      visibility.begin_path();
+      T ring_inner_radius = settings.radial.min_radius;
+      for (int sample = 0; sample < settings.radial.samples_per_path; ++sample) {
+        accumulate(radial_pattern_sample(path, sample, ring_inner_radius, pixel, settings.radial));
+        ring_inner_radius *= settings.radial.ring_ratio;
+      }
+    }
+  } else {
+    visibility.begin_path();
+    for (int sample = 0; sample < settings.disk.samples; ++sample) accumulate(rsm_disk_sample(sample, settings.disk));
+  }
+  return irradiance * T(0.318309886183790671538);  // 1 / pi
+}
 
 /// The gather: irradiance at the receiver. Visibility needs the radial pattern (its samples
 /// lie on paths); the disk pattern has none.
@@ -100,42 +206,7 @@ template <rsm_pattern Pattern, rsm_visibility Visibility, typename T, typename F
 glm::vec<3, T> gather_rsm(const gather_receiver<T>& receiver, Fetch&& fetch, const rsm_gather_settings<T>& settings) {
   static_assert(Pattern == rsm_pattern::radial || Visibility == rsm_visibility::none,
                 "the disk pattern has no paths: visibility needs rsm_pattern::radial");
-  glm::vec<3, T> irradiance(0);
-  const T receiver_depth = transform_point(settings.light_view, receiver.position).z;
-  if (!(receiver_depth < T(0))) return irradiance;
-  // One sample: fetch, visibility, Eq. 3.2, accumulate (Alg. 1 lines 9-16, Alg. 5 lines 9-15).
-  auto accumulate = [&](const pattern_sample<T>& sample, micro_linear_buffer<T>& buffer) {
-    const glm::ivec2 texel = glm::ivec2(glm::floor(receiver.rsm_coordinate + sample.offset));
-    if (texel.x < 0 || texel.y < 0 || texel.x >= settings.rsm_size.x || texel.y >= settings.rsm_size.y) return;
-    const rsm_texel<T> light = fetch(texel);
-    if (!(light.eye_depth < T(0))) return;
-    T visibility = T(1);
-    if constexpr (Visibility != rsm_visibility::none) {
-      const glm::vec<3, T> offset = light.position - receiver.position;
-      const T dz = light.eye_depth - receiver_depth;
-      const T horizontal = std::sqrt(glm::max(T(0), glm::dot(offset, offset) - dz * dz));
-      visibility = detail::visibility_of<Visibility>(buffer, elevation_slot(dz, horizontal, settings.slots));
-    }
-    const glm::vec<3, T> e = pixel_light_irradiance(receiver.position, receiver.normal, light.position, light.normal,
-                                                    light.flux, settings.irradiance);
-    irradiance += (visibility * sample.weight) * e;
-  };
-  micro_linear_buffer<T> buffer;
-  if constexpr (Pattern == rsm_pattern::radial) {
-    const radial_pixel<T> pixel = radial_pattern_pixel(receiver.pixel, settings.radial);
-    for (int path = 0; path < settings.radial.paths; ++path) {
-      micro_linear_buffer_reset(buffer, settings.slots.count);
-      T ring_inner_radius = settings.radial.min_radius;
-      for (int sample = 0; sample < settings.radial.samples_per_path; ++sample) {
-        accumulate(radial_pattern_sample(path, sample, ring_inner_radius, pixel, settings.radial), buffer);
-        ring_inner_radius *= settings.radial.ring_ratio;
-      }
-    }
-  } else {
-    micro_linear_buffer_reset(buffer, settings.slots.count);  // unused without paths, but defined
-    for (int sample = 0; sample < settings.disk.samples; ++sample) accumulate(rsm_disk_sample(sample, settings.disk), buffer);
-  }
-  return irradiance * T(0.318309886183790671538);  // 1 / pi
+  return gather_rsm_with<Pattern>(receiver, fetch, settings, detail::micro_linear_buffer_visibility<Visibility, T>{settings.slots});
 }
 
 }  // namespace vplkit

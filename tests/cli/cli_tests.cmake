@@ -67,7 +67,7 @@ expect_failure("size zero" "--size.*\\[1, 16384\\]" "${WORK}/zero.png" "${VPLKIT
 expect_failure("size not a number" "--size.*expected N or WxH" "${WORK}/bad.png" "${VPLKIT}" render --size big --out "${WORK}/bad.png")
 expect_failure("negative min distance" "--min-distance" "${WORK}/md.png" "${VPLKIT}" render --min-distance -1 --out "${WORK}/md.png")
 expect_failure("unknown format" "--format.*rgba8" "${WORK}/fmt.png" "${VPLKIT}" render --format rgba8 --out "${WORK}/fmt.png")
-expect_failure("unknown scene" "unknown scene 'atrium'.*cornell-box" "${WORK}/scene.png" "${VPLKIT}" render --scene atrium --out "${WORK}/scene.png")
+expect_failure("unknown scene" "unknown scene 'sponza'.*cornell-box.*atrium" "${WORK}/scene.png" "${VPLKIT}" render --scene sponza --out "${WORK}/scene.png")
 expect_failure("unknown technique" "--technique.*rsm-alg7" "${WORK}/tech.png" "${VPLKIT}" render --technique rsm-alg7 --out "${WORK}/tech.png")
 expect_failure("slots out of range" "--slots.*17" "${WORK}/slots.png" "${VPLKIT}" render --slots 17 --out "${WORK}/slots.png")
 expect_failure("paths out of range" "--paths.*0" "${WORK}/paths.png" "${VPLKIT}" render --paths 0 --out "${WORK}/paths.png")
@@ -159,7 +159,7 @@ expect_success("reference writes PFM and PNG" "wrote .*/ref\\.pfm.*wrote .*/ref-
                "${VPLKIT}" reference --size 24 --samples 8 --out "${WORK}/ref.pfm")
 expect_success("compare an image with itself" "\\| RMSE \\| 0 \\|.*\\| similarity \\(Alg. 1, %\\) \\| 100 \\|"
                "${VPLKIT}" compare "${WORK}/ref.pfm" "${WORK}/ref.pfm")
-expect_success("compare with a mask and an error image" "light-leak RMSE.*wrote .*/err\\.png"
+expect_success("compare with a mask and an error image" "masked RMSE.*masked relative RMSE.*wrote .*/err\\.png"
                "${VPLKIT}" compare "${WORK}/ref.png" "${WORK}/ref.pfm" --mask "${WORK}/ref.pfm" --error-image "${WORK}/err.png")
 expect_failure("compare images of different sizes" "different sizes \\(24x24 and 48x32\\)" "${WORK}/err2.png"
                "${VPLKIT}" compare "${WORK}/ref.pfm" "${WORK}/small.png" --error-image "${WORK}/err2.png")
@@ -170,6 +170,47 @@ expect_failure("compare an unsupported format" "unsupported image format '.obj'"
 expect_failure("reference of a scene it cannot load" "bad\\.obj:4: face vertex index 9" "${WORK}/bad-ref.pfm"
                "${VPLKIT}" reference --scene "${WORK}/bad.obj" --size 16 --out "${WORK}/bad-ref.pfm")
 expect_failure("reference output not a .pfm" "--out must name a .pfm file" "" "${VPLKIT}" reference --size 16 --out "${WORK}/ref.png")
+
+# The RSM gather against its brute-force reference of the same frame (issue 9).
+expect_success("render writes the linear indirect PFMs, filtered and raw"
+               "wrote .*/bf-frame-indirect\\.pfm.*wrote .*/bf-frame-raw-indirect\\.pfm"
+               "${VPLKIT}" render --scene occluder --size 32 --rsm-size 32 --raw-indirect --out "${WORK}/bf-frame.png")
+foreach(visibility exact none)
+  expect_success("reference --method rsm-brute-force --visibility ${visibility}"
+                 "brute-force RSM gather.*16x16 receivers.*wrote .*/bf-${visibility}\\.pfm.*wrote .*/bf-${visibility}\\.png.*wrote .*/bf-${visibility}-receivers\\.pfm"
+                 "${VPLKIT}" reference --method rsm-brute-force --visibility ${visibility} --scene occluder --size 32 --rsm-size 32
+                 --out "${WORK}/bf-${visibility}.pfm")
+endforeach()
+expect_success("compare the raw gather with the brute force over the covered receivers"
+               "relative RMSE \\(RMSE / reference mean\\) \\| [0-9.e-]+ \\|.*relative bias.*masked relative RMSE \\([0-9]+ pixels\\) \\| [0-9.e-]+ \\|.*masked relative bias"
+               "${VPLKIT}" compare "${WORK}/bf-frame-raw-indirect.pfm" "${WORK}/bf-none.pfm" --mask "${WORK}/bf-none-receivers.pfm")
+expect_success("render --preset thesis" "technique rsm-alg6" "${VPLKIT}" render --preset thesis --size 16 --rsm-size 32 --out "${WORK}/thesis.png")
+expect_success("render --radius and --slots override the preset" "technique rsm-alg6"
+               "${VPLKIT}" render --preset thesis --radius 0.9 --slots 7 --size 16 --rsm-size 32 --out "${WORK}/radius.png")
+expect_failure("both --radius and --max-radius" "give the sampling radius once" "${WORK}/r2.png"
+               "${VPLKIT}" render --radius 0.5 --max-radius 30 --size 16 --rsm-size 32 --out "${WORK}/r2.png")
+foreach(bad 0 nan -1 3 inf)
+  expect_failure("--radius ${bad}" "--radius.*must be a number in \\(0, 2\\]" "${WORK}/r3.png"
+                 "${VPLKIT}" render --radius ${bad} --size 16 --rsm-size 32 --out "${WORK}/r3.png")
+endforeach()
+expect_failure("--preset that does not exist" "--preset.*not in" "${WORK}/r4.png" "${VPLKIT}" render --preset fast --size 16 --out "${WORK}/r4.png")
+expect_failure("--visibility of the Monte Carlo reference" "--visibility is an option of --method rsm-brute-force" "${WORK}/mc.pfm"
+               "${VPLKIT}" reference --visibility none --size 16 --out "${WORK}/mc.pfm")
+expect_failure("--samples of the brute-force reference" "--samples is an option of --method monte-carlo" "${WORK}/bf2.pfm"
+               "${VPLKIT}" reference --method rsm-brute-force --samples 4 --size 16 --out "${WORK}/bf2.pfm")
+expect_failure("--raw-indirect without indirect light" "gathers no indirect light" "${WORK}/direct-raw.png"
+               "${VPLKIT}" render --technique direct --raw-indirect --size 16 --rsm-size 32 --out "${WORK}/direct-raw.png")
+if(EXISTS "${WORK}/direct-raw-indirect.pfm")
+  message(SEND_ERROR "FAILED --raw-indirect without indirect light: left ${WORK}/direct-raw-indirect.pfm behind")
+  math(EXPR failures "${failures} + 1")
+endif()
+file(MAKE_DIRECTORY "${WORK}/blocked-receivers.pfm")
+expect_failure("brute-force reference whose mask cannot be written leaves nothing" "blocked-receivers\\.pfm" "${WORK}/blocked.pfm"
+               "${VPLKIT}" reference --method rsm-brute-force --size 16 --rsm-size 16 --out "${WORK}/blocked.pfm")
+if(EXISTS "${WORK}/blocked.png")
+  message(SEND_ERROR "FAILED brute-force reference: a failed write left blocked.png behind")
+  math(EXPR failures "${failures} + 1")
+endif()
 
 # No GL context: a window without a display.
 expect_failure("no GL context (window without a display)" "no GL context: GLFW" ""

@@ -125,3 +125,48 @@ TEST_CASE("PFM round trip, PNG reading, false colour, and errors naming the file
   CHECK_THROWS_WITH_AS(compare_images(gradient(4, 4), gradient(5, 4)), doctest::Contains("different sizes (4x4 and 5x4)"), vplkit::error);
   fs::remove_all(folder);
 }
+
+TEST_CASE("relative RMSE and bias: a scaled copy, an offset, and a mask that selects the pixels they count") {
+  // Reference: value 1 on the left half, 3 on the right half (every channel).
+  const int w = 8, h = 4;
+  float_image reference{w, h, std::vector<glm::vec3>(static_cast<std::size_t>(w * h))};
+  float_image mask = reference;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      reference.pixels[static_cast<std::size_t>(y * w + x)] = glm::vec3(x < w / 2 ? 1.0f : 3.0f);
+      mask.pixels[static_cast<std::size_t>(y * w + x)] = glm::vec3(x < w / 2 ? 1.0f : 0.2f);  // 0.2 <= 0.5: not counted
+    }
+  // 1.1 x the reference: bias exactly +10 %, RMSE = 0.1 sqrt(mean b^2) / mean b = 0.1 sqrt(5) / 2.
+  float_image scaled = reference;
+  for (glm::vec3& p : scaled.pixels) p *= 1.1f;
+  const relative_error whole = relative_error_of(scaled, reference);
+  CHECK(whole.pixels == static_cast<std::size_t>(w * h));
+  CHECK(whole.bias == doctest::Approx(0.1).epsilon(1e-5));
+  CHECK(whole.rmse == doctest::Approx(0.1 * std::sqrt(5.0) / 2.0).epsilon(1e-5));
+  // Over the mask (the left half, reference 1): bias and RMSE both 10 %.
+  const relative_error left = relative_error_of(scaled, reference, &mask);
+  CHECK(left.pixels == static_cast<std::size_t>(w * h / 2));
+  CHECK(left.bias == doctest::Approx(0.1).epsilon(1e-5));
+  CHECK(left.rmse == doctest::Approx(0.1).epsilon(1e-5));
+  // An offset of -0.5 on the left half only: bias -0.5 / 1 over the mask, -0.25 / 2 over all.
+  float_image darker = reference;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w / 2; ++x) darker.pixels[static_cast<std::size_t>(y * w + x)] -= glm::vec3(0.5f);
+  CHECK(relative_error_of(darker, reference, &mask).bias == doctest::Approx(-0.5));
+  CHECK(relative_error_of(darker, reference).bias == doctest::Approx(-0.125));
+  CHECK(relative_error_of(darker, reference).rmse == doctest::Approx(std::sqrt(0.125) / 2.0));
+  // compare_images reports both, the masked one only with a mask.
+  const image_metrics m = compare_images(darker, reference, &mask);
+  REQUIRE(m.masked);
+  CHECK(m.masked->bias == doctest::Approx(-0.5));
+  CHECK(m.relative.bias == doctest::Approx(-0.125));
+  CHECK_FALSE(compare_images(darker, reference).masked);
+  // An empty mask or a black reference: no pixels, zeros rather than NaN.
+  float_image nothing = mask;
+  for (glm::vec3& p : nothing.pixels) p = glm::vec3(0.0f);
+  const relative_error none = relative_error_of(scaled, reference, &nothing);
+  CHECK(none.pixels == 0);
+  CHECK(none.rmse == 0.0);
+  CHECK(relative_error_of(scaled, nothing).rmse == 0.0);
+  CHECK_THROWS_AS(relative_error_of(scaled, float_image{2, 2, std::vector<glm::vec3>(4)}), vplkit::error);
+}

@@ -1,10 +1,15 @@
 // The CPU reference (frontend/reference.hpp): closed forms for the direct light and for one
 // bounce off a uniformly lit floor, determinism, and the brute-force RSM gather with visibility
-// converging to the RSM-free Monte Carlo reference as the RSM resolution grows.
+// converging to the RSM-free Monte Carlo reference as the RSM resolution grows; the brute force
+// against the polygon form factor, with and without a known occluder, and the pattern's own
+// samples with ray-cast visibility.
 #include <doctest/doctest.h>
 
 #include <cmath>
 
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "frontend/error.hpp"
 #include "frontend/reference.hpp"
 #include "frontend/rsm_pipeline.hpp"
 #include "tests/closed_forms.hpp"
@@ -80,7 +85,10 @@ TEST_CASE("the brute-force RSM gather with visibility converges to the Monte Car
     rsm_pipeline pipeline(parity::test_shaders(), box, settings);
     pipeline.render();
     const rsm_pass_buffers buffers = pipeline.read_buffers();
-    const image_buffer brute = reference_rsm_gather(rays, buffers, pipeline.constants(), true, 2);
+    rsm_brute_force_options options;
+    options.exact_visibility = true;
+    options.threads = 2;
+    const image_buffer brute = reference_rsm_gather(rays, buffers, pipeline.constants(), options);
     double error = 0.0, level = 0.0;
     for (int y = 0; y < brute.height; ++y)
       for (int x = 0; x < brute.width; ++x) {
@@ -100,4 +108,113 @@ TEST_CASE("the brute-force RSM gather with visibility converges to the Monte Car
     previous = relative;
   }
   CHECK(previous < 0.2);
+}
+
+namespace {
+
+// A synthetic frame for the brute-force RSM gather: an RSM of n x n texels showing a 2a x 2a
+// floor at y = 0 lit uniformly (flux per texel = radiosity x texel area), seen by an orthographic
+// light from straight above, and one receiver at height h facing down over the floor's centre.
+struct floor_frame {
+  rsm_pass_buffers buffers;
+  rsm_frame_constants constants;
+  floor_frame(int n, float a, float h, float radiosity) {
+    const float texel = 2.0f * a / static_cast<float>(n);
+    for (image_buffer& target : buffers.rsm) {
+      target.width = target.height = n;
+      target.texels.assign(static_cast<std::size_t>(n) * static_cast<std::size_t>(n), glm::vec4(0.0f));
+    }
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        const glm::ivec2 t(x, y);
+        buffers.rsm[0].at(t) = glm::vec4((static_cast<float>(x) + 0.5f) * texel - a, 0.0f, a - (static_cast<float>(y) + 0.5f) * texel, -5.0f);
+        buffers.rsm[1].at(t) = glm::vec4(0, 1, 0, 0);
+        buffers.rsm[2].at(t) = glm::vec4(glm::vec3(radiosity * texel * texel), 0.0f);
+      }
+    for (int i = 0; i < 3; ++i) {
+      buffers.gbuffer[i].width = buffers.gbuffer[i].height = 1;
+      buffers.gbuffer[i].texels.assign(1, glm::vec4(0.0f));
+    }
+    buffers.gbuffer[0].texels[0] = glm::vec4(0.0f, h, 0.0f, -3.0f);
+    buffers.gbuffer[2].texels[0] = glm::vec4(0.0f, -1.0f, 0.0f, 0.0f);
+    const glm::mat4 view = glm::lookAt(glm::vec3(0, 5, 0), glm::vec3(0), glm::vec3(0, 0, -1));
+    constants.light.view = view;
+    constants.light.view_projection = glm::ortho(-a, a, -a, a, 0.1f, 20.0f) * view;
+    constants.gather.light_view = view;
+    constants.gather.rsm_size = glm::ivec2(n);
+    constants.gather.irradiance.min_distance = 1e-4f;
+    constants.image_size = constants.indirect_size = glm::ivec2(1);
+    constants.indirect_divisor = 1;
+  }
+};
+
+}  // namespace
+
+TEST_CASE("brute-force RSM gather: a receiver facing a uniformly lit square floor gets the polygon form factor (Howell B-3)") {
+  const float a = 1.0f, h = 0.5f, radiosity = 2.0f;
+  const floor_frame frame(256, a, h, radiosity);
+  mesh floor;
+  add_quad(floor, {-a, 0, a}, {a, 0, a}, {a, 0, -a}, {-a, 0, -a}, {0, 1, 0}, glm::vec3(0.5f));
+  const ray_scene rays(floor);
+  rsm_brute_force_options options;
+  options.threads = 2;
+  // E = B F for a Lambertian source of radiosity B; F of the square = 4 x B-3 with a corner below.
+  const double exact = radiosity * 4.0 * parallel_rectangle(a, a, h);
+  const glm::vec4 none = reference_rsm_gather(rays, frame.buffers, frame.constants, options).texels[0];
+  CHECK(none.x == doctest::Approx(exact).epsilon(2e-3));
+  CHECK(none.w == 1.0f);
+  // Nothing between the receiver and the floor: exact visibility keeps everything.
+  options.exact_visibility = true;
+  const glm::vec4 seen = reference_rsm_gather(rays, frame.buffers, frame.constants, options).texels[0];
+  CHECK(seen.x == doctest::Approx(exact).epsilon(2e-3));
+  // Cut to a radius of r texels: a coaxial disk of radius R = r x texel, F = R^2 / (R^2 + h^2).
+  options.exact_visibility = false;
+  options.max_radius = 64.0f;
+  const double disk_radius = 64.0 * 2.0 * a / 256.0;
+  const glm::vec4 cut = reference_rsm_gather(rays, frame.buffers, frame.constants, options).texels[0];
+  CHECK(cut.x == doctest::Approx(radiosity * disk_radius * disk_radius / (disk_radius * disk_radius + h * h)).epsilon(5e-3));
+}
+
+TEST_CASE("brute-force RSM gather with exact visibility: a square occluder halfway up hides the floor square twice its size") {
+  // An occluder [-b, b]^2 at height h/2 (in the ray scene only: the light does not see it, so
+  // the RSM is still the whole floor): from the receiver at height h it hides [-2b, 2b]^2 of the
+  // floor, so the visible irradiance is B (F(a) - F(2b)).
+  const float a = 1.0f, h = 0.5f, b = 0.2f, radiosity = 2.0f;
+  const floor_frame frame(256, a, h, radiosity);
+  mesh scene;
+  add_quad(scene, {-a, 0, a}, {a, 0, a}, {a, 0, -a}, {-a, 0, -a}, {0, 1, 0}, glm::vec3(0.5f));
+  add_quad(scene, {-b, h / 2, b}, {b, h / 2, b}, {b, h / 2, -b}, {-b, h / 2, -b}, {0, 1, 0}, glm::vec3(0.5f));
+  const ray_scene rays(scene);
+  rsm_brute_force_options options;
+  options.exact_visibility = true;
+  options.threads = 2;
+  const glm::vec4 seen = reference_rsm_gather(rays, frame.buffers, frame.constants, options).texels[0];
+  const double whole = 4.0 * parallel_rectangle(a, a, h), hidden = 4.0 * parallel_rectangle(2 * b, 2 * b, h);
+  CHECK(seen.x == doctest::Approx(radiosity * (whole - hidden)).epsilon(1e-2));
+  CHECK(seen.w == doctest::Approx((whole - hidden) / whole).epsilon(1e-2));
+  // The receiver stride leaves the receivers it skips at 0 (here, none: one receiver).
+  options.receiver_stride = 0;
+  CHECK_THROWS_AS(reference_rsm_gather(rays, frame.buffers, frame.constants, options), vplkit::error);
+}
+
+TEST_CASE("the radial pattern's own samples with ray-cast visibility: no occluder equals the gather, an occluder removes its share") {
+  const float a = 1.0f, h = 0.5f, b = 0.2f, radiosity = 2.0f;
+  floor_frame frame(256, a, h, radiosity);
+  frame.constants.gather.radial = make_radial_pattern_constants(radial_pattern_settings<float>{32, 16, 1.0f, 256.0f});
+  mesh floor;
+  add_quad(floor, {-a, 0, a}, {a, 0, a}, {a, 0, -a}, {-a, 0, -a}, {0, 1, 0}, glm::vec3(0.5f));
+  mesh blocked = floor;
+  add_quad(blocked, {-b, h / 2, b}, {b, h / 2, b}, {b, h / 2, -b}, {-b, h / 2, -b}, {0, 1, 0}, glm::vec3(0.5f));
+  const ray_scene open_rays(floor), blocked_rays(blocked);
+  const image_buffer open = gather_with_ray_cast_visibility(open_rays, frame.buffers, frame.constants, 1, 1);
+  const auto fetch = [&](glm::ivec2 t) {
+    const glm::vec4 p = frame.buffers.rsm[0].at(t);
+    return rsm_texel<float>{glm::vec3(p), p.w, glm::vec3(frame.buffers.rsm[1].at(t)), glm::vec3(frame.buffers.rsm[2].at(t))};
+  };
+  const gather_receiver<float> receiver{glm::vec3(0, h, 0), glm::vec3(0, -1, 0),
+                                        map_coordinate(frame.constants.light.view_projection, glm::vec3(0, h, 0), glm::ivec2(256)), glm::uvec2(0)};
+  CHECK(open.texels[0].x == doctest::Approx(gather_rsm<rsm_pattern::radial, rsm_visibility::none>(receiver, fetch, frame.constants.gather).x));
+  const image_buffer shadowed = gather_with_ray_cast_visibility(blocked_rays, frame.buffers, frame.constants, 1, 1);
+  const double hidden_share = parallel_rectangle(2 * b, 2 * b, h) / parallel_rectangle(a, a, h);
+  CHECK(shadowed.texels[0].x / open.texels[0].x == doctest::Approx(1.0 - hidden_share).epsilon(0.15));
 }

@@ -21,8 +21,7 @@ rsm_pipeline_settings small_settings(const std::string& technique) {
   settings.rsm_size = 64;
   settings.format = texel_format::rgba32f;
   settings.technique = technique;
-  settings.radial.max_radius = 16.0f;  // the thesis's 1/8 of the RSM
-  settings.disk.max_radius = 16.0f;
+  settings.radius = 0.25f;  // 16 texels of the 64^2 RSM
   settings.bilateral.kernel_size = 9;
   return settings;
 }
@@ -169,7 +168,7 @@ TEST_CASE("RSM pipeline settings are validated with the setting's name") {
   settings = small_settings("rsm-alg7");
   CHECK_THROWS_WITH_AS(rsm_pipeline(shaders, make_cornell_box(), settings), doctest::Contains("rsm-alg6"), vplkit::error);
   settings = small_settings("rsm-alg6");
-  settings.radial.max_radius = 0.5f;
+  settings.radius = 0.5f / 64.0f;  // half a texel: inside r_min
   CHECK_THROWS_WITH_AS(rsm_pipeline(shaders, make_cornell_box(), settings), doctest::Contains("max_radius"), vplkit::error);
   settings = small_settings("rsm-alg6");
   settings.indirect_divisor = 3;
@@ -200,4 +199,25 @@ TEST_CASE("built-in scenes: the instanced scene reaches the thesis's scale, ever
     }
     CHECK(total > 0.0f);
   }
+}
+
+TEST_CASE("the occlusion scenes: the atrium reaches the thesis's Sponza scale, the occluder variants differ only in the panel") {
+  const scene atrium = built_in_scene("atrium");
+  CHECK(atrium.geometry.triangle_count() >= 250000);
+  CHECK(atrium.light.kind == light_kind::directional);
+  // The tessellation scales the count (columns, arches and curtains) and is range-checked.
+  CHECK(make_atrium_scene(8).geometry.triangle_count() < atrium.geometry.triangle_count() / 20);
+  CHECK_THROWS_WITH_AS(make_atrium_scene(3), doctest::Contains("tessellation must be in [4, 512]"), vplkit::error);
+  for (const vertex& v : atrium.geometry.vertices) {
+    REQUIRE(std::isfinite(v.position.x + v.position.y + v.position.z));
+    REQUIRE(glm::length(v.normal) == doctest::Approx(1.0f).epsilon(1e-4));
+  }
+  const scene dark = built_in_scene("occluder"), white = built_in_scene("occluder-white");
+  REQUIRE(dark.geometry.vertices.size() == white.geometry.vertices.size());
+  std::size_t different = 0;
+  for (std::size_t i = 0; i < dark.geometry.vertices.size(); ++i) {
+    CHECK(dark.geometry.vertices[i].position == white.geometry.vertices[i].position);
+    different += dark.geometry.vertices[i].albedo != white.geometry.vertices[i].albedo;
+  }
+  CHECK(different == 24);  // the panel: a box of 6 quads
 }

@@ -37,7 +37,7 @@ void check_renders(const mesh& geometry, const std::string& name) {
   rsm_pipeline_settings settings;
   settings.width = settings.height = 48;
   settings.rsm_size = 64;
-  settings.radial.max_radius = 16.0f;
+  settings.radius = 0.25f;
   rsm_pipeline pipeline(parity::test_shaders(), frame_mesh(name, geometry), settings);
   const rsm_frame frame = pipeline.render();
   std::size_t lit = 0;

@@ -1,0 +1,178 @@
+#include "bench/rsm_measure.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "frontend/error.hpp"
+
+namespace vplkit {
+
+namespace {
+
+std::size_t index_of(const float_image& image, int x, int y) {
+  return static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) + static_cast<std::size_t>(x);
+}
+
+float_image blank(const frame_reference& reference) {
+  return {reference.constants.indirect_size.x, reference.constants.indirect_size.y,
+          std::vector<glm::vec3>(static_cast<std::size_t>(reference.constants.indirect_size.x) * static_cast<std::size_t>(reference.constants.indirect_size.y),
+                                 glm::vec3(0.0f))};
+}
+
+// The post pass's full-resolution filtered indirect light at the G-buffer texels of the indirect
+// buffer's receivers (rows bottom-up, as the read-back).
+float_image filtered_at_receivers(const rsm_frame& frame, const frame_reference& reference) {
+  float_image out = blank(reference);
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x) {
+      const glm::ivec2 pixel = glm::min(glm::ivec2(x, y) * reference.constants.indirect_divisor, reference.constants.image_size - 1);
+      const std::size_t i = 4 * (static_cast<std::size_t>(pixel.y) * static_cast<std::size_t>(frame.width) + static_cast<std::size_t>(pixel.x));
+      out.pixels[index_of(out, x, y)] = glm::vec3(frame.indirect[i], frame.indirect[i + 1], frame.indirect[i + 2]);
+    }
+  return out;
+}
+
+void accumulate(relative_error& sum, const relative_error& value, int seeds) {
+  sum.rmse += value.rmse / seeds;
+  sum.bias += value.bias / seeds;
+  sum.pixels = value.pixels;
+}
+
+}  // namespace
+
+float_image rgb_of(const image_buffer& buffer) {
+  float_image out{buffer.width, buffer.height, std::vector<glm::vec3>(buffer.texels.size())};
+  for (std::size_t i = 0; i < buffer.texels.size(); ++i) out.pixels[i] = glm::vec3(buffer.texels[i]);
+  return out;
+}
+
+frame_reference make_frame_reference(const shader_library& shaders, const scene& source, const rsm_pipeline_settings& settings, int stride,
+                                     int threads) {
+  frame_reference reference;
+  reference.source = std::make_unique<scene>(source);
+  reference.rays = std::make_unique<ray_scene>(reference.source->geometry);
+  rsm_pipeline_settings frame_settings = settings;
+  frame_settings.technique = "rsm-radial";
+  rsm_pipeline pipeline(shaders, source, frame_settings);
+  pipeline.render();
+  reference.buffers = pipeline.read_buffers();
+  reference.constants = pipeline.constants();
+  reference.stride = stride;
+  rsm_brute_force_options options;
+  options.receiver_stride = stride;
+  options.threads = threads;
+  const image_buffer unoccluded = reference_rsm_gather(*reference.rays, reference.buffers, reference.constants, options);
+  options.exact_visibility = true;
+  const image_buffer exact = reference_rsm_gather(*reference.rays, reference.buffers, reference.constants, options);
+  reference.unoccluded = rgb_of(unoccluded);
+  reference.exact = rgb_of(exact);
+  reference.receivers = blank(reference);
+  reference.leak = blank(reference);
+  const std::vector<std::uint8_t> covered = rsm_covered_receivers(reference.buffers, reference.constants);
+  double all = 0.0, behind = 0.0, seen = 0.0, leak_all = 0.0, leak_seen = 0.0;
+  for (int y = 0; y < reference.unoccluded.height; y += stride)
+    for (int x = 0; x < reference.unoccluded.width; x += stride) {
+      const std::size_t i = index_of(reference.unoccluded, x, y);
+      const glm::vec3 u = reference.unoccluded.pixels[i], e = reference.exact.pixels[i];
+      const double u_sum = u.x + u.y + u.z, e_sum = e.x + e.y + e.z;
+      if (!(reference.buffers.gbuffer[0].at(glm::min(glm::ivec2(x, y) * reference.constants.indirect_divisor, reference.constants.image_size - 1)).w < 0.0f))
+        continue;
+      if (!covered[i]) {
+        ++reference.uncovered_count;
+        behind += u_sum;
+        continue;
+      }
+      reference.receivers.pixels[i] = glm::vec3(1.0f);
+      ++reference.receiver_count;
+      all += u_sum;
+      seen += e_sum;
+      if (u_sum > 0.0 && e_sum <= 0.8 * u_sum) {
+        reference.leak.pixels[i] = glm::vec3(1.0f);
+        ++reference.leak_count;
+        leak_all += u_sum;
+        leak_seen += e_sum;
+      }
+    }
+  reference.uncovered_share = all + behind > 0.0 ? behind / (all + behind) : 0.0;
+  reference.occluded_share = all > 0.0 ? 1.0 - seen / all : 0.0;
+  reference.leak_occluded_share = leak_all > 0.0 ? 1.0 - leak_seen / leak_all : 0.0;
+  return reference;
+}
+
+float_image brute_force_within(const frame_reference& reference, float radius, int threads) {
+  rsm_brute_force_options options;
+  options.receiver_stride = reference.stride;
+  options.max_radius = radius;
+  options.threads = threads;
+  return rgb_of(reference_rsm_gather(*reference.rays, reference.buffers, reference.constants, options));
+}
+
+technique_errors measure_technique(const shader_library& shaders, const scene& source, const rsm_pipeline_settings& settings,
+                                   const frame_reference& reference, int seeds) {
+  if (seeds < 1) throw error("measure_technique: seeds must be >= 1");
+  technique_errors errors;
+  errors.mean_raw = blank(reference);
+  errors.filtered_mean = blank(reference);
+  std::vector<float_image> raws;
+  for (int seed = 1; seed <= seeds; ++seed) {
+    rsm_pipeline_settings seeded = settings;
+    seeded.radial.seed = static_cast<std::uint32_t>(seed);
+    seeded.disk.seed = static_cast<std::uint32_t>(seed);
+    rsm_pipeline pipeline(shaders, source, seeded);
+    const rsm_frame frame = pipeline.render();
+    // Direct light only has no indirect buffer: its indirect light is 0 everywhere.
+    const image_buffer indirect = pipeline.read_buffers().indirect;
+    const float_image raw = indirect.texels.empty() ? blank(reference) : rgb_of(indirect);
+    const float_image filtered = filtered_at_receivers(frame, reference);
+    accumulate(errors.raw_vs_unoccluded, relative_error_of(raw, reference.unoccluded, &reference.receivers), seeds);
+    accumulate(errors.raw_vs_exact, relative_error_of(raw, reference.exact, &reference.receivers), seeds);
+    accumulate(errors.raw_leak, relative_error_of(raw, reference.exact, &reference.leak), seeds);
+    accumulate(errors.filtered_vs_exact, relative_error_of(filtered, reference.exact, &reference.receivers), seeds);
+    accumulate(errors.filtered_leak, relative_error_of(filtered, reference.exact, &reference.leak), seeds);
+    for (std::size_t i = 0; i < raw.pixels.size(); ++i) {
+      errors.mean_raw.pixels[i] += raw.pixels[i] / static_cast<float>(seeds);
+      errors.filtered_mean.pixels[i] += filtered.pixels[i] / static_cast<float>(seeds);
+    }
+    raws.push_back(raw);
+  }
+  if (seeds > 1) {
+    // E|x_i - mean|^2 = (n - 1) / n sigma^2: scale back to one seed's spread.
+    double noise = 0.0;
+    for (const float_image& raw : raws) noise += relative_error_of(raw, errors.mean_raw, &reference.receivers).rmse / seeds;
+    errors.raw_noise = noise * std::sqrt(static_cast<double>(seeds) / (seeds - 1));
+  }
+  return errors;
+}
+
+float_image ray_cast_gather(const frame_reference& reference, const rsm_pipeline_settings& settings, int seeds, int threads) {
+  float_image mean = blank(reference);
+  for (int seed = 1; seed <= seeds; ++seed) {
+    rsm_pipeline_settings seeded = settings;
+    seeded.radial.seed = static_cast<std::uint32_t>(seed);
+    seeded.disk.seed = static_cast<std::uint32_t>(seed);
+    const rsm_frame_constants constants = make_frame_constants(*reference.source, seeded);
+    const float_image gathered = rgb_of(gather_with_ray_cast_visibility(*reference.rays, reference.buffers, constants, reference.stride, threads));
+    for (std::size_t i = 0; i < gathered.pixels.size(); ++i) mean.pixels[i] += gathered.pixels[i] / static_cast<float>(seeds);
+  }
+  return mean;
+}
+
+std::vector<double> interleaved_frame_ms(const shader_library& shaders, const scene& source, const std::vector<rsm_pipeline_settings>& configurations,
+                                         int repeat) {
+  std::vector<std::unique_ptr<rsm_pipeline>> pipelines;
+  for (const rsm_pipeline_settings& settings : configurations) {
+    pipelines.push_back(std::make_unique<rsm_pipeline>(shaders, source, settings));
+    pipelines.back()->draw_wall_clock_ms();  // warm-up: shader JIT
+  }
+  std::vector<std::vector<double>> times(configurations.size());
+  for (int i = 0; i < repeat; ++i)
+    for (std::size_t c = 0; c < pipelines.size(); ++c) times[c].push_back(pipelines[c]->draw_wall_clock_ms());
+  std::vector<double> medians;
+  for (std::vector<double>& values : times) {
+    std::sort(values.begin(), values.end());
+    medians.push_back(values[values.size() / 2]);
+  }
+  return medians;
+}
+
+}  // namespace vplkit
