@@ -4,10 +4,11 @@
 // ranking (Eq. 5.3), Tables 5.11-5.13 (integrated shadows over the steps) and 5.14-5.15 (scene
 // complexity). Times: the wall clock of a whole frame in which nothing moved (VPLs and shadow maps
 // are rebuilt only when the light moves), read-back included, median of --repeat frames; the
-// rebuild is the extra time of a frame after the light moved. Not GL timer queries: llvmpipe
-// ends a single-pass frame's GL_TIME_ELAPSED query before its rasterizer threads have finished
-// (it reported 0.00 ms for frames that take milliseconds). Similarity: Alg. 1 (lightwave_similarity) on 8-bit sRGB images, a smaller
-// render stretched to the default size first, as the thesis does for Table 5.7.
+// rebuild is the extra time of a frame after the light moved. Not GL timer queries: on llvmpipe
+// GL_TIME_ELAPSED measures the span of the last rasterizer tiles, not the pass (it reported
+// 0.00 ms for frames that take milliseconds). Similarity: Alg. 1 (lightwave_similarity) on 8-bit
+// sRGB images, a smaller render stretched to the default size first, as the thesis does for
+// Table 5.7, next to the thesis's own numbers (Tables 5.5-5.9) and the RMSE of the 8-bit images.
 //   build/bench/vplkit_lightwave_sweep [--width 320] [--height 180] [--repeat 3] [--quick] [--out output/bench]
 // The thesis's 1280 x 720 is the default of `vplkit render`; llvmpipe needs the sweep smaller:
 // --width/--height scale every resolution of the tables by the same factor.
@@ -20,6 +21,7 @@
 #include <fstream>
 #include <iomanip>
 #include <iostream>
+#include <map>
 #include <sstream>
 
 #include "frontend/context.hpp"
@@ -37,6 +39,8 @@ struct result {
   lightwave_settings settings;
   double main_ms = 0.0, rebuild_ms = 0.0, similarity = 100.0;
   std::size_t triangles = 0;
+  double thesis_similarity = -1.0;  ///< the thesis's % similar for this row (Tables 5.5-5.9), -1: none
+  double rmse8 = 0.0;               ///< RMSE against the default on 8-bit images, values / 255
   double fps() const { return 1000.0 / std::max(main_ms, 1e-6); }
 };
 
@@ -100,7 +104,8 @@ int main(int argc, char** argv) {
     std::vector<std::uint8_t> reference;
     std::vector<result> results;
 
-    const auto run = [&](const std::string& table, const std::string& label, lightwave_settings settings, const std::string& scene_name) {
+    const auto run = [&](const std::string& table, const std::string& label, lightwave_settings settings, const std::string& scene_name,
+                         double thesis_similarity = -1.0) {
       const scene& source = scenes.at(scene_name);
       lightwave_pipeline pipeline(shaders, source, settings);
       pipeline.render();  // JIT warm-up; llvmpipe's first timer query is garbage
@@ -122,7 +127,12 @@ int main(int argc, char** argv) {
       if (scene_name == "boxes") {
         if (reference.empty()) reference = image;
         r.similarity = similarity_rgb(reference, image);
+        double squared = 0.0;
+        for (std::size_t i = 0; i < image.size(); ++i)
+          if (i % 4 != 3) squared += std::pow((static_cast<double>(image[i]) - static_cast<double>(reference[i])) / 255.0, 2.0);
+        r.rmse8 = std::sqrt(squared / (0.75 * static_cast<double>(image.size())));
       }
+      r.thesis_similarity = thesis_similarity;
       std::cerr << "  " << table << " " << label << ": " << fixed(r.main_ms, 2) << " ms, " << fixed(r.similarity, 3) << "% similar\n";
       results.push_back(r);
       return r;
@@ -130,38 +140,52 @@ int main(int argc, char** argv) {
 
     // The default configuration first: every similarity is against it.
     const result base = run("default", "default (accurate, 5 deg, 5 per ray, 20 maps)", defaults, "boxes");
+    // The thesis's % similar to its default (Tables 5.5-5.9), side by side.
+    const std::map<int, double> thesis_angle = {{10, 97.945}, {30, 97.956}, {45, 95.440}, {90, 92.676}};
+    const std::map<int, double> thesis_per_ray = {{4, 92.973}, {3, 93.458}, {2, 90.318}, {1, 91.591}, {6, 96.509}};
+    const std::map<int, double> thesis_resolution = {{1120, 99.547}, {960, 99.541}, {800, 99.418}, {640, 99.483}, {1440, 99.741}};
+    const std::map<int, double> thesis_maps = {{15, 99.475}, {10, 98.853}, {5, 93.611}, {1, 90.897}};
+    const std::map<std::string, double> thesis_alternatives = {{"direct", 84.426}, {"unshadowed", 98.563}, {"1.1", 88.217}, {"1.2", 90.675},
+                                                               {"1.3", 91.847}, {"1.4", 91.393}, {"1.5", 90.161}};
     for (int angle : {10, 30, 45, 90}) {
       lightwave_settings s = defaults;
       s.angle_deg = angle;
-      run("5.1/5.5 ray angle", std::to_string(angle) + " degrees, " + std::to_string(lightwave_vpl_count(angle, 5)) + " VPLs", s, "boxes");
+      run("5.1/5.5 ray angle", std::to_string(angle) + " degrees, " + std::to_string(lightwave_vpl_count(angle, 5)) + " VPLs", s, "boxes",
+          thesis_angle.at(angle));
     }
     for (int per_ray : {4, 3, 2, 1, 6}) {
       lightwave_settings s = defaults;
       s.per_ray = per_ray;
-      run("5.2/5.6 VPLs per ray", std::to_string(per_ray) + " per ray, " + std::to_string(lightwave_vpl_count(5, per_ray)) + " VPLs", s, "boxes");
+      run("5.2/5.6 VPLs per ray", std::to_string(per_ray) + " per ray, " + std::to_string(lightwave_vpl_count(5, per_ray)) + " VPLs", s, "boxes",
+          thesis_per_ray.at(per_ray));
     }
     for (const auto& [w, h] : std::vector<std::pair<int, int>>{{1120, 630}, {960, 540}, {800, 450}, {640, 360}, {1440, 810}}) {
       lightwave_settings s = defaults;
       s.width = w * width / 1280;
       s.height = h * height / 720;
-      run("5.3/5.7 resolution", std::to_string(w) + "x" + std::to_string(h) + " scaled: " + std::to_string(s.width) + "x" + std::to_string(s.height), s, "boxes");
+      run("5.3/5.7 resolution", std::to_string(w) + "x" + std::to_string(h) + " scaled: " + std::to_string(s.width) + "x" + std::to_string(s.height), s, "boxes",
+          thesis_resolution.at(w));
     }
     for (int maps : {15, 10, 5, 1}) {
       lightwave_settings s = defaults;
       s.accurate_maps = maps;
-      run("5.4/5.8 indirect shadow maps", std::to_string(maps) + " maps", s, "boxes");
+      run("5.4/5.8 indirect shadow maps", std::to_string(maps) + " maps", s, "boxes", thesis_maps.at(maps));
     }
     {
       lightwave_settings s = defaults;
-      s.technique = "lightwave-unshadowed";
-      run("5.4/5.8 indirect shadow maps", "0 maps (no indirect shadows)", s, "boxes");
+      s.accurate_maps = 0;
+      run("5.4/5.8 indirect shadow maps", "0 maps (no indirect shadows)", s, "boxes", thesis_alternatives.at("unshadowed"));
       s.technique = "lightwave-direct";
-      run("5.9 alternatives", "direct lighting only", s, "boxes");
+      run("5.9 alternatives", "direct lighting only", s, "boxes", thesis_alternatives.at("direct"));
       for (float m : {1.1f, 1.2f, 1.3f, 1.4f, 1.5f}) {
         s.technique = "lightwave-faked";
         s.faked_multiplier = m;
-        run("5.9 alternatives", "faked indirect " + fixed(m, 1) + "x", s, "boxes");
+        run("5.9 alternatives", "faked indirect " + fixed(m, 1) + "x", s, "boxes", thesis_alternatives.at(fixed(m, 1)));
       }
+      // The same tables with the thesis's own accurate shadows, for comparison.
+      lightwave_settings plain = defaults;
+      plain.shadow_variant = lightwave_shadow_variant::thesis;
+      run("5.8, thesis variant", "20 maps, thesis variant (uniform VPLs, maps along the normals, plain mean)", plain, "boxes");
     }
     if (!quick) {
       for (int steps : {2, 4, 6, 10}) {
@@ -199,10 +223,11 @@ int main(int argc, char** argv) {
     std::ostringstream md;
     md << "# Light Wave sweep\n\nDefault " << width << "x" << height << " (the thesis: 1280x720, scaled for llvmpipe), shadow maps "
        << defaults.shadow_map_scale << "x the screen, median wall clock of " << repeat << " frames with nothing moving (read-back included) on:\n\n```\n"
-       << describe_current_context() << "\n```\n\n| table | configuration | triangles | frame ms | FPS | rebuild ms | % similar | rank (Eq. 5.3) |\n|---|---|---:|---:|---:|---:|---:|---:|\n";
+       << describe_current_context() << "\n```\n\n| table | configuration | triangles | frame ms | FPS | rebuild ms | % similar | the thesis's % similar | RMSE vs default (8-bit) | rank (Eq. 5.3) |\n"
+          "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     std::ofstream csv_file;
     std::ostringstream csv;
-    csv << "table,configuration,technique,width,height,angle,per_ray,vpls,accurate_maps,integrated_steps,triangles,main_ms,fps,rebuild_ms,similarity,rank\n";
+    csv << "table,configuration,technique,width,height,angle,per_ray,vpls,accurate_maps,integrated_steps,triangles,main_ms,fps,rebuild_ms,similarity,thesis_similarity,rmse8,rank\n";
     std::vector<const result*> ranked;
     for (const result& r : results) {
       const double gain = r.fps() - base.fps();
@@ -211,11 +236,12 @@ int main(int argc, char** argv) {
       if (rankable) ranked.push_back(&r);
       md << "| " << r.table << " | " << r.label << " | " << r.triangles << " | " << fixed(r.main_ms, 2) << " | " << fixed(r.fps(), 1) << " | "
          << fixed(r.rebuild_ms, 1) << " | " << (r.triangles == base.triangles ? fixed(r.similarity, 3) : std::string("-")) << " | "
-         << (rankable ? fixed(rank, 2) : std::string("-")) << " |\n";
+         << (r.thesis_similarity >= 0.0 ? fixed(r.thesis_similarity, 3) : std::string("-")) << " | "
+         << (r.triangles == base.triangles ? fixed(r.rmse8, 5) : std::string("-")) << " | " << (rankable ? fixed(rank, 2) : std::string("-")) << " |\n";
       csv << r.table << ",\"" << r.label << "\"," << r.settings.technique << "," << r.settings.width << "," << r.settings.height << ","
           << r.settings.angle_deg << "," << r.settings.per_ray << "," << lightwave_vpl_count(r.settings.angle_deg, r.settings.per_ray) << ","
           << r.settings.accurate_maps << "," << r.settings.integrated_steps << "," << r.triangles << "," << r.main_ms << "," << r.fps() << ","
-          << r.rebuild_ms << "," << r.similarity << "," << rank << "\n";
+          << r.rebuild_ms << "," << r.similarity << "," << r.thesis_similarity << "," << r.rmse8 << "," << rank << "\n";
     }
     std::sort(ranked.begin(), ranked.end(), [&](const result* a, const result* b) {
       return lightwave_rank(a->fps() - base.fps(), a->similarity) > lightwave_rank(b->fps() - base.fps(), b->similarity);

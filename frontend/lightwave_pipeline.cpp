@@ -6,6 +6,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <vplkit/hash.hpp>
+#include <vplkit/lightwave.hpp>
 
 #include "frontend/debug_output.hpp"
 #include "frontend/error.hpp"
@@ -66,7 +67,9 @@ std::string validate(const lightwave_settings& settings) {
   // The vertex stage loops over every VPL, and llvmpipe ends a loop after 65535 iterations.
   if (vpls > 65535) return "at most 65535 VPLs (the per-vertex loop; llvmpipe stops loops there), got " + std::to_string(vpls);
   if (!(settings.max_distance >= 0.0f)) return "Light Wave max distance must be >= 0 (0: from the scene's size)";
-  if (settings.accurate_maps < 1 || settings.accurate_maps > 64) return "accurate shadow maps must be in [1, 64]";
+  if (settings.accurate_maps < 0 || settings.accurate_maps > 64) return "accurate shadow maps must be in [0, 64]";
+  if (settings.shadow_variant != lightwave_shadow_variant::importance && settings.shadow_variant != lightwave_shadow_variant::thesis)
+    return "shadow variant must be importance or thesis";
   if (settings.accurate_maps > vpls)
     return "more accurate shadow maps (" + std::to_string(settings.accurate_maps) + ") than VPLs (" + std::to_string(vpls) + ")";
   const int ring = 360 / settings.angle_deg;
@@ -74,7 +77,9 @@ std::string validate(const lightwave_settings& settings) {
     return "integrated shadow maps must be in [2, " + std::to_string(std::min(1 + ring, 64)) + "] (the axis VPL and a ring of the innermost hemisphere)";
   if (settings.integrated_steps < 0) return "integrated steps must be >= 0";
   if (settings.integrated_steps > 64) return "integrated steps must be <= 64";
-  if (!(settings.shadow_map_scale > 0.0f)) return "shadow map scale must be > 0";
+  if (!(settings.shadow_map_scale > 0.0f && settings.shadow_map_scale <= 16.0f)) return "shadow map scale must be in (0, 16]";
+  if (!(settings.faked_multiplier >= 0.5f && settings.faked_multiplier <= 4.0f))
+    return "faked multiplier must be in [0.5, 4] (Eq. 5.2; the thesis uses 1.1 .. 1.5)";
   if (!(settings.vpl_field_of_view > 1.0f && settings.vpl_field_of_view < 179.0f)) return "VPL shadow map field of view must be in (1, 179) degrees";
   if (settings.shading.specular_exponent < 1 || settings.shading.specular_exponent > 256) return "specular exponent must be in [1, 256]";
   if (!(settings.shading.specular_strength >= 0.0f)) return "specular strength must be >= 0";
@@ -105,16 +110,110 @@ std::vector<int> lightwave_shadow_vpls(lightwave_mode mode, const lightwave_sett
   return chosen;
 }
 
+std::vector<lightwave_shadow_caster> lightwave_importance_vpls(const std::vector<lightwave_vpl<float>>& vpls,
+                                                               const std::vector<lightwave_receiver_point>& points, int count, std::uint32_t seed) {
+  std::vector<double> weight(vpls.size(), 0.0);
+  double total = 0.0;
+  for (std::size_t i = 0; i < vpls.size(); ++i) {
+    for (const lightwave_receiver_point& point : points) weight[i] += lightwave_vpl_weight(point.position, point.normal, vpls[i]);
+    total += weight[i];
+  }
+  std::vector<lightwave_shadow_caster> chosen;
+  if (!(total > 0.0) || count < 1) return chosen;
+  // Systematic sampling: the k-th pick at (k + u) / count of the cumulative weight. A VPL heavier
+  // than total / count would be picked twice: the repeat moves on to the next VPL not chosen.
+  const double offset = uniform_float_from_bits(hash_uint32(seed ^ 0x2545f491u));
+  std::vector<char> taken(vpls.size(), 0);
+  std::size_t cursor = 0;
+  double cumulative = 0.0;
+  for (int k = 0; k < count; ++k) {
+    const double target = (static_cast<double>(k) + offset) / count * total;
+    while (cursor + 1 < vpls.size() && cumulative + weight[cursor] <= target) cumulative += weight[cursor++];
+    std::size_t pick = cursor;
+    while (pick < vpls.size() && (taken[pick] || weight[pick] <= 0.0)) ++pick;
+    if (pick == vpls.size()) break;
+    taken[pick] = 1;
+    chosen.push_back({static_cast<int>(pick), static_cast<float>(std::min(1.0, count * weight[pick] / total))});
+  }
+  return chosen;
+}
+
+namespace {
+
+glm::mat4 look_along(const glm::vec3& position, const glm::vec3& direction) {
+  const glm::vec3 up = std::abs(direction.y) > 0.99f ? glm::vec3(0, 0, -1) : glm::vec3(0, 1, 0);
+  return glm::lookAt(position, position + direction, up);
+}
+
+// Points spread over the scene's surface in proportion to area (systematic over the triangles'
+// cumulative areas, barycentric coordinates from the hash), kept when the camera can see them
+// (inside its frustum, facing it): what the shadow casters are chosen and aimed for. Vertices
+// alone would weigh a 36-triangle box scene by its corners, and without the camera test the
+// underside of the floor would draw VPLs below it.
+std::vector<lightwave_receiver_point> visible_surface_points(const mesh& geometry, const camera& view, float aspect, int count) {
+  const glm::mat4 view_projection = camera_projection_matrix(view, aspect) * camera_view_matrix(view);
+  std::vector<double> cumulative;
+  double total = 0.0;
+  for (std::size_t t = 0; t + 2 < geometry.indices.size(); t += 3) {
+    const glm::vec3 a = geometry.vertices[geometry.indices[t]].position, b = geometry.vertices[geometry.indices[t + 1]].position,
+                    c = geometry.vertices[geometry.indices[t + 2]].position;
+    total += 0.5 * static_cast<double>(glm::length(glm::cross(b - a, c - a)));
+    cumulative.push_back(total);
+  }
+  std::vector<lightwave_receiver_point> points;
+  if (!(total > 0.0)) return points;
+  for (int k = 0; k < count; ++k) {
+    const double target = (k + 0.5) / count * total;
+    const std::size_t t = static_cast<std::size_t>(std::lower_bound(cumulative.begin(), cumulative.end(), target) - cumulative.begin());
+    const std::size_t base = 3 * std::min(t, cumulative.size() - 1);
+    float u = uniform_float_from_bits(hash_combine(0x51edu, static_cast<std::uint32_t>(k)));
+    float v = uniform_float_from_bits(hash_uint32(hash_combine(0x51edu, static_cast<std::uint32_t>(k))));
+    if (u + v > 1.0f) u = 1.0f - u, v = 1.0f - v;
+    const vertex& a = geometry.vertices[geometry.indices[base]];
+    const vertex& b = geometry.vertices[geometry.indices[base + 1]];
+    const vertex& c = geometry.vertices[geometry.indices[base + 2]];
+    const glm::vec3 normal = (1.0f - u - v) * a.normal + u * b.normal + v * c.normal;
+    if (!(glm::length(normal) > 0.0f)) continue;
+    const glm::vec3 position = (1.0f - u - v) * a.position + u * b.position + v * c.position;
+    const glm::vec4 clip = view_projection * glm::vec4(position, 1.0f);
+    const bool in_view = clip.w > 0.0f && std::abs(clip.x) <= clip.w && std::abs(clip.y) <= clip.w;
+    if (!in_view || !(glm::dot(normal, view.position - position) > 0.0f)) continue;
+    points.push_back({position, glm::normalize(normal)});
+  }
+  return points;
+}
+
+}  // namespace
+
+glm::mat4 lightwave_aimed_shadow_matrix(const lightwave_vpl<float>& vpl, const std::vector<lightwave_receiver_point>& points, float near_plane,
+                                        float far_plane, float aspect, float fallback_fov_degrees) {
+  glm::vec3 mean(0.0f);
+  for (const lightwave_receiver_point& point : points) {
+    const float w = lightwave_vpl_weight(point.position, point.normal, vpl);
+    if (w > 0.0f) mean += w * glm::normalize(point.position - vpl.position);
+  }
+  if (!(glm::length(mean) > 1e-6f)) return glm::perspective(glm::radians(fallback_fov_degrees), aspect, near_plane, far_plane) * look_along(vpl.position, vpl.normal);
+  const glm::vec3 axis = glm::normalize(mean);
+  const glm::mat4 view = look_along(vpl.position, axis);
+  // The half-angles that hold every lit point, across and up the map, plus 2 degrees.
+  float tan_x = 0.0f, tan_y = 0.0f;
+  for (const lightwave_receiver_point& point : points) {
+    if (!(lightwave_vpl_weight(point.position, point.normal, vpl) > 0.0f)) continue;
+    const glm::vec3 eye = glm::vec3(view * glm::vec4(point.position, 1.0f));
+    const float depth = std::max(-eye.z, 1e-4f);
+    tan_x = std::max(tan_x, std::abs(eye.x) / depth);
+    tan_y = std::max(tan_y, std::abs(eye.y) / depth);
+  }
+  const float max_half = glm::radians(80.0f), margin = glm::radians(2.0f);
+  const float half_y = std::min(max_half, std::max(std::atan(tan_y), std::atan(tan_x / aspect)) + margin);
+  return glm::perspective(2.0f * half_y, aspect, near_plane, far_plane) * view;
+}
+
 namespace {
 
 const lightwave_settings& checked(const lightwave_settings& settings) {
   if (const std::string problem = validate(settings); !problem.empty()) throw error("Light Wave settings: " + problem);
   return settings;
-}
-
-glm::mat4 look_along(const glm::vec3& position, const glm::vec3& direction) {
-  const glm::vec3 up = std::abs(direction.y) > 0.99f ? glm::vec3(0, 0, -1) : glm::vec3(0, 1, 0);
-  return glm::lookAt(position, position + direction, up);
 }
 
 }  // namespace
@@ -126,10 +225,11 @@ lightwave_pipeline::lightwave_pipeline(const shader_library& shaders, const scen
       mesh_(source.geometry),
       depth_program_(load_program(shaders, "scene.vert", "depth_only.frag")),
       shadow_framebuffer_(generate_framebuffer()),
-      target_(settings.width, settings.height, {settings.format}, true) {
+      target_(settings.width, settings.height, {settings.format, settings.format}, true) {
   if (source.light.kind != light_kind::spot) throw error("Light Wave needs a spot light; scene " + source.name + " has a directional one");
   if (const char* problem = validate(source.light.spot)) throw error("scene " + source.name + ": " + problem);
   const shader_defines defines = {{"VPLKIT_LIGHTWAVE_MODE", std::to_string(static_cast<int>(technique_.mode))},
+                                  {"VPLKIT_LIGHTWAVE_SHADOW_VARIANT", std::to_string(static_cast<int>(settings_.shadow_variant))},
                                   {"VPLKIT_LIGHTWAVE_INDIRECT", technique_.mode >= lightwave_mode::unshadowed ? "1" : "0"}};
   main_program_ = load_program(shaders, "lightwave.vert", "lightwave.frag", defines);
   capture_program_ = link_program("lightwave.vert (transform feedback)",
@@ -198,11 +298,28 @@ void lightwave_pipeline::rebuild() {
   const float near_plane = 0.01f * radius, far_plane = glm::length(light.position - box.centre()) + 2.0f * radius;
   shadow_matrices_.clear();
   shadow_matrices_.push_back(glm::perspective(2.0f * spot_light_frustum_half_angle(light), aspect, near_plane, far_plane) * look_along(light.position, light.direction));
-  for (int index : lightwave_shadow_vpls(technique_.mode, settings_)) {
-    const lightwave_vpl<float>& vpl = vpls_[static_cast<std::size_t>(index)];
-    shadow_matrices_.push_back(glm::perspective(glm::radians(settings_.vpl_field_of_view), aspect, near_plane, far_plane + max_distance) *
-                               look_along(vpl.position, vpl.normal));
+  // The shadow casters: drawn by importance or uniformly (accurate), the fixed ring (integrated).
+  // The integrated shadows keep the thesis's maps (along the VPLs' normals, one field of view):
+  // their in-between lookups interpolate a fragment's coordinates between two maps, which stands
+  // for an in-between light only when the maps share their projection; aimed maps of different
+  // fields of view darkened an empty plane (lowest factor 0.72, measured).
+  const bool importance = settings_.shadow_variant == lightwave_shadow_variant::importance && technique_.mode == lightwave_mode::accurate;
+  const std::vector<lightwave_receiver_point> points =
+      importance ? visible_surface_points(scene_.geometry, scene_.view, static_cast<float>(settings_.width) / static_cast<float>(settings_.height), 4096)
+                 : std::vector<lightwave_receiver_point>{};
+  casters_.clear();
+  if (technique_.mode == lightwave_mode::accurate && importance) {
+    casters_ = lightwave_importance_vpls(vpls_, points, settings_.accurate_maps, settings_.seed);
+  } else {
+    for (int index : lightwave_shadow_vpls(technique_.mode, settings_)) casters_.push_back({index, 1.0f});
   }
+  for (const lightwave_shadow_caster& caster : casters_) {
+    const lightwave_vpl<float>& vpl = vpls_[static_cast<std::size_t>(caster.vpl)];
+    shadow_matrices_.push_back(importance ? lightwave_aimed_shadow_matrix(vpl, points, near_plane, far_plane + max_distance, aspect, settings_.vpl_field_of_view)
+                                          : glm::perspective(glm::radians(settings_.vpl_field_of_view), aspect, near_plane, far_plane + max_distance) *
+                                                look_along(vpl.position, vpl.normal));
+  }
+  shadow_layers_used_ = static_cast<int>(shadow_matrices_.size());
 
   // Depth passes into the layers.
   glBindFramebuffer(GL_FRAMEBUFFER, shadow_framebuffer_.get());
@@ -213,7 +330,7 @@ void lightwave_pipeline::rebuild() {
   glEnable(GL_POLYGON_OFFSET_FILL);
   glPolygonOffset(2.0f, 4.0f);  // slope-scaled bias against shadow acne
   depth_program_.use();
-  for (int layer = 0; layer < shadow_layers_; ++layer) {
+  for (int layer = 0; layer < shadow_layers_used_; ++layer) {
     glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, shadow_maps_.get(), 0, layer);
     if (layer == 0 && glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
       throw error("Light Wave shadow map framebuffer is incomplete");
@@ -225,6 +342,13 @@ void lightwave_pipeline::rebuild() {
 
   const program& p = main_program_;
   for (std::size_t i = 0; i < shadow_matrices_.size(); ++i) p.set("shadow_matrix[" + std::to_string(i) + "]", shadow_matrices_[i]);
+  // Each caster's VPL and the inverse of the probability it was drawn with: the weights of its
+  // lookups (importance variant).
+  for (std::size_t i = 0; i < casters_.size(); ++i) {
+    const lightwave_vpl<float>& vpl = vpls_[static_cast<std::size_t>(casters_[i].vpl)];
+    p.set("caster_position_attenuation[" + std::to_string(i) + "]", glm::vec4(vpl.position, vpl.attenuation));
+    p.set("caster_normal_weight[" + std::to_string(i) + "]", glm::vec4(vpl.normal, 1.0f / casters_[i].probability));
+  }
   check_gl("building the Light Wave VPLs and shadow maps");
   dirty_ = false;
   ++rebuilds_;
@@ -243,11 +367,13 @@ lightwave_frame lightwave_pipeline::render() {
   glDisable(GL_CULL_FACE);
   glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  const GLfloat unshadowed[4] = {1.0f, 0.0f, 0.0f, 1.0f};  // the factor where no surface is
+  glClearBufferfv(GL_COLOR, 1, unshadowed);
   set_vertex_uniforms(main_program_);
   main_program_.set("shadow_maps", 1);
   set_uniforms(main_program_, "light", scene_.light.spot);
   set_uniforms(main_program_, "irradiance", settings_.irradiance);
-  main_program_.set("indirect_maps", shadow_layers_ - 1);
+  main_program_.set("indirect_maps", shadow_layers_used_ - 1);
   main_program_.set("integrated_steps", settings_.integrated_steps);
   main_program_.set("faked_multiplier", settings_.faked_multiplier);
   glActiveTexture(GL_TEXTURE0);
@@ -262,6 +388,7 @@ lightwave_frame lightwave_pipeline::render() {
   frame.width = settings_.width;
   frame.height = settings_.height;
   frame.radiance = target_.read_float(0);
+  frame.indirect_shadow = target_.read_float(1);
   frame.pass_times = timer_.collect();
   return frame;
 }

@@ -77,6 +77,7 @@ struct render_options {
   vplkit::rsm_pipeline_settings settings;
   vplkit::lightwave_settings lightwave;
   vplkit::final_gather_settings final_gather;
+  std::string lightwave_shadow_variant = "importance";
   std::string preset = "default";             // rsm_gather_preset: "default" or "thesis"
   std::optional<int> paths, samples_per_path, slots;  // explicit values override the preset
   std::optional<float> radius, max_radius_texels;
@@ -158,7 +159,11 @@ void add_render_options(CLI::App& command, render_options& options) {
   command.add_option("--vpls-per-ray", lw.per_ray, "Light Wave: VPLs per ray (stacked hemispheres)")->capture_default_str();
   command.add_option("--vpl-max-distance", lw.max_distance, "Light Wave: distance the hemispheres approach (0: from the scene's size)")
       ->capture_default_str();
-  command.add_option("--shadow-maps", lw.accurate_maps, "Light Wave: VPL shadow maps of the accurate shadows")->capture_default_str();
+  command.add_option("--shadow-maps", lw.accurate_maps, "Light Wave: VPL shadow maps of the accurate shadows (0: none)")->capture_default_str();
+  command.add_option("--shadow-variant", options.lightwave_shadow_variant,
+                     "Light Wave: importance (VPLs drawn by their light on the scene, maps aimed at it, lookups weighted by each VPL's light) "
+                     "or thesis (uniform VPLs, maps along their normals, the plain mean)")
+      ->check(CLI::IsMember({"importance", "thesis"}))->capture_default_str();
   command.add_option("--integrated-steps", lw.integrated_steps, "Light Wave: in-between lookups per pair of maps")->capture_default_str();
   command.add_option("--shadow-map-scale", lw.shadow_map_scale, "Light Wave: shadow map size in screens")->capture_default_str();
   command.add_option("--faked-multiplier", lw.faked_multiplier, "Light Wave: m of Eq. 5.2")->capture_default_str();
@@ -193,6 +198,7 @@ void finish_settings(render_options& options) {
     lw.format = options.format == "rgba32f" ? vplkit::texel_format::rgba32f : vplkit::texel_format::rgba16f;
     lw.irradiance = s.irradiance;
     lw.seed = s.radial.seed;
+    lw.shadow_variant = options.lightwave_shadow_variant == "thesis" ? vplkit::lightwave_shadow_variant::thesis : vplkit::lightwave_shadow_variant::importance;
   }
   s.format = options.format == "rgba32f" ? vplkit::texel_format::rgba32f : vplkit::texel_format::rgba16f;
   s.filter = options.filter == "separable" ? vplkit::post_filter::separable : vplkit::post_filter::full;
@@ -293,14 +299,23 @@ int run_lightwave(render_options& options, std::string out) {
   pipeline.set_light(source.light.spot);
   const vplkit::lightwave_frame first = pipeline.render();
   const vplkit::lightwave_frame frame = pipeline.render();
-  vplkit::write_png(out_path, frame.width, frame.height, vplkit::to_srgb8(frame.radiance, frame.width, frame.height));
+  std::vector<output_file> files{png_file(out_path, frame.width, frame.height, vplkit::to_srgb8(frame.radiance, frame.width, frame.height))};
+  if (pipeline.shadow_casters().size() > 0) {
+    // The indirect shadow factor as grey, linear (1 = white = not shadowed).
+    std::vector<float> factor(frame.indirect_shadow.size());
+    for (std::size_t i = 0; i < factor.size(); i += 4)
+      for (std::size_t c = 0; c < 4; ++c) factor[i + c] = c == 3 ? 1.0f : frame.indirect_shadow[i];
+    files.push_back(png_file(with_suffix(out_path, "-indirect-shadow"), frame.width, frame.height, vplkit::to_srgb8(factor, frame.width, frame.height)));
+  }
+  write_all(files);
   const double mebibytes = static_cast<double>(pipeline.shadow_map_bytes()) / (1024.0 * 1024.0);
   std::cout << "scene " << source.name << " (" << source.geometry.triangle_count() << " triangles), technique " << settings.technique << ", "
             << frame.width << "x" << frame.height << ", " << pipeline.vpl_count() << " VPLs (" << settings.angle_deg << " degrees, "
             << settings.per_ray << " per ray)\nshadow maps: " << std::fixed << std::setprecision(2) << mebibytes << " MB (Eq. 5.4/5.5)\n"
             << "a frame after the light moved (VPLs and shadow maps rebuilt):\n"
             << vplkit::format_pass_table(first.pass_times) << "next frames (nothing moved):\n"
-            << vplkit::format_pass_table(frame.pass_times) << "wrote " << fs::absolute(out_path).string() << "\n";
+            << vplkit::format_pass_table(frame.pass_times);
+  for (const output_file& file : files) std::cout << "wrote " << fs::absolute(file.path).string() << "\n";
   return 0;
 }
 

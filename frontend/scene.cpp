@@ -147,7 +147,11 @@ scene make_boxes_scene() {
   s.light.kind = light_kind::spot;
   s.light.spot.position = {0.6f, 2.2f, 0.8f};
   s.light.spot.direction = glm::normalize(glm::vec3(-0.6f, -2.2f, -0.8f));
-  s.light.spot.intensity = glm::vec3(8.0f);
+  // The thesis gives no intensity. Light Wave's indirect light does not scale with the light
+  // (Eq. 4.5 has no flux), so the intensity sets the share of direct light in the image; 1 puts
+  // "direct lighting only" at 85.7 % similar to the default (1280 x 720), near the thesis's
+  // 84.4 % (Table 5.9), the one number used to choose it.
+  s.light.spot.intensity = glm::vec3(1.0f);
   s.light.spot.cos_inner = std::cos(glm::radians(35.0f));
   s.light.spot.cos_outer = std::cos(glm::radians(50.0f));
   return s;

@@ -2,9 +2,13 @@
 // Light Wave main pass, fragment stage (paper 003, section 4.3, Eq. 4.9):
 //   colour = direct * shadow + indirect * indirect_shadow
 // VPLKIT_LIGHTWAVE_MODE: 0 direct only, 1 faked indirect (Eq. 5.2), 2 indirect without shadows,
-// 3 accurate indirect shadows (mean of the VPL shadow maps), 4 integrated indirect shadows
-// (lookups stepped between every pair of maps, lib/lightwave.glsl).
+// 3 accurate indirect shadows (the VPL shadow maps), 4 integrated indirect shadows (lookups
+// stepped between every pair of maps, lib/lightwave.glsl).
+// VPLKIT_LIGHTWAVE_SHADOW_VARIANT (accurate shadows): 0 importance, each lookup weighted by its
+// VPL's diffuse weight here over the probability it was drawn with, lookups outside a map not
+// voting; 1 thesis, the plain mean with outside counting as lit. See lightwave_settings.
 // Shadow maps: layer 0 of the depth array is the spot light's, layers 1 .. maps the VPLs'.
+// Output 1 is the indirect shadow factor (red), for tests and reports.
 #include "lib/direct_light.glsl"
 #include "lib/lightwave.glsl"
 
@@ -14,6 +18,8 @@ uniform spot_light light;
 uniform irradiance_settings irradiance;
 uniform sampler2DArrayShadow shadow_maps;
 uniform mat4 shadow_matrix[VPLKIT_MAX_SHADOW_MAPS + 1];
+uniform vec4 caster_position_attenuation[VPLKIT_MAX_SHADOW_MAPS];  // map i + 1's VPL
+uniform vec4 caster_normal_weight[VPLKIT_MAX_SHADOW_MAPS];         // its normal | 1 / probability
 uniform int indirect_maps;
 uniform int integrated_steps;
 uniform float faked_multiplier;
@@ -23,23 +29,21 @@ in vec3 world_normal;
 in vec3 surface_albedo;
 in vec3 vertex_indirect;
 layout(location = 0) out vec4 colour;
+layout(location = 1) out vec4 indirect_shadow;
 
-// Map coordinates in [0, 1] with the compared depth; the depth bias is in the raster state.
-vec3 shadow_coordinate(int layer) {
-  vec4 clip = shadow_matrix[layer] * vec4(world_position, 1.0);
-  return clip.xyz / clip.w * 0.5 + 0.5;
-}
+// (x, y, depth) in [0, 1] and whether the point is inside map `layer`'s frustum (lib/lightwave.glsl).
+vec4 map_coordinate(int layer) { return lightwave_map_coordinate(shadow_matrix[layer] * vec4(world_position, 1.0)); }
 
-// 1 = lit. Outside a map's frustum the map knows nothing: lit.
-float shadow_lookup(vec3 coordinate, int layer) {
-  if (any(lessThan(coordinate, vec3(0.0))) || any(greaterThan(coordinate, vec3(1.0)))) return 1.0;
-  return texture(shadow_maps, vec4(coordinate.xy, float(layer), coordinate.z));
-}
+// 1 = lit; the depth bias is in the raster state.
+float shadow_lookup(vec3 coordinate, int layer) { return texture(shadow_maps, vec4(coordinate.xy, float(layer), coordinate.z)); }
 
 void main() {
   vec3 n = normalize(world_normal);
   vec3 direct = surface_albedo * 0.318309886183790671538 * spot_light_irradiance(world_position, n, light, irradiance);
-  float shadow = shadow_lookup(shadow_coordinate(0), 0);
+  // Outside the light's frustum there is no direct light to shadow.
+  vec4 light_coordinate = map_coordinate(0);
+  float shadow = light_coordinate.w > 0.5 ? shadow_lookup(light_coordinate.xyz, 0) : 1.0;
+  float factor = 1.0;
 #if VPLKIT_LIGHTWAVE_MODE == 0
   colour = vec4(direct * shadow, 1.0);
 #elif VPLKIT_LIGHTWAVE_MODE == 1
@@ -47,23 +51,49 @@ void main() {
 #elif VPLKIT_LIGHTWAVE_MODE == 2
   colour = vec4(direct * shadow + vertex_indirect, 1.0);
 #elif VPLKIT_LIGHTWAVE_MODE == 3
-  float lit = 0.0;
-  for (int i = 1; i <= indirect_maps; ++i) lit += shadow_lookup(shadow_coordinate(i), i);
-  colour = vec4(direct * shadow + vertex_indirect * (lit / float(max(indirect_maps, 1))), 1.0);
+#if VPLKIT_LIGHTWAVE_SHADOW_VARIANT == 0
+  float lit = 0.0, weight = 0.0;
+  for (int i = 1; i <= indirect_maps; ++i) {
+    vec4 coordinate = map_coordinate(i);
+    vec4 caster = caster_position_attenuation[i - 1];
+    lightwave_vpl vpl = lightwave_vpl(caster.xyz, caster_normal_weight[i - 1].xyz, caster.w);
+    float w = coordinate.w * lightwave_vpl_weight(world_position, n, vpl) * caster_normal_weight[i - 1].w;
+    if (w > 0.0) {
+      lit += w * shadow_lookup(coordinate.xyz, i);
+      weight += w;
+    }
+  }
+  factor = weight > 0.0 ? lit / weight : 1.0;
 #else
+  float lit = 0.0;
+  for (int i = 1; i <= indirect_maps; ++i) {
+    vec4 coordinate = map_coordinate(i);
+    lit += coordinate.w > 0.5 ? shadow_lookup(coordinate.xyz, i) : 1.0;
+  }
+  factor = indirect_maps > 0 ? lit / float(indirect_maps) : 1.0;
+#endif
+  colour = vec4(direct * shadow + vertex_indirect * factor, 1.0);
+#else
+  // An endpoint behind or outside its map does not vote; the in-between lookups run only
+  // between two valid endpoints (their line then stays inside both maps' [0, 1] cube).
   float lit = 0.0;
   int lookups = 0;
   for (int a = 1; a <= indirect_maps; ++a) {
-    vec3 coordinate_a = shadow_coordinate(a);
+    vec4 coordinate_a = map_coordinate(a);
     for (int b = a + 1; b <= indirect_maps; ++b) {
-      vec3 coordinate_b = shadow_coordinate(b);
+      vec4 coordinate_b = map_coordinate(b);
       for (int lookup = 0; lookup <= integrated_steps + 1; ++lookup) {
-        vec4 step_point = lightwave_integrated_step(coordinate_a, coordinate_b, lookup, integrated_steps);
+        bool votes = lookup == 0 ? coordinate_a.w > 0.5
+                                 : lookup == integrated_steps + 1 ? coordinate_b.w > 0.5 : coordinate_a.w > 0.5 && coordinate_b.w > 0.5;
+        if (!votes) continue;
+        vec4 step_point = lightwave_integrated_step(coordinate_a.xyz, coordinate_b.xyz, lookup, integrated_steps);
         lit += shadow_lookup(step_point.xyz, step_point.w < 0.5 ? a : b);
         ++lookups;
       }
     }
   }
-  colour = vec4(direct * shadow + vertex_indirect * (lit / float(max(lookups, 1))), 1.0);
+  factor = lookups > 0 ? lit / float(lookups) : 1.0;
+  colour = vec4(direct * shadow + vertex_indirect * factor, 1.0);
 #endif
+  indirect_shadow = vec4(factor, 0.0, 0.0, 1.0);
 }

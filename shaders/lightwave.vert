@@ -3,6 +3,7 @@
 // from all VPLs (Eq. 4.5, lib/lightwave.glsl), read from a float texture: texel (0, i) holds
 // [position | attenuation] of VPL i, texel (1, i) its [normal | -]. No [0, 1] encoding (Eq. 4.3,
 // 4.4) is needed with float textures.
+#define VPLKIT_LIGHTWAVE_FETCH 1
 #include "lib/lightwave.glsl"
 
 layout(location = 0) in vec3 position;
@@ -20,18 +21,18 @@ out vec3 world_normal;
 out vec3 surface_albedo;
 out vec3 vertex_indirect;
 
+lightwave_vpl lightwave_fetch_vpl(int index) {
+  vec4 position_attenuation = texelFetch(vpl_texture, ivec2(0, index), 0);
+  return lightwave_vpl(position_attenuation.xyz, texelFetch(vpl_texture, ivec2(1, index), 0).xyz, position_attenuation.w);
+}
+
 void main() {
   vec3 n = normalize(normal);
-  vec3 sum = vec3(0.0);
 #if VPLKIT_LIGHTWAVE_INDIRECT
-  for (int i = 0; i < vpl_count; ++i) {
-    vec4 position_attenuation = texelFetch(vpl_texture, ivec2(0, i), 0);
-    lightwave_vpl vpl = lightwave_vpl(position_attenuation.xyz, texelFetch(vpl_texture, ivec2(1, i), 0).xyz, position_attenuation.w);
-    sum += lightwave_vpl_contribution(position, n, albedo, eye, vpl, shading);
-  }
-  sum /= float(max(vpl_count, 1));
+  vertex_indirect = lightwave_vertex_indirect(position, n, albedo, eye, vpl_count, shading);
+#else
+  vertex_indirect = vec3(0.0);
 #endif
-  vertex_indirect = sum;
   world_position = position;
   world_normal = n;
   surface_albedo = albedo;

@@ -25,6 +25,14 @@
 // with l = normalize(x - vpl), v = normalize(eye - x): a Phong lobe of the VPL seen in the mirror
 // direction, 0 for surfaces facing away from the VPL.
 //
+// Indirect shadows (section 4.3). Accurate: shadow maps from a few VPLs; a fragment's factor is
+// the mean of their lookups in the thesis. vplkit weights each lookup by that VPL's diffuse
+// weight at the fragment (lightwave_vpl_weight) over the probability with which it was chosen,
+// so the factor estimates the share of the VPL light that reaches the fragment, and lookups
+// behind or outside a map do not vote (lightwave_map_coordinate). Integrated: lookups stepped
+// between the coordinates of a fragment in every pair of maps (lightwave_integrated_step),
+// between valid endpoints only.
+//
 // GLSL twin: shaders/lib/lightwave.glsl.
 #pragma once
 
@@ -141,7 +149,35 @@ glm::vec<3, T, Q> lightwave_vpl_contribution(const glm::vec<3, T, Q>& x, const g
   return albedo * (object_term * light_term * strength) + glm::vec<3, T, Q>(specular);
 }
 
+/// The diffuse weight of one VPL at (x, n): Eq. 4.5 without the albedo and the specular term,
+/// obj * light * max(0, 1 - attenuation). The accurate indirect shadows weight each VPL's shadow
+/// lookup by it, so a VPL that is blocked removes the share of the light it brings.
+template <typename T, glm::qualifier Q>
+T lightwave_vpl_weight(const glm::vec<3, T, Q>& x, const glm::vec<3, T, Q>& n, const lightwave_vpl<T>& vpl) {
+  const glm::vec<3, T, Q> to_vpl = glm::normalize(vpl.position - x);
+  const T object_term = glm::max(T(0), glm::dot(n, to_vpl));
+  const T light_term = lightwave_lobe(glm::dot(vpl.normal, -to_vpl));
+  const T strength = glm::max(T(0), T(1) - vpl.attenuation);
+  return object_term * light_term * strength;
+}
+
+/// A point's place in a shadow map from its clip-space position there: (x, y, depth) in [0, 1]
+/// and w = 1 when the point is in front of the map's camera and inside its frustum, else 0.
+/// A point behind the camera (clip w <= 0) has no projection: dividing by a negative w mirrors it
+/// into the map, where it finds an occluder that does not exist (the streaks of the integrated
+/// shadows on open floor). Such a point, or one outside the map, does not vote.
+template <typename T>
+glm::vec<4, T> lightwave_map_coordinate(const glm::vec<4, T>& clip) {
+  if (!(clip.w > T(0))) return glm::vec<4, T>(0);
+  const glm::vec<3, T> coordinate = glm::vec<3, T>(clip) / clip.w * T(0.5) + T(0.5);
+  const bool inside = coordinate.x >= T(0) && coordinate.y >= T(0) && coordinate.z >= T(0) && coordinate.x <= T(1) &&
+                      coordinate.y <= T(1) && coordinate.z <= T(1);
+  return glm::vec<4, T>(coordinate, inside ? T(1) : T(0));
+}
+
 /// Eq. 4.5 summed over `count` VPLs from `fetch(int index) -> lightwave_vpl<T>`, divided by count.
+/// GLSL twin: lightwave_vertex_indirect, with the VPLs from the including shader's
+/// `lightwave_vpl lightwave_fetch_vpl(int index)` (define VPLKIT_LIGHTWAVE_FETCH first).
 template <typename T, glm::qualifier Q, typename Fetch>
 glm::vec<3, T, Q> lightwave_vertex_indirect(const glm::vec<3, T, Q>& x, const glm::vec<3, T, Q>& n, const glm::vec<3, T, Q>& albedo,
                                             const glm::vec<3, T, Q>& eye, Fetch&& fetch, int count,

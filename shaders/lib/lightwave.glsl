@@ -69,6 +69,33 @@ vec3 lightwave_vpl_contribution(vec3 x, vec3 n, vec3 albedo, vec3 eye, lightwave
   return albedo * (object_term * light_term * strength) + vec3(specular);
 }
 
+float lightwave_vpl_weight(vec3 x, vec3 n, lightwave_vpl vpl) {
+  vec3 to_vpl = normalize(vpl.position - x);
+  float object_term = max(0.0, dot(n, to_vpl));
+  float light_term = lightwave_lobe(dot(vpl.normal, -to_vpl));
+  float strength = max(0.0, 1.0 - vpl.attenuation);
+  return object_term * light_term * strength;
+}
+
+vec4 lightwave_map_coordinate(vec4 clip) {
+  if (!(clip.w > 0.0)) return vec4(0.0);
+  vec3 coordinate = clip.xyz / clip.w * 0.5 + 0.5;
+  bool inside = coordinate.x >= 0.0 && coordinate.y >= 0.0 && coordinate.z >= 0.0 && coordinate.x <= 1.0 && coordinate.y <= 1.0 &&
+                coordinate.z <= 1.0;
+  return vec4(coordinate, inside ? 1.0 : 0.0);
+}
+
+#ifdef VPLKIT_LIGHTWAVE_FETCH
+// Defined by the including shader: VPL number `index`.
+lightwave_vpl lightwave_fetch_vpl(int index);
+
+vec3 lightwave_vertex_indirect(vec3 x, vec3 n, vec3 albedo, vec3 eye, int count, lightwave_shading_settings settings) {
+  vec3 sum = vec3(0.0);
+  for (int index = 0; index < count; ++index) sum += lightwave_vpl_contribution(x, n, albedo, eye, lightwave_fetch_vpl(index), settings);
+  return count > 0 ? sum / float(count) : sum;
+}
+#endif
+
 int lightwave_integrated_shadow_count(int steps, int maps) { return (steps + 2) * (maps * (maps - 1) / 2); }
 
 vec4 lightwave_integrated_step(vec3 coordinate_a, vec3 coordinate_b, int lookup, int steps) {

@@ -7,7 +7,10 @@
 #include <cmath>
 #include <map>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "frontend/error.hpp"
+#include "frontend/image_io.hpp"
 #include "frontend/lightwave_pipeline.hpp"
 #include "tests/parity/parity_harness.hpp"
 
@@ -191,7 +194,11 @@ TEST_CASE("Light Wave settings errors name the setting") {
   s.integrated_steps = -1;
   CHECK(message(s).find("integrated steps must be >= 0") != std::string::npos);
   s = small("lightwave-accurate");
-  s.shadow_map_scale = 400.0f;  // 25600 x 14400
+  s.shadow_map_scale = 17.0f;
+  CHECK(message(s).find("shadow map scale must be in (0, 16]") != std::string::npos);
+  s.width = 1280;
+  s.height = 720;
+  s.shadow_map_scale = 14.0f;  // 17920 x 10080
   CHECK(message(s).find("GL_MAX_TEXTURE_SIZE") != std::string::npos);
   s = small("lightwave-accurate");
   s.width = 1280;
@@ -199,6 +206,136 @@ TEST_CASE("Light Wave settings errors name the setting") {
   s.shadow_map_scale = 12.0f;  // 15360 x 8640 x 21 layers: 10.4 GiB
   CHECK(message(s).find("GL_OUT_OF_MEMORY") != std::string::npos);
   s = small("lightwave-accurate");
-  s.accurate_maps = 0;
-  CHECK(message(s).find("accurate shadow maps must be in [1, 64]") != std::string::npos);
+  s.accurate_maps = 65;
+  CHECK(message(s).find("accurate shadow maps must be in [0, 64]") != std::string::npos);
+  s = small("lightwave-faked");
+  for (float bad : {std::nanf(""), -1.0f, 0.0f, 100.0f}) {
+    s.faked_multiplier = bad;
+    CHECK(message(s).find("faked multiplier must be in [0.5, 4]") != std::string::npos);
+  }
+}
+
+namespace {
+
+// A floor seen from straight above, a spot light over its left part, and optionally a wall
+// standing across the floor at x = 2 (2.5 high, above the light): the floor beyond it (x > 2) is
+// hidden from the VPLs on the light's side, among them the whole innermost hemisphere (2.7 from
+// the light), the brightest.
+scene wall_scene(bool with_wall) {
+  scene s;
+  s.name = with_wall ? "wall" : "plane";
+  add_quad(s.geometry, {-3, 0, 3}, {3, 0, 3}, {3, 0, -3}, {-3, 0, -3}, {0, 1, 0}, glm::vec3(0.7f));
+  if (with_wall) add_box(s.geometry, {2.0f, 1.25f, 0.0f}, {0.1f, 2.5f, 4.0f}, 0.0f, glm::vec3(0.7f));
+  s.view.position = {0.0f, 7.0f, 0.001f};
+  s.view.target = {0.0f, 0.0f, 0.0f};
+  s.view.vertical_fov_degrees = 50.0f;
+  s.light.kind = light_kind::spot;
+  s.light.spot.position = {-1.0f, 2.0f, 0.0f};
+  s.light.spot.direction = {0.0f, -1.0f, 0.0f};
+  s.light.spot.intensity = glm::vec3(4.0f);
+  s.light.spot.cos_inner = std::cos(glm::radians(50.0f));
+  s.light.spot.cos_outer = std::cos(glm::radians(65.0f));
+  return s;
+}
+
+// The mean indirect shadow factor over the floor pixels whose world point lies in [x0, x1] x [z0, z1].
+double mean_factor(const lightwave_frame& frame, const scene& s, float x0, float x1, float z0, float z1) {
+  const glm::mat4 view_projection = glm::perspective(glm::radians(s.view.vertical_fov_degrees), static_cast<float>(frame.width) / static_cast<float>(frame.height),
+                                                     s.view.near_plane, s.view.far_plane) *
+                                    glm::lookAt(s.view.position, s.view.target, s.view.up);
+  double sum = 0.0;
+  int count = 0;
+  for (float x = x0; x <= x1; x += 0.05f)
+    for (float z = z0; z <= z1; z += 0.05f) {
+      const glm::vec4 clip = view_projection * glm::vec4(x, 0.0f, z, 1.0f);
+      const int px = static_cast<int>((clip.x / clip.w * 0.5f + 0.5f) * static_cast<float>(frame.width));
+      const int py = static_cast<int>((clip.y / clip.w * 0.5f + 0.5f) * static_cast<float>(frame.height));
+      REQUIRE(px >= 0);
+      REQUIRE(py >= 0);
+      REQUIRE(px < frame.width);
+      REQUIRE(py < frame.height);
+      sum += frame.indirect_shadow[4 * (static_cast<std::size_t>(py) * static_cast<std::size_t>(frame.width) + static_cast<std::size_t>(px))];
+      ++count;
+    }
+  return sum / count;
+}
+
+lightwave_settings square(const char* technique) {
+  lightwave_settings settings = small(technique);
+  settings.width = settings.height = 128;
+  return settings;
+}
+
+}  // namespace
+
+TEST_CASE("accurate indirect shadows shadow: a wall hides the floor behind it from the brightest VPLs, open floor stays unshadowed") {
+  const scene s = wall_scene(true);
+  lightwave_pipeline pipeline(test_shaders(), s, square("lightwave-accurate"));
+  const lightwave_frame frame = pipeline.render();
+  REQUIRE(pipeline.shadow_casters().size() == 20u);
+  const double behind = mean_factor(frame, s, 2.1f, 2.7f, -0.8f, 0.8f);    // behind the wall
+  const double open = mean_factor(frame, s, -2.6f, -1.6f, -0.8f, 0.8f);    // far on the light's side
+  MESSAGE("accurate: mean indirect shadow factor behind the wall " << behind << ", on open floor " << open);
+  CHECK(behind < 0.9);
+  CHECK(open >= 0.99);
+  // The thesis's variant (uniform VPLs, maps along the normals, the plain mean) barely sees it.
+  lightwave_settings thesis = square("lightwave-accurate");
+  thesis.shadow_variant = lightwave_shadow_variant::thesis;
+  lightwave_pipeline thesis_pipeline(test_shaders(), s, thesis);
+  const double thesis_behind = mean_factor(thesis_pipeline.render(), s, 2.1f, 2.7f, -0.8f, 0.8f);
+  MESSAGE("thesis variant: mean factor behind the wall " << thesis_behind);
+  CHECK(thesis_behind > behind);
+}
+
+TEST_CASE("integrated indirect shadows over an empty plane: no darkening anywhere") {
+  const scene s = wall_scene(false);
+  lightwave_pipeline pipeline(test_shaders(), s, square("lightwave-integrated"));
+  const lightwave_frame frame = pipeline.render();
+  float lowest = 1.0f;
+  for (std::size_t i = 0; i < frame.indirect_shadow.size(); i += 4) lowest = std::min(lowest, frame.indirect_shadow[i]);
+  MESSAGE("integrated over an empty plane: lowest factor " << lowest);
+  CHECK(lowest >= 0.99f);
+  lightwave_pipeline accurate(test_shaders(), s, square("lightwave-accurate"));
+  const lightwave_frame accurate_frame = accurate.render();
+  lowest = 1.0f;
+  for (std::size_t i = 0; i < accurate_frame.indirect_shadow.size(); i += 4) lowest = std::min(lowest, accurate_frame.indirect_shadow[i]);
+  CHECK(lowest >= 0.99f);
+}
+
+TEST_CASE("the number of indirect shadow maps matters: 0, 1, 5, 10 and 20 maps give five different images") {
+  const scene boxes = make_boxes_scene();
+  std::map<int, std::vector<std::uint8_t>> images;
+  for (int maps : {0, 1, 5, 10, 20}) {
+    lightwave_settings settings = small("lightwave-accurate");
+    settings.width = 256;
+    settings.height = 144;
+    settings.accurate_maps = maps;
+    lightwave_pipeline pipeline(test_shaders(), boxes, settings);
+    const lightwave_frame frame = pipeline.render();
+    images[maps] = to_srgb8(frame.radiance, frame.width, frame.height);
+    if (maps == 0) {
+      // No maps: exactly the image without indirect shadows.
+      lightwave_settings unshadowed = settings;
+      unshadowed.technique = "lightwave-unshadowed";
+      lightwave_pipeline reference(test_shaders(), boxes, unshadowed);
+      const lightwave_frame plain = reference.render();
+      CHECK(to_srgb8(plain.radiance, plain.width, plain.height) == images[0]);
+    }
+  }
+  const auto rmse = [](const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      const double d = (static_cast<double>(a[i]) - static_cast<double>(b[i])) / 255.0;
+      sum += d * d;
+    }
+    return std::sqrt(sum / static_cast<double>(a.size()));
+  };
+  for (int a : {0, 1, 5, 10, 20})
+    for (int b : {0, 1, 5, 10, 20}) {
+      if (a >= b) continue;
+      CAPTURE(a);
+      CAPTURE(b);
+      MESSAGE(a << " against " << b << " maps: RMSE on 8-bit images " << rmse(images[a], images[b]));
+      CHECK(rmse(images[a], images[b]) > 1e-3);
+    }
 }

@@ -27,6 +27,7 @@ namespace {
 
 std::string include_lines(const kernel_source& source) {
   std::string text;
+  for (const auto& [name, value] : source.defines) text += "#define " + name + " " + value + "\n";
   for (const std::string& include : source.includes) text += "#include \"" + include + "\"\n";
   return text;
 }

@@ -26,6 +26,7 @@ const shader_library& test_shaders();
 
 struct kernel_source {
   std::string name;                   ///< for messages ("pixel_light_irradiance")
+  std::vector<std::pair<std::string, std::string>> defines;  ///< #define NAME VALUE lines before the includes
   std::vector<std::string> includes;  ///< lib files, e.g. "lib/irradiance.glsl"
   std::string declarations;           ///< uniforms and helper functions placed before main
   std::string body;                   ///< statements: read fin*/uin*, write fout*/uout*

@@ -96,6 +96,48 @@ TEST_CASE("parity: lightwave_lobe, lightwave_attenuation, lightwave_integrated_s
   require_parity(compare("lightwave_integrated_step", gpu.floats[1], second, inputs, {1e-7f, 0.0f, 4, 0.0, "one divide"}));
 }
 
+TEST_CASE("parity: lightwave_vpl_weight and lightwave_map_coordinate (behind, outside and inside a map)") {
+  kernel_inputs inputs;
+  inputs.width = 64;
+  inputs.height = 64;
+  inputs.floats.assign(4, std::vector<glm::vec4>(inputs.size()));
+  std::mt19937 random(33);
+  std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    inputs.floats[0][i] = glm::vec4(uniform(random), uniform(random), uniform(random), 0.05f * static_cast<float>(1 << (i % 5)));  // x | attenuation
+    inputs.floats[1][i] = glm::vec4(glm::normalize(glm::vec3(uniform(random), uniform(random), uniform(random))), 0.0f);         // n
+    inputs.floats[2][i] = glm::vec4(uniform(random) * 2.0f, uniform(random) * 2.0f, uniform(random) * 2.0f, 0.0f);               // VPL position
+    // A clip-space point: w from -1 to 3 (behind, at, in front of the camera), xyz past the frustum's edges too.
+    inputs.floats[3][i] = glm::vec4(uniform(random) * 2.0f, uniform(random) * 2.0f, uniform(random) * 2.0f, i % 7 == 0 ? 0.0f : uniform(random) * 2.0f + 1.0f);
+  }
+  kernel_source source;
+  source.name = "lightwave_vpl_weight, lightwave_map_coordinate";
+  source.includes = {"lib/lightwave.glsl"};
+  source.body = "lightwave_vpl vpl = lightwave_vpl(fin2.xyz, normalize(fin0.xyz - fin2.xyz + vec3(0.3, -0.2, 0.1)), fin0.w);\n"
+                "fout0 = vec4(lightwave_vpl_weight(fin0.xyz, fin1.xyz, vpl), 0.0, 0.0, 0.0);\n"
+                "fout1 = lightwave_map_coordinate(fin3);";
+  source.float_outputs = 2;
+  const kernel_outputs gpu = run_fragment(source, inputs);
+  std::vector<glm::vec4> weights(inputs.size()), coordinates(inputs.size());
+  std::size_t behind = 0, outside = 0, inside = 0;
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const glm::vec4 a = inputs.floats[0][i], n = inputs.floats[1][i], p = inputs.floats[2][i], clip = inputs.floats[3][i];
+    const lightwave_vpl<float> vpl{glm::vec3(p), glm::normalize(glm::vec3(a) - glm::vec3(p) + glm::vec3(0.3f, -0.2f, 0.1f)), a.w};
+    weights[i] = glm::vec4(lightwave_vpl_weight(glm::vec3(a), glm::vec3(n), vpl), 0.0f, 0.0f, 0.0f);
+    coordinates[i] = lightwave_map_coordinate(clip);
+    behind += !(clip.w > 0.0f);
+    outside += clip.w > 0.0f && coordinates[i].w == 0.0f;
+    inside += coordinates[i].w == 1.0f;
+  }
+  CHECK(behind > 100);  // every case is exercised
+  CHECK(outside > 100);
+  CHECK(inside > 100);
+  // Two normalisations and the lobe's divide: 8 ulp, 1e-7 absolute near 0. The coordinate: one
+  // divide and a multiply-add (4 ulp); its validity (w) is a decision and must match exactly.
+  require_parity(compare("lightwave_vpl_weight", gpu.floats[0], weights, inputs, {1e-7f, 0.0f, 8, 0.0, "two normalisations and a divide"}));
+  require_parity(compare("lightwave_map_coordinate", gpu.floats[1], coordinates, inputs, {1e-7f, 0.0f, 4, 0.0, "one divide"}));
+}
+
 TEST_CASE("parity: Eq. 4.5 summed over 1625 VPLs per vertex, in the vertex stage through transform feedback") {
   test_shaders();
   lightwave_layout_settings<float> layout = test_layout();
@@ -125,17 +167,17 @@ TEST_CASE("parity: Eq. 4.5 summed over 1625 VPLs per vertex, in the vertex stage
   }
   kernel_source source;
   source.name = "lightwave_vertex_indirect";
+  // The lib's lightwave_vertex_indirect, the function lightwave.vert calls, with the VPLs from a
+  // float texture as there (the pipeline test runs lightwave.vert itself on a scene).
+  source.defines = {{"VPLKIT_LIGHTWAVE_FETCH", "1"}};
   source.includes = {"lib/lightwave.glsl"};
   source.declarations = "uniform sampler2D vpl_texture;\nuniform int vpl_count;\nuniform vec3 eye;\n"
-                        "uniform lightwave_shading_settings shading;\n";
-  source.body = R"(
-    vec3 sum = vec3(0.0);
-    for (int i = 0; i < vpl_count; ++i) {
-      vec4 position_attenuation = texelFetch(vpl_texture, ivec2(0, i), 0);
-      lightwave_vpl vpl = lightwave_vpl(position_attenuation.xyz, texelFetch(vpl_texture, ivec2(1, i), 0).xyz, position_attenuation.w);
-      sum += lightwave_vpl_contribution(fin0.xyz, fin1.xyz, fin2.xyz, eye, vpl, shading);
-    }
-    fout0 = vec4(sum / float(vpl_count), 0.0);)";
+                        "uniform lightwave_shading_settings shading;\n"
+                        "lightwave_vpl lightwave_fetch_vpl(int index) {\n"
+                        "  vec4 position_attenuation = texelFetch(vpl_texture, ivec2(0, index), 0);\n"
+                        "  return lightwave_vpl(position_attenuation.xyz, texelFetch(vpl_texture, ivec2(1, index), 0).xyz, position_attenuation.w);\n"
+                        "}\n";
+  source.body = "fout0 = vec4(lightwave_vertex_indirect(fin0.xyz, fin1.xyz, fin2.xyz, eye, vpl_count, shading), 0.0);";
   source.float_outputs = 1;
   const kernel_outputs gpu = run_vertex(source, inputs, [&](const program& p) {
     p.set("vpl_texture", 0);
