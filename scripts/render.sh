@@ -5,4 +5,4 @@ cd "$(dirname "$0")/.."
 scripts/setup.sh
 build/vplkit render --out output/cornell-box.png "$@"
 echo "The images are in $(pwd)/output/: cornell-box.png (final), cornell-box-indirect.png,"
-echo "cornell-box-visibility-difference.png"
+echo "cornell-box-visibility-difference.png, and cornell-box-indirect.pfm (the linear indirect irradiance)"
