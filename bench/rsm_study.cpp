@@ -1,7 +1,7 @@
 // The study behind the RSM gather's defaults (paper 000): radius x paths x samples x slots,
 // measured against the brute-force gather of the same frame (the thesis's Fig. 5.1d), with
 // and without exact visibility, and timed in the same run.
-//   build/bench/vplkit_rsm_study [--scenes cornell-box,indirect-shadow,occluder,atrium]
+//   build/bench/vplkit_rsm_study [--scenes cornell-box,indirect-shadow,occluder,occluder-white,atrium]
 //       [--size 512] [--rsm-size 512] [--stride 4] [--seeds 4] [--quick] [--out output/study]
 // What is compared: the indirect irradiance of the gather (raw, and after the bilateral filter)
 // against the brute force on the same RSM and G-buffer, over the covered receivers (in front of
@@ -79,7 +79,7 @@ std::string percent(double value) { return fixed(100.0 * value, 1); }
 
 int main(int argc, char** argv) {
   CLI::App app{"RSM gather study (paper 000): radius x paths x samples x slots against the brute force, with cost"};
-  std::string scenes_text = "cornell-box,indirect-shadow,occluder,atrium", out = "output/study", timing_scene = "atrium";
+  std::string scenes_text = "cornell-box,indirect-shadow,occluder,occluder-white,atrium", out = "output/study", timing_scene = "atrium";
   std::string radii_text = "0.0625,0.125,0.25,0.5,0.75,1", samples_text = "15x10,20x15,30x20", slots_text = "4,5,8,12,16";
   int size = 512, rsm_size = 512, stride = 4, seeds = 4, repeat = 3;
   float min_radius = radial_pattern_settings<float>{}.min_radius;

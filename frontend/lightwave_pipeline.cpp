@@ -308,7 +308,7 @@ void lightwave_pipeline::rebuild() {
       importance ? visible_surface_points(scene_.geometry, scene_.view, static_cast<float>(settings_.width) / static_cast<float>(settings_.height), 4096)
                  : std::vector<lightwave_receiver_point>{};
   casters_.clear();
-  if (technique_.mode == lightwave_mode::accurate && importance) {
+  if (importance) {
     casters_ = lightwave_importance_vpls(vpls_, points, settings_.accurate_maps, settings_.seed);
   } else {
     for (int index : lightwave_shadow_vpls(technique_.mode, settings_)) casters_.push_back({index, 1.0f});

@@ -86,7 +86,7 @@ struct rsm_gather_preset {
 /// The defaults, chosen by the study of bench/rsm_study.cpp (docs/rsm-study.md) against the
 /// brute-force gather on four occlusion scenes: 3/4 of the RSM side is the smallest radius of
 /// the study whose gather misses at most ~1 % of the light the whole RSM delivers (1/8 missed
-/// 60-80 %, 1/2 up to 7 %), and 20 paths x 15 samples with 8 slots is the cheapest point of the
+/// 64-75 %, 1/2 up to 7 %), and 20 paths x 15 samples with 8 slots is the cheapest point of the
 /// study at which Alg. 6 lowers the error against exact visibility and at least halves the leak
 /// on every scene (5 slots over-occlude at 20 x 15: their error rose above no visibility's).
 template <typename T>
@@ -165,7 +165,8 @@ struct micro_linear_buffer_visibility {
 /// and `T operator()(const gather_receiver<T>&, T receiver_depth, const rsm_texel<T>& light)`,
 /// called for every sample that lands on a lit texel, near to far along each path. This is the
 /// one sampling loop: gather_rsm below passes the micro linear buffer, the ground truth
-/// (frontend/rsm_quality) passes a ray cast to measure the same samples with exact visibility.
+/// (gather_with_ray_cast_visibility in frontend/reference.hpp) passes a ray cast to measure the
+/// same samples with exact visibility. C++ only: the GLSL twin selects its visibility by define.
 template <rsm_pattern Pattern, typename T, typename Fetch, typename Visibility>
 glm::vec<3, T> gather_rsm_with(const gather_receiver<T>& receiver, Fetch&& fetch, const rsm_gather_settings<T>& settings,
                                Visibility&& visibility) {
