@@ -84,7 +84,7 @@ struct rsm_gather_preset {
 };
 
 /// The defaults, chosen by the study of bench/rsm_study.cpp (docs/rsm-study.md) against the
-/// brute-force gather on four occlusion scenes: 3/4 of the RSM side is the smallest radius of
+/// brute-force gather on five occlusion scenes: 3/4 of the RSM side is the smallest radius of
 /// the study whose gather misses at most ~1 % of the light the whole RSM delivers (1/8 missed
 /// 64-75 %, 1/2 up to 7 %), and 20 paths x 15 samples with 8 slots is the cheapest point of the
 /// study at which Alg. 6 lowers the error against exact visibility and at least halves the leak
