@@ -84,21 +84,15 @@ double median_ms(int repeat, Render&& render) {
 // each pixel drawn as a `magnify` x `magnify` block.
 void write_strip(const fs::path& path, const float_image& render, const float_image& reference, float exposure = 1.0f, int magnify = 1) {
   const int w = render.width, h = render.height, big_w = 3 * w * magnify, big_h = h * magnify;
+  const std::vector<std::uint8_t> panels[3] = {to_srgb8(rgba_from_float_image(render), w, h, exposure),
+                                               to_srgb8(rgba_from_float_image(reference), w, h, exposure), false_colour_error(render, reference, 0.0f)};
   std::vector<std::uint8_t> strip(static_cast<std::size_t>(big_w) * static_cast<std::size_t>(big_h) * 4);
-  const auto encode = [exposure](float v) {
-    v = std::clamp(v * exposure, 0.0f, 1.0f);
-    return static_cast<std::uint8_t>(std::lround(255.0f * (v <= 0.0031308f ? 12.92f * v : 1.055f * std::pow(v, 1.0f / 2.4f) - 0.055f)));
-  };
-  const std::vector<std::uint8_t> error = false_colour_error(render, reference, 0.0f);
   for (int y = 0; y < big_h; ++y)
     for (int x = 0; x < big_w; ++x) {
       const int panel = x / (w * magnify), sx = (x % (w * magnify)) / magnify, sy = y / magnify;
-      const std::size_t i = static_cast<std::size_t>(sy) * static_cast<std::size_t>(w) + static_cast<std::size_t>(sx);
+      const std::size_t i = (static_cast<std::size_t>(sy) * static_cast<std::size_t>(w) + static_cast<std::size_t>(sx)) * 4;
       const std::size_t o = (static_cast<std::size_t>(y) * static_cast<std::size_t>(big_w) + static_cast<std::size_t>(x)) * 4;
-      for (int c = 0; c < 4; ++c) {
-        const std::size_t k = static_cast<std::size_t>(c);
-        strip[o + k] = panel == 2 ? error[i * 4 + k] : c == 3 ? 255 : encode((panel == 0 ? render : reference).pixels[i][c]);
-      }
+      std::copy_n(panels[panel].begin() + static_cast<std::ptrdiff_t>(i), 4, strip.begin() + static_cast<std::ptrdiff_t>(o));
     }
   write_png(path, big_w, big_h, strip);
 }
@@ -110,7 +104,9 @@ float_image counted_receivers(const float_image& image, const frame_reference& r
   float_image out{w, h, std::vector<glm::vec3>(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), glm::vec3(0.0f))};
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
-      const std::size_t source = static_cast<std::size_t>(y * stride) * static_cast<std::size_t>(image.width) + static_cast<std::size_t>(x * stride);
+      // Indirect-buffer texel (x stride, y stride), GL rows bottom-up, in the top-down images.
+      const std::size_t source =
+          static_cast<std::size_t>(image.height - 1 - y * stride) * static_cast<std::size_t>(image.width) + static_cast<std::size_t>(x * stride);
       if (reference.receivers.pixels[source].x > 0.5f)
         out.pixels[static_cast<std::size_t>(h - 1 - y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)] = image.pixels[source];
     }

@@ -4,13 +4,15 @@
 #include <cmath>
 
 #include "frontend/error.hpp"
+#include "frontend/rsm_cpu_mirror.hpp"
 
 namespace vplkit {
 
 namespace {
 
-std::size_t index_of(const float_image& image, int x, int y) {
-  return static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) + static_cast<std::size_t>(x);
+// The pixel of a (top-down) float_image that holds indirect-buffer texel (x, y) (GL rows, bottom-up).
+std::size_t pixel_of_texel(const float_image& image, int x, int y) {
+  return static_cast<std::size_t>(image.height - 1 - y) * static_cast<std::size_t>(image.width) + static_cast<std::size_t>(x);
 }
 
 float_image blank(const frame_reference& reference) {
@@ -20,14 +22,14 @@ float_image blank(const frame_reference& reference) {
 }
 
 // The post pass's full-resolution filtered indirect light at the G-buffer texels of the indirect
-// buffer's receivers (rows bottom-up, as the read-back).
+// buffer's receivers.
 float_image filtered_at_receivers(const rsm_frame& frame, const frame_reference& reference) {
   float_image out = blank(reference);
   for (int y = 0; y < out.height; ++y)
     for (int x = 0; x < out.width; ++x) {
-      const glm::ivec2 pixel = glm::min(glm::ivec2(x, y) * reference.constants.indirect_divisor, reference.constants.image_size - 1);
+      const glm::ivec2 pixel = gbuffer_texel_of(glm::ivec2(x, y), reference.constants);
       const std::size_t i = 4 * (static_cast<std::size_t>(pixel.y) * static_cast<std::size_t>(frame.width) + static_cast<std::size_t>(pixel.x));
-      out.pixels[index_of(out, x, y)] = glm::vec3(frame.indirect[i], frame.indirect[i + 1], frame.indirect[i + 2]);
+      out.pixels[pixel_of_texel(out, x, y)] = glm::vec3(frame.indirect[i], frame.indirect[i + 1], frame.indirect[i + 2]);
     }
   return out;
 }
@@ -39,12 +41,6 @@ void accumulate(relative_error& sum, const relative_error& value, int seeds) {
 }
 
 }  // namespace
-
-float_image rgb_of(const image_buffer& buffer) {
-  float_image out{buffer.width, buffer.height, std::vector<glm::vec3>(buffer.texels.size())};
-  for (std::size_t i = 0; i < buffer.texels.size(); ++i) out.pixels[i] = glm::vec3(buffer.texels[i]);
-  return out;
-}
 
 frame_reference make_frame_reference(const shader_library& shaders, const scene& source, const rsm_pipeline_settings& settings, int stride,
                                      int threads) {
@@ -64,20 +60,19 @@ frame_reference make_frame_reference(const shader_library& shaders, const scene&
   const image_buffer unoccluded = reference_rsm_gather(*reference.rays, reference.buffers, reference.constants, options);
   options.exact_visibility = true;
   const image_buffer exact = reference_rsm_gather(*reference.rays, reference.buffers, reference.constants, options);
-  reference.unoccluded = rgb_of(unoccluded);
-  reference.exact = rgb_of(exact);
+  reference.unoccluded = float_image_from_buffer(unoccluded);
+  reference.exact = float_image_from_buffer(exact);
   reference.receivers = blank(reference);
   reference.leak = blank(reference);
-  const std::vector<std::uint8_t> covered = rsm_covered_receivers(reference.buffers, reference.constants);
+  const std::vector<std::uint8_t> covered = rsm_covered_receivers(reference.buffers, reference.constants, stride);
   double all = 0.0, behind = 0.0, seen = 0.0, leak_all = 0.0, leak_seen = 0.0;
   for (int y = 0; y < reference.unoccluded.height; y += stride)
     for (int x = 0; x < reference.unoccluded.width; x += stride) {
-      const std::size_t i = index_of(reference.unoccluded, x, y);
+      if (!gather_receiver_at(glm::ivec2(x, y), reference.buffers, reference.constants)) continue;  // no surface
+      const std::size_t i = pixel_of_texel(reference.unoccluded, x, y);
       const glm::vec3 u = reference.unoccluded.pixels[i], e = reference.exact.pixels[i];
       const double u_sum = u.x + u.y + u.z, e_sum = e.x + e.y + e.z;
-      if (!(reference.buffers.gbuffer[0].at(glm::min(glm::ivec2(x, y) * reference.constants.indirect_divisor, reference.constants.image_size - 1)).w < 0.0f))
-        continue;
-      if (!covered[i]) {
+      if (!covered[static_cast<std::size_t>(y) * static_cast<std::size_t>(reference.unoccluded.width) + static_cast<std::size_t>(x)]) {
         ++reference.uncovered_count;
         behind += u_sum;
         continue;
@@ -104,7 +99,7 @@ float_image brute_force_within(const frame_reference& reference, float radius, i
   options.receiver_stride = reference.stride;
   options.max_radius = radius;
   options.threads = threads;
-  return rgb_of(reference_rsm_gather(*reference.rays, reference.buffers, reference.constants, options));
+  return float_image_from_buffer(reference_rsm_gather(*reference.rays, reference.buffers, reference.constants, options));
 }
 
 technique_errors measure_technique(const shader_library& shaders, const scene& source, const rsm_pipeline_settings& settings,
@@ -122,7 +117,7 @@ technique_errors measure_technique(const shader_library& shaders, const scene& s
     const rsm_frame frame = pipeline.render();
     // Direct light only has no indirect buffer: its indirect light is 0 everywhere.
     const image_buffer indirect = pipeline.read_buffers().indirect;
-    const float_image raw = indirect.texels.empty() ? blank(reference) : rgb_of(indirect);
+    const float_image raw = indirect.texels.empty() ? blank(reference) : float_image_from_buffer(indirect);
     const float_image filtered = filtered_at_receivers(frame, reference);
     accumulate(errors.raw_vs_unoccluded, relative_error_of(raw, reference.unoccluded, &reference.receivers), seeds);
     accumulate(errors.raw_vs_exact, relative_error_of(raw, reference.exact, &reference.receivers), seeds);
@@ -151,7 +146,7 @@ float_image ray_cast_gather(const frame_reference& reference, const rsm_pipeline
     seeded.radial.seed = static_cast<std::uint32_t>(seed);
     seeded.disk.seed = static_cast<std::uint32_t>(seed);
     const rsm_frame_constants constants = make_frame_constants(*reference.source, seeded);
-    const float_image gathered = rgb_of(gather_with_ray_cast_visibility(*reference.rays, reference.buffers, constants, reference.stride, threads));
+    const float_image gathered = float_image_from_buffer(gather_with_ray_cast_visibility(*reference.rays, reference.buffers, constants, reference.stride, threads));
     for (std::size_t i = 0; i < gathered.pixels.size(); ++i) mean.pixels[i] += gathered.pixels[i] / static_cast<float>(seeds);
   }
   return mean;

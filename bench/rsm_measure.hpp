@@ -1,7 +1,7 @@
 // Measuring the RSM gather against its ground truth, for the study (rsm_study.cpp) and the
 // quality report (quality_report.cpp): the brute-force references of one frame, and a
 // technique's errors against them, raw and filtered, averaged over pattern seeds.
-// Every image here is at the indirect buffer's resolution, in the GL read-back's row order.
+// Every image here is at the indirect buffer's resolution, a float_image (rows top-down).
 #pragma once
 
 #include <cstddef>
@@ -61,8 +61,5 @@ float_image ray_cast_gather(const frame_reference& reference, const rsm_pipeline
 /// Wall-clock ms of one frame of each configuration (median of `repeat`, interleaved: A B C A B C).
 std::vector<double> interleaved_frame_ms(const shader_library& shaders, const scene& source, const std::vector<rsm_pipeline_settings>& configurations,
                                          int repeat);
-
-/// An indirect-resolution image of an image_buffer's RGB (same row order).
-float_image rgb_of(const image_buffer& buffer);
 
 }  // namespace vplkit

@@ -12,6 +12,7 @@
 #include <vplkit/lightwave.hpp>
 
 #include "frontend/error.hpp"
+#include "frontend/render_target.hpp"
 #include "frontend/image_io.hpp"
 
 namespace vplkit {
@@ -41,6 +42,15 @@ float_image float_image_from_rgba(const std::vector<float>& rgba, int width, int
       image.pixels[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)] =
           glm::vec3(rgba[source], rgba[source + 1], rgba[source + 2]);
     }
+  return image;
+}
+
+float_image float_image_from_buffer(const image_buffer& buffer) {
+  float_image image{buffer.width, buffer.height, std::vector<glm::vec3>(buffer.texels.size())};
+  for (int y = 0; y < buffer.height; ++y)
+    for (int x = 0; x < buffer.width; ++x)
+      image.pixels[static_cast<std::size_t>(buffer.height - 1 - y) * static_cast<std::size_t>(buffer.width) + static_cast<std::size_t>(x)] =
+          glm::vec3(buffer.at(glm::ivec2(x, y)));
   return image;
 }
 

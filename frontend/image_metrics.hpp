@@ -14,6 +14,8 @@
 
 namespace vplkit {
 
+struct image_buffer;  // frontend/render_target.hpp
+
 /// A linear RGB float image, rows top-down.
 struct float_image {
   int width = 0;
@@ -24,6 +26,9 @@ struct float_image {
 
 /// From the frontend's RGBA float read-back (rows bottom-up).
 float_image float_image_from_rgba(const std::vector<float>& rgba, int width, int height);
+
+/// From an image_buffer read back from a render target (rows bottom-up): its RGB.
+float_image float_image_from_buffer(const image_buffer& buffer);
 
 /// Back to RGBA floats with rows bottom-up (alpha 1), e.g. for to_srgb8.
 std::vector<float> rgba_from_float_image(const float_image& image);

@@ -188,18 +188,20 @@ std::vector<lightwave_receiver_point> visible_surface_points(const mesh& geometr
 glm::mat4 lightwave_aimed_shadow_matrix(const lightwave_vpl<float>& vpl, const std::vector<lightwave_receiver_point>& points, float near_plane,
                                         float far_plane, float aspect, float fallback_fov_degrees) {
   glm::vec3 mean(0.0f);
+  std::vector<glm::vec3> lit;  // the points this VPL lights
   for (const lightwave_receiver_point& point : points) {
     const float w = lightwave_vpl_weight(point.position, point.normal, vpl);
-    if (w > 0.0f) mean += w * glm::normalize(point.position - vpl.position);
+    if (!(w > 0.0f)) continue;
+    mean += w * glm::normalize(point.position - vpl.position);
+    lit.push_back(point.position);
   }
   if (!(glm::length(mean) > 1e-6f)) return glm::perspective(glm::radians(fallback_fov_degrees), aspect, near_plane, far_plane) * look_along(vpl.position, vpl.normal);
   const glm::vec3 axis = glm::normalize(mean);
   const glm::mat4 view = look_along(vpl.position, axis);
   // The half-angles that hold every lit point, across and up the map, plus 2 degrees.
   float tan_x = 0.0f, tan_y = 0.0f;
-  for (const lightwave_receiver_point& point : points) {
-    if (!(lightwave_vpl_weight(point.position, point.normal, vpl) > 0.0f)) continue;
-    const glm::vec3 eye = glm::vec3(view * glm::vec4(point.position, 1.0f));
+  for (const glm::vec3& position : lit) {
+    const glm::vec3 eye = glm::vec3(view * glm::vec4(position, 1.0f));
     const float depth = std::max(-eye.z, 1e-4f);
     tan_x = std::max(tan_x, std::abs(eye.x) / depth);
     tan_y = std::max(tan_y, std::abs(eye.y) / depth);
@@ -319,7 +321,6 @@ void lightwave_pipeline::rebuild() {
                                           : glm::perspective(glm::radians(settings_.vpl_field_of_view), aspect, near_plane, far_plane + max_distance) *
                                                 look_along(vpl.position, vpl.normal));
   }
-  shadow_layers_used_ = static_cast<int>(shadow_matrices_.size());
 
   // Depth passes into the layers.
   glBindFramebuffer(GL_FRAMEBUFFER, shadow_framebuffer_.get());
@@ -330,12 +331,12 @@ void lightwave_pipeline::rebuild() {
   glEnable(GL_POLYGON_OFFSET_FILL);
   glPolygonOffset(2.0f, 4.0f);  // slope-scaled bias against shadow acne
   depth_program_.use();
-  for (int layer = 0; layer < shadow_layers_used_; ++layer) {
-    glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, shadow_maps_.get(), 0, layer);
+  for (std::size_t layer = 0; layer < shadow_matrices_.size(); ++layer) {
+    glFramebufferTextureLayer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, shadow_maps_.get(), 0, static_cast<GLint>(layer));
     if (layer == 0 && glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
       throw error("Light Wave shadow map framebuffer is incomplete");
     glClear(GL_DEPTH_BUFFER_BIT);
-    depth_program_.set("view_projection", shadow_matrices_[static_cast<std::size_t>(layer)]);
+    depth_program_.set("view_projection", shadow_matrices_[layer]);
     mesh_.draw();
   }
   glDisable(GL_POLYGON_OFFSET_FILL);
@@ -373,7 +374,7 @@ lightwave_frame lightwave_pipeline::render() {
   main_program_.set("shadow_maps", 1);
   set_uniforms(main_program_, "light", scene_.light.spot);
   set_uniforms(main_program_, "irradiance", settings_.irradiance);
-  main_program_.set("indirect_maps", shadow_layers_used_ - 1);
+  main_program_.set("indirect_maps", static_cast<int>(casters_.size()));
   main_program_.set("integrated_steps", settings_.integrated_steps);
   main_program_.set("faked_multiplier", settings_.faked_multiplier);
   glActiveTexture(GL_TEXTURE0);

@@ -158,8 +158,7 @@ class lightwave_pipeline {
   gl_texture shadow_maps_;
   gl_framebuffer shadow_framebuffer_;
   glm::ivec2 shadow_size_{0};
-  int shadow_layers_ = 1;       ///< allocated: 1 + the maps asked for
-  int shadow_layers_used_ = 1;  ///< drawn: 1 + the casters found (fewer when fewer VPLs light the scene)
+  int shadow_layers_ = 1;  ///< allocated: 1 + the maps asked for; drawn: 1 + casters_ (fewer when fewer VPLs light the scene)
   framebuffer target_;
   gpu_timer timer_;
   bool dirty_ = true;

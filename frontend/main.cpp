@@ -1,6 +1,7 @@
 // The vplkit executable: `info`, `render` (headless, the main job) and `view` (a window).
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -241,14 +242,6 @@ output_file pfm_file(fs::path path, vplkit::float_image image) {
   return {std::move(path), [image = std::move(image)](const fs::path& target) { vplkit::write_pfm(target, image); }};
 }
 
-// An image_buffer (rows bottom-up, as GL reads them) as a float_image (rows top-down).
-vplkit::float_image float_image_of(const vplkit::image_buffer& buffer) {
-  std::vector<float> rgba;
-  rgba.reserve(buffer.texels.size() * 4);
-  for (const glm::vec4& texel : buffer.texels) rgba.insert(rgba.end(), {texel.r, texel.g, texel.b, 1.0f});
-  return vplkit::float_image_from_rgba(rgba, buffer.width, buffer.height);
-}
-
 vplkit::scene load_scene(const std::string& name) {
   if (fs::path(name).extension() == ".obj") return vplkit::frame_mesh(fs::path(name).stem().string(), vplkit::load_obj(name));
   return vplkit::built_in_scene(name);
@@ -274,15 +267,6 @@ int run_info(const std::string& context_kind) {
   return 0;
 }
 
-vplkit::rsm_frame render_frame(const vplkit::shader_library& shaders, const vplkit::scene& source,
-                               const vplkit::rsm_pipeline_settings& settings) {
-  vplkit::rsm_pipeline pipeline(shaders, source, settings);
-  // The first frame pays for llvmpipe's shader JIT, and llvmpipe's first GL_TIME_ELAPSED query
-  // reads a garbage start time (seen: 282 s); the pass table reports a warmed-up frame.
-  pipeline.render();
-  return pipeline.render();
-}
-
 int run_lightwave(render_options& options, std::string out) {
   const vplkit::lightwave_settings& settings = options.lightwave;
   if (out.empty()) out = "output/" + fs::path(options.scene_name).stem().string() + "-" + settings.technique + ".png";
@@ -300,7 +284,7 @@ int run_lightwave(render_options& options, std::string out) {
   const vplkit::lightwave_frame first = pipeline.render();
   const vplkit::lightwave_frame frame = pipeline.render();
   std::vector<output_file> files{png_file(out_path, frame.width, frame.height, vplkit::to_srgb8(frame.radiance, frame.width, frame.height))};
-  if (pipeline.shadow_casters().size() > 0) {
+  if (!pipeline.shadow_casters().empty()) {
     // The indirect shadow factor as grey, linear (1 = white = not shadowed).
     std::vector<float> factor(frame.indirect_shadow.size());
     for (std::size_t i = 0; i < factor.size(); i += 4)
@@ -386,7 +370,8 @@ int run_render(render_options& options, std::string out) {
     if (technique.visibility != vplkit::rsm_visibility::none) {
       vplkit::rsm_pipeline_settings without = options.settings;
       without.technique = "rsm-radial";
-      const vplkit::rsm_frame reference = render_frame(shaders, source, without);
+      // One frame: the image does not depend on the JIT warm-up that the timed frame above needs.
+      const vplkit::rsm_frame reference = vplkit::rsm_pipeline(shaders, source, without).render();
       // Amplified 8x relative to the indirect image's exposure, as in Fig. 5.1c.
       files.push_back(png_file(with_suffix(out_path, "-visibility-difference"), w, h,
                                vplkit::to_srgb8(vplkit::luminance_difference(reference.indirect, frame.indirect, 8.0f * exposure), w, h)));
@@ -396,7 +381,7 @@ int run_render(render_options& options, std::string out) {
   files.push_back(pfm_file(with_extension(with_suffix(out_path, "-indirect"), ".pfm"), vplkit::float_image_from_rgba(frame.indirect, w, h)));
   if (options.raw_indirect) {
     if (!technique.indirect) throw vplkit::error("--raw-indirect: technique " + std::string(technique.name) + " gathers no indirect light");
-    files.push_back(pfm_file(with_extension(with_suffix(out_path, "-raw-indirect"), ".pfm"), float_image_of(raw.indirect)));
+    files.push_back(pfm_file(with_extension(with_suffix(out_path, "-raw-indirect"), ".pfm"), vplkit::float_image_from_buffer(raw.indirect)));
   }
   write_all(files);
 
@@ -465,24 +450,17 @@ int run_rsm_brute_force(render_options& options, const reference_options& refere
   brute_force.receiver_stride = reference.receiver_stride;
   brute_force.threads = vplkit::hardware_threads();
   const vplkit::image_buffer gathered = vplkit::reference_rsm_gather(rays, buffers, pipeline.constants(), brute_force);
-  // The mask: receivers the RSM gather covers, among those computed.
-  const std::vector<std::uint8_t> covered = vplkit::rsm_covered_receivers(buffers, pipeline.constants());
+  // The mask: the computed receivers the RSM gather covers.
+  const std::vector<std::uint8_t> covered = vplkit::rsm_covered_receivers(buffers, pipeline.constants(), reference.receiver_stride);
   vplkit::image_buffer mask = gathered;
-  std::size_t counted = 0;
-  for (int y = 0; y < mask.height; ++y)
-    for (int x = 0; x < mask.width; ++x) {
-      const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(mask.width) + static_cast<std::size_t>(x);
-      const bool computed = x % reference.receiver_stride == 0 && y % reference.receiver_stride == 0;
-      const bool in = computed && covered[i];
-      mask.texels[i] = glm::vec4(in ? 1.0f : 0.0f);
-      counted += in;
-    }
-  const vplkit::float_image irradiance = float_image_of(gathered);
+  for (std::size_t i = 0; i < covered.size(); ++i) mask.texels[i] = glm::vec4(covered[i] ? 1.0f : 0.0f);
+  const auto counted = std::count(covered.begin(), covered.end(), std::uint8_t{1});
+  const vplkit::float_image irradiance = vplkit::float_image_from_buffer(gathered);
   const std::vector<float> rgba = vplkit::rgba_from_float_image(irradiance);
   const fs::path png = with_extension(out_path, ".png"), receivers = with_extension(with_suffix(out_path, "-receivers"), ".pfm");
   write_all({pfm_file(out_path, irradiance), png_file(png, irradiance.width, irradiance.height,
                                                       vplkit::to_srgb8(rgba, irradiance.width, irradiance.height, vplkit::percentile_exposure(rgba))),
-             pfm_file(receivers, float_image_of(mask))});
+             pfm_file(receivers, vplkit::float_image_from_buffer(mask))});
   std::cout << "scene " << source.name << ", brute-force RSM gather with " << (brute_force.exact_visibility ? "exact (ray-cast)" : "no") << " visibility, RSM "
             << options.settings.rsm_size << "^2, at the " << gathered.width << "x" << gathered.height << " receivers of the indirect buffer of a "
             << options.settings.width << "x" << options.settings.height << " frame (every " << reference.receiver_stride << ". per axis), " << counted

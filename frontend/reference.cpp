@@ -16,6 +16,7 @@
 
 #include "frontend/error.hpp"
 #include "frontend/parallel.hpp"
+#include "frontend/rsm_cpu_mirror.hpp"
 
 namespace vplkit {
 
@@ -164,10 +165,6 @@ void progress_bar::finish() {
 
 namespace {
 
-glm::ivec2 gbuffer_texel_of(glm::ivec2 texel, const rsm_frame_constants& constants) {
-  return glm::min(texel * constants.indirect_divisor, constants.image_size - 1);
-}
-
 image_buffer empty_indirect(const rsm_frame_constants& constants) {
   image_buffer out;
   out.width = constants.indirect_size.x;
@@ -210,15 +207,13 @@ image_buffer reference_rsm_gather(const ray_scene& rays, const rsm_pass_buffers&
   parallel_rows(rows, options.threads, [&](int row) {
     const int y = row * stride;
     for (int x = 0; x < out.width; x += stride) {
-      const glm::ivec2 sample = gbuffer_texel_of(glm::ivec2(x, y), constants);
-      const glm::vec4 position_depth = buffers.gbuffer[0].at(sample);
-      if (!(position_depth.w < 0.0f)) continue;
-      const glm::vec3 p(position_depth), n(buffers.gbuffer[2].at(sample));
-      const glm::vec2 projection = map_coordinate(constants.light.view_projection, p, constants.gather.rsm_size);
+      const std::optional<gather_receiver<float>> receiver = gather_receiver_at(glm::ivec2(x, y), buffers, constants);
+      if (!receiver) continue;
+      const glm::vec3 p = receiver->position, n = receiver->normal;
       glm::vec3 all(0.0f), seen(0.0f);
       for (const light_texel& light : lights) {
         if (radius_squared > 0.0f) {
-          const glm::vec2 d = light.texel_centre - projection;
+          const glm::vec2 d = light.texel_centre - receiver->rsm_coordinate;
           if (glm::dot(d, d) > radius_squared) continue;
         }
         const glm::vec3 e = pixel_light_irradiance(p, n, light.position, light.normal, light.flux, constants.gather.irradiance);
@@ -252,40 +247,35 @@ image_buffer gather_with_ray_cast_visibility(const ray_scene& rays, const rsm_pa
                                              int receiver_stride, int threads) {
   if (receiver_stride < 1) throw error("gather with ray-cast visibility: receiver_stride must be >= 1");
   image_buffer out = empty_indirect(constants);
-  const image_buffer* rsm = buffers.rsm;
-  const auto fetch = [rsm](glm::ivec2 texel) {
-    const glm::vec4 position_depth = rsm[0].at(texel);
-    return rsm_texel<float>{glm::vec3(position_depth), position_depth.w, glm::vec3(rsm[1].at(texel)), glm::vec3(rsm[2].at(texel))};
+  const std::vector<rsm_texel<float>> rsm = interleave_rsm(buffers);
+  const auto fetch = [&](glm::ivec2 texel) {
+    return rsm[static_cast<std::size_t>(texel.y) * static_cast<std::size_t>(buffers.rsm[0].width) + static_cast<std::size_t>(texel.x)];
   };
   const int rows = (out.height + receiver_stride - 1) / receiver_stride;
   parallel_rows(rows, threads, [&](int row) {
     const int y = row * receiver_stride;
     for (int x = 0; x < out.width; x += receiver_stride) {
       const glm::ivec2 texel(x, y);
-      const glm::vec4 position_depth = buffers.gbuffer[0].at(gbuffer_texel_of(texel, constants));
-      if (!(position_depth.w < 0.0f)) continue;
-      const glm::vec3 position(position_depth);
-      const gather_receiver<float> receiver{position, glm::vec3(buffers.gbuffer[2].at(gbuffer_texel_of(texel, constants))),
-                                            map_coordinate(constants.light.view_projection, position, constants.gather.rsm_size),
-                                            glm::uvec2(texel)};
+      const std::optional<gather_receiver<float>> receiver = gather_receiver_at(texel, buffers, constants);
+      if (!receiver) continue;
       const glm::vec3 e = constants.technique.pattern == rsm_pattern::disk
-                              ? gather_rsm_with<rsm_pattern::disk>(receiver, fetch, constants.gather, ray_cast_visibility{rays})
-                              : gather_rsm_with<rsm_pattern::radial>(receiver, fetch, constants.gather, ray_cast_visibility{rays});
-      out.at(texel) = glm::vec4(e, position_depth.w);
+                              ? gather_rsm_with<rsm_pattern::disk>(*receiver, fetch, constants.gather, ray_cast_visibility{rays})
+                              : gather_rsm_with<rsm_pattern::radial>(*receiver, fetch, constants.gather, ray_cast_visibility{rays});
+      out.at(texel) = glm::vec4(e, buffers.gbuffer[0].at(gbuffer_texel_of(texel, constants)).w);
     }
   });
   return out;
 }
 
-std::vector<std::uint8_t> rsm_covered_receivers(const rsm_pass_buffers& buffers, const rsm_frame_constants& constants) {
+std::vector<std::uint8_t> rsm_covered_receivers(const rsm_pass_buffers& buffers, const rsm_frame_constants& constants, int receiver_stride) {
+  if (receiver_stride < 1) throw error("covered receivers: receiver_stride must be >= 1");
   std::vector<std::uint8_t> covered(static_cast<std::size_t>(constants.indirect_size.x) * static_cast<std::size_t>(constants.indirect_size.y), 0);
-  for (int y = 0; y < constants.indirect_size.y; ++y)
-    for (int x = 0; x < constants.indirect_size.x; ++x) {
-      const glm::vec4 position_depth = buffers.gbuffer[0].at(gbuffer_texel_of(glm::ivec2(x, y), constants));
-      if (!(position_depth.w < 0.0f)) continue;
-      const glm::vec3 p(position_depth);
-      const glm::vec2 projection = map_coordinate(constants.light.view_projection, p, constants.gather.rsm_size);
-      const bool in_front = transform_point(constants.gather.light_view, p).z < 0.0f;
+  for (int y = 0; y < constants.indirect_size.y; y += receiver_stride)
+    for (int x = 0; x < constants.indirect_size.x; x += receiver_stride) {
+      const std::optional<gather_receiver<float>> receiver = gather_receiver_at(glm::ivec2(x, y), buffers, constants);
+      if (!receiver) continue;
+      const glm::vec2 projection = receiver->rsm_coordinate;
+      const bool in_front = transform_point(constants.gather.light_view, receiver->position).z < 0.0f;
       const bool inside = projection.x >= 0.0f && projection.y >= 0.0f && projection.x < static_cast<float>(constants.gather.rsm_size.x) &&
                           projection.y < static_cast<float>(constants.gather.rsm_size.y);
       covered[static_cast<std::size_t>(y) * static_cast<std::size_t>(constants.indirect_size.x) + static_cast<std::size_t>(x)] = in_front && inside ? 1 : 0;

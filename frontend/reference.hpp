@@ -109,8 +109,9 @@ image_buffer gather_with_ray_cast_visibility(const ray_scene& rays, const rsm_pa
 /// of the light (light eye z < 0) whose projection falls inside the RSM. gather_rsm returns 0
 /// behind the light (no projection), and outside the light's frustum its pattern reaches only
 /// the part of the RSM within its radius of a projection that lies off the map. Every RSM metric
-/// counts covered receivers only, and says how much light the others hold.
-std::vector<std::uint8_t> rsm_covered_receivers(const rsm_pass_buffers& buffers, const rsm_frame_constants& constants);
+/// counts covered receivers only, and says how much light the others hold. With a stride, only
+/// every stride-th receiver per axis can count (the ones a strided reference computes).
+std::vector<std::uint8_t> rsm_covered_receivers(const rsm_pass_buffers& buffers, const rsm_frame_constants& constants, int receiver_stride = 1);
 
 struct one_bounce_images {
   float_image radiance;  ///< albedo / pi * (E_direct + E_one_bounce), what the camera sees

@@ -33,21 +33,6 @@ void parallel_tiles(int width, int height, int threads, const Texel& texel) {
   for (std::thread& worker : workers) worker.join();
 }
 
-glm::ivec2 gbuffer_texel_of(glm::ivec2 texel, const rsm_frame_constants& constants) {
-  return glm::min(texel * constants.indirect_divisor, constants.image_size - 1);
-}
-
-// The RSM's three targets interleaved, one texel's pixel light in 40 contiguous bytes: a
-// sample then touches one cache line instead of three.
-std::vector<rsm_texel<float>> interleave_rsm(const rsm_pass_buffers& buffers) {
-  std::vector<rsm_texel<float>> texels(buffers.rsm[0].texels.size());
-  for (std::size_t i = 0; i < texels.size(); ++i) {
-    const glm::vec4 position_depth = buffers.rsm[0].texels[i];
-    texels[i] = {glm::vec3(position_depth), position_depth.w, glm::vec3(buffers.rsm[1].texels[i]), glm::vec3(buffers.rsm[2].texels[i])};
-  }
-  return texels;
-}
-
 template <rsm_pattern Pattern, rsm_visibility Visibility>
 glm::vec3 gather_variant(const gather_receiver<float>& receiver, const std::vector<rsm_texel<float>>& rsm, int rsm_width,
                          const rsm_frame_constants& constants) {
@@ -81,6 +66,30 @@ struct filter_taps {
 
 }  // namespace
 
+glm::ivec2 gbuffer_texel_of(glm::ivec2 texel, const rsm_frame_constants& constants) {
+  return glm::min(texel * constants.indirect_divisor, constants.image_size - 1);
+}
+
+std::optional<gather_receiver<float>> gather_receiver_at(glm::ivec2 texel, const rsm_pass_buffers& buffers, const rsm_frame_constants& constants) {
+  const glm::ivec2 sample = gbuffer_texel_of(texel, constants);
+  const glm::vec4 position_depth = buffers.gbuffer[0].at(sample);
+  if (!(position_depth.w < 0.0f)) return std::nullopt;
+  const glm::vec3 position(position_depth);
+  return gather_receiver<float>{position, glm::vec3(buffers.gbuffer[2].at(sample)),
+                                map_coordinate(constants.light.view_projection, position, constants.gather.rsm_size), glm::uvec2(texel)};
+}
+
+// Interleaved, one texel's pixel light lies in 40 contiguous bytes: a sample then touches one
+// cache line instead of three.
+std::vector<rsm_texel<float>> interleave_rsm(const rsm_pass_buffers& buffers) {
+  std::vector<rsm_texel<float>> texels(buffers.rsm[0].texels.size());
+  for (std::size_t i = 0; i < texels.size(); ++i) {
+    const glm::vec4 position_depth = buffers.rsm[0].texels[i];
+    texels[i] = {glm::vec3(position_depth), position_depth.w, glm::vec3(buffers.rsm[1].texels[i]), glm::vec3(buffers.rsm[2].texels[i])};
+  }
+  return texels;
+}
+
 image_buffer cpu_gather_pass(const rsm_pass_buffers& buffers, const rsm_frame_constants& constants, int threads) {
   image_buffer out;
   out.width = constants.indirect_size.x;
@@ -89,14 +98,9 @@ image_buffer cpu_gather_pass(const rsm_pass_buffers& buffers, const rsm_frame_co
   const std::vector<rsm_texel<float>> rsm = interleave_rsm(buffers);
   parallel_tiles(out.width, out.height, threads, [&](int x, int y) {
     const glm::ivec2 texel(x, y);
-    const glm::ivec2 sample = gbuffer_texel_of(texel, constants);
-    const glm::vec4 position_depth = buffers.gbuffer[0].at(sample);
-    if (!(position_depth.w < 0.0f)) return;
-    const glm::vec3 position(position_depth);
-    const gather_receiver<float> receiver{position, glm::vec3(buffers.gbuffer[2].at(sample)),
-                                          map_coordinate(constants.light.view_projection, position, constants.gather.rsm_size),
-                                          glm::uvec2(texel)};
-    out.at(texel) = glm::vec4(gather_dispatch(receiver, rsm, buffers.rsm[0].width, constants), position_depth.w);
+    const std::optional<gather_receiver<float>> receiver = gather_receiver_at(texel, buffers, constants);
+    if (!receiver) return;
+    out.at(texel) = glm::vec4(gather_dispatch(*receiver, rsm, buffers.rsm[0].width, constants), buffers.gbuffer[0].at(gbuffer_texel_of(texel, constants)).w);
   });
   return out;
 }

@@ -4,10 +4,24 @@
 // Rows are split across threads; every texel is computed exactly as in its shader.
 #pragma once
 
+#include <optional>
+#include <vector>
+
 #include "frontend/parallel.hpp"
 #include "frontend/rsm_pipeline.hpp"
 
 namespace vplkit {
+
+/// The G-buffer texel that indirect-buffer texel `texel` gathers for (texel * divisor, clamped),
+/// as gather.frag reads it.
+glm::ivec2 gbuffer_texel_of(glm::ivec2 texel, const rsm_frame_constants& constants);
+
+/// The receiver of the gather at indirect-buffer texel `texel`, as gather.frag builds it; nothing
+/// where the G-buffer has no surface.
+std::optional<gather_receiver<float>> gather_receiver_at(glm::ivec2 texel, const rsm_pass_buffers& buffers, const rsm_frame_constants& constants);
+
+/// The RSM's three targets interleaved, one pixel light per element, row-major like the targets.
+std::vector<rsm_texel<float>> interleave_rsm(const rsm_pass_buffers& buffers);
 
 /// Pass 3 on the CPU: [irradiance | camera depth] at the indirect buffer's resolution.
 image_buffer cpu_gather_pass(const rsm_pass_buffers& buffers, const rsm_frame_constants& constants, int threads);

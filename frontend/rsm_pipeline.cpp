@@ -35,10 +35,10 @@ const rsm_technique& find_rsm_technique(const std::string& name) {
 
 namespace {
 
-// The patterns with their radius in texels: settings.radius is a fraction of the RSM side.
+// The patterns with their radius in texels, as make_rsm_gather_settings sets it, for validation.
 std::pair<radial_pattern_settings<float>, disk_pattern_settings<float>> patterns_in_texels(const rsm_pipeline_settings& settings) {
   std::pair<radial_pattern_settings<float>, disk_pattern_settings<float>> patterns{settings.radial, settings.disk};
-  patterns.first.max_radius = patterns.second.max_radius = settings.radius * static_cast<float>(settings.rsm_size);
+  patterns.first.max_radius = patterns.second.max_radius = rsm_radius_in_texels(settings.radius, glm::ivec2(settings.rsm_size));
   return patterns;
 }
 
@@ -102,13 +102,9 @@ rsm_frame_constants make_frame_constants(const scene& source, const rsm_pipeline
   constants.technique = find_rsm_technique(settings.technique);
   constants.light = make_light_frustum(source, settings.rsm_size);
   constants.primary = source.light;
+  constants.gather = make_rsm_gather_settings(settings.radial, settings.disk, settings.radius, settings.slots, glm::ivec2(settings.rsm_size));
   constants.gather.irradiance = settings.irradiance;
-  const auto [radial, disk] = patterns_in_texels(settings);
-  constants.gather.radial = make_radial_pattern_constants(radial);
-  constants.gather.disk = disk;
-  constants.gather.slots = make_elevation_slots<float>(settings.slots);
   constants.gather.light_view = constants.light.view;
-  constants.gather.rsm_size = glm::ivec2(settings.rsm_size);
   constants.camera_view = camera_view_matrix(source.view);
   constants.camera_view_projection =
       camera_projection_matrix(source.view, static_cast<float>(settings.width) / static_cast<float>(settings.height)) * constants.camera_view;

@@ -47,11 +47,12 @@ struct rsm_pipeline_settings {
   int indirect_divisor = 2;     ///< indirect buffer = image / divisor per axis (2: 256^2, 1: Table 5.2's 512^2)
   texel_format format = texel_format::rgba16f;  ///< every render target: rgba16f (the thesis) or rgba32f
   std::string technique = "rsm-alg6";
-  /// r_max of the radial and disk patterns as a fraction of the RSM side: radial.max_radius and
-  /// disk.max_radius are derived from it (make_frame_constants), so the radius scales with the RSM.
+  /// r_max of the radial and disk patterns as a fraction of the RSM side, so the radius scales
+  /// with the RSM; make_rsm_gather_settings derives it in texels.
   float radius = default_rsm_gather_preset<float>().radius_fraction;
-  radial_pattern_settings<float> radial = default_radial_settings();  ///< paths x samples of the default preset
-  disk_pattern_settings<float> disk;            ///< 400 samples
+  /// Paths x samples of the default preset; max_radius is not read (see radius).
+  radial_pattern_settings<float> radial = default_radial_settings();
+  disk_pattern_settings<float> disk;            ///< 400 samples; max_radius is not read (see radius)
   int slots = default_rsm_gather_preset<float>().slots;  ///< micro linear buffer slots
   irradiance_settings<float> irradiance;
   shadow_density_settings<float> shadow;

@@ -110,21 +110,36 @@ struct gather_receiver {
   glm::uvec2 pixel;               ///< its pixel in the indirect buffer (seeds the pattern)
 };
 
-/// Gather settings for an RSM of `rsm_size` texels from a preset: the radius in texels, the
-/// pattern constants and the slot tangents derived in one place. light_view is left as the
-/// identity: set it to the light's view matrix.
+/// The sampling radius in texels for one given as a fraction of the RSM's larger side.
+template <typename T>
+T rsm_radius_in_texels(T radius_fraction, glm::ivec2 rsm_size) {
+  return radius_fraction * T(glm::max(rsm_size.x, rsm_size.y));
+}
+
+/// Gather settings for an RSM of `rsm_size` texels, derived in one place: the radial and disk
+/// patterns with their radius (rsm_radius_in_texels of `radius_fraction`; their own max_radius is
+/// replaced), the pattern constants and the slot tangents. irradiance keeps its default and
+/// light_view the identity: set them.
+template <typename T>
+rsm_gather_settings<T> make_rsm_gather_settings(radial_pattern_settings<T> radial, disk_pattern_settings<T> disk, T radius_fraction, int slots,
+                                                glm::ivec2 rsm_size) {
+  radial.max_radius = disk.max_radius = rsm_radius_in_texels(radius_fraction, rsm_size);
+  rsm_gather_settings<T> settings;
+  settings.radial = make_radial_pattern_constants(radial);
+  settings.disk = disk;
+  settings.slots = make_elevation_slots<T>(slots);
+  settings.rsm_size = rsm_size;
+  return settings;
+}
+
+/// Gather settings for an RSM of `rsm_size` texels from a preset, the other pattern settings at
+/// their defaults (set light_view).
 template <typename T>
 rsm_gather_settings<T> rsm_gather_settings_from(const rsm_gather_preset<T>& preset, glm::ivec2 rsm_size) {
   radial_pattern_settings<T> radial;
   radial.paths = preset.paths;
   radial.samples_per_path = preset.samples_per_path;
-  radial.max_radius = preset.radius_fraction * T(glm::max(rsm_size.x, rsm_size.y));
-  rsm_gather_settings<T> settings;
-  settings.radial = make_radial_pattern_constants(radial);
-  settings.disk.max_radius = radial.max_radius;
-  settings.slots = make_elevation_slots<T>(preset.slots);
-  settings.rsm_size = rsm_size;
-  return settings;
+  return make_rsm_gather_settings(radial, disk_pattern_settings<T>{}, preset.radius_fraction, preset.slots, rsm_size);
 }
 
 /// The settings `vplkit render` uses for an RSM of `rsm_size` texels (set light_view).
