@@ -1,5 +1,6 @@
 #include "frontend/debug_output.hpp"
 
+#include <atomic>
 #include <sstream>
 #include <vector>
 
@@ -11,6 +12,7 @@ namespace {
 
 // One GL context is current per thread; its messages are collected per thread.
 thread_local std::vector<std::string> pending_messages;
+std::atomic<std::size_t> unchecked_errors{0};
 
 const char* type_name(GLenum type) {
   switch (type) {
@@ -28,6 +30,7 @@ void GLAD_API_PTR on_debug_message(GLenum source, GLenum type, GLuint id, GLenum
   const bool failure = type == GL_DEBUG_TYPE_ERROR || type == GL_DEBUG_TYPE_UNDEFINED_BEHAVIOR ||
                        severity == GL_DEBUG_SEVERITY_HIGH;
   if (!failure) return;
+  unchecked_errors.fetch_add(1, std::memory_order_relaxed);
   const std::string text = length >= 0 ? std::string(message, static_cast<std::size_t>(length)) : std::string(message);
   pending_messages.push_back(std::string(type_name(type)) + ": " + text);
 }
@@ -53,9 +56,19 @@ void install_debug_output() {
   glDebugMessageCallback(on_debug_message, nullptr);
 }
 
+void discard_pending_gl_messages() {
+  unchecked_errors.fetch_sub(pending_messages.size(), std::memory_order_relaxed);
+  pending_messages.clear();
+  while (glGetError() != GL_NO_ERROR) {
+  }
+}
+
+std::size_t unchecked_gl_error_count() { return unchecked_errors.load(std::memory_order_relaxed); }
+
 void check_gl(const std::string& what) {
   std::vector<std::string> messages;
   messages.swap(pending_messages);
+  unchecked_errors.fetch_sub(messages.size(), std::memory_order_relaxed);  // reported now, by the exception below
   for (GLenum code = glGetError(); code != GL_NO_ERROR; code = glGetError())
     messages.push_back(error_name(code));
   if (messages.empty()) return;

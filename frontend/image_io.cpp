@@ -4,9 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <fstream>
-#include <random>
 #include <string>
 
 #include "frontend/error.hpp"
@@ -17,7 +14,8 @@ namespace fs = std::filesystem;
 namespace {
 
 float linear_to_srgb(float value) {
-  value = std::clamp(value, 0.0f, 1.0f);
+  if (!(value > 0.0f)) return 0.0f;  // negative, zero and NaN
+  value = std::min(value, 1.0f);
   return value <= 0.0031308f ? 12.92f * value : 1.055f * std::pow(value, 1.0f / 2.4f) - 0.055f;
 }
 
@@ -28,37 +26,6 @@ void append_bytes(void* context, void* data, int size) {
 }
 
 }  // namespace
-
-void write_bytes_atomically(const fs::path& path, const std::vector<std::uint8_t>& bytes) {
-  std::error_code code;
-  const fs::path parent = path.has_parent_path() ? path.parent_path() : fs::path(".");
-  fs::create_directories(parent, code);
-  if (code || !fs::is_directory(parent))
-    throw error("cannot write " + path.string() + ": cannot create folder " + parent.string() +
-                (code ? " (" + code.message() + ")" : std::string(" (a file is in the way)")));
-  std::random_device entropy;
-  // Built with += rather than "." + string: GCC 12 gives a false -Wrestrict on the latter (bug 105329).
-  std::string temporary_name = ".";
-  temporary_name += path.filename().string();
-  temporary_name += ".partial-";
-  temporary_name += std::to_string(entropy());
-  const fs::path temporary = parent / temporary_name;
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) throw error("cannot write " + path.string() + ": cannot create a file in " + parent.string());
-    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-    out.close();
-    if (!out) {
-      fs::remove(temporary, code);
-      throw error("cannot write " + path.string() + ": the write failed (disk full?)");
-    }
-  }
-  fs::rename(temporary, path, code);
-  if (code) {
-    fs::remove(temporary, code);
-    throw error("cannot write " + path.string() + ": " + code.message());
-  }
-}
 
 std::vector<std::uint8_t> to_srgb8(const std::vector<float>& linear_rgba, int width, int height, float exposure) {
   std::vector<std::uint8_t> out(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4);
@@ -74,12 +41,23 @@ std::vector<std::uint8_t> to_srgb8(const std::vector<float>& linear_rgba, int wi
   return out;
 }
 
-void write_png(const fs::path& path, int width, int height, const std::vector<std::uint8_t>& rgba8) {
-  if (width < 1 || height < 1 || rgba8.size() != static_cast<std::size_t>(width) * height * 4)
-    throw error("cannot write " + path.string() + ": image size does not match its pixels");
+std::vector<std::uint8_t> encode_png(int width, int height, const std::vector<std::uint8_t>& rgba8) {
+  if (width < 1 || height < 1 || rgba8.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4)
+    throw error("PNG encoding: a " + std::to_string(width) + "x" + std::to_string(height) + " image needs " +
+                std::to_string(static_cast<std::size_t>(std::max(width, 0)) * static_cast<std::size_t>(std::max(height, 0)) * 4) +
+                " bytes of RGBA8, got " + std::to_string(rgba8.size()));
   std::vector<std::uint8_t> encoded;
-  if (!stbi_write_png_to_func(append_bytes, &encoded, width, height, 4, rgba8.data(), width * 4))
-    throw error("cannot write " + path.string() + ": PNG encoding failed");
+  if (!stbi_write_png_to_func(append_bytes, &encoded, width, height, 4, rgba8.data(), width * 4)) throw error("PNG encoding failed");
+  return encoded;
+}
+
+void write_png(const fs::path& path, int width, int height, const std::vector<std::uint8_t>& rgba8) {
+  std::vector<std::uint8_t> encoded;
+  try {
+    encoded = encode_png(width, height, rgba8);
+  } catch (const error& failure) {
+    throw error("cannot write " + path.string() + ": " + failure.what());
+  }
   write_bytes_atomically(path, encoded);
 }
 

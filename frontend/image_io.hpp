@@ -7,15 +7,17 @@
 #include <filesystem>
 #include <vector>
 
+#include "frontend/files.hpp"
+
 namespace vplkit {
 
 /// Linear float RGBA (rows bottom-up, as GL reads them) to 8-bit sRGB RGBA, rows top-down,
 /// alpha forced opaque. Values are scaled by `exposure` and clamped to [0, 1] before encoding.
 std::vector<std::uint8_t> to_srgb8(const std::vector<float>& linear_rgba, int width, int height, float exposure = 1.0f);
 
-/// Writes `bytes` to `path` whole or not at all (temporary file + rename). Throws vplkit::error
-/// naming the path.
-void write_bytes_atomically(const std::filesystem::path& path, const std::vector<std::uint8_t>& bytes);
+/// RGBA8 rows top-down encoded as a PNG file's bytes. Throws vplkit::error when the size does not
+/// match the pixels.
+std::vector<std::uint8_t> encode_png(int width, int height, const std::vector<std::uint8_t>& rgba8);
 
 /// Writes an RGBA8 PNG. Throws vplkit::error naming the path when it cannot be written; the
 /// parent folder must exist or be creatable.

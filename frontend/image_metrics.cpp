@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <charconv>
 #include <cstring>
+#include <memory>
 #include <fstream>
 #include <limits>
 #include <sstream>
@@ -13,6 +15,7 @@
 
 #include "frontend/error.hpp"
 #include "frontend/render_target.hpp"
+#include "frontend/files.hpp"
 #include "frontend/image_io.hpp"
 
 namespace vplkit {
@@ -20,7 +23,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-float luminance_of(const glm::vec3& c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+// In double: the luminance of finite float pixels can exceed FLT_MAX.
+double luminance_of(const glm::vec3& c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
 
 float srgb_to_linear(float value) {
   return value <= 0.04045f ? value / 12.92f : std::pow((value + 0.055f) / 1.055f, 2.4f);
@@ -30,6 +34,23 @@ void require_same_size(const float_image& a, const float_image& b, const char* w
   if (a.width != b.width || a.height != b.height)
     throw error(std::string(what) + ": images of different sizes (" + std::to_string(a.width) + "x" + std::to_string(a.height) + " and " +
                 std::to_string(b.width) + "x" + std::to_string(b.height) + ")");
+}
+
+// The metrics promise finite numbers; an image made in memory could hold NaN (files cannot).
+void require_finite(const float_image& image, const std::string& what) {
+  for (std::size_t i = 0; i < image.pixels.size(); ++i)
+    if (!std::isfinite(image.pixels[i].r) || !std::isfinite(image.pixels[i].g) || !std::isfinite(image.pixels[i].b))
+      throw error(what + ": pixel (" + std::to_string(i % static_cast<std::size_t>(image.width)) + ", " +
+                  std::to_string(i / static_cast<std::size_t>(image.width)) + ") is not finite");
+}
+
+// Two images of the same size with finite pixels (and the mask, if any).
+void require_comparable(const float_image& image, const float_image& reference, const float_image* mask, const char* what) {
+  require_same_size(image, reference, what);
+  if (mask) require_same_size(*mask, reference, what);
+  require_finite(image, std::string(what) + ": the image");
+  require_finite(reference, std::string(what) + ": the reference");
+  if (mask) require_finite(*mask, std::string(what) + ": the mask");
 }
 
 }  // namespace
@@ -65,11 +86,12 @@ std::vector<float> rgba_from_float_image(const float_image& image) {
   return rgba;
 }
 
-void write_pfm(const fs::path& path, const float_image& image) {
+std::vector<std::uint8_t> encode_pfm(const float_image& image) {
   std::ostringstream header;
   header << "PF\n" << image.width << " " << image.height << "\n-1.0\n";
   std::vector<std::uint8_t> bytes;
   const std::string text = header.str();
+  bytes.reserve(text.size() + image.pixels.size() * 12);
   bytes.insert(bytes.end(), text.begin(), text.end());
   // PFM rows go bottom-up; -1.0 marks little-endian floats.
   for (int y = image.height - 1; y >= 0; --y)
@@ -79,50 +101,144 @@ void write_pfm(const fs::path& path, const float_image& image) {
       const auto* raw = reinterpret_cast<const std::uint8_t*>(values);
       bytes.insert(bytes.end(), raw, raw + sizeof values);
     }
-  write_bytes_atomically(path, bytes);
+  return bytes;
 }
 
-float_image read_image_file(const fs::path& path) {
-  std::error_code ignored;
-  if (!fs::exists(path, ignored)) throw error(path.string() + ": no such file");
+void write_pfm(const fs::path& path, const float_image& image) { write_bytes_atomically(path, encode_pfm(image)); }
+
+namespace {
+
+bool is_pfm_space(char c) { return c == ' ' || c == '\n' || c == '\r' || c == '\t'; }
+
+// The PFM header "PF <width> <height> <scale>" and the one whitespace byte that ends it, read by
+// hand with bounded tokens (no stream extraction that could skip megabytes of whitespace).
+struct pfm_header {
+  int width = 0, height = 0;
+  double scale = 0.0;
+  std::size_t data_offset = 0;
+};
+
+pfm_header parse_pfm_header(const std::string& bytes, const std::string& name) {
+  std::size_t at = 0;
+  const auto fail = [&](const std::string& what) -> void { throw error(name + ": not an RGB PFM file (" + what + ")"); };
+  const auto token = [&](const char* what) {
+    std::size_t skipped = 0;
+    while (at < bytes.size() && is_pfm_space(bytes[at]) && skipped < 64) ++at, ++skipped;
+    const std::size_t begin = at;
+    while (at < bytes.size() && !is_pfm_space(bytes[at]) && at - begin <= 32) ++at;
+    if (at == begin || at - begin > 32 || at >= bytes.size()) fail(std::string("expected the header 'PF width height scale', the ") + what + " is missing or malformed");
+    return std::string_view(bytes).substr(begin, at - begin);
+  };
+  if (bytes.size() < 2 || bytes.compare(0, 2, "PF") != 0) {
+    if (bytes.size() >= 2 && bytes.compare(0, 2, "Pf") == 0) throw error(name + ": greyscale PFM files ('Pf') are not supported; vplkit reads RGB ('PF')");
+    fail("it does not start with 'PF'");
+  }
+  at = 2;
+  if (at >= bytes.size() || !is_pfm_space(bytes[at])) fail("it does not start with 'PF' and a space");
+  pfm_header header;
+  const auto side = [&](const char* what) {
+    const std::string_view text = token(what);
+    int value = 0;
+    const auto [end, code] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (code != std::errc() || end != text.data() + text.size() || value < 1)
+      throw error(name + ": PFM " + what + " '" + std::string(text) + "' is not a whole number >= 1");
+    return value;
+  };
+  header.width = side("width");
+  header.height = side("height");
+  const std::string_view scale_text = token("scale");
+  const auto [end, code] = std::from_chars(scale_text.data(), scale_text.data() + scale_text.size(), header.scale);
+  if (code != std::errc() || end != scale_text.data() + scale_text.size() || !std::isfinite(header.scale) || header.scale == 0.0)
+    throw error(name + ": PFM scale '" + std::string(scale_text) + "' is not a finite non-zero number");
+  if (header.scale > 0.0) throw error(name + ": big-endian PFM files (positive scale) are not supported");
+  header.data_offset = at + 1;  // exactly one whitespace byte ends the header
+  return header;
+}
+
+void check_size(int width, int height, const std::string& name, const image_read_limits& limits) {
+  if (width > limits.max_side || height > limits.max_side ||
+      static_cast<std::size_t>(width) * static_cast<std::size_t>(height) > limits.max_pixels)
+    throw error(name + ": the image claims " + std::to_string(width) + "x" + std::to_string(height) + " pixels, more than vplkit reads (sides up to " +
+                std::to_string(limits.max_side) + ", " + std::to_string(limits.max_pixels) + " pixels in all)");
+}
+
+float_image decode_pfm(const std::string& bytes, const std::string& name, const image_read_limits& limits) {
+  const pfm_header header = parse_pfm_header(bytes, name);
+  check_size(header.width, header.height, name, limits);
+  const std::size_t pixel_count = static_cast<std::size_t>(header.width) * static_cast<std::size_t>(header.height);
+  const std::size_t expected = header.data_offset + pixel_count * 12;
+  if (bytes.size() < expected)
+    throw error(name + ": the PFM file ends before its " + std::to_string(header.width) + "x" + std::to_string(header.height) + " pixels (" +
+                std::to_string(bytes.size()) + " bytes, " + std::to_string(expected) + " needed)");
+  if (bytes.size() > expected)
+    throw error(name + ": " + std::to_string(bytes.size() - expected) + " bytes follow the " + std::to_string(header.width) + "x" +
+                std::to_string(header.height) + " pixels of the PFM file");
+  float_image image{header.width, header.height, std::vector<glm::vec3>(pixel_count)};
+  const char* data = bytes.data() + header.data_offset;
+  for (int y = header.height - 1; y >= 0; --y)
+    for (int x = 0; x < header.width; ++x, data += 12) {
+      float values[3];
+      std::memcpy(values, data, sizeof values);
+      for (const float value : values)
+        if (!std::isfinite(value))
+          throw error(name + ": pixel (" + std::to_string(x) + ", " + std::to_string(y) + ") (from the top left) is " +
+                      (std::isnan(value) ? "NaN" : "infinite") + "; vplkit compares finite images");
+      image.pixels[static_cast<std::size_t>(y) * static_cast<std::size_t>(header.width) + static_cast<std::size_t>(x)] =
+          glm::vec3(values[0], values[1], values[2]);
+    }
+  return image;
+}
+
+float_image decode_png(const std::string& bytes, const std::string& name, const image_read_limits& limits) {
+  // stb_image picks its decoder from the content; only the PNG decoder may run.
+  static constexpr unsigned char signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (bytes.size() < sizeof signature || std::memcmp(bytes.data(), signature, sizeof signature) != 0)
+    throw error(name + ": not a PNG file (no PNG signature)");
+  if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max())) throw error(name + ": the PNG file is larger than 2 GiB");
+  // The size from the IHDR chunk, which must come first, checked before stb allocates anything.
+  const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
+  if (bytes.size() < 33 || std::memcmp(data + 12, "IHDR", 4) != 0) throw error(name + ": not a readable PNG (no IHDR chunk after the signature)");
+  const auto big_endian = [&](std::size_t at) {
+    return (std::uint32_t{data[at]} << 24) | (std::uint32_t{data[at + 1]} << 16) | (std::uint32_t{data[at + 2]} << 8) | std::uint32_t{data[at + 3]};
+  };
+  const std::uint32_t claimed_width = big_endian(16), claimed_height = big_endian(20);
+  if (claimed_width == 0 || claimed_height == 0 || claimed_width > 0x7fffffffu || claimed_height > 0x7fffffffu)
+    throw error(name + ": not a readable PNG (its header claims " + std::to_string(claimed_width) + "x" + std::to_string(claimed_height) + " pixels)");
+  check_size(static_cast<int>(claimed_width), static_cast<int>(claimed_height), name, limits);
+  const int length = static_cast<int>(bytes.size());
+  int width = 0, height = 0, channels = 0;
+  stbi_uc* decoded = stbi_load_from_memory(data, length, &width, &height, &channels, 3);
+  if (!decoded) throw error(name + ": not a readable PNG (" + std::string(stbi_failure_reason()) + ")");
+  if (static_cast<std::uint32_t>(width) != claimed_width || static_cast<std::uint32_t>(height) != claimed_height) {
+    stbi_image_free(decoded);
+    throw error(name + ": not a readable PNG (decoded " + std::to_string(width) + "x" + std::to_string(height) + ", the header says " +
+                std::to_string(claimed_width) + "x" + std::to_string(claimed_height) + ")");
+  }
+  const std::unique_ptr<stbi_uc, void (*)(void*)> owned(decoded, stbi_image_free);
+  float_image image{width, height, std::vector<glm::vec3>(static_cast<std::size_t>(width) * static_cast<std::size_t>(height))};
+  for (std::size_t i = 0; i < image.pixels.size(); ++i)
+    image.pixels[i] = glm::vec3(srgb_to_linear(decoded[3 * i] / 255.0f), srgb_to_linear(decoded[3 * i + 1] / 255.0f),
+                                srgb_to_linear(decoded[3 * i + 2] / 255.0f));
+  return image;
+}
+
+}  // namespace
+
+float_image decode_image(const std::string& bytes, image_file_format format, const std::string& name, const image_read_limits& limits) {
+  return format == image_file_format::pfm ? decode_pfm(bytes, name, limits) : decode_png(bytes, name, limits);
+}
+
+float_image read_image_file(const fs::path& path, const image_read_limits& limits) {
   const std::string extension = path.extension().string();
-  if (extension == ".pfm") {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw error(path.string() + ": cannot read it");
-    std::string magic;
-    int width = 0, height = 0;
-    double scale = 0.0;
-    in >> magic >> width >> height >> scale;
-    in.get();
-    if (!in || magic != "PF") throw error(path.string() + ": not an RGB PFM file (expected the header 'PF width height scale')");
-    if (width < 1 || height < 1 || width > 65536 || height > 65536) throw error(path.string() + ": PFM size out of range");
-    if (scale >= 0.0) throw error(path.string() + ": big-endian PFM files are not supported");
-    float_image image{width, height, std::vector<glm::vec3>(static_cast<std::size_t>(width) * static_cast<std::size_t>(height))};
-    for (int y = height - 1; y >= 0; --y)
-      for (int x = 0; x < width; ++x) {
-        float values[3];
-        in.read(reinterpret_cast<char*>(values), sizeof values);
-        image.pixels[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)] = glm::vec3(values[0], values[1], values[2]);
-      }
-    if (!in) throw error(path.string() + ": the PFM file ends before its " + std::to_string(width) + "x" + std::to_string(height) + " pixels");
-    return image;
-  }
-  if (extension == ".png") {
-    int width = 0, height = 0, channels = 0;
-    unsigned char* data = stbi_load(path.string().c_str(), &width, &height, &channels, 3);
-    if (!data) throw error(path.string() + ": not a readable PNG (" + std::string(stbi_failure_reason()) + ")");
-    float_image image{width, height, std::vector<glm::vec3>(static_cast<std::size_t>(width) * static_cast<std::size_t>(height))};
-    for (std::size_t i = 0; i < image.pixels.size(); ++i)
-      image.pixels[i] = glm::vec3(srgb_to_linear(data[3 * i] / 255.0f), srgb_to_linear(data[3 * i + 1] / 255.0f), srgb_to_linear(data[3 * i + 2] / 255.0f));
-    stbi_image_free(data);
-    return image;
-  }
-  throw error(path.string() + ": unsupported image format '" + extension + "' (use .pfm or .png)");
+  if (extension != ".pfm" && extension != ".png") throw error(path.string() + ": unsupported image format '" + extension + "' (use .pfm or .png)");
+  const image_file_format format = extension == ".pfm" ? image_file_format::pfm : image_file_format::png;
+  // The largest file the limits allow: a PFM's exact size; a PNG is compressed, so at most that.
+  const std::uintmax_t max_bytes = 64 + static_cast<std::uintmax_t>(limits.max_pixels) * 12;
+  return decode_image(read_file(path, max_bytes, extension == ".pfm" ? "PFM image" : "PNG image"), format, path.string(), limits);
 }
 
 relative_error relative_error_of(const float_image& image, const float_image& reference, const float_image* mask) {
-  require_same_size(image, reference, "relative error");
-  if (mask) require_same_size(*mask, reference, "relative error (mask)");
+  require_comparable(image, reference, mask, "relative error");
   double squared = 0.0, sum_image = 0.0, sum_reference = 0.0;
   relative_error result;
   for (std::size_t i = 0; i < image.pixels.size(); ++i) {
@@ -143,8 +259,7 @@ relative_error relative_error_of(const float_image& image, const float_image& re
 }
 
 image_metrics compare_images(const float_image& image, const float_image& reference, const float_image* mask) {
-  require_same_size(image, reference, "compare");
-  if (mask) require_same_size(*mask, reference, "compare (mask)");
+  require_comparable(image, reference, mask, "compare");
   image_metrics m;
   const std::size_t count = image.pixels.size();
   double squared = 0.0, relative = 0.0, peak = 0.0, leak_squared = 0.0;
@@ -227,19 +342,20 @@ image_metrics compare_images(const float_image& image, const float_image& refere
 }
 
 std::vector<std::uint8_t> false_colour_error(const float_image& image, const float_image& reference, float scale) {
-  require_same_size(image, reference, "error image");
-  std::vector<float> differences(image.pixels.size());
-  float largest = 0.0f;
+  require_comparable(image, reference, nullptr, "error image");
+  if (!std::isfinite(scale)) throw error("error image: the scale must be finite");
+  std::vector<double> differences(image.pixels.size());
+  double largest = 0.0;
   for (std::size_t i = 0; i < differences.size(); ++i) {
     differences[i] = std::fabs(luminance_of(image.pixels[i]) - luminance_of(reference.pixels[i]));
     largest = std::max(largest, differences[i]);
   }
-  if (!(scale > 0.0f)) scale = largest > 0.0f ? largest : 1.0f;
+  const double full_red = scale > 0.0f ? double{scale} : largest > 0.0 ? largest : 1.0;
   // Blue (0) -> cyan -> green -> yellow -> red (scale and above).
   const glm::vec3 ramp[5] = {{0, 0, 1}, {0, 1, 1}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}};
   std::vector<std::uint8_t> out(differences.size() * 4);
   for (std::size_t i = 0; i < differences.size(); ++i) {
-    const float t = std::clamp(differences[i] / scale, 0.0f, 1.0f) * 4.0f;
+    const float t = static_cast<float>(std::clamp(differences[i] / full_red, 0.0, 1.0)) * 4.0f;
     const int k = std::min(3, static_cast<int>(t));
     const glm::vec3 c = glm::mix(ramp[k], ramp[k + 1], t - static_cast<float>(k));
     out[4 * i] = static_cast<std::uint8_t>(std::lround(255.0f * c.r));

@@ -33,12 +33,29 @@ float_image float_image_from_buffer(const image_buffer& buffer);
 /// Back to RGBA floats with rows bottom-up (alpha 1), e.g. for to_srgb8.
 std::vector<float> rgba_from_float_image(const float_image& image);
 
-/// PFM (portable float map, RGB, little-endian), written whole or not at all.
+/// PFM (portable float map, RGB, little-endian): the file's bytes, and the file written whole or
+/// not at all.
+std::vector<std::uint8_t> encode_pfm(const float_image& image);
 void write_pfm(const std::filesystem::path& path, const float_image& image);
 
-/// Reads a .pfm (linear) or a .png (sRGB, converted to linear). Throws vplkit::error naming the
-/// file and what is wrong with it.
-float_image read_image_file(const std::filesystem::path& path);
+/// What an image file may claim before anything is allocated for it: a PNG of a few hundred bytes
+/// can declare gigapixels. The defaults cover every image vplkit renders up to 8192^2.
+struct image_read_limits {
+  int max_side = 16384;
+  std::size_t max_pixels = std::size_t{1} << 26;  ///< 64 Mi pixels (768 MiB as RGB floats)
+};
+
+enum class image_file_format { pfm, png };
+
+/// Decodes a PFM (RGB, little-endian, exactly width x height x 12 bytes of finite floats after
+/// the header) or a PNG (only when the bytes carry the PNG signature; sRGB, converted to linear).
+/// Throws vplkit::error starting with `name` and saying what is wrong (header, size over the
+/// limits, truncated or trailing data, the first non-finite pixel).
+float_image decode_image(const std::string& bytes, image_file_format format, const std::string& name, const image_read_limits& limits = {});
+
+/// Reads a .pfm or a .png file (the extension picks the format) with decode_image. Throws
+/// vplkit::error naming the file.
+float_image read_image_file(const std::filesystem::path& path, const image_read_limits& limits = {});
 
 /// An error relative to the reference's level: RMSE and signed mean difference, each divided by
 /// the reference's mean, over all three channels of the pixels counted.
@@ -49,7 +66,7 @@ struct relative_error {
 };
 
 /// Over the pixels `mask` marks (luminance > 0.5), every pixel without a mask. Throws
-/// vplkit::error on a size mismatch; 0 for both when no pixel counts or the reference's mean is 0.
+/// vplkit::error on a size mismatch or a non-finite pixel; 0 for both when no pixel counts or the reference's mean is 0.
 relative_error relative_error_of(const float_image& image, const float_image& reference, const float_image* mask = nullptr);
 
 struct image_metrics {
@@ -64,7 +81,8 @@ struct image_metrics {
   std::optional<relative_error> masked;    ///< over the mask's pixels, if a mask was given
 };
 
-/// Compares `image` with `reference` (same size, else vplkit::error). SSIM: Wang et al. 2004 on
+/// Compares `image` with `reference` (same size and finite pixels, else vplkit::error). Sums
+/// are taken in double, so every metric is finite for any finite float pixels, ±FLT_MAX included. SSIM: Wang et al. 2004 on
 /// luminance with an 11x11 Gaussian window (sigma 1.5), C1 = (0.01 L)^2, C2 = (0.03 L)^2, L the
 /// reference's largest luminance (linear images have no fixed range). `mask` (optional, same
 /// size) selects the pixels of the light-leak error.

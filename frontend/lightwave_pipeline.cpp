@@ -66,7 +66,7 @@ std::string validate(const lightwave_settings& settings) {
   const int vpls = lightwave_vpl_count(settings.angle_deg, settings.per_ray);
   // The vertex stage loops over every VPL, and llvmpipe ends a loop after 65535 iterations.
   if (vpls > 65535) return "at most 65535 VPLs (the per-vertex loop; llvmpipe stops loops there), got " + std::to_string(vpls);
-  if (!(settings.max_distance >= 0.0f)) return "Light Wave max distance must be >= 0 (0: from the scene's size)";
+  if (!(settings.max_distance >= 0.0f && settings.max_distance <= max_scene_coordinate)) return "Light Wave max distance must be in [0, 1e7] (0: from the scene's size)";
   if (settings.accurate_maps < 0 || settings.accurate_maps > 64) return "accurate shadow maps must be in [0, 64]";
   if (settings.shadow_variant != lightwave_shadow_variant::importance && settings.shadow_variant != lightwave_shadow_variant::thesis)
     return "shadow variant must be importance or thesis";
@@ -82,7 +82,7 @@ std::string validate(const lightwave_settings& settings) {
     return "faked multiplier must be in [0.5, 4] (Eq. 5.2; the thesis uses 1.1 .. 1.5)";
   if (!(settings.vpl_field_of_view > 1.0f && settings.vpl_field_of_view < 179.0f)) return "VPL shadow map field of view must be in (1, 179) degrees";
   if (settings.shading.specular_exponent < 1 || settings.shading.specular_exponent > 256) return "specular exponent must be in [1, 256]";
-  if (!(settings.shading.specular_strength >= 0.0f)) return "specular strength must be >= 0";
+  if (!(settings.shading.specular_strength >= 0.0f && std::isfinite(settings.shading.specular_strength))) return "specular strength must be finite and >= 0";
   if (const char* problem = validate(settings.irradiance)) return problem;
   return {};
 }

@@ -2,7 +2,8 @@
 
 #include <cstdlib>
 #include <fstream>
-#include <regex>
+#include <optional>
+#include <string_view>
 #include <set>
 #include <sstream>
 
@@ -35,6 +36,42 @@ std::string read_text_file(const fs::path& path, const std::string& what_for) {
   return contents.str();
 }
 
+bool is_blank(char c) { return c == ' ' || c == '\t'; }
+
+std::string_view skip_blanks(std::string_view text) {
+  while (!text.empty() && is_blank(text.front())) text.remove_prefix(1);
+  return text;
+}
+
+// For a preprocessor line "# name ...", the text after the name; nothing for any other line.
+// Scanned by hand: a std::regex recurses per character and overflows the stack on long lines.
+std::optional<std::string_view> directive(std::string_view line, std::string_view name) {
+  line = skip_blanks(line);
+  if (line.empty() || line.front() != '#') return std::nullopt;
+  line = skip_blanks(line.substr(1));
+  if (line.substr(0, name.size()) != name) return std::nullopt;
+  line.remove_prefix(name.size());
+  if (!line.empty()) {
+    const char next = line.front();
+    if ((next >= 'a' && next <= 'z') || (next >= 'A' && next <= 'Z') || (next >= '0' && next <= '9') || next == '_') return std::nullopt;
+  }
+  return line;
+}
+
+// `#include "path"`, optionally followed by a // comment: the path; nothing for any other line.
+std::optional<std::string> include_path(std::string_view line) {
+  std::optional<std::string_view> rest = directive(line, "include");
+  if (!rest) return std::nullopt;
+  std::string_view text = skip_blanks(*rest);
+  if (text.empty() || text.front() != '"') return std::nullopt;
+  const std::size_t close = text.find('"', 1);
+  if (close == std::string_view::npos || close == 1) return std::nullopt;
+  const std::string_view path = text.substr(1, close - 1);
+  const std::string_view after = skip_blanks(text.substr(close + 1));
+  if (!after.empty() && after.substr(0, 2) != "//") return std::nullopt;
+  return std::string(path);
+}
+
 class expander {
  public:
   expander(const fs::path& root, const shader_defines& defines) : root_(root), defines_(defines) {}
@@ -46,8 +83,6 @@ class expander {
 
  private:
   void expand(const std::string& text, const std::string& display_name, bool top_level) {
-    static const std::regex include_line(R"(^\s*#\s*include\s+\"([^\"]+)\"\s*(//.*)?$)");
-    static const std::regex version_line(R"(^\s*#\s*version\b.*$)");
     const int file_number = static_cast<int>(file_names_.size());
     file_names_.push_back(display_name);
     std::istringstream lines(text);
@@ -57,8 +92,7 @@ class expander {
     while (std::getline(lines, line)) {
       ++line_number;
       if (!line.empty() && line.back() == '\r') line.pop_back();
-      std::smatch match;
-      if (std::regex_match(line, version_line)) {
+      if (directive(line, "version")) {
         if (!top_level || line_number != 1)
           throw error(display_name + ":" + std::to_string(line_number) +
                       ": #version must be the first line of the top-level shader, not in an included file");
@@ -70,8 +104,12 @@ class expander {
         out_ << "#line " << line_number << " " << file_number << "\n";
         wrote_line_directive = true;
       }
-      if (std::regex_match(line, match, include_line)) {
-        const std::string relative = match[1].str();
+      if (const std::optional<std::string> included = include_path(line)) {
+        const std::string& relative = *included;
+        // Longer than any path a file system takes (PATH_MAX is 4096 on Linux).
+        if (relative.size() > 4096)
+          throw error(display_name + ":" + std::to_string(line_number) + ": the included file name has " + std::to_string(relative.size()) +
+                      " characters, more than a path can have");
         const fs::path path = root_ / relative;
         if (included_.insert(fs::weakly_canonical(path).string()).second) {
           std::error_code ignored;
@@ -119,26 +157,66 @@ expanded_source shader_library::expand_text(const std::string& text, const std::
   return expander(root_, defines).run(text, display_name);
 }
 
+namespace {
+
+// Digits at the start of `text`, which then starts after them; nothing if there are none.
+std::optional<std::string> take_digits(std::string_view& text) {
+  std::size_t count = 0;
+  while (count < text.size() && count < 9 && text[count] >= '0' && text[count] <= '9') ++count;
+  if (count == 0) return std::nullopt;
+  std::string digits(text.substr(0, count));
+  text.remove_prefix(count);
+  return digits;
+}
+
+bool take(std::string_view& text, std::string_view expected) {
+  if (text.substr(0, expected.size()) != expected) return false;
+  text.remove_prefix(expected.size());
+  return true;
+}
+
+}  // namespace
+
 std::string map_log_to_files(const std::string& log, const std::vector<std::string>& file_names) {
-  // Mesa: "0:12(5): error: ...", NVIDIA: "0(12) : error C0000: ...", AMD: "ERROR: 0:12: ...".
-  static const std::regex mesa(R"(^(\d+):(\d+)\((\d+)\))");
-  static const std::regex nvidia(R"(^(\d+)\((\d+)\))");
-  static const std::regex amd(R"(^(ERROR|WARNING): (\d+):(\d+):)");
   auto name_of = [&](const std::string& number) {
     const std::size_t index = std::stoul(number);
     return index < file_names.size() ? file_names[index] : "<source " + number + ">";
+  };
+  // Mesa: "0:12(5): error: ...".
+  const auto mesa = [&](std::string_view rest) -> std::optional<std::string> {
+    const auto file = take_digits(rest);
+    if (!file || !take(rest, ":")) return std::nullopt;
+    const auto row = take_digits(rest);
+    if (!row || !take(rest, "(")) return std::nullopt;
+    const auto column = take_digits(rest);
+    if (!column || !take(rest, ")")) return std::nullopt;
+    return name_of(*file) + ":" + *row + ":" + *column + std::string(rest);
+  };
+  // NVIDIA: "0(12) : error C0000: ...".
+  const auto nvidia = [&](std::string_view rest) -> std::optional<std::string> {
+    const auto file = take_digits(rest);
+    if (!file || !take(rest, "(")) return std::nullopt;
+    const auto row = take_digits(rest);
+    if (!row || !take(rest, ")")) return std::nullopt;
+    return name_of(*file) + ":" + *row + std::string(rest);
+  };
+  // AMD: "ERROR: 0:12: ..." (or WARNING).
+  const auto amd = [&](std::string_view rest) -> std::optional<std::string> {
+    const std::string severity = take(rest, "ERROR: ") ? "ERROR" : take(rest, "WARNING: ") ? "WARNING" : "";
+    if (severity.empty()) return std::nullopt;
+    const auto file = take_digits(rest);
+    if (!file || !take(rest, ":")) return std::nullopt;
+    const auto row = take_digits(rest);
+    if (!row || !take(rest, ":")) return std::nullopt;
+    return name_of(*file) + ":" + *row + ": " + severity + std::string(rest);
   };
   std::istringstream lines(log);
   std::ostringstream out;
   std::string line;
   while (std::getline(lines, line)) {
-    std::smatch match;
-    if (std::regex_search(line, match, mesa))
-      line = name_of(match[1]) + ":" + match[2].str() + ":" + match[3].str() + match.suffix().str();
-    else if (std::regex_search(line, match, nvidia))
-      line = name_of(match[1]) + ":" + match[2].str() + match.suffix().str();
-    else if (std::regex_search(line, match, amd))
-      line = name_of(match[2]) + ":" + match[3].str() + ": " + match[1].str() + match.suffix().str();
+    if (auto mapped = mesa(line)) line = *mapped;
+    else if (auto from_nvidia = nvidia(line)) line = *from_nvidia;
+    else if (auto from_amd = amd(line)) line = *from_amd;
     if (!line.empty()) out << "  " << line << "\n";
   }
   return out.str();
@@ -163,7 +241,7 @@ program link_program(const std::string& program_name, const std::vector<stage_so
       glGetShaderInfoLog(shader.get(), length, nullptr, log.data());
       log.resize(std::char_traits<char>::length(log.c_str()));
       // Compile failures are reported here; drop the driver's duplicate KHR_debug copy.
-      try { check_gl("compile"); } catch (const error&) {}
+      discard_pending_gl_messages();
       throw error("GLSL compile error in " + std::string(stage_name(stage.stage)) + " shader " +
                   stage.source.file_names.front() + " (program " + program_name + "):\n" +
                   map_log_to_files(log, stage.source.file_names));
@@ -185,7 +263,7 @@ program link_program(const std::string& program_name, const std::vector<stage_so
     std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
     glGetProgramInfoLog(linked.get(), length, nullptr, log.data());
     log.resize(std::char_traits<char>::length(log.c_str()));
-    try { check_gl("link"); } catch (const error&) {}
+    discard_pending_gl_messages();
     std::vector<std::string> all_files;
     for (const stage_source& stage : stages) all_files.push_back(stage.source.file_names.front());
     std::string files;

@@ -26,6 +26,7 @@ struct ray_scene::state {
 };
 
 ray_scene::ray_scene(const mesh& geometry) : state_(std::make_unique<state>()), geometry_(geometry) {
+  check_mesh(geometry, "ray tracer scene");  // Embree asserts (aborts) on bounds it cannot represent
   state_->device = rtcNewDevice(nullptr);
   if (!state_->device) throw error("Embree: could not create a device (error " + std::to_string(rtcGetDeviceError(nullptr)) + ")");
   state_->scene = rtcNewScene(state_->device);

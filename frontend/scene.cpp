@@ -450,3 +450,48 @@ scene frame_mesh(std::string name, mesh geometry) {
 }
 
 }  // namespace vplkit
+
+namespace vplkit {
+
+namespace {
+
+bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+std::string text_of(const glm::vec3& v) {
+  return "(" + std::to_string(v.x) + ", " + std::to_string(v.y) + ", " + std::to_string(v.z) + ")";
+}
+
+}  // namespace
+
+void check_mesh(const mesh& geometry, const std::string& name) {
+  const auto fail = [&](const std::string& what) { throw error(name + ": " + what); };
+  if (geometry.indices.empty() || geometry.indices.size() % 3 != 0) fail("no triangles, or an index count that is not a multiple of 3");
+  for (std::size_t i = 0; i < geometry.vertices.size(); ++i) {
+    const vertex& v = geometry.vertices[i];
+    if (!finite(v.position) || glm::any(glm::greaterThan(glm::abs(v.position), glm::vec3(max_scene_coordinate))))
+      fail("vertex " + std::to_string(i) + " at " + text_of(v.position) + " is not finite or beyond " +
+           std::to_string(static_cast<long>(max_scene_coordinate)) + " (vplkit works in float; scale the scene down)");
+    if (!finite(v.normal) || !finite(v.albedo)) fail("vertex " + std::to_string(i) + " has a non-finite normal or albedo");
+  }
+  for (const std::uint32_t index : geometry.indices)
+    if (index >= geometry.vertices.size()) fail("index " + std::to_string(index) + " is past the " + std::to_string(geometry.vertices.size()) + " vertices");
+}
+
+void check_scene(const scene& s) {
+  const auto fail = [&](const std::string& what) { throw error("scene " + s.name + ": " + what); };
+  check_mesh(s.geometry, "scene " + s.name);
+  if (!finite(s.view.position) || !finite(s.view.target) || !finite(s.view.up) || !std::isfinite(s.view.vertical_fov_degrees) ||
+      !(s.view.near_plane > 0.0f) || !(s.view.far_plane > s.view.near_plane) || !std::isfinite(s.view.far_plane))
+    fail("the camera has a non-finite value or bad near/far planes");
+  if (s.light.kind == light_kind::spot) {
+    const spot_light<float>& spot = s.light.spot;
+    if (!finite(spot.position) || !finite(spot.direction) || !finite(spot.intensity)) fail("the spot light has a non-finite value");
+    if (const char* problem = validate(spot)) fail(problem);
+  } else {
+    const directional_light<float>& sun = s.light.directional;
+    if (!finite(sun.direction) || !finite(sun.irradiance)) fail("the directional light has a non-finite value");
+    if (const char* problem = validate(sun)) fail(problem);
+  }
+}
+
+}  // namespace vplkit

@@ -34,6 +34,14 @@ struct bounding_box {
 
 bounding_box bounds(const mesh& geometry);
 
+/// The largest coordinate magnitude a scene may have. Positions are floats (at 1e7 their step is
+/// one unit) and the ray tracer's bounds must stay finite through its arithmetic.
+inline constexpr float max_scene_coordinate = 1.0e7f;
+
+/// The largest coordinate magnitude of a loaded mesh: a tenth of the scene's, because frame_mesh
+/// puts a floor and a light up to 3 bounding radii from the mesh's centre.
+inline constexpr float max_mesh_coordinate = max_scene_coordinate / 10.0f;
+
 struct camera {
   glm::vec3 position{0.0f, 1.0f, 3.8f};
   glm::vec3 target{0.0f, 1.0f, 0.0f};
@@ -57,6 +65,16 @@ struct scene {
   camera view;
   scene_light light;
 };
+
+/// Throws vplkit::error starting with `name` at the first bad value: a position that is not
+/// finite or beyond max_scene_coordinate, a non-finite normal or albedo, an index out of range,
+/// or no triangles.
+void check_mesh(const mesh& geometry, const std::string& name);
+
+/// Throws vplkit::error naming the scene and the first bad value: check_mesh's, or a non-finite
+/// camera or light value. Loaders check their input as they read it; this is the last gate before
+/// a pipeline or the ray tracer sees a scene.
+void check_scene(const scene& s);
 
 /// Half-angle of a square shadow-map frustum that holds a spot light's outer cone, with a
 /// 2-degree margin, at most 85 degrees.

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # README command 2: set up, build, and run the whole test suite twice: the Release build, then
-# the -fsanitize=address,undefined build. Tests run headless (OSMesa); the window tests run
-# under xvfb-run.
+# the -fsanitize=address,undefined build; then each fuzz target for 30 s (clang's libFuzzer).
+# Tests run headless (OSMesa); the window tests run under xvfb-run.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc 2>/dev/null || echo 2)
@@ -13,3 +13,6 @@ echo "== tests: Release build"
 scripts/setup.sh --sanitize
 echo "== tests: sanitizer build (address, undefined)"
 (cd build-sanitize && ctest --output-on-failure -j "$jobs")
+
+echo "== fuzzing: each target for 30 s"
+scripts/fuzz.sh 30

@@ -18,6 +18,7 @@
 #pragma once
 
 #include <cmath>
+#include <limits>
 
 #include <glm/glm.hpp>
 
@@ -44,8 +45,8 @@ template <typename T>
 const char* validate(const bilateral_settings<T>& settings) {
   if (settings.kernel_size < 1 || settings.kernel_size > 63 || settings.kernel_size % 2 == 0)
     return "bilateral_settings::kernel_size must be odd and in [1, 63]";
-  if (!(settings.spatial_sigma > T(0))) return "bilateral_settings::spatial_sigma must be > 0";
-  if (!(settings.depth_sigma > T(0))) return "bilateral_settings::depth_sigma must be > 0";
+  if (!(settings.spatial_sigma > T(0) && settings.spatial_sigma <= std::numeric_limits<T>::max())) return "bilateral_settings::spatial_sigma must be finite and > 0";
+  if (!(settings.depth_sigma > T(0) && settings.depth_sigma <= std::numeric_limits<T>::max())) return "bilateral_settings::depth_sigma must be finite and > 0";
   if (settings.normal_power < 0 || settings.normal_power > 64) return "bilateral_settings::normal_power must be in [0, 64]";
   return nullptr;
 }
@@ -55,8 +56,12 @@ template <typename T>
 T bilateral_weight(const glm::vec<2, T>& offset, T centre_depth, T tap_depth, const glm::vec<3, T>& centre_normal,
                    const glm::vec<3, T>& tap_normal, const bilateral_settings<T>& settings) {
   const T spatial = std::exp(-glm::dot(offset, offset) / (T(2) * settings.spatial_sigma * settings.spatial_sigma));
-  const T relative = (tap_depth - centre_depth) / (settings.depth_sigma * centre_depth);
-  const T depth = std::exp(T(-0.5) * relative * relative);
+  // Relative to the centre's depth; a centre at depth 0 (nothing there) matches only depth 0.
+  T depth = tap_depth == centre_depth ? T(1) : T(0);
+  if (centre_depth != T(0)) {
+    const T relative = (tap_depth - centre_depth) / (settings.depth_sigma * centre_depth);
+    depth = std::exp(T(-0.5) * relative * relative);
+  }
   const T facing = glm::max(T(0), glm::dot(centre_normal, tap_normal));
   T normal = T(1);
   for (int i = 0; i < settings.normal_power; ++i) normal *= facing;

@@ -57,8 +57,10 @@ template <typename T, glm::qualifier Q>
 T polygon_form_factor(const glm::vec<3, T, Q>& x, const glm::vec<3, T, Q>& n, const glm::vec<3, T, Q>& c0, const glm::vec<3, T, Q>& c1,
                       const glm::vec<3, T, Q>& c2, const glm::vec<3, T, Q>& c3) {
   const glm::vec<3, T, Q> corners[4] = {c0 - x, c1 - x, c2 - x, c3 - x};
-  // Sutherland-Hodgman against the plane <n, p> = 0, keeping <n, p> >= 0: at most 5 vertices.
-  glm::vec<3, T, Q> clipped[5];
+  // Sutherland-Hodgman against the plane <n, p> = 0, keeping <n, p> >= 0. Each edge adds at most
+  // 2 vertices: 8 when a non-convex or non-planar quad crosses the plane 4 times (a convex quad
+  // crosses it at most twice: 5). The finite-output test found the overflow of a 5-array.
+  glm::vec<3, T, Q> clipped[8];
   int count = 0;
   for (int k = 0; k < 4; ++k) {
     const glm::vec<3, T, Q>& p = corners[k];

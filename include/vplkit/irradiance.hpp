@@ -13,6 +13,8 @@
 // GLSL twin: shaders/lib/irradiance.glsl.
 #pragma once
 
+#include <limits>
+
 #include <glm/glm.hpp>
 
 namespace vplkit {
@@ -29,8 +31,8 @@ struct irradiance_settings {
 /// Returns nullptr when the settings are usable, else a message naming the bad field.
 template <typename T>
 constexpr const char* validate(const irradiance_settings<T>& settings) {
-  if (!(settings.min_distance > T(0)))
-    return "irradiance_settings::min_distance must be > 0 (it bounds the 1/r^2 singularity)";
+  if (!(settings.min_distance > T(0) && settings.min_distance <= std::numeric_limits<T>::max()))
+    return "irradiance_settings::min_distance must be finite and > 0 (it bounds the 1/r^2 singularity)";
   return nullptr;
 }
 

@@ -135,13 +135,17 @@ template <typename T, glm::qualifier Q>
 glm::vec<3, T, Q> lightwave_vpl_contribution(const glm::vec<3, T, Q>& x, const glm::vec<3, T, Q>& n, const glm::vec<3, T, Q>& albedo,
                                              const glm::vec<3, T, Q>& eye, const lightwave_vpl<T>& vpl,
                                              const lightwave_shading_settings<T>& settings) {
-  const glm::vec<3, T, Q> to_vpl = glm::normalize(vpl.position - x);
+  // A VPL on the vertex itself has no direction to light it from (and normalize(0) is NaN).
+  const glm::vec<3, T, Q> offset = vpl.position - x;
+  if (!(glm::dot(offset, offset) > T(0))) return glm::vec<3, T, Q>(0);
+  const glm::vec<3, T, Q> to_vpl = glm::normalize(offset);
   const T object_term = glm::max(T(0), glm::dot(n, to_vpl));
   const T light_term = lightwave_lobe(glm::dot(vpl.normal, -to_vpl));
   const T strength = glm::max(T(0), T(1) - vpl.attenuation);
   // Phong: the reflection of the incoming direction -to_vpl about n, against the view direction.
   const glm::vec<3, T, Q> reflected = -to_vpl - T(2) * glm::dot(n, -to_vpl) * n;
-  const T mirror = glm::max(T(0), glm::dot(reflected, glm::normalize(eye - x)));
+  const glm::vec<3, T, Q> to_eye = eye - x;
+  const T mirror = glm::dot(to_eye, to_eye) > T(0) ? glm::max(T(0), glm::dot(reflected, glm::normalize(to_eye))) : T(0);
   // pow, not a loop of multiplies: this runs inside the loop over thousands of VPLs, and
   // llvmpipe caps the iterations of nested loops (65535 in total), past which the inner loop
   // silently stops (measured: 6485 VPLs x 16 multiplies gave 46% less light than the CPU).
@@ -154,7 +158,9 @@ glm::vec<3, T, Q> lightwave_vpl_contribution(const glm::vec<3, T, Q>& x, const g
 /// lookup by it, so a VPL that is blocked removes the share of the light it brings.
 template <typename T, glm::qualifier Q>
 T lightwave_vpl_weight(const glm::vec<3, T, Q>& x, const glm::vec<3, T, Q>& n, const lightwave_vpl<T>& vpl) {
-  const glm::vec<3, T, Q> to_vpl = glm::normalize(vpl.position - x);
+  const glm::vec<3, T, Q> offset = vpl.position - x;
+  if (!(glm::dot(offset, offset) > T(0))) return T(0);
+  const glm::vec<3, T, Q> to_vpl = glm::normalize(offset);
   const T object_term = glm::max(T(0), glm::dot(n, to_vpl));
   const T light_term = lightwave_lobe(glm::dot(vpl.normal, -to_vpl));
   const T strength = glm::max(T(0), T(1) - vpl.attenuation);

@@ -26,6 +26,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 
 #include <glm/glm.hpp>
 
@@ -61,7 +62,8 @@ const char* validate(const radial_pattern_settings<T>& settings) {
   if (settings.samples_per_path < 1 || settings.samples_per_path > 256)
     return "radial_pattern_settings::samples_per_path must be in [1, 256]";
   if (!(settings.min_radius > T(0))) return "radial_pattern_settings::min_radius must be > 0";
-  if (!(settings.max_radius > settings.min_radius)) return "radial_pattern_settings::max_radius must be > min_radius";
+  if (!(settings.max_radius > settings.min_radius && settings.max_radius <= std::numeric_limits<T>::max()))
+    return "radial_pattern_settings::max_radius must be finite and > min_radius";
   if (!(settings.rotation_jitter >= T(0) && settings.rotation_jitter <= T(1)))
     return "radial_pattern_settings::rotation_jitter must be in [0, 1]";
   if (!(settings.angle_jitter >= T(0) && settings.angle_jitter <= T(1)))
@@ -153,7 +155,7 @@ struct disk_pattern_settings {
 template <typename T>
 const char* validate(const disk_pattern_settings<T>& settings) {
   if (settings.samples < 1 || settings.samples > 65536) return "disk_pattern_settings::samples must be in [1, 65536]";
-  if (!(settings.max_radius > T(0))) return "disk_pattern_settings::max_radius must be > 0";
+  if (!(settings.max_radius > T(0) && settings.max_radius <= std::numeric_limits<T>::max())) return "disk_pattern_settings::max_radius must be finite and > 0";
   return nullptr;
 }
 

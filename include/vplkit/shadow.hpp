@@ -25,6 +25,8 @@
 // `float rsm_depth_fetch(ivec2 texel)`.
 #pragma once
 
+#include <limits>
+
 #include <glm/glm.hpp>
 
 namespace vplkit {
@@ -39,7 +41,7 @@ struct shadow_density_settings {
 template <typename T>
 const char* validate(const shadow_density_settings<T>& settings) {
   if (settings.kernel_size < 1 || settings.kernel_size > 32) return "shadow_density_settings::kernel_size must be in [1, 32]";
-  if (!(settings.depth_bias >= T(0))) return "shadow_density_settings::depth_bias must be >= 0";
+  if (!(settings.depth_bias >= T(0) && settings.depth_bias <= std::numeric_limits<T>::max())) return "shadow_density_settings::depth_bias must be finite and >= 0";
   return nullptr;
 }
 

@@ -3,6 +3,8 @@
 
 #include <vplkit/bilateral.hpp>
 #include <vplkit/direct_light.hpp>
+#include <vplkit/final_gather.hpp>
+#include <vplkit/form_factor.hpp>
 #include <vplkit/hash.hpp>
 #include <vplkit/irradiance.hpp>
 #include <vplkit/lightwave.hpp>

@@ -21,8 +21,12 @@ bilateral_tap bilateral_fetch(ivec2 texel);
 float bilateral_weight(vec2 offset, float centre_depth, float tap_depth, vec3 centre_normal, vec3 tap_normal,
                        bilateral_settings settings) {
   float spatial = exp(-dot(offset, offset) / (2.0 * settings.spatial_sigma * settings.spatial_sigma));
-  float relative = (tap_depth - centre_depth) / (settings.depth_sigma * centre_depth);
-  float depth = exp(-0.5 * relative * relative);
+  // Relative to the centre's depth; a centre at depth 0 (nothing there) matches only depth 0.
+  float depth = tap_depth == centre_depth ? 1.0 : 0.0;
+  if (centre_depth != 0.0) {
+    float relative = (tap_depth - centre_depth) / (settings.depth_sigma * centre_depth);
+    depth = exp(-0.5 * relative * relative);
+  }
   float facing = max(0.0, dot(centre_normal, tap_normal));
   float normal = 1.0;
   for (int i = 0; i < settings.normal_power; ++i) normal *= facing;

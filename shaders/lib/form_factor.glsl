@@ -22,7 +22,9 @@ float lambert_edge(vec3 a, vec3 b, vec3 n) {
 
 float polygon_form_factor(vec3 x, vec3 n, vec3 c0, vec3 c1, vec3 c2, vec3 c3) {
   vec3 corners[4] = vec3[4](c0 - x, c1 - x, c2 - x, c3 - x);
-  vec3 clipped[5] = vec3[5](vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));
+  // Each edge adds at most 2 vertices: 8 when a non-convex or non-planar quad crosses the plane 4
+  // times (a convex quad crosses it at most twice: 5).
+  vec3 clipped[8] = vec3[8](vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0), vec3(0.0));
   int count = 0;
   for (int k = 0; k < 4; ++k) {
     vec3 p = corners[k];

@@ -58,19 +58,25 @@ struct lightwave_shading_settings {
 };
 
 vec3 lightwave_vpl_contribution(vec3 x, vec3 n, vec3 albedo, vec3 eye, lightwave_vpl vpl, lightwave_shading_settings settings) {
-  vec3 to_vpl = normalize(vpl.position - x);
+  // A VPL on the vertex itself has no direction to light it from (and normalize(0) is NaN).
+  vec3 offset = vpl.position - x;
+  if (!(dot(offset, offset) > 0.0)) return vec3(0.0);
+  vec3 to_vpl = normalize(offset);
   float object_term = max(0.0, dot(n, to_vpl));
   float light_term = lightwave_lobe(dot(vpl.normal, -to_vpl));
   float strength = max(0.0, 1.0 - vpl.attenuation);
   vec3 reflected = -to_vpl - 2.0 * dot(n, -to_vpl) * n;
-  float mirror = max(0.0, dot(reflected, normalize(eye - x)));
+  vec3 to_eye = eye - x;
+  float mirror = dot(to_eye, to_eye) > 0.0 ? max(0.0, dot(reflected, normalize(to_eye))) : 0.0;
   // pow, not a loop: see the C++ twin (llvmpipe caps nested loop iterations).
   float specular = object_term > 0.0 ? settings.specular_strength * pow(mirror, float(settings.specular_exponent)) : 0.0;
   return albedo * (object_term * light_term * strength) + vec3(specular);
 }
 
 float lightwave_vpl_weight(vec3 x, vec3 n, lightwave_vpl vpl) {
-  vec3 to_vpl = normalize(vpl.position - x);
+  vec3 offset = vpl.position - x;
+  if (!(dot(offset, offset) > 0.0)) return 0.0;
+  vec3 to_vpl = normalize(offset);
   float object_term = max(0.0, dot(n, to_vpl));
   float light_term = lightwave_lobe(dot(vpl.normal, -to_vpl));
   float strength = max(0.0, 1.0 - vpl.attenuation);

@@ -1,6 +1,6 @@
 # Runs the vplkit executable on good and bad input and checks exit codes, messages and files.
 # Inputs: VPLKIT (the executable), SHADERS (the source shaders/ folder), WORK (a scratch folder),
-# XVFB_RUN (xvfb-run, or empty).
+# XVFB_RUN (xvfb-run, or empty), FUZZ_INPUTS (tests/fuzz/regressions: binary inputs CMake cannot write).
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
 set(failures 0)
@@ -71,7 +71,7 @@ expect_failure("unknown scene" "unknown scene 'sponza'.*cornell-box.*atrium" "${
 expect_failure("unknown technique" "--technique.*rsm-alg7" "${WORK}/tech.png" "${VPLKIT}" render --technique rsm-alg7 --out "${WORK}/tech.png")
 expect_failure("slots out of range" "--slots.*17" "${WORK}/slots.png" "${VPLKIT}" render --slots 17 --out "${WORK}/slots.png")
 expect_failure("paths out of range" "--paths.*0" "${WORK}/paths.png" "${VPLKIT}" render --paths 0 --out "${WORK}/paths.png")
-expect_failure("max radius below min radius" "max_radius must be > min_radius" "${WORK}/radius.png"
+expect_failure("max radius below min radius" "max_radius must be finite and > min_radius" "${WORK}/radius.png"
                "${VPLKIT}" render --max-radius 0.5 --out "${WORK}/radius.png")
 expect_failure("RSM size out of range" "--rsm-size.*16385" "${WORK}/big.png"
                "${VPLKIT}" render --size 8 --rsm-size 16385 --out "${WORK}/big.png")
@@ -107,7 +107,7 @@ expect_failure("GLSL syntax error names the lib file and line" "GLSL compile err
 file(WRITE "${WORK}/bad.obj" "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n")
 expect_failure("malformed OBJ scene" "${WORK}/bad\\.obj:4: face vertex index 9 is out of range" "${WORK}/obj.png"
                "${VPLKIT}" render --scene "${WORK}/bad.obj" --size 16 --out "${WORK}/obj.png")
-expect_failure("missing OBJ scene" "${WORK}/none\\.obj: cannot open the OBJ file" "${WORK}/none.png"
+expect_failure("missing OBJ scene" "${WORK}/none\\.obj: no such OBJ file" "${WORK}/none.png"
                "${VPLKIT}" render --scene "${WORK}/none.obj" --size 16 --out "${WORK}/none.png")
 file(WRITE "${WORK}/good.obj" "v -1 0 -1\nv 1 0 -1\nv 0 1 0\nf 1 2 3\n")
 expect_success("an OBJ scene renders" "scene good \\(3 triangles\\)" "${VPLKIT}" render --scene "${WORK}/good.obj" --size 16 --rsm-size 32
@@ -120,18 +120,18 @@ foreach(technique lightwave-direct lightwave-faked lightwave-unshadowed lightwav
 endforeach()
 expect_failure("Light Wave ray angle that does not divide 90" "must divide 90 and 360" "${WORK}/lw1.png"
                "${VPLKIT}" render --technique lightwave-accurate --ray-angle 7 --size 32 --out "${WORK}/lw1.png")
-expect_failure("Light Wave zero VPLs per ray" "VPLs per ray must be in" "${WORK}/lw2.png"
+expect_failure("Light Wave zero VPLs per ray" "--vpls-per-ray.*not in range 1 to 32" "${WORK}/lw2.png"
                "${VPLKIT}" render --technique lightwave-accurate --vpls-per-ray 0 --size 32 --out "${WORK}/lw2.png")
 expect_failure("Light Wave more maps than VPLs" "more accurate shadow maps \\(20\\) than VPLs \\(5\\)" "${WORK}/lw3.png"
                "${VPLKIT}" render --technique lightwave-accurate --ray-angle 90 --vpls-per-ray 1 --size 32 --out "${WORK}/lw3.png")
-expect_failure("Light Wave negative steps" "integrated steps must be >= 0" "${WORK}/lw4.png"
+expect_failure("Light Wave negative steps" "--integrated-steps.*not in range 0 to 64" "${WORK}/lw4.png"
                "${VPLKIT}" render --technique lightwave-integrated --integrated-steps -1 --size 32 --out "${WORK}/lw4.png")
 expect_failure("Light Wave shadow maps beyond GL_MAX_TEXTURE_SIZE" "GL_MAX_TEXTURE_SIZE" "${WORK}/lw5.png"
                "${VPLKIT}" render --technique lightwave-accurate --shadow-map-scale 14 --size 1280x720 --out "${WORK}/lw5.png")
-expect_failure("Light Wave shadow map scale out of range" "shadow map scale must be in \\(0, 16\\]" "${WORK}/lw6.png"
+expect_failure("Light Wave shadow map scale out of range" "--shadow-map-scale.*must be a number in \\(0, 16\\]" "${WORK}/lw6.png"
                "${VPLKIT}" render --technique lightwave-accurate --shadow-map-scale 100 --size 320x180 --out "${WORK}/lw6.png")
-foreach(bad nan -1 0.2 9)
-  expect_failure("--faked-multiplier ${bad}" "faked multiplier must be in \\[0.5, 4\\]" "${WORK}/lw7.png"
+foreach(bad nan -1 0.2 9 inf)
+  expect_failure("--faked-multiplier ${bad}" "--faked-multiplier.*must be a number in \\[0.5, 4\\]" "${WORK}/lw7.png"
                  "${VPLKIT}" render --technique lightwave-faked --faked-multiplier ${bad} --size 32x18 --out "${WORK}/lw7.png")
 endforeach()
 expect_success("Light Wave writes its indirect shadow factor" "wrote .*/lw8\\.png.*wrote .*/lw8-indirect-shadow\\.png"
@@ -157,7 +157,7 @@ expect_failure("M that does not divide the face size" "M = 3 does not divide the
                "${VPLKIT}" render --technique finalgather-polygon --cube-resolution 3 --face-size 32 --size 32 --out "${WORK}/fg1.png")
 expect_failure("reference point outside the room" "outside the room or inside geometry" "${WORK}/fg2.png"
                "${VPLKIT}" render --technique finalgather-polygon --object-position 0,0.7,5 --size 32 --face-size 32 --out "${WORK}/fg2.png")
-expect_failure("object that fails to load" "${WORK}/no-object\\.obj: cannot open the OBJ file" "${WORK}/fg3.png"
+expect_failure("object that fails to load" "${WORK}/no-object\\.obj: no such OBJ file" "${WORK}/fg3.png"
                "${VPLKIT}" render --technique finalgather-point --object "${WORK}/no-object.obj" --size 32 --out "${WORK}/fg3.png")
 expect_failure("object position not a point" "--object-position.*expected x,y,z" "${WORK}/fg4.png"
                "${VPLKIT}" render --technique finalgather-point --object-position 1,2 --size 32 --out "${WORK}/fg4.png")
@@ -173,9 +173,9 @@ expect_success("compare an image with itself" "\\| RMSE \\| 0 \\|.*\\| similarit
                "${VPLKIT}" compare "${WORK}/ref.pfm" "${WORK}/ref.pfm")
 expect_success("compare with a mask and an error image" "masked RMSE.*masked relative RMSE.*wrote .*/err\\.png"
                "${VPLKIT}" compare "${WORK}/ref.png" "${WORK}/ref.pfm" --mask "${WORK}/ref.pfm" --error-image "${WORK}/err.png")
-expect_failure("compare images of different sizes" "different sizes \\(24x24 and 48x32\\)" "${WORK}/err2.png"
+expect_failure("compare images of different sizes" "the image ${WORK}/ref\\.pfm is 24x24 but the reference ${WORK}/small\\.png is 48x32" "${WORK}/err2.png"
                "${VPLKIT}" compare "${WORK}/ref.pfm" "${WORK}/small.png" --error-image "${WORK}/err2.png")
-expect_failure("compare an unreadable file" "${WORK}/missing\\.pfm: no such file" "" "${VPLKIT}" compare "${WORK}/missing.pfm" "${WORK}/ref.pfm")
+expect_failure("compare an unreadable file" "${WORK}/missing\\.pfm: no such PFM image" "" "${VPLKIT}" compare "${WORK}/missing.pfm" "${WORK}/ref.pfm")
 file(WRITE "${WORK}/bad.pfm" "P6 garbage")
 expect_failure("compare a malformed PFM" "bad\\.pfm: not an RGB PFM file" "" "${VPLKIT}" compare "${WORK}/bad.pfm" "${WORK}/ref.pfm")
 expect_failure("compare an unsupported format" "unsupported image format '.obj'" "" "${VPLKIT}" compare "${WORK}/good.obj" "${WORK}/ref.pfm")
@@ -221,6 +221,125 @@ expect_failure("brute-force reference whose mask cannot be written leaves nothin
                "${VPLKIT}" reference --method rsm-brute-force --size 16 --rsm-size 16 --out "${WORK}/blocked.pfm")
 if(EXISTS "${WORK}/blocked.png")
   message(SEND_ERROR "FAILED brute-force reference: a failed write left blocked.png behind")
+  math(EXPR failures "${failures} + 1")
+endif()
+
+# Hostile input (issue 11): every case exits 1 or 2 with a message naming the input, and writes nothing.
+# expect_hostile(<name> <message regex> <args...>): exit 1 or 2, the message, no ${WORK}/hostile* file.
+function(expect_hostile name pattern)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  file(GLOB left "${WORK}/hostile/out*")
+  set(problem "")
+  if(NOT (code EQUAL 1 OR code EQUAL 2))
+    set(problem "exit code ${code}, expected 1 or 2")
+  elseif(NOT "${out}${err}" MATCHES "${pattern}")
+    set(problem "output does not match '${pattern}'")
+  elseif(left)
+    set(problem "left files behind: ${left}")
+  endif()
+  if(left)
+    file(REMOVE_RECURSE ${left})
+  endif()
+  if(problem)
+    message(SEND_ERROR "FAILED ${name}: ${problem}\n  command: ${ARGN}\n  exit: ${code}\n  stdout: ${out}\n  stderr: ${err}")
+    math(EXPR count "${failures} + 1")
+    set(failures ${count} PARENT_SCOPE)
+  else()
+    message(STATUS "ok ${name}: exit ${code}, message: ${err}")
+  endif()
+endfunction()
+set(H "${WORK}/hostile")
+file(MAKE_DIRECTORY "${H}/deep/er/still")
+# 1. OBJ text that two parsers would read differently, or that overflows a float.
+file(WRITE "${H}/empty-normal.obj" "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1// 2 3\n")
+file(WRITE "${H}/cr-comment.obj" "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n#\rf 1 2 100000\n")
+string(ASCII 11 vertical_tab)
+file(WRITE "${H}/vertical-tab.obj" "v 0 0 0\nv 1 0 0\nv${vertical_tab}0 1 0\nf 1 2 3\n")
+file(WRITE "${H}/float-overflow.obj" "v 1e39 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+string(REPEAT "1" 100 hundred_digits)
+file(WRITE "${H}/hundred-digits.obj" "v ${hundred_digits} 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+file(WRITE "${H}/kd.mtl" "newmtl m\nKd 1e999 0.5 0.5\n")
+file(WRITE "${H}/kd-overflow.obj" "mtllib kd.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl m\nf 1 2 3\n")
+file(WRITE "${H}/huge.obj" "v 1e10 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+file(WRITE "${H}/deep/er/still/dev-zero.obj" "mtllib ../../../../../../../../../../dev/zero\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+expect_hostile("OBJ: v//vn corner without its normal" "empty-normal\\.obj:4: face corner '1//'" "${VPLKIT}" render --scene "${H}/empty-normal.obj" --size 16 --out "${H}/out.png")
+expect_hostile("OBJ: CR inside a comment (--scene)" "cr-comment\\.obj:5: control character 0x0d" "${VPLKIT}" render --scene "${H}/cr-comment.obj" --size 16 --out "${H}/out.png")
+expect_hostile("OBJ: CR inside a comment (--object)" "cr-comment\\.obj:5: control character 0x0d"
+               "${VPLKIT}" render --technique finalgather-polygon --object "${H}/cr-comment.obj" --size 16 --face-size 16 --out "${H}/out.png")
+expect_hostile("OBJ: vertical tab" "vertical-tab\\.obj:3: control character 0x0b" "${VPLKIT}" render --scene "${H}/vertical-tab.obj" --size 16 --out "${H}/out.png")
+expect_hostile("OBJ: 1e39 overflows a float" "float-overflow\\.obj:1: number '1e39' is outside the float range"
+               "${VPLKIT}" render --scene "${H}/float-overflow.obj" --size 16 --out "${H}/out.png")
+expect_hostile("OBJ: a 100-digit number" "hundred-digits\\.obj:1: number '1111.*outside the float range"
+               "${VPLKIT}" render --scene "${H}/hundred-digits.obj" --size 16 --out "${H}/out.png")
+expect_hostile("MTL: Kd 1e999" "kd-overflow\\.obj:1: mtllib kd\\.mtl: kd\\.mtl:2: number '1e999' is outside the float range"
+               "${VPLKIT}" reference --scene "${H}/kd-overflow.obj" --size 16 --samples 1 --out "${H}/out.pfm")
+expect_hostile("reference: coordinates of 1e10" "huge\\.obj:1: number '1e10' is larger than 1000000"
+               "${VPLKIT}" reference --scene "${H}/huge.obj" --size 16 --samples 1 --out "${H}/out.pfm")
+expect_hostile("MTL: mtllib names /dev/zero" "dev-zero\\.obj:1: mtllib .*dev/zero: .*dev/zero: not a regular file"
+               "${VPLKIT}" render --scene "${H}/deep/er/still/dev-zero.obj" --size 16 --out "${H}/out.png")
+# Kd 0e999 is 0: it loads, and the reference it renders has no NaN (compare refuses non-finite pixels).
+file(WRITE "${H}/kd-zero.mtl" "newmtl m\nKd 0e999 0.5 0.5\n")
+file(WRITE "${H}/kd-zero.obj" "mtllib kd-zero.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl m\nf 1 2 3\n")
+expect_success("MTL: Kd 0e999 is zero, the reference is finite" "wrote .*/kd-zero\\.pfm"
+               "${VPLKIT}" reference --scene "${H}/kd-zero.obj" --size 16 --samples 1 --out "${H}/kd-zero.pfm")
+expect_success("the Kd 0e999 reference has finite pixels" "\\| RMSE \\| 0 \\|" "${VPLKIT}" compare "${H}/kd-zero.pfm" "${H}/kd-zero.pfm")
+# 3. Arguments and shader lines long enough to overflow a std::regex's stack.
+string(REPEAT "1" 100000 long_number)
+expect_hostile("--object-position of 100000 characters" "--object-position: each of x,y,z must be a finite number.*\\(100004 characters\\)"
+               "${VPLKIT}" render --technique finalgather-polygon --object-position "${long_number},0,0" --size 16 --out "${H}/out.png")
+expect_hostile("--size of 100000 characters" "--size: expected N or WxH.*\\(100000 characters\\)" "${VPLKIT}" render --size "${long_number}" --out "${H}/out.png")
+file(COPY "${SHADERS}/" DESTINATION "${H}/long-line")
+string(REPEAT "x" 60000 long_name)
+file(APPEND "${H}/long-line/lib/direct_light.glsl" "\n#include \"${long_name}.glsl\"\n")
+expect_hostile("a shader line of 60000 characters" "lib/direct_light\\.glsl:[0-9]+: the included file name has 60005 characters"
+               "${VPLKIT}" render --shader-dir "${H}/long-line" --size 16 --out "${H}/out.png")
+# 4. compare on NaN and extreme pixels; 5. a PGM named .png; 7. headers that claim gigapixels.
+file(COPY "${FUZZ_INPUTS}/pfm/nan-pixel" "${FUZZ_INPUTS}/pfm/inf-pixel" "${FUZZ_INPUTS}/pfm/trailing-bytes" "${FUZZ_INPUTS}/pfm/claims-20000-squared"
+          "${FUZZ_INPUTS}/pfm/claims-65536-squared" "${FUZZ_INPUTS}/png/pgm16-named-png" "${FUZZ_INPUTS}/png/claims-65535-squared"
+          "${FUZZ_INPUTS}/pfm/extreme-pixels" "${FUZZ_INPUTS}/../corpus/pfm/one-pixel" DESTINATION "${H}/inputs")
+foreach(name nan-pixel inf-pixel trailing-bytes claims-20000-squared claims-65536-squared extreme-pixels one-pixel)
+  file(RENAME "${H}/inputs/${name}" "${H}/inputs/${name}.pfm")
+endforeach()
+foreach(name pgm16-named-png claims-65535-squared)
+  file(RENAME "${H}/inputs/${name}" "${H}/inputs/${name}.png")
+endforeach()
+expect_hostile("compare: a NaN pixel" "nan-pixel\\.pfm: pixel \\(0, 0\\) \\(from the top left\\) is NaN"
+               "${VPLKIT}" compare "${H}/inputs/nan-pixel.pfm" "${H}/inputs/nan-pixel.pfm" --error-image "${H}/out.png")
+expect_hostile("compare: an infinite pixel" "inf-pixel\\.pfm: pixel \\(0, 0\\) .*is infinite" "${VPLKIT}" compare "${H}/inputs/inf-pixel.pfm" "${H}/inputs/inf-pixel.pfm")
+expect_hostile("compare: bytes after the PFM's pixels" "trailing-bytes\\.pfm: 2 bytes follow the 1x1 pixels"
+               "${VPLKIT}" compare "${H}/inputs/trailing-bytes.pfm" "${H}/inputs/trailing-bytes.pfm")
+expect_hostile("compare: a 34-byte PFM claiming 20000^2" "claims-20000-squared\\.pfm: the image claims 20000x20000 pixels"
+               "${VPLKIT}" compare "${H}/inputs/claims-20000-squared.pfm" "${H}/inputs/trailing-bytes.pfm")
+expect_hostile("compare: a PFM claiming 65536^2" "claims-65536-squared\\.pfm: the image claims 65536x65536 pixels"
+               "${VPLKIT}" compare "${H}/inputs/claims-65536-squared.pfm" "${H}/inputs/trailing-bytes.pfm")
+expect_hostile("compare: a 16-bit PGM named .png" "pgm16-named-png\\.png: not a PNG file \\(no PNG signature\\)"
+               "${VPLKIT}" compare "${H}/inputs/pgm16-named-png.png" "${H}/inputs/trailing-bytes.pfm")
+expect_hostile("compare: a PNG claiming 65535^2" "claims-65535-squared\\.png: the image claims 65535x65535 pixels"
+               "${VPLKIT}" compare "${H}/inputs/claims-65535-squared.png" "${H}/inputs/trailing-bytes.pfm")
+# Pixels of +-3e38 are finite: the metrics and the error image are too.
+expect_success("compare: pixels of +-3e38 give finite metrics and an error image" "\\| RMSE \\| [0-9.]+e\\+38 \\|.*\\| PSNR \\(dB\\) \\| -?[0-9.]+ \\|.*wrote .*/extreme-error\\.png"
+               "${VPLKIT}" compare "${H}/inputs/extreme-pixels.pfm" "${H}/inputs/one-pixel.pfm" --error-image "${H}/extreme-error.png")
+# 8. Light Wave and other numeric options: non-finite and out-of-range values.
+expect_hostile("--shadow-map-scale nan" "--shadow-map-scale.*\\(0, 16\\]" "${VPLKIT}" render --technique lightwave-accurate --shadow-map-scale nan --out "${H}/out.png")
+expect_hostile("--vpl-max-distance inf" "--vpl-max-distance.*\\[0, 1e\\+07\\]" "${VPLKIT}" render --technique lightwave-accurate --vpl-max-distance inf --out "${H}/out.png")
+expect_hostile("--error-scale nan" "--error-scale.*must be a number" "${VPLKIT}" compare "${H}/kd-zero.pfm" "${H}/kd-zero.pfm" --error-scale nan --error-image "${H}/out.png")
+expect_hostile("--object-size 1e30" "--object-size.*\\(0, 10\\]" "${VPLKIT}" render --technique finalgather-point --object-size 1e30 --out "${H}/out.png")
+# 9. A multi-file output with one file blocked: nothing written, and the reason (not "Success").
+file(MAKE_DIRECTORY "${H}/blocked-indirect.pfm")
+expect_failure("reference: one output blocked by a folder" "cannot write .*blocked-indirect\\.pfm: a folder of that name is in the way" "${H}/blocked.pfm"
+               "${VPLKIT}" reference --size 16 --samples 1 --out "${H}/blocked.pfm")
+if(EXISTS "${H}/blocked.png")
+  message(SEND_ERROR "FAILED reference: a blocked output left blocked.png behind")
+  math(EXPR failures "${failures} + 1")
+endif()
+# 10. compare: sizes named with their files; an error image that is an input.
+expect_hostile("compare: --error-image is an input" "--error-image .*kd-zero-copy\\.png is the input"
+               "${VPLKIT}" compare "${WORK}/ref.png" "${H}/kd-zero-copy.png" --error-image "${H}/./kd-zero-copy.png")
+file(SHA256 "${WORK}/ref.png" before)
+expect_hostile("compare: --error-image is the image itself" "is the input" "${VPLKIT}" compare "${WORK}/ref.png" "${WORK}/ref.png" --error-image "${WORK}/ref.png")
+file(SHA256 "${WORK}/ref.png" after)
+if(NOT before STREQUAL after)
+  message(SEND_ERROR "FAILED compare: --error-image overwrote its input")
   math(EXPR failures "${failures} + 1")
 endif()
 

@@ -117,7 +117,7 @@ TEST_CASE("final gathering errors: M not dividing the face size, a reference poi
   const final_gather_scene touching = make_final_gather_scene("sphere", glm::vec3(0.9f, 0.7f, 0.0f), 0.5f);
   final_gather_pipeline touching_pipeline(test_shaders(), touching, small("finalgather-polygon", 4));
   CHECK_THROWS_WITH_AS(touching_pipeline.render(), doctest::Contains("intersects a wall"), vplkit::error);
-  CHECK_THROWS_WITH_AS(make_final_gather_scene("/nonexistent/bunny.obj", glm::vec3(0.0f), 0.5f), doctest::Contains("cannot open the OBJ file"),
+  CHECK_THROWS_WITH_AS(make_final_gather_scene("/nonexistent/bunny.obj", glm::vec3(0.0f), 0.5f), doctest::Contains("no such OBJ file"),
                        vplkit::error);
   CHECK_THROWS_WITH_AS(make_final_gather_scene("sphere", glm::vec3(0.0f), 0.0f), doctest::Contains("size must be > 0"), vplkit::error);
 }

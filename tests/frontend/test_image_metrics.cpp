@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <random>
 
 #include "frontend/error.hpp"
@@ -112,18 +113,60 @@ TEST_CASE("PFM round trip, PNG reading, false colour, and errors naming the file
   CHECK(colours[1] == 0);
   CHECK(false_colour_error(a, a, 1.0f)[2] == 255);  // no difference: blue
   // Errors.
-  CHECK_THROWS_WITH_AS(read_image_file(folder / "none.pfm"), doctest::Contains("none.pfm: no such file"), vplkit::error);
+  CHECK_THROWS_WITH_AS(read_image_file(folder / "none.pfm"), doctest::Contains("none.pfm: no such PFM image"), vplkit::error);
   std::ofstream(folder / "bad.pfm") << "P6\n1 1\n255\n";
   CHECK_THROWS_WITH_AS(read_image_file(folder / "bad.pfm"), doctest::Contains("not an RGB PFM file"), vplkit::error);
   std::ofstream(folder / "short.pfm") << "PF\n4 4\n-1.0\n1234";
   CHECK_THROWS_WITH_AS(read_image_file(folder / "short.pfm"), doctest::Contains("ends before its 4x4 pixels"), vplkit::error);
   std::ofstream(folder / "text.png") << "not a png";
-  CHECK_THROWS_WITH_AS(read_image_file(folder / "text.png"), doctest::Contains("not a readable PNG"), vplkit::error);
-  CHECK_THROWS_WITH_AS(read_image_file(folder / "a.jpg"), doctest::Contains("no such file"), vplkit::error);
+  CHECK_THROWS_WITH_AS(read_image_file(folder / "text.png"), doctest::Contains("text.png: not a PNG file (no PNG signature)"), vplkit::error);
+  // A PNG signature with a broken body reaches stb's PNG decoder, and only that one.
+  std::ofstream(folder / "broken.png", std::ios::binary) << "\x89PNG\r\n\x1a\nbroken";
+  CHECK_THROWS_WITH_AS(read_image_file(folder / "broken.png"), doctest::Contains("broken.png: not a readable PNG"), vplkit::error);
+  CHECK_THROWS_WITH_AS(read_image_file(folder / "a.jpg"), doctest::Contains("unsupported image format '.jpg'"), vplkit::error);
   std::ofstream(folder / "a.exr") << "x";
   CHECK_THROWS_WITH_AS(read_image_file(folder / "a.exr"), doctest::Contains("unsupported image format '.exr'"), vplkit::error);
   CHECK_THROWS_WITH_AS(compare_images(gradient(4, 4), gradient(5, 4)), doctest::Contains("different sizes (4x4 and 5x4)"), vplkit::error);
   fs::remove_all(folder);
+}
+
+TEST_CASE("PFM decoding: exact size, finite pixels, header limits checked before allocating") {
+  const auto pfm = [](const std::string& header, std::vector<float> values, const std::string& tail = "") {
+    std::string bytes = header;
+    bytes.append(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(float));
+    return bytes + tail;
+  };
+  const float_image ok = decode_image(pfm("PF\n2 1\n-1.0\n", {1, 2, 3, 4, 5, 6}), image_file_format::pfm, "ok.pfm");
+  CHECK(ok.at(1, 0) == glm::vec3(4, 5, 6));
+  CHECK_THROWS_WITH_AS(decode_image(pfm("PF\n1 1\n-1.0\n", {1, 2, 3}, "xy"), image_file_format::pfm, "t.pfm"),
+                       "t.pfm: 2 bytes follow the 1x1 pixels of the PFM file", vplkit::error);
+  CHECK_THROWS_WITH_AS(decode_image(pfm("PF\n1 2\n-1.0\n", {1, 2, 3, 4, 5, std::nanf("")}), image_file_format::pfm, "t.pfm"),
+                       "t.pfm: pixel (0, 0) (from the top left) is NaN; vplkit compares finite images", vplkit::error);
+  CHECK_THROWS_WITH_AS(decode_image(pfm("PF\n20000 20000\n-1.0\n", {0, 0, 0}), image_file_format::pfm, "t.pfm"),
+                       doctest::Contains("t.pfm: the image claims 20000x20000 pixels, more than vplkit reads"), vplkit::error);
+  image_read_limits tiny;
+  tiny.max_pixels = 1;
+  CHECK_THROWS_WITH_AS(decode_image(pfm("PF\n2 1\n-1.0\n", {1, 2, 3, 4, 5, 6}), image_file_format::pfm, "t.pfm", tiny),
+                       doctest::Contains("the image claims 2x1 pixels"), vplkit::error);
+  CHECK_THROWS_WITH_AS(decode_image(pfm("PF\n1 1\n1.0\n", {1, 2, 3}), image_file_format::pfm, "t.pfm"), doctest::Contains("big-endian"), vplkit::error);
+  CHECK_THROWS_WITH_AS(decode_image(pfm("PF\n1 1\nnan\n", {1, 2, 3}), image_file_format::pfm, "t.pfm"), doctest::Contains("scale 'nan'"), vplkit::error);
+  CHECK_THROWS_WITH_AS(decode_image(pfm("Pf\n1 1\n-1\n", {1}), image_file_format::pfm, "t.pfm"), doctest::Contains("greyscale"), vplkit::error);
+}
+
+TEST_CASE("metrics of finite pixels are finite, FLT_MAX included; non-finite pixels are refused") {
+  const float big = std::numeric_limits<float>::max();
+  const float_image extreme{2, 1, {glm::vec3(big, -big, 3e38f), glm::vec3(-3e38f, big, 0.0f)}};
+  const float_image zero{2, 1, {glm::vec3(0.0f), glm::vec3(0.0f)}};
+  const image_metrics m = compare_images(extreme, zero, &extreme);
+  for (const double value : {m.rmse, m.relative_mse, m.psnr, m.ssim, m.similarity, *m.leak_rmse})
+    CHECK(std::isfinite(value));
+  CHECK(m.rmse > 1e38);
+  const std::vector<std::uint8_t> colours = false_colour_error(extreme, zero, 0.0f);
+  CHECK(colours[0] == 255);  // the largest difference is full red
+  float_image with_nan = zero;
+  with_nan.pixels[1].g = std::nanf("");
+  CHECK_THROWS_WITH_AS(compare_images(with_nan, zero), "compare: the image: pixel (1, 0) is not finite", vplkit::error);
+  CHECK_THROWS_WITH_AS(false_colour_error(zero, with_nan, 0.0f), "error image: the reference: pixel (1, 0) is not finite", vplkit::error);
 }
 
 TEST_CASE("relative RMSE and bias: a scaled copy, an offset, and a mask that selects the pixels they count") {

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "frontend/debug_output.hpp"
+#include "frontend/gl.hpp"
 #include "frontend/error.hpp"
 #include "frontend/program.hpp"
 #include "tests/parity/parity_harness.hpp"
@@ -133,8 +134,13 @@ TEST_CASE("every shipped pass program compiles and links") {
 
 TEST_CASE("GL errors reach the error path with the operation's name") {
   parity::test_shaders();
+  REQUIRE(GLAD_GL_KHR_debug);  // Mesa has it on every context; the count below relies on it
+  const std::size_t before = unchecked_gl_error_count();
   glBindTexture(GL_TEXTURE_2D + 1, 0);  // not a texture target: GL_INVALID_ENUM
+  // Counted as soon as the driver reports it, until a check point turns it into an exception.
+  CHECK(unchecked_gl_error_count() == before + 1);
   const std::string message = message_of([] { check_gl("binding a texture on purpose"); });
+  CHECK(unchecked_gl_error_count() == before);
   CAPTURE(message);
   CHECK(message.find("GL error during binding a texture on purpose") == 0);
   CHECK(message.find("GL_INVALID_ENUM") != std::string::npos);

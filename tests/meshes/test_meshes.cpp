@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <iostream>
 
+#include "frontend/debug_output.hpp"
 #include "frontend/final_gather_pipeline.hpp"
 #include "frontend/lightwave_pipeline.hpp"
 #include "frontend/obj_loader.hpp"
@@ -121,5 +122,10 @@ int main(int argc, char** argv) {
     }
   }
   doctest::Context context(argc, argv);
-  return context.run();
+  const int result = context.run();
+  if (const std::size_t unchecked = vplkit::unchecked_gl_error_count(); unchecked > 0 && !context.shouldExit()) {
+    std::cout << "FAILED: the GL driver reported " << unchecked << " error(s) through KHR_debug that no check_gl saw\n";
+    return result != 0 ? result : 1;
+  }
+  return result;
 }

@@ -1,0 +1,37 @@
+// Fuzz target: the command line's parsing and checks (frontend/cli.hpp) in check_only mode, which
+// stops before a GL context or a file is opened. The input is the arguments after `vplkit`,
+// separated by NUL bytes (at most 32). Every command line must end in exit code 0, 1 or 2, with
+// no exception escaping.
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "frontend/cli.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string_view input(reinterpret_cast<const char*>(data), size);
+  std::vector<std::string> arguments{"vplkit"};
+  for (std::size_t start = 0; start <= input.size() && arguments.size() <= 32;) {
+    const std::size_t end = input.find('\0', start);
+    arguments.emplace_back(input.substr(start, end == std::string_view::npos ? std::string_view::npos : end - start));
+    if (end == std::string_view::npos) break;
+    start = end + 1;
+  }
+  std::vector<const char*> argv;
+  for (const std::string& argument : arguments) argv.push_back(argument.c_str());
+  std::ostringstream out, err;
+  const int status = vplkit::run_command_line(static_cast<int>(argv.size()), argv.data(), out, err, vplkit::command_line_mode::check_only);
+  if (status != 0 && status != 1 && status != 2) {
+    std::fprintf(stderr, "fuzz_cli_options: exit code %d\n", status);
+    std::abort();
+  }
+  if (status != 0 && err.str().empty() && out.str().empty()) {
+    std::fprintf(stderr, "fuzz_cli_options: exit code %d without a message\n", status);
+    std::abort();
+  }
+  return 0;
+}

@@ -1,0 +1,65 @@
+// Fuzz target: the comparison metrics (frontend/image_metrics.hpp). The first byte picks the
+// width (1..16) and whether a mask follows; the rest are the little-endian floats of the image,
+// the reference and the mask, as far as they go. Any finite pixels, FLT_MAX included, must give
+// finite metrics (PSNR is +inf exactly when the images are equal); non-finite pixels must end in
+// vplkit::error.
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <vector>
+
+#include "frontend/error.hpp"
+#include "frontend/image_metrics.hpp"
+
+namespace {
+
+void require(bool condition, const char* what) {
+  if (!condition) {
+    std::fprintf(stderr, "fuzz_compare: %s\n", what);
+    std::abort();
+  }
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  if (size < 1) return 0;
+  const int width = 1 + (data[0] & 15);
+  const bool with_mask = (data[0] & 16) != 0;
+  std::vector<float> floats((size - 1) / 4);
+  if (!floats.empty()) std::memcpy(floats.data(), data + 1, floats.size() * 4);
+  const int images = with_mask ? 3 : 2;
+  const std::size_t per_image = floats.size() / static_cast<std::size_t>(images);
+  const int height = static_cast<int>(per_image / (3 * static_cast<std::size_t>(width)));
+  if (height < 1) return 0;
+  std::vector<vplkit::float_image> parts(static_cast<std::size_t>(images));
+  std::size_t next = 0;
+  for (vplkit::float_image& image : parts) {
+    image = {width, height, std::vector<glm::vec3>(static_cast<std::size_t>(width) * static_cast<std::size_t>(height))};
+    for (glm::vec3& p : image.pixels) {
+      p = glm::vec3(floats[next], floats[next + 1], floats[next + 2]);
+      next += 3;
+    }
+  }
+  const vplkit::float_image* mask = with_mask ? &parts[2] : nullptr;
+  try {
+    const vplkit::image_metrics m = vplkit::compare_images(parts[0], parts[1], mask);
+    for (const double value : {m.rmse, m.relative_mse, m.ssim, m.similarity, m.relative.rmse, m.relative.bias})
+      require(std::isfinite(value), "a metric is not finite");
+    require(std::isfinite(m.psnr) || (std::isinf(m.psnr) && m.psnr > 0.0 && m.rmse == 0.0), "PSNR is not finite for different images");
+    if (m.leak_rmse) require(std::isfinite(*m.leak_rmse), "the masked RMSE is not finite");
+    if (m.masked) require(std::isfinite(m.masked->rmse) && std::isfinite(m.masked->bias), "a masked relative error is not finite");
+    for (const float scale : {0.0f, 1.0f, 1e-30f, 3e38f}) {
+      const std::vector<std::uint8_t> colours = vplkit::false_colour_error(parts[0], parts[1], scale);
+      require(colours.size() == parts[0].pixels.size() * 4, "the error image has the wrong size");
+    }
+  } catch (const vplkit::error&) {
+    bool finite = true;
+    for (const vplkit::float_image& image : parts)
+      for (const glm::vec3& p : image.pixels) finite = finite && std::isfinite(p.r) && std::isfinite(p.g) && std::isfinite(p.b);
+    require(!finite, "finite images of the same size were refused");
+  }
+  return 0;
+}
