@@ -101,7 +101,7 @@ std::string parse_error(const std::string& text, const std::string& library = ""
 }  // namespace
 
 TEST_CASE("the OBJ parser sees every byte the way an editor does: no control characters but tab, LF and CRLF") {
-  // Issue 11's reproducers: each reached out-of-bounds reads or writes through tinyobjloader.
+  // Each reached out-of-bounds reads or writes when a line validator and a second parser disagreed.
   CHECK(parse_error("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1// 2 3\n") == "t.obj:4: face corner '1//' is not v, v/vt, v//vn or v/vt/vn");
   CHECK(parse_error("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n#\rf 1 2 100000\n").find("t.obj:5: control character 0x0d") == 0);
   CHECK(parse_error("v 0 0 0\nv 1 0 0\nv\v0 1 0\nf 1 2 3\n").find("t.obj:3: control character 0x0b") == 0);
