@@ -48,19 +48,7 @@ struct row {
   double rsm_error = 0.0;  ///< RSM rows: filtered rel. RMSE against the exact brute force
 };
 
-std::string percent(double value) {
-  std::ostringstream out;
-  out << std::fixed << std::setprecision(1) << 100.0 * value;
-  return out.str();
-}
 
-
-
-std::string fixed(double value, int digits) {
-  std::ostringstream out;
-  out << std::fixed << std::setprecision(digits) << value;
-  return out.str();
-}
 
 // "| ms | RMSE | rel. MSE | PSNR | SSIM | % similar" cells of a table row.
 std::string metric_cells(double ms, const image_metrics& m) {
@@ -168,10 +156,7 @@ int main(int argc, char** argv) {
       frame_settings.width = frame_settings.height = rsm_frame_size;
       frame_settings.rsm_size = rsm_frame_size;
       const frame_reference reference = make_frame_reference(shaders, source, frame_settings, stride, hardware_threads());
-      md << "\n### " << scene_name << "\n\n" << reference.receiver_count << " receivers counted (" << reference.uncovered_count
-         << " more not covered: they hold " << percent(reference.uncovered_share) << " % of the unoccluded light), " << reference.leak_count
-         << " in the leak region. Exact visibility removes " << percent(reference.occluded_share) << " % of the light over the receivers, "
-         << percent(reference.leak_occluded_share) << " % in the leak region.\n\n"
+      md << "\n### " << scene_name << "\n\n" << describe(reference) << "\n\n"
          << "| technique | ms | raw rel. RMSE | raw rel. bias | raw leak rel. RMSE | raw leak bias | filtered rel. RMSE | filtered leak bias |\n"
             "|---|---:|---:|---:|---:|---:|---:|---:|\n";
       struct variant {

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 
 #include "frontend/error.hpp"
 #include "frontend/rsm_cpu_mirror.hpp"
@@ -168,6 +170,22 @@ std::vector<double> interleaved_frame_ms(const shader_library& shaders, const sc
     medians.push_back(values[values.size() / 2]);
   }
   return medians;
+}
+
+std::string fixed(double value, int digits) {
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(digits) << value;
+  return out.str();
+}
+
+std::string percent(double fraction) { return fixed(100.0 * fraction, 1); }
+
+std::string describe(const frame_reference& reference) {
+  return std::to_string(reference.receiver_count) + " receivers counted (" + std::to_string(reference.uncovered_count) +
+         " more behind the light or outside its frustum, not counted: they hold " + percent(reference.uncovered_share) +
+         " % of the unoccluded light), " + std::to_string(reference.leak_count) + " in the leak region. Exact visibility removes " +
+         percent(reference.occluded_share) + " % of the light over the receivers, " + percent(reference.leak_occluded_share) +
+         " % in the leak region.";
 }
 
 }  // namespace vplkit

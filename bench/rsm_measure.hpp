@@ -39,6 +39,14 @@ struct frame_reference {
 frame_reference make_frame_reference(const shader_library& shaders, const scene& source, const rsm_pipeline_settings& settings, int stride,
                                      int threads);
 
+/// One markdown sentence on a reference: the receivers counted and not covered, the leak region,
+/// and how much light exact visibility removes.
+std::string describe(const frame_reference& reference);
+
+/// `value` with `digits` decimals, and a fraction as a percentage with one decimal.
+std::string fixed(double value, int digits);
+std::string percent(double fraction);
+
 /// The brute force cut to the pixel lights within `radius` RSM texels of each receiver's
 /// projection (no visibility), on the reference's receivers.
 float_image brute_force_within(const frame_reference& reference, float radius, int threads);

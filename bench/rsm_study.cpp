@@ -67,14 +67,6 @@ std::vector<std::string> split(const std::string& text) {
   return values;
 }
 
-std::string fixed(double value, int digits) {
-  std::ostringstream out;
-  out << std::fixed << std::setprecision(digits) << value;
-  return out.str();
-}
-
-std::string percent(double value) { return fixed(100.0 * value, 1); }
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -172,11 +164,7 @@ int main(int argc, char** argv) {
       frame_settings.width = frame_settings.height = size;
       frame_settings.rsm_size = rsm_size;
       const frame_reference reference = make_frame_reference(shaders, source, frame_settings, stride, hardware_threads());
-      md << "\n## " << scene_name << "\n\n" << reference.receiver_count << " receivers (" << reference.uncovered_count
-         << " more behind the light or outside its frustum, not counted: they hold " << percent(reference.uncovered_share)
-         << " % of the unoccluded brute force), " << reference.leak_count << " in the leak region; exact visibility removes "
-         << percent(reference.occluded_share) << " % of the light over all receivers, " << percent(reference.leak_occluded_share)
-         << " % in the leak region.\n\n"
+      md << "\n## " << scene_name << "\n\n" << describe(reference) << "\n\n"
          << "| radius | P x S | slots | radial bias vs unoccluded | radial rel. RMSE vs exact | Alg. 6 rel. RMSE vs exact | radial leak bias | Alg. 6 leak bias "
             "| filtered: radial / Alg. 6 rel. RMSE | ms radial / Alg. 6 |\n|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
       std::map<std::string, technique_errors> radial_errors;  // by radius and P x S: the radial gather has no slots

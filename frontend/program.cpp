@@ -11,6 +11,7 @@
 
 #include "frontend/debug_output.hpp"
 #include "frontend/error.hpp"
+#include "frontend/files.hpp"
 
 namespace vplkit {
 namespace fs = std::filesystem;
@@ -24,16 +25,12 @@ fs::path default_shader_dir() {
 
 namespace {
 
+// A shader's text. The not-found message says where shaders are looked for; read_file does the
+// rest (a regular file, at most 16 MiB: no shader is near that).
 std::string read_text_file(const fs::path& path, const std::string& what_for) {
   std::error_code ignored;
   if (!fs::exists(path, ignored)) throw error("shader file not found: " + path.string() + what_for);
-  if (fs::is_directory(path, ignored)) throw error("shader path is a directory, not a file: " + path.string());
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw error("cannot read shader file " + path.string());
-  std::ostringstream contents;
-  contents << in.rdbuf();
-  if (in.bad()) throw error("error while reading shader file " + path.string());
-  return contents.str();
+  return read_file(path, std::uintmax_t{1} << 24, "shader file");
 }
 
 bool is_blank(char c) { return c == ' ' || c == '\t'; }
