@@ -15,9 +15,9 @@
 #include <iostream>
 #include <sstream>
 
-#include "frontend/context.hpp"
-#include "frontend/error.hpp"
-#include "frontend/final_gather_pipeline.hpp"
+#include "frontend/gl/context.hpp"
+#include "frontend/core/error.hpp"
+#include "frontend/techniques/final_gather/final_gather_pipeline.hpp"
 
 namespace fs = std::filesystem;
 using namespace vplkit;

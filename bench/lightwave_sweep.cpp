@@ -24,10 +24,10 @@
 #include <map>
 #include <sstream>
 
-#include "frontend/context.hpp"
-#include "frontend/error.hpp"
-#include "frontend/image_io.hpp"
-#include "frontend/lightwave_pipeline.hpp"
+#include "frontend/gl/context.hpp"
+#include "frontend/core/error.hpp"
+#include "frontend/image/image_files.hpp"
+#include "frontend/techniques/lightwave/lightwave_pipeline.hpp"
 
 namespace fs = std::filesystem;
 using namespace vplkit;
@@ -122,8 +122,8 @@ int main(int argc, char** argv) {
       for (int i = 0; i < repeat; ++i) times.push_back(timed(frame));
       r.main_ms = median(times);
       r.rebuild_ms = std::max(0.0, with_rebuild - r.main_ms);
-      std::vector<std::uint8_t> image = to_srgb8(frame.radiance, frame.width, frame.height);
-      if (frame.width != width || frame.height != height) image = stretch(image, frame.width, frame.height, width, height);
+      std::vector<std::uint8_t> image = to_srgb8(frame.radiance);
+      if (frame.radiance.width != width || frame.radiance.height != height) image = stretch(image, frame.radiance.width, frame.radiance.height, width, height);
       if (scene_name == "boxes") {
         if (reference.empty()) reference = image;
         r.similarity = similarity_rgb(reference, image);

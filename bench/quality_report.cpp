@@ -25,16 +25,17 @@
 #include <sstream>
 
 #include "bench/rsm_measure.hpp"
-#include "frontend/context.hpp"
-#include "frontend/error.hpp"
-#include "frontend/final_gather_pipeline.hpp"
-#include "frontend/image_io.hpp"
-#include "frontend/image_metrics.hpp"
-#include "frontend/lightwave_pipeline.hpp"
-#include "frontend/reference.hpp"
-#include "frontend/render_images.hpp"
-#include "frontend/rsm_cpu_mirror.hpp"
-#include "frontend/rsm_pipeline.hpp"
+#include "frontend/gl/context.hpp"
+#include "frontend/core/error.hpp"
+#include "frontend/techniques/final_gather/final_gather_pipeline.hpp"
+#include "frontend/image/image_files.hpp"
+#include "frontend/image/metrics.hpp"
+#include "frontend/techniques/lightwave/lightwave_pipeline.hpp"
+#include "frontend/reference/final_gather_reference.hpp"
+#include "frontend/reference/reference.hpp"
+#include "frontend/image/image.hpp"
+#include "frontend/techniques/rsm/rsm_cpu_mirror.hpp"
+#include "frontend/techniques/rsm/rsm_pipeline.hpp"
 
 namespace fs = std::filesystem;
 using namespace vplkit;
@@ -70,10 +71,9 @@ double median_ms(int repeat, Render&& render) {
 
 // render | reference | error, side by side, as one sRGB PNG: the images scaled by `exposure`,
 // each pixel drawn as a `magnify` x `magnify` block.
-void write_strip(const fs::path& path, const float_image& render, const float_image& reference, float exposure = 1.0f, int magnify = 1) {
+void write_strip(const fs::path& path, const image& render, const image& reference, float exposure = 1.0f, int magnify = 1) {
   const int w = render.width, h = render.height, big_w = 3 * w * magnify, big_h = h * magnify;
-  const std::vector<std::uint8_t> panels[3] = {to_srgb8(rgba_from_float_image(render), w, h, exposure),
-                                               to_srgb8(rgba_from_float_image(reference), w, h, exposure), false_colour_error(render, reference, 0.0f)};
+  const std::vector<std::uint8_t> panels[3] = {to_srgb8(render, exposure), to_srgb8(reference, exposure), false_colour_error(render, reference, 0.0f)};
   std::vector<std::uint8_t> strip(static_cast<std::size_t>(big_w) * static_cast<std::size_t>(big_h) * 4);
   for (int y = 0; y < big_h; ++y)
     for (int x = 0; x < big_w; ++x) {
@@ -86,17 +86,14 @@ void write_strip(const fs::path& path, const float_image& render, const float_im
 }
 
 // The receivers a frame_reference counts (every stride-th texel of the indirect buffer that the
-// gather covers; 0 elsewhere) as a small image with rows top-down, for the strips.
-float_image counted_receivers(const float_image& image, const frame_reference& reference) {
-  const int stride = reference.stride, w = (image.width + stride - 1) / stride, h = (image.height + stride - 1) / stride;
-  float_image out{w, h, std::vector<glm::vec3>(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), glm::vec3(0.0f))};
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      // Indirect-buffer texel (x stride, y stride), GL rows bottom-up, in the top-down images.
-      const std::size_t source =
-          static_cast<std::size_t>(image.height - 1 - y * stride) * static_cast<std::size_t>(image.width) + static_cast<std::size_t>(x * stride);
-      if (reference.receivers.pixels[source].x > 0.5f)
-        out.pixels[static_cast<std::size_t>(h - 1 - y) * static_cast<std::size_t>(w) + static_cast<std::size_t>(x)] = image.pixels[source];
+// gather covers; 0 elsewhere) as a small image, for the strips.
+image counted_receivers(const image& full, const frame_reference& reference) {
+  const int stride = reference.stride;
+  image out((full.width + stride - 1) / stride, (full.height + stride - 1) / stride);
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x) {
+      const glm::ivec2 texel(x * stride, y * stride);
+      if (reference.receivers.at(texel).x > 0.5f) out.at(x, y) = full.at(texel);
     }
   return out;
 }
@@ -194,7 +191,7 @@ int main(int argc, char** argv) {
       const float radius_texels = alg6_settings.radius * static_cast<float>(alg6_settings.rsm_size);
       const relative_error radius_error =
           relative_error_of(brute_force_within(reference, radius_texels, hardware_threads()), reference.unoccluded, &reference.receivers);
-      const float_image ray_cast = ray_cast_gather(reference, alg6_settings, seeds, hardware_threads());
+      const image ray_cast = ray_cast_gather(reference, alg6_settings, seeds, hardware_threads());
       const relative_error visibility_error = relative_error_of(errors["rsm-alg6"].mean_raw, ray_cast, &reference.receivers);
       const relative_error visibility_leak = relative_error_of(errors["rsm-alg6"].mean_raw, ray_cast, &reference.leak);
       const relative_error ray_cast_error = relative_error_of(ray_cast, reference.exact, &reference.receivers);
@@ -210,9 +207,9 @@ int main(int argc, char** argv) {
               << fixed(alg6.raw_leak.bias / radial.raw_leak.bias, 2) << " (" << percent(alg6.raw_leak.bias) << " / " << percent(radial.raw_leak.bias)
               << " %) | " << fixed(ms["rsm-alg6"], 0) << " / " << fixed(ms["rsm-radial"], 0) << " / " << fixed(ms["rsm-original (400)"], 0) << " |\n";
       // The strip: the filtered indirect of rsm-alg6 | the exact brute force | the error.
-      const float_image strip_reference = counted_receivers(reference.exact, reference);
+      const image strip_reference = counted_receivers(reference.exact, reference);
       write_strip(fs::path(out) / (scene_name + "-rsm-alg6-indirect.png"), counted_receivers(errors["rsm-alg6"].filtered_mean, reference), strip_reference,
-                  percentile_exposure(rgba_from_float_image(strip_reference)), 4);
+                  percentile_exposure(strip_reference), 4);
       md << "\n![" << scene_name << ": rsm-alg6 filtered indirect (mean of seeds) | exact brute force | error, at the receivers counted](" << scene_name
          << "-rsm-alg6-indirect.png)\n";
     }
@@ -234,7 +231,7 @@ int main(int argc, char** argv) {
         rsm_pipeline pipeline(shaders, source, settings);
         rsm_frame frame = pipeline.render();
         const double ms = median_ms(repeat, [&] { frame = pipeline.render(); });
-        const float_image image = float_image_from_rgba(frame.radiance, size, size);
+        const image image = frame.radiance;
         const image_metrics m = compare_images(image, reference.radiance);
         md << "| " << technique << metric_cells(ms, m) << " |\n";
       }
@@ -272,13 +269,14 @@ int main(int argc, char** argv) {
         lightwave_pipeline pipeline(shaders, source, settings);
         lightwave_frame frame = pipeline.render();
         const double ms = median_ms(repeat, [&] { frame = pipeline.render(); });
-        const float_image image = float_image_from_rgba(frame.radiance, size, size);
+        const image image = frame.radiance;
         row r{scene_name, v.label, ms, compare_images(image, reference.radiance)};
         std::size_t shadowed = 0, surface = 0;
-        for (std::size_t i = 0; i < frame.indirect_shadow.size(); i += 4) {
-          const bool covered = frame.radiance[i] + frame.radiance[i + 1] + frame.radiance[i + 2] > 0.0f;
+        for (std::size_t i = 0; i < frame.indirect_shadow.texels.size(); ++i) {
+          const glm::vec4& radiance = frame.radiance.texels[i];
+          const bool covered = radiance.r + radiance.g + radiance.b > 0.0f;
           surface += covered;
-          shadowed += covered && frame.indirect_shadow[i] < 0.95f;
+          shadowed += covered && frame.indirect_shadow.texels[i].r < 0.95f;
         }
         md << "| " << v.label << metric_cells(ms, r.metrics) << " | " << percent(surface ? static_cast<double>(shadowed) / static_cast<double>(surface) : 0.0)
            << " % |\n";
@@ -328,7 +326,8 @@ int main(int argc, char** argv) {
             if (position_kind.w < 1.5f) continue;
             const double exact = final_gather_reference(source, glm::dvec3(position_kind), glm::dvec3(buffers.gbuffer[1].texels[i]), 12);
             if (exact < 1e-3) continue;
-            const double gathered = static_cast<double>(frame.indirect[4 * i]) + frame.indirect[4 * i + 1] + frame.indirect[4 * i + 2];
+            const glm::vec4& indirect = frame.indirect.texels[i];
+            const double gathered = static_cast<double>(indirect.r) + indirect.g + indirect.b;
             const double error = std::fabs(gathered / exact - 1.0);
             worst = std::max(worst, error);
             sum += error;

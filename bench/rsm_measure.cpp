@@ -5,33 +5,23 @@
 #include <iomanip>
 #include <sstream>
 
-#include "frontend/error.hpp"
-#include "frontend/rsm_cpu_mirror.hpp"
+#include "frontend/core/error.hpp"
+#include "frontend/techniques/rsm/rsm_cpu_mirror.hpp"
 
 namespace vplkit {
 
 namespace {
 
-// The pixel of a (top-down) float_image that holds indirect-buffer texel (x, y) (GL rows, bottom-up).
-std::size_t pixel_of_texel(const float_image& image, int x, int y) {
-  return static_cast<std::size_t>(image.height - 1 - y) * static_cast<std::size_t>(image.width) + static_cast<std::size_t>(x);
-}
-
-float_image blank(const frame_reference& reference) {
-  return {reference.constants.indirect_size.x, reference.constants.indirect_size.y,
-          std::vector<glm::vec3>(static_cast<std::size_t>(reference.constants.indirect_size.x) * static_cast<std::size_t>(reference.constants.indirect_size.y),
-                                 glm::vec3(0.0f))};
-}
+image blank(const frame_reference& reference) { return image(reference.constants.indirect_size.x, reference.constants.indirect_size.y); }
 
 // The post pass's full-resolution filtered indirect light at the G-buffer texels of the indirect
 // buffer's receivers.
-float_image filtered_at_receivers(const rsm_frame& frame, const frame_reference& reference) {
-  float_image out = blank(reference);
+image filtered_at_receivers(const rsm_frame& frame, const frame_reference& reference) {
+  image out = blank(reference);
   for (int y = 0; y < out.height; ++y)
     for (int x = 0; x < out.width; ++x) {
       const glm::ivec2 pixel = gbuffer_texel_of(glm::ivec2(x, y), reference.constants);
-      const std::size_t i = 4 * (static_cast<std::size_t>(pixel.y) * static_cast<std::size_t>(frame.width) + static_cast<std::size_t>(pixel.x));
-      out.pixels[pixel_of_texel(out, x, y)] = glm::vec3(frame.indirect[i], frame.indirect[i + 1], frame.indirect[i + 2]);
+      out.at(x, y) = frame.indirect.at(pixel);
     }
   return out;
 }
@@ -59,11 +49,11 @@ frame_reference make_frame_reference(const shader_library& shaders, const scene&
   rsm_brute_force_options options;
   options.receiver_stride = stride;
   options.threads = threads;
-  const image_buffer unoccluded = reference_rsm_gather(*reference.rays, reference.buffers, reference.constants, options);
+  const image unoccluded = reference_rsm_gather(*reference.rays, reference.buffers, reference.constants, options);
   options.exact_visibility = true;
-  const image_buffer exact = reference_rsm_gather(*reference.rays, reference.buffers, reference.constants, options);
-  reference.unoccluded = float_image_from_buffer(unoccluded);
-  reference.exact = float_image_from_buffer(exact);
+  const image exact = reference_rsm_gather(*reference.rays, reference.buffers, reference.constants, options);
+  reference.unoccluded = unoccluded;
+  reference.exact = exact;
   reference.receivers = blank(reference);
   reference.leak = blank(reference);
   const std::vector<std::uint8_t> covered = rsm_covered_receivers(reference.buffers, reference.constants, stride);
@@ -71,20 +61,20 @@ frame_reference make_frame_reference(const shader_library& shaders, const scene&
   for (int y = 0; y < reference.unoccluded.height; y += stride)
     for (int x = 0; x < reference.unoccluded.width; x += stride) {
       if (!gather_receiver_at(glm::ivec2(x, y), reference.buffers, reference.constants)) continue;  // no surface
-      const std::size_t i = pixel_of_texel(reference.unoccluded, x, y);
-      const glm::vec3 u = reference.unoccluded.pixels[i], e = reference.exact.pixels[i];
+      const std::size_t i = reference.unoccluded.index(x, y);
+      const glm::vec3 u(reference.unoccluded.texels[i]), e(reference.exact.texels[i]);
       const double u_sum = u.x + u.y + u.z, e_sum = e.x + e.y + e.z;
       if (!covered[static_cast<std::size_t>(y) * static_cast<std::size_t>(reference.unoccluded.width) + static_cast<std::size_t>(x)]) {
         ++reference.uncovered_count;
         behind += u_sum;
         continue;
       }
-      reference.receivers.pixels[i] = glm::vec3(1.0f);
+      reference.receivers.texels[i] = glm::vec4(1.0f);
       ++reference.receiver_count;
       all += u_sum;
       seen += e_sum;
       if (u_sum > 0.0 && e_sum <= 0.8 * u_sum) {
-        reference.leak.pixels[i] = glm::vec3(1.0f);
+        reference.leak.texels[i] = glm::vec4(1.0f);
         ++reference.leak_count;
         leak_all += u_sum;
         leak_seen += e_sum;
@@ -96,12 +86,12 @@ frame_reference make_frame_reference(const shader_library& shaders, const scene&
   return reference;
 }
 
-float_image brute_force_within(const frame_reference& reference, float radius, int threads) {
+image brute_force_within(const frame_reference& reference, float radius, int threads) {
   rsm_brute_force_options options;
   options.receiver_stride = reference.stride;
   options.max_radius = radius;
   options.threads = threads;
-  return float_image_from_buffer(reference_rsm_gather(*reference.rays, reference.buffers, reference.constants, options));
+  return reference_rsm_gather(*reference.rays, reference.buffers, reference.constants, options);
 }
 
 technique_errors measure_technique(const shader_library& shaders, const scene& source, const rsm_pipeline_settings& settings,
@@ -110,7 +100,7 @@ technique_errors measure_technique(const shader_library& shaders, const scene& s
   technique_errors errors;
   errors.mean_raw = blank(reference);
   errors.filtered_mean = blank(reference);
-  std::vector<float_image> raws;
+  std::vector<image> raws;
   for (int seed = 1; seed <= seeds; ++seed) {
     rsm_pipeline_settings seeded = settings;
     seeded.radial.seed = static_cast<std::uint32_t>(seed);
@@ -118,38 +108,38 @@ technique_errors measure_technique(const shader_library& shaders, const scene& s
     rsm_pipeline pipeline(shaders, source, seeded);
     const rsm_frame frame = pipeline.render();
     // Direct light only has no indirect buffer: its indirect light is 0 everywhere.
-    const image_buffer indirect = pipeline.read_buffers().indirect;
-    const float_image raw = indirect.texels.empty() ? blank(reference) : float_image_from_buffer(indirect);
-    const float_image filtered = filtered_at_receivers(frame, reference);
+    const image indirect = pipeline.read_buffers().indirect;
+    const image raw = indirect.texels.empty() ? blank(reference) : indirect;
+    const image filtered = filtered_at_receivers(frame, reference);
     accumulate(errors.raw_vs_unoccluded, relative_error_of(raw, reference.unoccluded, &reference.receivers), seeds);
     accumulate(errors.raw_vs_exact, relative_error_of(raw, reference.exact, &reference.receivers), seeds);
     accumulate(errors.raw_leak, relative_error_of(raw, reference.exact, &reference.leak), seeds);
     accumulate(errors.filtered_vs_exact, relative_error_of(filtered, reference.exact, &reference.receivers), seeds);
     accumulate(errors.filtered_leak, relative_error_of(filtered, reference.exact, &reference.leak), seeds);
-    for (std::size_t i = 0; i < raw.pixels.size(); ++i) {
-      errors.mean_raw.pixels[i] += raw.pixels[i] / static_cast<float>(seeds);
-      errors.filtered_mean.pixels[i] += filtered.pixels[i] / static_cast<float>(seeds);
+    for (std::size_t i = 0; i < raw.texels.size(); ++i) {
+      errors.mean_raw.texels[i] += raw.texels[i] / static_cast<float>(seeds);
+      errors.filtered_mean.texels[i] += filtered.texels[i] / static_cast<float>(seeds);
     }
     raws.push_back(raw);
   }
   if (seeds > 1) {
     // E|x_i - mean|^2 = (n - 1) / n sigma^2: scale back to one seed's spread.
     double noise = 0.0;
-    for (const float_image& raw : raws) noise += relative_error_of(raw, errors.mean_raw, &reference.receivers).rmse / seeds;
+    for (const image& raw : raws) noise += relative_error_of(raw, errors.mean_raw, &reference.receivers).rmse / seeds;
     errors.raw_noise = noise * std::sqrt(static_cast<double>(seeds) / (seeds - 1));
   }
   return errors;
 }
 
-float_image ray_cast_gather(const frame_reference& reference, const rsm_pipeline_settings& settings, int seeds, int threads) {
-  float_image mean = blank(reference);
+image ray_cast_gather(const frame_reference& reference, const rsm_pipeline_settings& settings, int seeds, int threads) {
+  image mean = blank(reference);
   for (int seed = 1; seed <= seeds; ++seed) {
     rsm_pipeline_settings seeded = settings;
     seeded.radial.seed = static_cast<std::uint32_t>(seed);
     seeded.disk.seed = static_cast<std::uint32_t>(seed);
     const rsm_frame_constants constants = make_frame_constants(*reference.source, seeded);
-    const float_image gathered = float_image_from_buffer(gather_with_ray_cast_visibility(*reference.rays, reference.buffers, constants, reference.stride, threads));
-    for (std::size_t i = 0; i < gathered.pixels.size(); ++i) mean.pixels[i] += gathered.pixels[i] / static_cast<float>(seeds);
+    const image gathered = gather_with_ray_cast_visibility(*reference.rays, reference.buffers, constants, reference.stride, threads);
+    for (std::size_t i = 0; i < gathered.texels.size(); ++i) mean.texels[i] += gathered.texels[i] / static_cast<float>(seeds);
   }
   return mean;
 }

@@ -23,9 +23,9 @@
 #include <sstream>
 
 #include "bench/rsm_measure.hpp"
-#include "frontend/context.hpp"
-#include "frontend/error.hpp"
-#include "frontend/parallel.hpp"
+#include "frontend/gl/context.hpp"
+#include "frontend/core/error.hpp"
+#include "frontend/core/parallel.hpp"
 
 namespace fs = std::filesystem;
 using namespace vplkit;

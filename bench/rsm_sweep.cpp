@@ -18,11 +18,11 @@
 #include <memory>
 #include <sstream>
 
-#include "frontend/context.hpp"
-#include "frontend/error.hpp"
-#include "frontend/obj_loader.hpp"
-#include "frontend/rsm_cpu_mirror.hpp"
-#include "frontend/rsm_pipeline.hpp"
+#include "frontend/gl/context.hpp"
+#include "frontend/core/error.hpp"
+#include "frontend/scene/obj_loader.hpp"
+#include "frontend/techniques/rsm/rsm_cpu_mirror.hpp"
+#include "frontend/techniques/rsm/rsm_pipeline.hpp"
 
 namespace fs = std::filesystem;
 using namespace vplkit;
@@ -185,12 +185,13 @@ int main(int argc, char** argv) {
       rsm_pipeline separable_pipeline(shaders, source, base);
       const rsm_frame separable_frame = separable_pipeline.render();
       double difference = 0.0, level = 0.0, worst = 0.0;
-      for (std::size_t i = 0; i < full_frame.indirect.size(); i += 4) {
-        const double d = std::fabs(full_frame.indirect[i] - separable_frame.indirect[i]) + std::fabs(full_frame.indirect[i + 1] - separable_frame.indirect[i + 1]) +
-                         std::fabs(full_frame.indirect[i + 2] - separable_frame.indirect[i + 2]);
+      for (std::size_t i = 0; i < full_frame.indirect.texels.size(); ++i) {
+        const glm::vec3 full_indirect(full_frame.indirect.texels[i]), separable_indirect(separable_frame.indirect.texels[i]);
+        const glm::vec3 absolute = glm::abs(full_indirect - separable_indirect);
+        const double d = static_cast<double>(absolute.r) + absolute.g + absolute.b;
         difference += d;
         worst = std::max(worst, d);
-        level += full_frame.indirect[i] + full_frame.indirect[i + 1] + full_frame.indirect[i + 2];
+        level += static_cast<double>(full_indirect.r) + full_indirect.g + full_indirect.b;
       }
       md << "## Post filter: full 17x17 against separable 2 x 17 (indirect " << size / 2 << "^2)\n\n| filter | post ms | % of frame |\n|---|---:|---:|\n"
          << "| full | " << fixed(pass(full_time, "post processing")) << " | " << fixed(100.0 * pass(full_time, "post processing") / full_time.total_ms, 1) << " |\n"
@@ -254,7 +255,7 @@ int main(int argc, char** argv) {
         for (const pass_time& time : pipeline.render().pass_times)
           if (time.pass == "RSM sampling") gl_times.push_back(time.milliseconds);
         const auto start = std::chrono::steady_clock::now();
-        const image_buffer gathered = cpu_gather_pass(buffers, pipeline.constants(), hardware_threads());
+        const image gathered = cpu_gather_pass(buffers, pipeline.constants(), hardware_threads());
         cpu_times.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
         if (gathered.texels.size() != buffers.indirect.texels.size()) throw error("CPU gather: wrong size");
       }

@@ -12,7 +12,10 @@
 #include "lib/direct_light.glsl"
 #include "lib/lightwave.glsl"
 
-#define VPLKIT_MAX_SHADOW_MAPS 64
+// VPLKIT_MAX_SHADOW_MAPS comes from lightwave_max_shadow_maps (lightwave_pipeline.hpp).
+#ifndef VPLKIT_MAX_SHADOW_MAPS
+#error "VPLKIT_MAX_SHADOW_MAPS must be defined by the pipeline (lightwave_max_shadow_maps)"
+#endif
 
 uniform spot_light light;
 uniform irradiance_settings irradiance;

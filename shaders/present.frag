@@ -1,6 +1,6 @@
 #version 330 core
 // Shows a linear radiance texture on an 8-bit window: clamp, then the sRGB transfer curve (the
-// same encoding as the PNG writer, frontend/image_io.cpp).
+// same encoding as the PNG writer, frontend/image/image.cpp).
 uniform sampler2D image;
 in vec2 texture_coordinate;
 layout(location = 0) out vec4 colour;

@@ -6,7 +6,7 @@
 
 #include <cstdio>
 
-#include "frontend/debug_output.hpp"
+#include "frontend/gl/debug_output.hpp"
 
 int main(int argc, char** argv) {
   doctest::Context context(argc, argv);

@@ -180,7 +180,7 @@ struct micro_linear_buffer_visibility {
 /// and `T operator()(const gather_receiver<T>&, T receiver_depth, const rsm_texel<T>& light)`,
 /// called for every sample that lands on a lit texel, near to far along each path. This is the
 /// one sampling loop: gather_rsm below passes the micro linear buffer, the ground truth
-/// (gather_with_ray_cast_visibility in frontend/reference.hpp) passes a ray cast to measure the
+/// (gather_with_ray_cast_visibility in frontend/reference/reference.hpp) passes a ray cast to measure the
 /// same samples with exact visibility. C++ only: the GLSL twin selects its visibility by define.
 template <rsm_pattern Pattern, typename T, typename Fetch, typename Visibility>
 glm::vec<3, T> gather_rsm_with(const gather_receiver<T>& receiver, Fetch&& fetch, const rsm_gather_settings<T>& settings,

@@ -61,7 +61,7 @@ expect_success("render prints the pass table of Table 5.3"
 foreach(technique direct rsm-original rsm-radial rsm-alg2 rsm-alg3 rsm-alg6)
   expect_success("render --technique ${technique}" "technique ${technique}"
                  "${VPLKIT}" render --technique ${technique} --scene indirect-shadow --size 24 --rsm-size 32
-                 --post-filter separable --out "${WORK}/t-${technique}.png")
+                 --out "${WORK}/t-${technique}.png")
 endforeach()
 if(EXISTS "${WORK}/t-direct-indirect.png" OR EXISTS "${WORK}/t-rsm-radial-visibility-difference.png")
   message(SEND_ERROR "FAILED render: an indirect or difference image for a technique without one")
@@ -214,16 +214,35 @@ foreach(bad 0 nan -1 3 inf)
                  "${VPLKIT}" render --radius ${bad} --size 16 --rsm-size 32 --out "${WORK}/r3.png")
 endforeach()
 expect_failure("--preset that does not exist" "--preset.*not in" "${WORK}/r4.png" "${VPLKIT}" render --preset fast --size 16 --out "${WORK}/r4.png")
-expect_failure("--visibility of the Monte Carlo reference" "--visibility is an option of --method rsm-brute-force" "${WORK}/mc.pfm"
+expect_failure("--visibility of the Monte Carlo reference" "--visibility is read by --method rsm-brute-force, not by method monte-carlo" "${WORK}/mc.pfm"
                "${VPLKIT}" reference --visibility none --size 16 --out "${WORK}/mc.pfm")
-expect_failure("--samples of the brute-force reference" "--samples is an option of --method monte-carlo" "${WORK}/bf2.pfm"
+expect_failure("--samples of the brute-force reference" "--samples is read by --method monte-carlo, not by method rsm-brute-force" "${WORK}/bf2.pfm"
                "${VPLKIT}" reference --method rsm-brute-force --samples 4 --size 16 --out "${WORK}/bf2.pfm")
-expect_failure("--raw-indirect without indirect light" "gathers no indirect light" "${WORK}/direct-raw.png"
+expect_failure("--raw-indirect without indirect light" "--raw-indirect is read by the RSM techniques that gather indirect light \\(rsm-\\*\\), not by technique direct" "${WORK}/direct-raw.png"
                "${VPLKIT}" render --technique direct --raw-indirect --size 16 --rsm-size 32 --out "${WORK}/direct-raw.png")
 if(EXISTS "${WORK}/direct-raw-indirect.pfm")
   message(SEND_ERROR "FAILED --raw-indirect without indirect light: left ${WORK}/direct-raw-indirect.pfm behind")
   math(EXPR failures "${failures} + 1")
 endif()
+# Options are scoped: each subcommand declares only what it reads, and an option that the chosen
+# technique or method does not read is an error naming it (exit 2), never silently ignored.
+expect_failure("reference declares no technique options" "not expected: .*--object.*--cube-resolution.*--paths.*--technique"
+               "${WORK}/scoped-reference.pfm"
+               "${VPLKIT}" reference --technique lightwave-accurate --paths 3 --cube-resolution 7 --object missing.obj --out "${WORK}/scoped-reference.pfm")
+expect_failure("final gathering reads no --scene" "--scene is read by the rsm-\\* and lightwave-\\* techniques, not by technique finalgather-polygon"
+               "${WORK}/scoped-fg.png" "${VPLKIT}" render --technique finalgather-polygon --scene teapot --out "${WORK}/scoped-fg.png")
+expect_failure("an RSM technique reads no Light Wave option" "--ray-angle is read by the Light Wave techniques \\(lightwave-\\*\\), not by technique rsm-alg6"
+               "${WORK}/scoped-rsm.png" "${VPLKIT}" render --technique rsm-alg6 --ray-angle 10 --out "${WORK}/scoped-rsm.png")
+expect_failure("--faked-multiplier is lightwave-faked's" "--faked-multiplier is read by lightwave-faked, not by technique lightwave-accurate"
+               "${WORK}/scoped-lw.png" "${VPLKIT}" render --technique lightwave-accurate --faked-multiplier 1.2 --out "${WORK}/scoped-lw.png")
+expect_failure("--slots needs the micro linear buffer" "--slots is read by the techniques with the micro linear buffer"
+               "${WORK}/scoped-slots.png" "${VPLKIT}" render --technique rsm-radial --slots 4 --out "${WORK}/scoped-slots.png")
+expect_failure("Light Wave reads no --object" "--object is read by the final-gathering techniques"
+               "${WORK}/scoped-object.png" "${VPLKIT}" render --technique lightwave-direct --object sphere --out "${WORK}/scoped-object.png")
+expect_failure("the Monte Carlo reference reads no --min-distance" "--min-distance is read by --method rsm-brute-force, not by method monte-carlo"
+               "${WORK}/scoped-mc.pfm" "${VPLKIT}" reference --min-distance 0.1 --out "${WORK}/scoped-mc.pfm")
+expect_failure("view shows only RSM techniques" "--technique: lightwave-accurate not in" "${WORK}/none"
+               "${VPLKIT}" view --technique lightwave-accurate --frames 1)
 file(MAKE_DIRECTORY "${WORK}/blocked-receivers.pfm")
 expect_failure("brute-force reference whose mask cannot be written leaves nothing" "blocked-receivers\\.pfm" "${WORK}/blocked.pfm"
                "${VPLKIT}" reference --method rsm-brute-force --size 16 --rsm-size 16 --out "${WORK}/blocked.pfm")

@@ -1,4 +1,4 @@
-// Fuzz target: the command line's parsing and checks (frontend/cli.hpp) in check_only mode, which
+// Fuzz target: the command line's parsing and checks (frontend/cli/cli.hpp) in check_only mode, which
 // stops before a GL context or a file is opened. The input is the arguments after `vplkit`,
 // separated by NUL bytes (at most 32). Every command line must end in exit code 0, 1 or 2, with
 // no exception escaping.
@@ -10,7 +10,7 @@
 #include <string_view>
 #include <vector>
 
-#include "frontend/cli.hpp"
+#include "frontend/cli/cli.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view input(reinterpret_cast<const char*>(data), size);

@@ -1,4 +1,4 @@
-// Fuzz target: the comparison metrics (frontend/image_metrics.hpp). The first byte picks the
+// Fuzz target: the comparison metrics (frontend/image/metrics.hpp). The first byte picks the
 // width (1..16) and whether a mask follows; the rest are the little-endian floats of the image,
 // the reference and the mask, as far as they go. Any finite pixels, FLT_MAX included, must give
 // finite metrics (PSNR is +inf exactly when the images are equal); non-finite pixels must end in
@@ -10,8 +10,8 @@
 #include <cstring>
 #include <vector>
 
-#include "frontend/error.hpp"
-#include "frontend/image_metrics.hpp"
+#include "frontend/core/error.hpp"
+#include "frontend/image/metrics.hpp"
 
 namespace {
 
@@ -34,16 +34,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::size_t per_image = floats.size() / static_cast<std::size_t>(images);
   const int height = static_cast<int>(per_image / (3 * static_cast<std::size_t>(width)));
   if (height < 1) return 0;
-  std::vector<vplkit::float_image> parts(static_cast<std::size_t>(images));
+  std::vector<vplkit::image> parts(static_cast<std::size_t>(images));
   std::size_t next = 0;
-  for (vplkit::float_image& image : parts) {
-    image = {width, height, std::vector<glm::vec3>(static_cast<std::size_t>(width) * static_cast<std::size_t>(height))};
-    for (glm::vec3& p : image.pixels) {
-      p = glm::vec3(floats[next], floats[next + 1], floats[next + 2]);
+  for (vplkit::image& part : parts) {
+    part = vplkit::image(width, height);
+    for (glm::vec4& p : part.texels) {
+      p = glm::vec4(floats[next], floats[next + 1], floats[next + 2], 1.0f);
       next += 3;
     }
   }
-  const vplkit::float_image* mask = with_mask ? &parts[2] : nullptr;
+  const vplkit::image* mask = with_mask ? &parts[2] : nullptr;
   try {
     const vplkit::image_metrics m = vplkit::compare_images(parts[0], parts[1], mask);
     for (const double value : {m.rmse, m.relative_mse, m.ssim, m.similarity, m.relative.rmse, m.relative.bias})
@@ -53,12 +53,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (m.masked) require(std::isfinite(m.masked->rmse) && std::isfinite(m.masked->bias), "a masked relative error is not finite");
     for (const float scale : {0.0f, 1.0f, 1e-30f, 3e38f}) {
       const std::vector<std::uint8_t> colours = vplkit::false_colour_error(parts[0], parts[1], scale);
-      require(colours.size() == parts[0].pixels.size() * 4, "the error image has the wrong size");
+      require(colours.size() == parts[0].texels.size() * 4, "the error image has the wrong size");
     }
   } catch (const vplkit::error&) {
     bool finite = true;
-    for (const vplkit::float_image& image : parts)
-      for (const glm::vec3& p : image.pixels) finite = finite && std::isfinite(p.r) && std::isfinite(p.g) && std::isfinite(p.b);
+    for (const vplkit::image& part : parts)
+      for (const glm::vec4& p : part.texels) finite = finite && std::isfinite(p.r) && std::isfinite(p.g) && std::isfinite(p.b);
     require(!finite, "finite images of the same size were refused");
   }
   return 0;

@@ -1,4 +1,4 @@
-// Fuzz target: the OBJ and MTL parser (frontend/obj_loader.hpp). The input is OBJ text, then
+// Fuzz target: the OBJ and MTL parser (frontend/scene/obj_loader.hpp). The input is OBJ text, then
 // optionally a NUL byte and the text every `mtllib` line gets. A malformed input must end in
 // vplkit::error; a mesh that loads must pass check_mesh (finite, in range, indices valid) and
 // have unit normals.
@@ -9,8 +9,8 @@
 #include <string>
 #include <string_view>
 
-#include "frontend/error.hpp"
-#include "frontend/obj_loader.hpp"
+#include "frontend/core/error.hpp"
+#include "frontend/scene/obj_loader.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view input(reinterpret_cast<const char*>(data), size);

@@ -1,4 +1,4 @@
-// Fuzz target: the PNG decoder (frontend/image_metrics.hpp, decode_image over stb_image, which is
+// Fuzz target: the PNG decoder (frontend/image/image_files.hpp, decode_image over stb_image, which is
 // only reached for input with the PNG signature). Malformed input must end in vplkit::error; an
 // image that decodes must have pixels in [0, 1] (sRGB bytes made linear).
 #include <cstdint>
@@ -6,8 +6,8 @@
 #include <cstdlib>
 #include <string>
 
-#include "frontend/error.hpp"
-#include "frontend/image_metrics.hpp"
+#include "frontend/core/error.hpp"
+#include "frontend/image/image_files.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string bytes(reinterpret_cast<const char*>(data), size);
@@ -15,13 +15,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   limits.max_side = 1024;
   limits.max_pixels = std::size_t{1} << 16;  // fast runs; the limit's own check is exercised too
   try {
-    const vplkit::float_image image = vplkit::decode_image(bytes, vplkit::image_file_format::png, "fuzz.png", limits);
-    if (image.pixels.size() != static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) ||
-        image.pixels.size() > limits.max_pixels) {
+    const vplkit::image decoded = vplkit::decode_image(bytes, vplkit::image_file_format::png, "fuzz.png", limits);
+    if (decoded.texels.size() != static_cast<std::size_t>(decoded.width) * static_cast<std::size_t>(decoded.height) ||
+        decoded.texels.size() > limits.max_pixels) {
       std::fprintf(stderr, "fuzz_png: the decoded size does not match the image or exceeds the limit\n");
       std::abort();
     }
-    for (const glm::vec3& p : image.pixels)
+    for (const glm::vec4& p : decoded.texels)
       if (!(p.r >= 0.0f && p.r <= 1.0f && p.g >= 0.0f && p.g <= 1.0f && p.b >= 0.0f && p.b <= 1.0f)) {
         std::fprintf(stderr, "fuzz_png: a decoded pixel is outside [0, 1]\n");
         std::abort();

@@ -9,11 +9,11 @@
 #include <filesystem>
 #include <iostream>
 
-#include "frontend/debug_output.hpp"
-#include "frontend/final_gather_pipeline.hpp"
-#include "frontend/lightwave_pipeline.hpp"
-#include "frontend/obj_loader.hpp"
-#include "frontend/rsm_pipeline.hpp"
+#include "frontend/gl/debug_output.hpp"
+#include "frontend/techniques/final_gather/final_gather_cpu_mirror.hpp"
+#include "frontend/techniques/lightwave/lightwave_pipeline.hpp"
+#include "frontend/scene/obj_loader.hpp"
+#include "frontend/techniques/rsm/rsm_pipeline.hpp"
 #include "tests/parity/parity_harness.hpp"
 
 namespace fs = std::filesystem;
@@ -42,9 +42,9 @@ void check_renders(const mesh& geometry, const std::string& name) {
   rsm_pipeline pipeline(parity::test_shaders(), frame_mesh(name, geometry), settings);
   const rsm_frame frame = pipeline.render();
   std::size_t lit = 0;
-  for (std::size_t i = 0; i < frame.radiance.size(); i += 4) {
-    REQUIRE(std::isfinite(frame.radiance[i]));
-    lit += frame.radiance[i] > 0.0f;
+  for (const glm::vec4& texel : frame.radiance.texels) {
+    REQUIRE(std::isfinite(texel.r));
+    lit += texel.r > 0.0f;
   }
   CHECK(lit > 48u * 48u / 10u);
 }
@@ -91,7 +91,7 @@ TEST_CASE("Light Wave teapot scenes: 6565 triangles per teapot (the thesis's), t
   lightwave_pipeline pipeline(parity::test_shaders(), one, settings);
   const lightwave_frame frame = pipeline.render();
   std::size_t lit = 0;
-  for (std::size_t i = 0; i < frame.radiance.size(); i += 4) lit += frame.radiance[i] > 0.0f;
+  for (const glm::vec4& texel : frame.radiance.texels) lit += texel.r > 0.0f;
   CHECK(lit > 48u * 27u / 4u);
 }
 
@@ -107,7 +107,7 @@ TEST_CASE("final gathering on the npm bunny (3674 triangles): the shading pass m
   double worst = 0.0;
   for (std::size_t i = 0; i < cpu.indirect.texels.size(); ++i)
     for (int c = 0; c < 3; ++c) {
-      const double g = frame.indirect[4 * i + static_cast<std::size_t>(c)], r = cpu.indirect.texels[i][c];
+      const double g = frame.indirect.texels[i][c], r = cpu.indirect.texels[i][c];
       worst = std::max(worst, std::fabs(g - r) / std::max(1e-3, std::fabs(r)));
     }
   CHECK(worst < 2e-5);

@@ -9,11 +9,11 @@
 #include <memory>
 #include <sstream>
 
-#include "frontend/context.hpp"
-#include "frontend/debug_output.hpp"
-#include "frontend/error.hpp"
-#include "frontend/gl_object.hpp"
-#include "frontend/render_target.hpp"
+#include "frontend/gl/context.hpp"
+#include "frontend/gl/debug_output.hpp"
+#include "frontend/core/error.hpp"
+#include "frontend/gl/gl_object.hpp"
+#include "frontend/gl/render_target.hpp"
 
 namespace vplkit::parity {
 
@@ -109,10 +109,7 @@ kernel_outputs run_fragment(const kernel_source& source, const kernel_inputs& in
 
   kernel_outputs outputs;
   for (int i = 0; i < source.float_outputs; ++i) {
-    const std::vector<float> texels = target.read_float(static_cast<std::size_t>(i));
-    std::vector<glm::vec4> values(inputs.size());
-    std::memcpy(values.data(), texels.data(), texels.size() * sizeof(float));
-    outputs.floats.push_back(std::move(values));
+    outputs.floats.push_back(target.read_image(static_cast<std::size_t>(i)).texels);
   }
   for (int i = 0; i < source.uint_outputs; ++i) {
     const std::vector<std::uint32_t> texels = target.read_uint(static_cast<std::size_t>(source.float_outputs + i));

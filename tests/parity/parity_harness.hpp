@@ -17,7 +17,7 @@
 
 #include <glm/glm.hpp>
 
-#include "frontend/program.hpp"
+#include "frontend/gl/program.hpp"
 
 namespace vplkit::parity {
 

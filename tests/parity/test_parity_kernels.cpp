@@ -11,7 +11,7 @@
 #include <vplkit/irradiance.hpp>
 #include <vplkit/micro_linear_buffer.hpp>
 
-#include "frontend/settings_uniforms.hpp"
+#include "frontend/gl/settings_uniforms.hpp"
 #include "tests/parity/parity_harness.hpp"
 
 using namespace vplkit;

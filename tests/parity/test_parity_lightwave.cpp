@@ -7,7 +7,7 @@
 
 #include <vplkit/lightwave.hpp>
 
-#include "frontend/render_target.hpp"
+#include "frontend/gl/render_target.hpp"
 #include "tests/parity/parity_harness.hpp"
 
 using namespace vplkit;

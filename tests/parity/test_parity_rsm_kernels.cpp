@@ -14,7 +14,7 @@
 #include <vplkit/shadow.hpp>
 #include <vplkit/transform.hpp>
 
-#include "frontend/settings_uniforms.hpp"
+#include "frontend/gl/settings_uniforms.hpp"
 #include "tests/parity/parity_harness.hpp"
 
 using namespace vplkit;

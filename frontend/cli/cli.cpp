@@ -1,0 +1,62 @@
+// The vplkit command line: `info`, `render` (headless, the main job), `view` (a window),
+// `compare` and `reference`, one file each (commands.hpp). Every option is range-checked as it
+// is parsed (non-finite numbers included); the checks that need several options, and the
+// scoping of options to the techniques and methods that read them, run before anything is
+// opened or read.
+#include "frontend/cli/cli.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <new>
+
+#include <vplkit/version.hpp>
+
+#include "frontend/cli/commands.hpp"
+#include "frontend/gl/debug_output.hpp"
+
+namespace vplkit {
+
+int run_command_line(int argc, const char* const* argv, std::ostream& out, std::ostream& err, command_line_mode mode) {
+  CLI::App app{"vplkit: real-time one-bounce indirect illumination (reflective shadow maps with visibility, Light Wave, robust final gathering)"};
+  // At most one subcommand; an unknown word is then reported by name as an unexpected argument
+  // (require_subcommand(1) would only say that a subcommand is required).
+  app.require_subcommand(0, 1);
+  app.set_version_flag("--version", version_string);
+  const std::vector<cli::command> commands = {cli::add_info_command(app), cli::add_render_command(app), cli::add_view_command(app),
+                                              cli::add_compare_command(app), cli::add_reference_command(app)};
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& parse_error) {
+    // CLI11 prints the message (or the help); its exit codes (105 for a failed check, ...) all
+    // become 2, the conventional code for a command line that does not parse.
+    return app.exit(parse_error, out, err) == 0 ? 0 : 2;
+  }
+  const cli::session io{out, mode == command_line_mode::check_only};
+  try {
+    int status = -1;
+    for (const cli::command& command : commands)
+      if (command.app->parsed()) status = command.run(io);
+    if (status < 0) {
+      err << "vplkit: error: a subcommand is required: info, render, view, compare or reference (see vplkit --help)\n";
+      return 2;
+    }
+    // A GL error that no check point turned into an exception still fails the command.
+    if (status == 0 && unchecked_gl_error_count() > 0) {
+      err << "vplkit: error: the GL driver reported " << unchecked_gl_error_count()
+          << " error(s) through KHR_debug that no check point saw; the output is not trustworthy\n";
+      return 1;
+    }
+    return status;
+  } catch (const cli::usage_error& usage) {
+    err << "vplkit: error: " << usage.what() << "\n";
+    return 2;
+  } catch (const std::bad_alloc&) {
+    err << "vplkit: error: out of memory (the input asks for more than this machine has)\n";
+    return 1;
+  } catch (const std::exception& failure) {
+    err << "vplkit: error: " << failure.what() << "\n";
+    return 1;
+  }
+}
+
+}  // namespace vplkit

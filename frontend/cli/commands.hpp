@@ -1,0 +1,25 @@
+// The subcommands of vplkit, one file each (info.cpp, render.cpp, view.cpp, compare.cpp,
+// reference.cpp). Each registers only the options it reads on its own CLI11 subcommand and
+// returns what to run once the command line has parsed.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <functional>
+
+#include "frontend/cli/options.hpp"
+
+namespace vplkit::cli {
+
+struct command {
+  CLI::App* app = nullptr;                    ///< parsed() tells whether it was chosen
+  std::function<int(const session&)> run;     ///< 0 on success; throws on failure
+};
+
+command add_info_command(CLI::App& app);
+command add_render_command(CLI::App& app);
+command add_view_command(CLI::App& app);
+command add_compare_command(CLI::App& app);
+command add_reference_command(CLI::App& app);
+
+}  // namespace vplkit::cli

@@ -1,0 +1,76 @@
+// vplkit compare: the metrics of an image against a reference (PFM linear or PNG sRGB), over all
+// pixels and over a mask, and a false-colour error image.
+#include <iomanip>
+#include <optional>
+
+#include "frontend/cli/commands.hpp"
+#include "frontend/cli/output.hpp"
+#include "frontend/core/error.hpp"
+#include "frontend/image/image_files.hpp"
+#include "frontend/image/metrics.hpp"
+
+namespace vplkit::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct compare_state {
+  std::string image, reference, mask, error_image;
+  float error_scale = 0.0f;
+};
+
+// The same file, whether or not it exists yet (so --error-image cannot overwrite an input).
+bool same_file(const fs::path& a, const fs::path& b) {
+  std::error_code code;
+  if (fs::equivalent(a, b, code)) return true;
+  return fs::weakly_canonical(a, code) == fs::weakly_canonical(b, code) && !code;
+}
+
+std::string size_of(const image& i) { return std::to_string(i.width) + "x" + std::to_string(i.height); }
+
+int run_compare(const session& io, const compare_state& s) {
+  std::optional<output_set> files;
+  if (!s.error_image.empty()) {
+    files.emplace(s.error_image, "", ".png", "--error-image");
+    for (const std::string& input : {s.image, s.reference, s.mask})
+      if (!input.empty() && same_file(s.error_image, input)) throw usage_error("--error-image " + s.error_image + " is the input " + input + "; name a new file");
+  }
+  if (io.dry_run) return 0;
+  const image candidate = read_image_file(s.image);
+  const image reference = read_image_file(s.reference);
+  std::optional<image> mask;
+  if (!s.mask.empty()) mask = read_image_file(s.mask);
+  if (!candidate.same_size(reference))
+    throw error("the image " + s.image + " is " + size_of(candidate) + " but the reference " + s.reference + " is " + size_of(reference));
+  if (mask && !mask->same_size(reference))
+    throw error("the mask " + s.mask + " is " + size_of(*mask) + " but the reference " + s.reference + " is " + size_of(reference));
+  const image_metrics m = compare_images(candidate, reference, mask ? &*mask : nullptr);
+  if (files) files->add_png(files->main(), candidate.width, candidate.height, false_colour_error(candidate, reference, s.error_scale));
+  io.out << std::setprecision(6) << "| metric | value |\n|---|---:|\n| RMSE | " << m.rmse << " |\n| relative MSE | " << m.relative_mse
+         << " |\n| PSNR (dB) | " << m.psnr << " |\n| SSIM (luminance) | " << m.ssim << " |\n| similarity (Alg. 1, %) | " << m.similarity << " |\n";
+  io.out << "| relative RMSE (RMSE / reference mean) | " << m.relative.rmse << " |\n| relative bias ((mean - reference mean) / reference mean) | "
+         << m.relative.bias << " |\n";
+  if (m.leak_rmse) io.out << "| masked RMSE (" << m.leak_pixels << " pixels, e.g. a leak region) | " << *m.leak_rmse << " |\n";
+  if (m.masked)
+    io.out << "| masked relative RMSE (" << m.masked->pixels << " pixels) | " << m.masked->rmse << " |\n| masked relative bias | " << m.masked->bias << " |\n";
+  if (files) files->write(io.out);
+  return 0;
+}
+
+}  // namespace
+
+command add_compare_command(CLI::App& app) {
+  auto state = std::make_shared<compare_state>();
+  CLI::App* compare = app.add_subcommand("compare", "compare an image with a reference (.pfm linear or .png sRGB)");
+  compare->add_option("image", state->image, "the image to judge")->required();
+  compare->add_option("reference", state->reference, "the reference")->required();
+  compare->add_option("--mask", state->mask, "pixels (luminance > 0.5) for the light-leak error and the masked relative errors, e.g. the "
+                                             "-receivers.pfm of vplkit reference --method rsm-brute-force");
+  compare->add_option("--error-image", state->error_image, "write the false-colour error image (.png)");
+  compare->add_option("--error-scale", state->error_scale, "luminance difference shown as full red (0: the largest)")
+      ->check(number_in(0.0, std::numeric_limits<float>::max(), false, "linear luminance"))->capture_default_str();
+  return {compare, [state](const session& io) { return run_compare(io, *state); }};
+}
+
+}  // namespace vplkit::cli

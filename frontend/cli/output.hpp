@@ -1,0 +1,43 @@
+// The files a command writes: one place for output naming (a default under output/, siblings
+// such as <out>-indirect.png next to the main file), extension checks, and all-or-nothing
+// writing (core/files: every file is encoded and written to a temporary first, then renamed, so a
+// failure leaves no partial set).
+#pragma once
+
+#include <filesystem>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "frontend/core/files.hpp"
+#include "frontend/image/image.hpp"
+
+namespace vplkit::cli {
+
+class output_set {
+ public:
+  /// The main file: `given` (the value of `option`, e.g. --out) or, when empty, `default_path`.
+  /// Throws usage_error when its extension is not `extension` (".png" or ".pfm"); `what_else`
+  /// says in that message which files go next to it.
+  output_set(const std::string& given, const std::string& default_path, const std::string& extension, const std::string& option,
+             const std::string& what_else = {});
+  const std::filesystem::path& main() const { return main_; }
+  /// main() with `suffix` added to its stem and the extension replaced: ("-indirect", ".pfm").
+  std::filesystem::path sibling(const std::string& suffix, const std::string& extension) const;
+
+  /// An 8-bit sRGB PNG of exposure * `linear`.
+  void add_png(const std::filesystem::path& path, const image& linear, float exposure = 1.0f);
+  /// An RGBA8 PNG, rows top-down (e.g. false_colour_error).
+  void add_png(const std::filesystem::path& path, int width, int height, std::vector<std::uint8_t> rgba8);
+  /// A linear PFM.
+  void add_pfm(const std::filesystem::path& path, image linear);
+
+  /// Writes every file added, all or nothing, and prints "wrote <absolute path>" for each.
+  void write(std::ostream& out) const;
+
+ private:
+  std::filesystem::path main_;
+  std::vector<output_file> files_;
+};
+
+}  // namespace vplkit::cli

@@ -1,0 +1,138 @@
+#include "frontend/cli/rsm_options.hpp"
+
+#include <iomanip>
+
+#include "frontend/cli/output.hpp"
+#include "frontend/core/named_table.hpp"
+#include "frontend/gl/context.hpp"
+
+namespace vplkit::cli {
+
+namespace {
+
+const rsm_technique* rsm_technique_named(const std::string& name) {
+  for (const rsm_technique& technique : rsm_techniques())
+    if (name == technique.name) return &technique;
+  return nullptr;
+}
+
+bool gathers(const std::string& name) {
+  const rsm_technique* technique = rsm_technique_named(name);
+  return technique && technique->indirect;
+}
+
+bool radial(const std::string& name) { return gathers(name) && rsm_technique_named(name)->pattern == rsm_pattern::radial; }
+
+bool with_visibility(const std::string& name) { return gathers(name) && rsm_technique_named(name)->visibility != rsm_visibility::none; }
+
+}  // namespace
+
+bool is_rsm_technique(const std::string& technique) { return rsm_technique_named(technique) != nullptr; }
+
+void add_rsm_frame_options(CLI::App& command, rsm_options& options, option_scope* only_indirect) {
+  command.add_option("--rsm-size", options.rsm_size, "square RSM resolution")->check(CLI::Range(1, max_image_side))->capture_default_str();
+  CLI::Option* divisor = command.add_option("--indirect-divisor", options.indirect_divisor, "indirect buffer = image / this per axis (2: half, 1: full)")
+                             ->check(CLI::IsMember({1, 2, 4, 8}))->capture_default_str();
+  if (only_indirect) only_indirect->add(divisor, "the RSM techniques that gather indirect light (rsm-*)", gathers);
+}
+
+void add_rsm_gather_options(CLI::App& command, rsm_options& options, option_scope& scope, bool with_raw_indirect) {
+  const std::string gatherers = "the RSM techniques that gather indirect light (rsm-*)";
+  const std::string radial_ones = "the radial-pattern techniques (rsm-radial, rsm-alg2, rsm-alg3, rsm-alg6)";
+  const rsm_gather_preset<float> defaults = default_rsm_gather_preset<float>();
+  const rsm_gather_preset<float> thesis = thesis_rsm_gather_preset<float>();
+  scope.add(command
+                .add_option("--preset", options.preset,
+                            "RSM gather: default (radius " + format_number(defaults.radius_fraction) + " of the RSM, " + std::to_string(defaults.paths) + "x" +
+                                std::to_string(defaults.samples_per_path) + " samples, " + std::to_string(defaults.slots) +
+                                " slots; docs/rsm-study.md) or thesis (" + format_number(thesis.radius_fraction) + ", " + std::to_string(thesis.paths) + "x" +
+                                std::to_string(thesis.samples_per_path) + ", " + std::to_string(thesis.slots) + " slots); the options below override it")
+                ->check(CLI::IsMember({"default", "thesis"}))->capture_default_str(),
+            gatherers, gathers);
+  scope.add(command.add_option("--paths", options.paths, "radial pattern: paths [preset]")->check(CLI::Range(1, 256)), radial_ones, radial);
+  scope.add(command.add_option("--samples-per-path", options.samples_per_path, "radial pattern: samples per path [preset]")->check(CLI::Range(1, 256)),
+            radial_ones, radial);
+  scope.add(command.add_option("--radius", options.radius, "sampling radius (radial and disk) as a fraction of the RSM side [preset]")
+                ->check(number_in(0.0, 2.0, true, "a fraction of the RSM side")),
+            gatherers, gathers);
+  scope.add(command.add_option("--max-radius", options.max_radius_texels, "sampling radius in RSM texels (instead of --radius)")
+                ->check(positive_number("RSM texels")),
+            gatherers, gathers);
+  scope.add(command.add_option("--slots", options.slots, "micro linear buffer slots [preset]")->check(CLI::Range(1, 16)),
+            "the techniques with the micro linear buffer (rsm-alg2, rsm-alg3, rsm-alg6)", with_visibility);
+  scope.add(command.add_option("--disk-samples", options.disk_samples, "original RSM: samples")->check(CLI::Range(1, 65536))->capture_default_str(),
+            "rsm-original", [](const std::string& name) { return name == "rsm-original"; });
+  scope.add(command.add_option("--post-filter", options.filter, "bilateral post filter of the indirect light: full 2D kernel or separable")
+                ->check(CLI::IsMember({"full", "separable"}))->capture_default_str(),
+            gatherers, gathers);
+  if (with_raw_indirect)
+    scope.add(command.add_flag("--raw-indirect", options.raw_indirect,
+                               "also write <out>-raw-indirect.pfm: the unfiltered gather at the indirect buffer's receivers (compare it with "
+                               "vplkit reference --method rsm-brute-force)"),
+              gatherers, gathers);
+}
+
+rsm_pipeline_settings make_rsm_settings(const std::string& technique, const common_options& common, const rsm_options& options) {
+  rsm_pipeline_settings s;
+  s.technique = technique;
+  s.width = common.width;
+  s.height = common.height;
+  s.format = common.texel();
+  s.irradiance.min_distance = common.min_distance;
+  s.rsm_size = options.rsm_size;
+  s.indirect_divisor = options.indirect_divisor;
+  s.filter = options.filter == "separable" ? post_filter::separable : post_filter::full;
+  s.apply(options.preset == "thesis" ? thesis_rsm_gather_preset<float>() : default_rsm_gather_preset<float>());
+  if (options.paths) s.radial.paths = *options.paths;
+  if (options.samples_per_path) s.radial.samples_per_path = *options.samples_per_path;
+  if (options.slots) s.slots = *options.slots;
+  if (options.radius && options.max_radius_texels) throw usage_error("give the sampling radius once: --radius (a fraction of the RSM side) or --max-radius (texels)");
+  if (options.radius) s.radius = *options.radius;
+  if (options.max_radius_texels) s.radius = *options.max_radius_texels / static_cast<float>(s.rsm_size);
+  s.disk.samples = options.disk_samples;
+  s.radial.seed = s.disk.seed = common.seed;
+  if (const std::string problem = validate(s); !problem.empty()) throw usage_error(problem);
+  return s;
+}
+
+int render_rsm(const session& io, const std::string& technique_name, const common_options& common, const rsm_options& options, const std::string& out) {
+  const rsm_technique& technique = find_rsm_technique(technique_name);
+  const rsm_pipeline_settings settings = make_rsm_settings(technique_name, common, options);
+  output_set files(out, "output/" + std::filesystem::path(common.scene).stem().string() + "-" + technique.name + ".png", ".png", "--out");
+  if (io.dry_run) return 0;
+
+  const headless_session gl(common.shaders());
+  const scene source = load_scene(common.scene);
+  rsm_pipeline pipeline(gl.shaders, source, settings);
+  // The first frame pays for llvmpipe's shader JIT, and llvmpipe's first GL_TIME_ELAPSED query
+  // reads a garbage start time (seen: 282 s); the pass table reports a warmed-up frame.
+  pipeline.render();
+  const rsm_frame frame = pipeline.render();
+
+  // Everything is rendered before anything is written, so a failure leaves no partial set.
+  files.add_png(files.main(), frame.radiance);
+  if (technique.indirect) {
+    const float exposure = percentile_exposure(frame.indirect);
+    files.add_png(files.sibling("-indirect", ".png"), frame.indirect, exposure);
+    if (technique.visibility != rsm_visibility::none) {
+      rsm_pipeline_settings without = settings;
+      without.technique = "rsm-radial";
+      // One frame: the image does not depend on the JIT warm-up that the timed frame above needs.
+      const rsm_frame reference = rsm_pipeline(gl.shaders, source, without).render();
+      // Amplified 8x relative to the indirect image's exposure, as in Fig. 5.1c.
+      files.add_png(files.sibling("-visibility-difference", ".png"), luminance_difference(reference.indirect, frame.indirect, 8.0f * exposure));
+    }
+  }
+  // The indirect irradiance, linear, at the image's size after the post filter (0 for direct light only).
+  files.add_pfm(files.sibling("-indirect", ".pfm"), frame.indirect);
+  if (options.raw_indirect) files.add_pfm(files.sibling("-raw-indirect", ".pfm"), pipeline.read_buffers().indirect);
+
+  const glm::ivec2 indirect = pipeline.constants().indirect_size;
+  io.out << "scene " << source.name << " (" << source.geometry.triangle_count() << " triangles), technique " << technique.name << ", "
+         << settings.width << "x" << settings.height << ", RSM " << settings.rsm_size << "^2, indirect " << indirect.x << "x" << indirect.y << "\n"
+         << format_pass_table(frame.pass_times);
+  files.write(io.out);
+  return 0;
+}
+
+}  // namespace vplkit::cli

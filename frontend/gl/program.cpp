@@ -1,0 +1,293 @@
+#include "frontend/gl/program.hpp"
+
+#include <cstdlib>
+#include <fstream>
+#include <optional>
+#include <string_view>
+#include <set>
+#include <sstream>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "frontend/gl/debug_output.hpp"
+#include "frontend/core/error.hpp"
+#include "frontend/core/files.hpp"
+
+namespace vplkit {
+namespace fs = std::filesystem;
+
+fs::path default_shader_dir() {
+  if (const char* from_environment = std::getenv("VPLKIT_SHADER_DIR"); from_environment && *from_environment)
+    return from_environment;
+  if (fs::exists(fs::path(VPLKIT_SOURCE_SHADER_DIR) / "lib")) return VPLKIT_SOURCE_SHADER_DIR;
+  return VPLKIT_INSTALLED_SHADER_DIR;
+}
+
+namespace {
+
+// A shader's text. The not-found message says where shaders are looked for; read_file does the
+// rest (a regular file, at most 16 MiB: no shader is near that).
+std::string read_text_file(const fs::path& path, const std::string& what_for) {
+  std::error_code ignored;
+  if (!fs::exists(path, ignored)) throw error("shader file not found: " + path.string() + what_for);
+  return read_file(path, std::uintmax_t{1} << 24, "shader file");
+}
+
+bool is_blank(char c) { return c == ' ' || c == '\t'; }
+
+std::string_view skip_blanks(std::string_view text) {
+  while (!text.empty() && is_blank(text.front())) text.remove_prefix(1);
+  return text;
+}
+
+// For a preprocessor line "# name ...", the text after the name; nothing for any other line.
+// Scanned by hand: a std::regex recurses per character and overflows the stack on long lines.
+std::optional<std::string_view> directive(std::string_view line, std::string_view name) {
+  line = skip_blanks(line);
+  if (line.empty() || line.front() != '#') return std::nullopt;
+  line = skip_blanks(line.substr(1));
+  if (line.substr(0, name.size()) != name) return std::nullopt;
+  line.remove_prefix(name.size());
+  if (!line.empty()) {
+    const char next = line.front();
+    if ((next >= 'a' && next <= 'z') || (next >= 'A' && next <= 'Z') || (next >= '0' && next <= '9') || next == '_') return std::nullopt;
+  }
+  return line;
+}
+
+// `#include "path"`, optionally followed by a // comment: the path; nothing for any other line.
+std::optional<std::string> include_path(std::string_view line) {
+  std::optional<std::string_view> rest = directive(line, "include");
+  if (!rest) return std::nullopt;
+  std::string_view text = skip_blanks(*rest);
+  if (text.empty() || text.front() != '"') return std::nullopt;
+  const std::size_t close = text.find('"', 1);
+  if (close == std::string_view::npos || close == 1) return std::nullopt;
+  const std::string_view path = text.substr(1, close - 1);
+  const std::string_view after = skip_blanks(text.substr(close + 1));
+  if (!after.empty() && after.substr(0, 2) != "//") return std::nullopt;
+  return std::string(path);
+}
+
+class expander {
+ public:
+  expander(const fs::path& root, const shader_defines& defines) : root_(root), defines_(defines) {}
+
+  expanded_source run(const std::string& text, const std::string& display_name) {
+    expand(text, display_name, /*top_level=*/true);
+    return {out_.str(), file_names_};
+  }
+
+ private:
+  void expand(const std::string& text, const std::string& display_name, bool top_level) {
+    const int file_number = static_cast<int>(file_names_.size());
+    file_names_.push_back(display_name);
+    std::istringstream lines(text);
+    std::string line;
+    int line_number = 0;
+    bool wrote_line_directive = false;
+    while (std::getline(lines, line)) {
+      ++line_number;
+      if (!line.empty() && line.back() == '\r') line.pop_back();
+      if (directive(line, "version")) {
+        if (!top_level || line_number != 1)
+          throw error(display_name + ":" + std::to_string(line_number) +
+                      ": #version must be the first line of the top-level shader, not in an included file");
+        out_ << line << "\n";
+        for (const auto& [name, value] : defines_) out_ << "#define " << name << " " << value << "\n";
+        continue;
+      }
+      if (!wrote_line_directive) {
+        out_ << "#line " << line_number << " " << file_number << "\n";
+        wrote_line_directive = true;
+      }
+      if (const std::optional<std::string> included = include_path(line)) {
+        const std::string& relative = *included;
+        // Longer than any path a file system takes (PATH_MAX is 4096 on Linux).
+        if (relative.size() > 4096)
+          throw error(display_name + ":" + std::to_string(line_number) + ": the included file name has " + std::to_string(relative.size()) +
+                      " characters, more than a path can have");
+        const fs::path path = root_ / relative;
+        if (included_.insert(fs::weakly_canonical(path).string()).second) {
+          std::error_code ignored;
+          if (!fs::exists(path, ignored))
+            throw error(display_name + ":" + std::to_string(line_number) + ": included file \"" +
+                        relative + "\" not found (looked in " + root_.string() + ")");
+          expand(read_text_file(path, ""), relative, /*top_level=*/false);
+        }
+        out_ << "#line " << (line_number + 1) << " " << file_number << "\n";
+        continue;
+      }
+      out_ << line << "\n";
+    }
+  }
+
+  fs::path root_;
+  const shader_defines& defines_;
+  std::ostringstream out_;
+  std::vector<std::string> file_names_;
+  std::set<std::string> included_;
+};
+
+const char* stage_name(shader_stage stage) {
+  return stage == shader_stage::vertex ? "vertex" : "fragment";
+}
+
+}  // namespace
+
+shader_library::shader_library(fs::path root) : root_(std::move(root)) {
+  std::error_code ignored;
+  if (!fs::is_directory(root_, ignored))
+    throw error("shader directory not found: " + root_.string() +
+                " (set --shader-dir or VPLKIT_SHADER_DIR to the vplkit shaders/ folder)");
+}
+
+expanded_source shader_library::expand_file(const std::string& relative_path, const shader_defines& defines) const {
+  const std::string text =
+      read_text_file(root_ / relative_path, " (shader directory " + root_.string() +
+                                                 "; set --shader-dir or VPLKIT_SHADER_DIR)");
+  return expander(root_, defines).run(text, relative_path);
+}
+
+expanded_source shader_library::expand_text(const std::string& text, const std::string& display_name,
+                                            const shader_defines& defines) const {
+  return expander(root_, defines).run(text, display_name);
+}
+
+namespace {
+
+// Digits at the start of `text`, which then starts after them; nothing if there are none.
+std::optional<std::string> take_digits(std::string_view& text) {
+  std::size_t count = 0;
+  while (count < text.size() && count < 9 && text[count] >= '0' && text[count] <= '9') ++count;
+  if (count == 0) return std::nullopt;
+  std::string digits(text.substr(0, count));
+  text.remove_prefix(count);
+  return digits;
+}
+
+bool take(std::string_view& text, std::string_view expected) {
+  if (text.substr(0, expected.size()) != expected) return false;
+  text.remove_prefix(expected.size());
+  return true;
+}
+
+}  // namespace
+
+std::string map_log_to_files(const std::string& log, const std::vector<std::string>& file_names) {
+  auto name_of = [&](const std::string& number) {
+    const std::size_t index = std::stoul(number);
+    return index < file_names.size() ? file_names[index] : "<source " + number + ">";
+  };
+  // Mesa: "0:12(5): error: ...".
+  const auto mesa = [&](std::string_view rest) -> std::optional<std::string> {
+    const auto file = take_digits(rest);
+    if (!file || !take(rest, ":")) return std::nullopt;
+    const auto row = take_digits(rest);
+    if (!row || !take(rest, "(")) return std::nullopt;
+    const auto column = take_digits(rest);
+    if (!column || !take(rest, ")")) return std::nullopt;
+    return name_of(*file) + ":" + *row + ":" + *column + std::string(rest);
+  };
+  // NVIDIA: "0(12) : error C0000: ...".
+  const auto nvidia = [&](std::string_view rest) -> std::optional<std::string> {
+    const auto file = take_digits(rest);
+    if (!file || !take(rest, "(")) return std::nullopt;
+    const auto row = take_digits(rest);
+    if (!row || !take(rest, ")")) return std::nullopt;
+    return name_of(*file) + ":" + *row + std::string(rest);
+  };
+  // AMD: "ERROR: 0:12: ..." (or WARNING).
+  const auto amd = [&](std::string_view rest) -> std::optional<std::string> {
+    const std::string severity = take(rest, "ERROR: ") ? "ERROR" : take(rest, "WARNING: ") ? "WARNING" : "";
+    if (severity.empty()) return std::nullopt;
+    const auto file = take_digits(rest);
+    if (!file || !take(rest, ":")) return std::nullopt;
+    const auto row = take_digits(rest);
+    if (!row || !take(rest, ":")) return std::nullopt;
+    return name_of(*file) + ":" + *row + ": " + severity + std::string(rest);
+  };
+  std::istringstream lines(log);
+  std::ostringstream out;
+  std::string line;
+  while (std::getline(lines, line)) {
+    if (auto mapped = mesa(line)) line = *mapped;
+    else if (auto from_nvidia = nvidia(line)) line = *from_nvidia;
+    else if (auto from_amd = amd(line)) line = *from_amd;
+    if (!line.empty()) out << "  " << line << "\n";
+  }
+  return out.str();
+}
+
+program link_program(const std::string& program_name, const std::vector<stage_source>& stages,
+                     const std::vector<std::string>& transform_feedback_varyings) {
+  check_gl("before building program " + program_name);
+  gl_program linked(glCreateProgram());
+  std::vector<gl_shader> shaders;
+  for (const stage_source& stage : stages) {
+    gl_shader shader(glCreateShader(stage.stage == shader_stage::vertex ? GL_VERTEX_SHADER : GL_FRAGMENT_SHADER));
+    const char* text = stage.source.text.c_str();
+    glShaderSource(shader.get(), 1, &text, nullptr);
+    glCompileShader(shader.get());
+    GLint compiled = GL_FALSE;
+    glGetShaderiv(shader.get(), GL_COMPILE_STATUS, &compiled);
+    if (!compiled) {
+      GLint length = 0;
+      glGetShaderiv(shader.get(), GL_INFO_LOG_LENGTH, &length);
+      std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
+      glGetShaderInfoLog(shader.get(), length, nullptr, log.data());
+      log.resize(std::char_traits<char>::length(log.c_str()));
+      // Compile failures are reported here; drop the driver's duplicate KHR_debug copy.
+      discard_pending_gl_messages();
+      throw error("GLSL compile error in " + std::string(stage_name(stage.stage)) + " shader " +
+                  stage.source.file_names.front() + " (program " + program_name + "):\n" +
+                  map_log_to_files(log, stage.source.file_names));
+    }
+    glAttachShader(linked.get(), shader.get());
+    shaders.push_back(std::move(shader));
+  }
+  if (!transform_feedback_varyings.empty()) {
+    std::vector<const char*> names;
+    for (const std::string& name : transform_feedback_varyings) names.push_back(name.c_str());
+    glTransformFeedbackVaryings(linked.get(), static_cast<GLsizei>(names.size()), names.data(), GL_SEPARATE_ATTRIBS);
+  }
+  glLinkProgram(linked.get());
+  GLint link_ok = GL_FALSE;
+  glGetProgramiv(linked.get(), GL_LINK_STATUS, &link_ok);
+  if (!link_ok) {
+    GLint length = 0;
+    glGetProgramiv(linked.get(), GL_INFO_LOG_LENGTH, &length);
+    std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
+    glGetProgramInfoLog(linked.get(), length, nullptr, log.data());
+    log.resize(std::char_traits<char>::length(log.c_str()));
+    discard_pending_gl_messages();
+    std::vector<std::string> all_files;
+    for (const stage_source& stage : stages) all_files.push_back(stage.source.file_names.front());
+    std::string files;
+    for (const std::string& name : all_files) files += (files.empty() ? "" : ", ") + name;
+    throw error("GLSL link error in program " + program_name + " (" + files + "):\n  " + log);
+  }
+  for (const gl_shader& shader : shaders) glDetachShader(linked.get(), shader.get());
+  check_gl("building program " + program_name);
+  return program(std::move(linked));
+}
+
+program load_program(const shader_library& library, const std::string& vertex_file,
+                     const std::string& fragment_file, const shader_defines& defines) {
+  std::string name = vertex_file + " + " + fragment_file;
+  for (const auto& [define, value] : defines) name += " " + define + "=" + value;
+  return link_program(name, {{shader_stage::vertex, library.expand_file(vertex_file, defines)},
+                             {shader_stage::fragment, library.expand_file(fragment_file, defines)}});
+}
+
+// GL 3.3 has no glProgramUniform (that is 4.1), so a setter binds the program first.
+void program::set(const std::string& uniform, int value) const { use(); glUniform1i(location(uniform), value); }
+void program::set(const std::string& uniform, unsigned value) const { use(); glUniform1ui(location(uniform), value); }
+void program::set(const std::string& uniform, float value) const { use(); glUniform1f(location(uniform), value); }
+void program::set(const std::string& uniform, const glm::vec2& value) const { use(); glUniform2fv(location(uniform), 1, glm::value_ptr(value)); }
+void program::set(const std::string& uniform, const glm::vec3& value) const { use(); glUniform3fv(location(uniform), 1, glm::value_ptr(value)); }
+void program::set(const std::string& uniform, const glm::vec4& value) const { use(); glUniform4fv(location(uniform), 1, glm::value_ptr(value)); }
+void program::set(const std::string& uniform, const glm::ivec2& value) const { use(); glUniform2iv(location(uniform), 1, glm::value_ptr(value)); }
+void program::set(const std::string& uniform, const glm::mat4& value) const { use(); glUniformMatrix4fv(location(uniform), 1, GL_FALSE, glm::value_ptr(value)); }
+
+}  // namespace vplkit

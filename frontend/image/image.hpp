@@ -1,0 +1,78 @@
+// The one image type of the frontend and every conversion of it: a linear float RGBA image with
+// rows bottom-up, the order in which GL reads a render target back and in which a PFM file stores
+// its rows. Only PNG is top-down; to_srgb8 (and the PNG decoder in image_files) are the one place
+// where rows are flipped. Rec. 709 luminance and the sRGB transfer function are defined here once.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace vplkit {
+
+/// The largest image side vplkit renders, reads or allocates a render target for (per axis);
+/// GL_MAX_TEXTURE_SIZE is checked as well where a texture is made.
+constexpr int max_image_side = 16384;
+
+/// Empty when width x height is a size vplkit renders, else the reason.
+inline std::string validate_image_size(int width, int height) {
+  if (width < 1 || height < 1 || width > max_image_side || height > max_image_side)
+    return "image size must be in [1, " + std::to_string(max_image_side) + "] per side, got " + std::to_string(width) + "x" + std::to_string(height);
+  return {};
+}
+
+/// Linear RGBA floats, rows bottom-up: texel (x, y) has y = 0 at the bottom, as in GL.
+struct image {
+  int width = 0;
+  int height = 0;
+  std::vector<glm::vec4> texels;
+
+  image() = default;
+  image(int w, int h, glm::vec4 fill = glm::vec4(0.0f))
+      : width(w), height(h), texels(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), fill) {}
+  std::size_t index(int x, int y) const { return static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x); }
+  const glm::vec4& at(glm::ivec2 texel) const { return texels[index(texel.x, texel.y)]; }
+  glm::vec4& at(glm::ivec2 texel) { return texels[index(texel.x, texel.y)]; }
+  const glm::vec4& at(int x, int y) const { return texels[index(x, y)]; }
+  glm::vec4& at(int x, int y) { return texels[index(x, y)]; }
+  bool same_size(const image& other) const { return width == other.width && height == other.height; }
+};
+
+/// Rec. 709 luminance of linear RGB, in the precision of T (double for sums over images: the
+/// luminance of finite floats can exceed FLT_MAX).
+template <typename T>
+T luminance(const glm::vec<3, T>& rgb) {
+  return T(0.2126) * rgb.r + T(0.7152) * rgb.g + T(0.0722) * rgb.b;
+}
+
+/// The sRGB transfer function of a linear value, clamped to [0, 1] first (NaN gives 0).
+float linear_to_srgb(float value);
+/// Its inverse, for values in [0, 1].
+float srgb_to_linear(float value);
+/// A linear value as an 8-bit sRGB code: lround(255 * linear_to_srgb(value)).
+std::uint8_t linear_to_srgb8(float value);
+
+/// exposure * RGB as 8-bit sRGB RGBA, alpha 255, rows top-down (the PNG raster order).
+std::vector<std::uint8_t> to_srgb8(const image& linear, float exposure = 1.0f);
+
+/// The exposure that maps the 99th percentile of the positive finite luminances to 0.8: a
+/// deterministic display scale for images whose level depends on the scene (indirect light).
+/// Returns 1 for an all-black image.
+float percentile_exposure(const image& linear);
+
+/// |L(a) - L(b)| * scale as grey (alpha 1): what the visibility approximation removes (Fig. 5.1c).
+/// Throws vplkit::error when the sizes differ.
+image luminance_difference(const image& a, const image& b, float scale);
+
+/// The red channel of every texel as grey (alpha 1): a scalar buffer (e.g. the Light Wave
+/// indirect shadow factor) shown as an image.
+image red_as_grey(const image& source);
+
+/// Throws vplkit::error naming `what` and both sizes when `a` and `b` differ in size.
+void require_same_size(const image& a, const image& b, const std::string& what);
+
+}  // namespace vplkit

@@ -1,6 +1,0 @@
-// The vplkit executable: frontend/cli.hpp does the work.
-#include <iostream>
-
-#include "frontend/cli.hpp"
-
-int main(int argc, char** argv) { return vplkit::run_command_line(argc, argv, std::cout, std::cerr); }

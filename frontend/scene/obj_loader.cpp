@@ -1,0 +1,261 @@
+#include "frontend/scene/obj_loader.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <vector>
+
+#include "frontend/core/error.hpp"
+#include "frontend/core/files.hpp"
+
+namespace vplkit {
+namespace fs = std::filesystem;
+
+namespace {
+
+// Splits text into lines (LF or CRLF) and lines into words (spaces and tabs), rejecting every
+// other control character: a CR or vertical tab inside a line would make two readers disagree
+// about where a statement starts.
+class statement_reader {
+ public:
+  statement_reader(std::string_view text, const std::string& name) : text_(text), name_(name) {}
+
+  // The next line's words (none for an empty or comment line); false at the end of the text.
+  bool next(std::vector<std::string_view>& words) {
+    if (at_ >= text_.size()) return false;
+    ++line_number_;
+    std::size_t end = text_.find('\n', at_);
+    if (end == std::string_view::npos) end = text_.size();
+    std::string_view line = text_.substr(at_, end - at_);
+    at_ = end + 1;
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    words.clear();
+    for (std::size_t i = 0; i < line.size(); ++i) {
+      const auto byte = static_cast<unsigned char>(line[i]);
+      if ((byte < 0x20 && byte != '\t') || byte == 0x7f) {
+        char hex[8];
+        std::snprintf(hex, sizeof hex, "0x%02x", byte);
+        fail("control character " + std::string(hex) + " in the line (lines end in LF or CRLF; words are separated by spaces or tabs)");
+      }
+    }
+    std::size_t i = 0;
+    while (i < line.size()) {
+      while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+      if (i >= line.size() || line[i] == '#') break;  // the rest of the line is a comment
+      const std::size_t begin = i;
+      while (i < line.size() && line[i] != ' ' && line[i] != '\t') ++i;
+      words.push_back(line.substr(begin, i - begin));
+    }
+    return true;
+  }
+
+  [[noreturn]] void fail(const std::string& what) const { throw error(name_ + ":" + std::to_string(line_number_) + ": " + what); }
+
+ private:
+  std::string_view text_;
+  const std::string& name_;
+  std::size_t at_ = 0;
+  long line_number_ = 0;
+};
+
+std::string quoted(std::string_view word) {
+  constexpr std::size_t shown = 40;
+  // Built with += rather than "'" + string: GCC 12 gives a false -Wrestrict on the latter (bug 105329).
+  std::string text = "'";
+  text += word.substr(0, shown);
+  text += word.size() > shown ? "...'" : "'";
+  return text;
+}
+
+// A number as the float it is stored in: finite, and within max_mesh_coordinate.
+float parse_number(std::string_view word, const statement_reader& reader) {
+  std::string_view digits = word;
+  if (digits.size() > 1 && digits[0] == '+' && digits[1] != '-') digits.remove_prefix(1);
+  float value = 0.0f;
+  const auto [end, code] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+  if (code == std::errc::invalid_argument || end != digits.data() + digits.size()) reader.fail(quoted(word) + " is not a number");
+  if (code == std::errc::result_out_of_range) reader.fail("number " + quoted(word) + " is outside the float range");
+  if (!std::isfinite(value)) reader.fail("number " + quoted(word) + " is not finite");
+  if (std::fabs(value) > max_mesh_coordinate)
+    reader.fail("number " + quoted(word) + " is larger than " + std::to_string(static_cast<long>(max_mesh_coordinate)) +
+                " in magnitude (vplkit works in float; scale the mesh down)");
+  return value;
+}
+
+glm::vec3 parse_vector(const std::vector<std::string_view>& words, std::size_t min_numbers, std::size_t max_numbers, const statement_reader& reader) {
+  const std::size_t count = words.size() - 1;
+  if (count < min_numbers || count > max_numbers) {
+    const std::string range = min_numbers == max_numbers ? std::to_string(min_numbers) : std::to_string(min_numbers) + " to " + std::to_string(max_numbers);
+    reader.fail(quoted(words[0]) + " needs " + range + " numbers, got " + std::to_string(count));
+  }
+  glm::vec3 result(0.0f);
+  for (std::size_t i = 1; i < words.size(); ++i) {
+    const float value = parse_number(words[i], reader);
+    if (i <= 3) result[static_cast<glm::length_t>(i - 1)] = value;
+  }
+  return result;
+}
+
+struct material {
+  glm::vec3 albedo{0.73f};
+};
+
+// newmtl and Kd; the other MTL statements (specular, maps, ...) do not enter a diffuse renderer.
+void parse_material_library(std::string_view text, const std::string& name, std::map<std::string, material, std::less<>>& materials) {
+  statement_reader reader(text, name);
+  std::vector<std::string_view> words;
+  material* current = nullptr;
+  while (reader.next(words)) {
+    if (words.empty()) continue;
+    if (words[0] == "newmtl") {
+      if (words.size() != 2) reader.fail("'newmtl' needs one name");
+      current = &materials[std::string(words[1])];
+      *current = material{};
+    } else if (words[0] == "Kd") {
+      if (!current) reader.fail("'Kd' before any 'newmtl'");
+      if (words.size() != 2 && words.size() != 4) reader.fail("'Kd' needs 1 or 3 numbers, got " + std::to_string(words.size() - 1));
+      glm::vec3 kd(parse_number(words[1], reader));
+      if (words.size() == 4) kd = glm::vec3(kd.x, parse_number(words[2], reader), parse_number(words[3], reader));
+      current->albedo = glm::clamp(kd, 0.0f, 1.0f);
+    }
+  }
+}
+
+// One triangle corner: a position index and a normal index (-1: none), both 0-based.
+struct corner {
+  std::uint32_t position = 0;
+  std::int32_t normal = -1;
+};
+
+// "v", "v/vt", "v//vn" or "v/vt/vn", each index 1..count or negative (counted from the end).
+corner parse_corner(std::string_view word, std::size_t positions, std::size_t texture_coordinates, std::size_t normals,
+                    const statement_reader& reader) {
+  std::string_view parts[3];
+  int count = 0;
+  for (std::size_t start = 0;;) {
+    if (count == 3) reader.fail("face corner " + quoted(word) + " has more than 3 indices (v/vt/vn)");
+    const std::size_t slash = word.find('/', start);
+    parts[count++] = word.substr(start, slash == std::string_view::npos ? std::string_view::npos : slash - start);
+    if (slash == std::string_view::npos) break;
+    start = slash + 1;
+  }
+  // Empty only the texture coordinate between two slashes (v//vn).
+  if (parts[0].empty() || (count >= 2 && parts[count - 1].empty()) || (count == 2 && parts[1].empty()))
+    reader.fail("face corner " + quoted(word) + " is not v, v/vt, v//vn or v/vt/vn");
+  const std::size_t totals[3] = {positions, texture_coordinates, normals};
+  const char* names[3] = {"vertex", "texture coordinate", "normal"};
+  long resolved[3] = {-1, -1, -1};
+  for (int k = 0; k < count; ++k) {
+    if (parts[k].empty()) continue;
+    long index = 0;
+    const auto [end, code] = std::from_chars(parts[k].data(), parts[k].data() + parts[k].size(), index);
+    if (code != std::errc() || end != parts[k].data() + parts[k].size()) reader.fail("face corner " + quoted(word) + " is not an index");
+    const long total = static_cast<long>(totals[k]);
+    const long zero_based = index < 0 ? total + index : index - 1;
+    if (index == 0 || zero_based < 0 || zero_based >= total)
+      reader.fail("face " + std::string(names[k]) + " index " + std::string(parts[k]) + " is out of range (" + std::to_string(total) + " defined so far)");
+    resolved[k] = zero_based;
+  }
+  return {static_cast<std::uint32_t>(resolved[0]), static_cast<std::int32_t>(resolved[2])};
+}
+
+}  // namespace
+
+mesh parse_obj(std::string_view text, const std::string& name, const material_library_reader& read_library, const obj_limits& limits) {
+  statement_reader reader(text, name);
+  std::vector<std::string_view> words;
+  std::vector<glm::vec3> positions, normals;
+  std::size_t texture_coordinates = 0;
+  std::map<std::string, material, std::less<>> materials;
+  std::vector<std::string> libraries_read;
+  glm::vec3 albedo = material{}.albedo;
+  std::vector<corner> corners;         // three per triangle
+  std::vector<glm::vec3> albedos;      // one per triangle
+  std::vector<corner> polygon;
+  while (reader.next(words)) {
+    if (words.empty()) continue;
+    const std::string_view keyword = words[0];
+    if (keyword == "v") {
+      positions.push_back(parse_vector(words, 3, 7, reader));
+    } else if (keyword == "vn") {
+      normals.push_back(parse_vector(words, 3, 3, reader));
+    } else if (keyword == "vt") {
+      parse_vector(words, 1, 3, reader);
+      ++texture_coordinates;
+    } else if (keyword == "f") {
+      if (words.size() < 4) reader.fail("a face needs at least 3 corners");
+      polygon.clear();
+      for (std::size_t i = 1; i < words.size(); ++i) polygon.push_back(parse_corner(words[i], positions.size(), texture_coordinates, normals.size(), reader));
+      if (albedos.size() + (polygon.size() - 2) > limits.max_triangles)
+        reader.fail("more than " + std::to_string(limits.max_triangles) + " triangles (the most vplkit loads)");
+      for (std::size_t i = 1; i + 1 < polygon.size(); ++i) {
+        corners.insert(corners.end(), {polygon[0], polygon[i], polygon[i + 1]});
+        albedos.push_back(albedo);
+      }
+    } else if (keyword == "mtllib") {
+      if (words.size() < 2) reader.fail("'mtllib' needs a file name");
+      for (std::size_t i = 1; i < words.size(); ++i) {
+        const std::string library(words[i]);
+        try {
+          parse_material_library(read_library(library), library, materials);
+        } catch (const error& failure) {
+          reader.fail("mtllib " + library + ": " + failure.what());
+        }
+        libraries_read.push_back(library);
+      }
+    } else if (keyword == "usemtl") {
+      if (words.size() != 2) reader.fail("'usemtl' needs one material name");
+      const auto found = materials.find(words[1]);
+      if (found == materials.end()) {
+        std::string read;
+        for (const std::string& library : libraries_read) read += (read.empty() ? "" : ", ") + library;
+        reader.fail("material " + quoted(words[1]) + " is not in the material libraries read so far (" + (read.empty() ? "none" : read) + ")");
+      }
+      albedo = found->second.albedo;
+    }
+    // o, g, s, l, p, vp, curves and surfaces: nothing a triangle renderer uses.
+  }
+  if (positions.empty() || corners.empty()) throw error(name + ": no faces (an OBJ mesh needs 'v' and 'f' lines)");
+
+  // Where the file has no normals, each corner takes the area-weighted mean of the normals of the
+  // faces around its position (smooth shading, as the meshes were scanned or modelled).
+  std::vector<glm::vec3> smooth_normals(positions.size(), glm::vec3(0.0f));
+  for (std::size_t face = 0; face < corners.size(); face += 3) {
+    const glm::vec3 a = positions[corners[face].position], b = positions[corners[face + 1].position], c = positions[corners[face + 2].position];
+    const glm::vec3 area_weighted = glm::cross(b - a, c - a);
+    for (std::size_t k = 0; k < 3; ++k) smooth_normals[corners[face + k].position] += area_weighted;
+  }
+  mesh result;
+  for (std::size_t face = 0; face < corners.size(); face += 3) {
+    glm::vec3 corner_position[3];
+    for (std::size_t k = 0; k < 3; ++k) corner_position[k] = positions[corners[face + k].position];
+    glm::vec3 face_normal = glm::cross(corner_position[1] - corner_position[0], corner_position[2] - corner_position[0]);
+    const float area = glm::length(face_normal);
+    if (!(area > 0.0f) || !std::isfinite(area)) continue;  // degenerate triangle: nothing to shade
+    face_normal /= area;
+    for (std::size_t k = 0; k < 3; ++k) {
+      const glm::vec3 smooth = smooth_normals[corners[face + k].position];
+      const float smooth_length = glm::length(smooth);
+      // The smooth normal, unless it leans away from the face (a crease folded over itself).
+      glm::vec3 normal = smooth_length > 0.0f && std::isfinite(smooth_length) && glm::dot(smooth, face_normal) > 0.0f ? glm::normalize(smooth) : face_normal;
+      if (corners[face + k].normal >= 0) {
+        const glm::vec3 given = normals[static_cast<std::size_t>(corners[face + k].normal)];
+        const float given_length = glm::length(given);
+        if (given_length > 0.0f && std::isfinite(given_length)) normal = glm::normalize(given);
+      }
+      result.indices.push_back(static_cast<std::uint32_t>(result.vertices.size()));
+      result.vertices.push_back({corner_position[k], normal, albedos[face / 3]});
+    }
+  }
+  if (result.indices.empty()) throw error(name + ": no faces with area (every triangle is degenerate)");
+  return result;
+}
+
+mesh load_obj(const fs::path& path, const obj_limits& limits) {
+  const std::string text = read_file(path, limits.max_obj_bytes, "OBJ file");
+  const fs::path folder = path.parent_path();
+  return parse_obj(text, path.string(), [&](const std::string& library) { return read_file(folder / library, limits.max_mtl_bytes, "MTL file"); }, limits);
+}
+
+}  // namespace vplkit

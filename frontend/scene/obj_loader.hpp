@@ -1,0 +1,40 @@
+// OBJ meshes with the MTL diffuse colour (Kd) as the albedo, read by vplkit's own parser: the
+// validation and the loading are one pass over the text, so no face reaches the mesh that was not
+// checked (indices in range, every number finite as a float and within max_mesh_coordinate).
+//
+// Supported: v (x y z, optional w or r g b), vn, vt, f with v, v/vt, v//vn and v/vt/vn corners
+// (negative indices count from the end), mtllib, usemtl; o, g, s, l, p and other statements are
+// skipped. Polygons are fan-triangulated. Lines end in LF or CRLF; any other control character is
+// an error, so what the parser sees is what an editor shows.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <string_view>
+
+#include "frontend/scene/scene.hpp"
+
+namespace vplkit {
+
+/// What an OBJ file may make vplkit allocate.
+struct obj_limits {
+  std::uintmax_t max_obj_bytes = std::uintmax_t{1} << 30;  ///< 1 GiB
+  std::uintmax_t max_mtl_bytes = std::uintmax_t{1} << 24;  ///< 16 MiB per material library
+  std::size_t max_triangles = std::size_t{1} << 24;        ///< after fan triangulation
+};
+
+/// Returns the text of the material library an `mtllib` line names (or throws vplkit::error).
+using material_library_reader = std::function<std::string(const std::string& library)>;
+
+/// Loads triangles with per-vertex normals (the OBJ's, or the area-weighted mean of the adjacent
+/// face normals where it has none) and albedo from the material's Kd (0.73 grey without one).
+/// Material libraries are found next to the OBJ file; each must be a regular file. Throws
+/// vplkit::error naming file:line for malformed input, and the file for one too large.
+mesh load_obj(const std::filesystem::path& path, const obj_limits& limits = {});
+
+/// The same from text in memory; `name` starts every message ("<name>:<line>: ...").
+mesh parse_obj(std::string_view text, const std::string& name, const material_library_reader& read_library, const obj_limits& limits = {});
+
+}  // namespace vplkit

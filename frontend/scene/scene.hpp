@@ -1,0 +1,156 @@
+// Scenes the frontend renders: triangle geometry with a diffuse albedo per vertex, a camera and
+// one primary light (spot or directional). Built-in scenes are made in code, so the default job
+// needs no files; OBJ files load through frontend/obj_loader.hpp.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include <vplkit/direct_light.hpp>
+
+namespace vplkit {
+
+struct vertex {
+  glm::vec3 position;
+  glm::vec3 normal;
+  glm::vec3 albedo;
+};
+
+struct mesh {
+  std::vector<vertex> vertices;
+  std::vector<std::uint32_t> indices;  // triangles, counter-clockwise seen from the normal side
+  std::size_t triangle_count() const { return indices.size() / 3; }
+};
+
+struct bounding_box {
+  glm::vec3 minimum{0.0f};
+  glm::vec3 maximum{0.0f};
+  glm::vec3 centre() const { return 0.5f * (minimum + maximum); }
+  float radius() const { return 0.5f * glm::length(maximum - minimum); }
+};
+
+bounding_box bounds(const mesh& geometry);
+
+/// The largest coordinate magnitude a scene may have. Positions are floats (at 1e7 their step is
+/// one unit) and the ray tracer's bounds must stay finite through its arithmetic.
+inline constexpr float max_scene_coordinate = 1.0e7f;
+
+/// The largest coordinate magnitude of a loaded mesh: a tenth of the scene's, because frame_mesh
+/// puts a floor and a light up to 3 bounding radii from the mesh's centre.
+inline constexpr float max_mesh_coordinate = max_scene_coordinate / 10.0f;
+
+struct camera {
+  glm::vec3 position{0.0f, 1.0f, 3.8f};
+  glm::vec3 target{0.0f, 1.0f, 0.0f};
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+  float vertical_fov_degrees = 40.0f;
+  float near_plane = 0.05f;
+  float far_plane = 50.0f;
+};
+
+enum class light_kind { spot, directional };
+
+struct scene_light {
+  light_kind kind = light_kind::spot;
+  spot_light<float> spot;                ///< used when kind == spot
+  directional_light<float> directional;  ///< used when kind == directional
+};
+
+struct scene {
+  std::string name;
+  mesh geometry;
+  camera view;
+  scene_light light;
+};
+
+/// Throws vplkit::error starting with `name` at the first bad value: a position that is not
+/// finite or beyond max_scene_coordinate, a non-finite normal or albedo, an index out of range,
+/// or no triangles.
+void check_mesh(const mesh& geometry, const std::string& name);
+
+/// Throws vplkit::error naming the scene and the first bad value: check_mesh's, or a non-finite
+/// camera or light value. Loaders check their input as they read it; this is the last gate before
+/// a pipeline or the ray tracer sees a scene.
+void check_scene(const scene& s);
+
+/// Half-angle of a square shadow-map frustum that holds a spot light's outer cone, with a
+/// 2-degree margin, at most 85 degrees.
+float spot_light_frustum_half_angle(const spot_light<float>& light);
+
+/// Names accepted by built_in_scene, for help texts and messages.
+std::vector<std::string> built_in_scene_names();
+
+/// The Cornell box's room alone: floor, ceiling, back wall, red left and green right wall
+/// ([-1, 1] x [0, 2] x [-1, 1], normals pointing in, open towards +z).
+void add_cornell_room(mesh& target);
+
+/// The Cornell box (2 x 2 x 2, floor at y = 0, open towards +z) with a tall and a short block,
+/// red left wall, green right wall, and a spot light under the ceiling pointing down: the
+/// classic light-leak case (the tall block's shadow side should not see the red wall's light
+/// through the block).
+scene make_cornell_box();
+
+/// The indirect-shadow scene: a brightly lit red wall, a white floor as the receiver, and a
+/// white panel standing between them. A directional light from the side opposite the wall
+/// lights the wall head-on; behind the panel the floor is directly lit but sees less of the
+/// wall, so the panel casts an indirect shadow away from its direct one.
+scene make_indirect_shadow_scene();
+
+/// The occluder scene: a red wall lit by a spot light, a floor as the receiver, and a panel
+/// (0.7 high, 1.4 wide) standing 0.5 in front of the wall, within reach of the RSM gather: the
+/// floor behind it sees less of the wall. `dark_panel` (scene "occluder"): albedo 0.03, so the
+/// panel only blocks; otherwise ("occluder-white") it also reflects.
+scene make_occluder_scene(bool dark_panel);
+
+/// Triangle count of the atrium at its default tessellation: about the thesis's Sponza (262k).
+inline constexpr int atrium_default_tessellation = 56;
+
+/// The atrium, in the spirit of the thesis's Sponza: a 12 x 6 court with two storeys of
+/// colonnades and semicircular arches on both long sides, galleries behind them, coloured
+/// curtains hanging in every other bay, and a sun (directional light) at an angle that lights
+/// one colonnade, so that the other side and the galleries live on bounced light. `tessellation`
+/// (4..512) is the number of segments of each column, arch and curtain.
+scene make_atrium_scene(int tessellation);
+
+/// Appends a cylinder's side (no caps) standing on `base`, `segments` around, `stacks` high.
+void add_cylinder(mesh& target, glm::vec3 base, float radius, float height, int segments, int stacks, glm::vec3 albedo);
+
+/// A room with 16 x 16 instances of a 1024-triangle sphere on its floor: 262,154 triangles,
+/// the scale of the thesis's Sponza (262k), for timing the geometry passes.
+scene make_instanced_scene();
+
+/// Light Wave's box scene (paper 003): three boxes, 36 triangles, a spot light above them.
+scene make_boxes_scene();
+
+/// Light Wave's teapot scenes: the npm `teapot` mesh (992 triangles, meshes/teapot.obj from the
+/// setup script) refined by longest-edge bisection to the thesis's 6565 triangles, on a floor;
+/// `copies` = 10 gives the ten-teapot scene (65,650 triangles plus the floor).
+/// Throws vplkit::error naming the missing file when the mesh has not been fetched.
+scene make_teapot_scene(int copies);
+
+/// Splits the longest edge of the mesh (and both triangles beside it, so no crack opens) until
+/// it has at least `target_triangles`. Vertices at the same position are welded first; a new
+/// vertex takes the mean position, normal (renormalised) and albedo of its edge.
+mesh refine_longest_edges(const mesh& source, std::size_t target_triangles);
+
+/// Throws vplkit::error listing the known names when `name` is not one of them.
+scene built_in_scene(const std::string& name);
+
+/// Appends an axis-aligned quad-faced box (outward normals), rotated about y by `yaw_degrees`.
+void add_box(mesh& target, glm::vec3 centre, glm::vec3 size, float yaw_degrees, glm::vec3 albedo);
+
+/// Appends the quad a, b, c, d (counter-clockwise seen from where `normal` points).
+void add_quad(mesh& target, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, glm::vec3 normal, glm::vec3 albedo);
+
+/// Appends a UV sphere of `stacks` x `slices` quads (2 * stacks * slices triangles, less the
+/// degenerate ones at the poles are kept for a uniform count).
+void add_sphere(mesh& target, glm::vec3 centre, float radius, int stacks, int slices, glm::vec3 albedo);
+
+/// Places a camera and a spot light for a mesh without a scene description (OBJ files): the
+/// camera looks at the bounding box from +z, the light shines down from above it.
+scene frame_mesh(std::string name, mesh geometry);
+
+}  // namespace vplkit

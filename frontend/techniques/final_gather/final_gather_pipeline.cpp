@@ -1,0 +1,238 @@
+#include "frontend/techniques/final_gather/final_gather_pipeline.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <thread>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <vplkit/direct_light.hpp>
+
+#include "frontend/gl/debug_output.hpp"
+#include "frontend/core/error.hpp"
+#include "frontend/core/named_table.hpp"
+#include "frontend/scene/obj_loader.hpp"
+#include "frontend/core/parallel.hpp"
+#include "frontend/gl/settings_uniforms.hpp"
+
+namespace vplkit {
+
+const std::vector<final_gather_technique>& final_gather_techniques() {
+  static const std::vector<final_gather_technique> techniques = {
+      {"finalgather-polygon", final_gather_variant::polygon, "polygon-to-point form factors (the paper's method, clipped)"},
+      {"finalgather-point", final_gather_variant::point, "point-to-point form factors, a virtual light per texel"},
+      {"envmap", final_gather_variant::environment_map, "one lookup of a convolved environment map (right at o only)"},
+  };
+  return techniques;
+}
+
+const final_gather_technique& find_final_gather_technique(const std::string& name) { return find_by_name(final_gather_techniques(), name, "final gathering technique"); }
+
+final_gather_scene make_final_gather_scene(const std::string& object, glm::vec3 position, float size) {
+  if (!(size > 0.0f)) throw error("the object's size must be > 0");
+  final_gather_scene s;
+  const scene box = make_cornell_box();  // its camera and light
+  add_cornell_room(s.room);
+  // Closed at the front (the paper's box room): the cube map must see a surface everywhere. The
+  // camera looks in through it: the G-buffer pass culls the room's back faces.
+  add_quad(s.room, {1, 0, 1}, {-1, 0, 1}, {-1, 2, 1}, {1, 2, 1}, {0, 0, -1}, glm::vec3(0.73f));
+  s.view = box.view;
+  s.light = box.light.spot;
+  mesh shape;
+  if (object == "sphere") {
+    add_sphere(shape, glm::vec3(0.0f), 1.0f, 24, 48, glm::vec3(0.8f));  // 2304 triangles, the paper's ~2300
+    s.name = "sphere";
+  } else {
+    shape = load_obj(object);
+    for (vertex& v : shape.vertices) v.albedo = glm::vec3(0.8f);
+    s.name = std::filesystem::path(object).stem().string();
+  }
+  const bounding_box box_of_shape = bounds(shape);
+  const float scale = size / std::max({box_of_shape.maximum.x - box_of_shape.minimum.x, box_of_shape.maximum.y - box_of_shape.minimum.y,
+                                        box_of_shape.maximum.z - box_of_shape.minimum.z, 1e-9f});
+  for (vertex& v : shape.vertices) v.position = (v.position - box_of_shape.centre()) * scale + position;
+  s.object = std::move(shape);
+  s.reference_point = position;
+  for (const vertex& v : s.object.vertices) s.object_radius = std::max(s.object_radius, glm::length(v.position - position));
+  return s;
+}
+
+std::string validate(const final_gather_settings& settings) {
+  try {
+    find_final_gather_technique(settings.technique);
+  } catch (const error& failure) {
+    return failure.what();
+  }
+  if (const std::string problem = validate_image_size(settings.width, settings.height); !problem.empty()) return problem;
+  if (settings.face_size < 1 || settings.face_size > 4096) return "cube face size must be in [1, 4096]";
+  if (settings.resolution < 1 || settings.resolution > 64) return "M (the small cube map's face resolution) must be in [1, 64]";
+  if (settings.face_size % settings.resolution != 0)
+    return "M = " + std::to_string(settings.resolution) + " does not divide the face size " + std::to_string(settings.face_size) +
+           ": every small texel must average a whole block of face texels";
+  if (settings.environment_resolution < 1 || settings.environment_resolution > 256) return "environment map resolution must be in [1, 256]";
+  if (settings.format != texel_format::rgba32f && settings.format != texel_format::rgba16f) return "render target format must be rgba16f or rgba32f";
+  if (const char* problem = validate(settings.irradiance)) return problem;
+  return {};
+}
+
+namespace {
+
+const final_gather_settings& checked(const final_gather_settings& settings) {
+  if (const std::string problem = validate(settings); !problem.empty()) throw error("final gathering settings: " + problem);
+  return settings;
+}
+
+// The view of face `face` from o: rows (s, t, -major), so texel (i, j) lands on pixel (i, j).
+glm::mat4 face_view(int face, const glm::vec3& o) {
+  glm::vec3 major, s_axis, t_axis;
+  cube_face_axes(face, major, s_axis, t_axis);
+  glm::mat4 view(1.0f);
+  for (int column = 0; column < 3; ++column) {
+    view[column][0] = s_axis[column];
+    view[column][1] = t_axis[column];
+    view[column][2] = -major[column];
+  }
+  return view * glm::translate(glm::mat4(1.0f), -o);
+}
+
+}  // namespace
+
+final_gather_pipeline::final_gather_pipeline(const shader_library& shaders, const final_gather_scene& source, const final_gather_settings& settings)
+    : scene_(source),
+      settings_(checked(settings)),
+      technique_(find_final_gather_technique(settings.technique)),
+      room_(source.room),
+      object_(source.object),
+      cube_program_(load_program(shaders, "scene.vert", "cube_face.frag")),
+      downsample_program_(load_program(shaders, "fullscreen.vert", "cube_downsample.frag")),
+      gbuffer_program_(load_program(shaders, "scene.vert", "final_gather_gbuffer.frag")),
+      shade_program_(load_program(shaders, "fullscreen.vert", "final_gather_shade.frag",
+                                  {{"VPLKIT_FINAL_GATHER", std::to_string(static_cast<int>(technique_.variant))}})),
+      faces_(6 * settings.face_size, settings.face_size, {texel_format::rgba32f}, true),
+      small_cube_(6 * settings.resolution, settings.resolution, {texel_format::rgba32f}, false),
+      environment_(technique_.variant == final_gather_variant::environment_map ? 6 * settings.environment_resolution : 1,
+                   technique_.variant == final_gather_variant::environment_map ? settings.environment_resolution : 1, {texel_format::rgba32f}, false),
+      gbuffer_(settings.width, settings.height, {texel_format::rgba32f, texel_format::rgba32f, texel_format::rgba32f}, true),
+      output_(settings.width, settings.height, {settings.format, settings.format}, false),
+      empty_vertex_array_(generate_vertex_array()) {
+  if (source.object.indices.empty()) throw error("final gathering: the object " + source.name + " has no triangles");
+  if (technique_.variant == final_gather_variant::environment_map)
+    environment_program_ = load_program(shaders, "fullscreen.vert", "environment_convolution.frag");
+  for (const program* target : {&cube_program_, &shade_program_}) {
+    set_uniforms(*target, "light", scene_.light);
+    set_uniforms(*target, "irradiance", settings_.irradiance);
+  }
+  cube_program_.set("reference_point", scene_.reference_point);
+  downsample_program_.set("faces", 0);
+  downsample_program_.set("face_size", settings_.face_size);
+  downsample_program_.set("resolution", settings_.resolution);
+  if (technique_.variant == final_gather_variant::environment_map) {
+    environment_program_.set("small_cube", 0);
+    environment_program_.set("resolution", settings_.resolution);
+    environment_program_.set("environment_resolution", settings_.environment_resolution);
+    environment_program_.set("reference_point", scene_.reference_point);
+  }
+  const glm::mat4 camera = camera_projection_matrix(scene_.view, static_cast<float>(settings_.width) / static_cast<float>(settings_.height)) *
+                           camera_view_matrix(scene_.view);
+  gbuffer_program_.set("view_projection", camera);
+  int unit = 0;
+  for (const char* name : {"small_cube", "environment_map", "gbuffer_position_kind", "gbuffer_normal", "gbuffer_albedo"}) shade_program_.set(name, unit++);
+  shade_program_.set("resolution", settings_.resolution);
+  shade_program_.set("environment_resolution", settings_.environment_resolution);
+  shade_program_.set("reference_point", scene_.reference_point);
+  check_gl("setting up the final gathering pipeline");
+}
+
+final_gather_frame final_gather_pipeline::render() {
+  glDisable(GL_BLEND);
+  glDisable(GL_CULL_FACE);
+  glClearColor(0.0f, 0.0f, 0.0f, 0.0f);  // distance 0: nothing seen
+  const float room_size = bounds(scene_.room).radius();
+
+  timer_.begin("cube map");
+  faces_.bind();
+  glEnable(GL_DEPTH_TEST);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  const glm::mat4 projection = glm::perspective(glm::radians(90.0f), 1.0f, 0.001f * room_size, 4.0f * room_size);
+  for (int face = 0; face < 6; ++face) {
+    glViewport(face * settings_.face_size, 0, settings_.face_size, settings_.face_size);
+    cube_program_.set("view_projection", projection * face_view(face, scene_.reference_point));
+    cube_program_.use();
+    room_.draw();  // the object is left out
+  }
+  timer_.end();
+
+  glDisable(GL_DEPTH_TEST);
+  glBindVertexArray(empty_vertex_array_.get());
+  timer_.begin("downsample");
+  small_cube_.bind();
+  faces_.colour(0).bind(0);
+  downsample_program_.use();
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  timer_.end();
+
+  // A reference point outside the room, or an object reaching into it, shows as texels that
+  // saw nothing (distance 0) or that are nearer than the object's own radius.
+  const image small = small_cube_.read_image(0);
+  float nearest = 1e30f;
+  for (const glm::vec4& texel : small.texels) nearest = std::min(nearest, texel.w);
+  if (!(nearest > scene_.object_radius))
+    throw error("final gathering: the environment seen from the reference point (" + std::to_string(scene_.reference_point.x) + ", " +
+                std::to_string(scene_.reference_point.y) + ", " + std::to_string(scene_.reference_point.z) + ") comes as near as " +
+                std::to_string(nearest) + ", within the object's radius " + std::to_string(scene_.object_radius) +
+                ": the reference point is outside the room or inside geometry, or the object intersects a wall");
+
+  if (technique_.variant == final_gather_variant::environment_map) {
+    timer_.begin("environment convolution");
+    environment_.bind();
+    small_cube_.colour(0).bind(0);
+    environment_program_.use();
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    timer_.end();
+  }
+
+  timer_.begin("G-buffer");
+  gbuffer_.bind();
+  glEnable(GL_DEPTH_TEST);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  gbuffer_program_.set("surface_kind", 1.0f);
+  gbuffer_program_.use();
+  glEnable(GL_CULL_FACE);  // the room's quads face inwards, counter-clockwise
+  glCullFace(GL_BACK);
+  room_.draw();
+  glDisable(GL_CULL_FACE);  // an OBJ object's winding is not to be trusted
+  gbuffer_program_.set("surface_kind", 2.0f);
+  object_.draw();
+  glDisable(GL_DEPTH_TEST);
+  timer_.end();
+
+  timer_.begin("shading");
+  output_.bind();
+  small_cube_.colour(0).bind(0);
+  environment_.colour(0).bind(1);
+  for (int i = 0; i < 3; ++i) gbuffer_.colour(static_cast<std::size_t>(i)).bind(2 + i);
+  shade_program_.use();
+  glBindVertexArray(empty_vertex_array_.get());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glBindVertexArray(0);
+  timer_.end();
+  check_gl("final gathering, object " + scene_.name + ", " + technique_.name);
+
+  final_gather_frame frame;
+  frame.radiance = output_.read_image(0);
+  frame.indirect = output_.read_image(1);
+  frame.pass_times = timer_.collect();
+  return frame;
+}
+
+final_gather_buffers final_gather_pipeline::read_buffers() const {
+  final_gather_buffers buffers;
+  buffers.small_cube = small_cube_.read_image(0);
+  if (technique_.variant == final_gather_variant::environment_map) buffers.environment_map = environment_.read_image(0);
+  for (std::size_t i = 0; i < 3; ++i) buffers.gbuffer[i] = gbuffer_.read_image(i);
+  return buffers;
+}
+
+}  // namespace vplkit

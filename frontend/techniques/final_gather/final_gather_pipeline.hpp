@@ -1,0 +1,109 @@
+// The final-gathering pipeline of paper 004 for one dynamic object in a coloured box room:
+// 1. the cube map around the object's centre o (6 faces, radiance and distance, the object left
+// out), 2. each face averaged down to M x M, 3. (baseline only) the irradiance environment map,
+// 4. a G-buffer of the camera view, 5. shading: the room with its direct light, the object with
+// direct light plus the indirect irradiance of the variant. Its CPU mirror shades from the
+// read-back small cube map and G-buffer with the same kernels.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include <vplkit/final_gather.hpp>
+#include <vplkit/irradiance.hpp>
+
+#include "frontend/gl/gpu_timer.hpp"
+#include "frontend/gl/mesh_buffers.hpp"
+#include "frontend/gl/program.hpp"
+#include "frontend/gl/render_target.hpp"
+#include "frontend/scene/camera.hpp"
+#include "frontend/scene/scene.hpp"
+
+namespace vplkit {
+
+enum class final_gather_variant { polygon = 0, point = 1, environment_map = 2 };
+
+struct final_gather_technique {
+  const char* name = "";
+  final_gather_variant variant = final_gather_variant::polygon;
+  const char* description = "";
+};
+
+/// finalgather-polygon, finalgather-point, envmap.
+const std::vector<final_gather_technique>& final_gather_techniques();
+const final_gather_technique& find_final_gather_technique(const std::string& name);
+
+/// The room (the environment) and the dynamic object, kept apart: the cube map leaves the object out.
+struct final_gather_scene {
+  std::string name;
+  mesh room;
+  mesh object;
+  glm::vec3 reference_point{0.0f};  ///< the object's centre (its bounding box's)
+  float object_radius = 0.0f;       ///< of its bounding sphere around the reference point
+  camera view;
+  spot_light<float> light;
+};
+
+/// The Cornell room without its blocks, closed by a front wall, the object ("sphere": 2304 triangles, or an OBJ file
+/// such as the npm bunny) scaled to `size` across and centred at `position`. Throws
+/// vplkit::error when the object file fails to load.
+final_gather_scene make_final_gather_scene(const std::string& object, glm::vec3 position, float size);
+
+struct final_gather_settings {
+  std::string technique = "finalgather-polygon";
+  int width = 512;               ///< the paper: 700 x 700
+  int height = 512;
+  int face_size = 256;           ///< the cube map's faces (the paper: 256)
+  int resolution = 4;            ///< M: the faces averaged down to M x M (the paper: 4 or 2)
+  int environment_resolution = 16;  ///< K x K per face of the baseline's irradiance map
+  irradiance_settings<float> irradiance;
+  texel_format format = texel_format::rgba32f;
+};
+
+std::string validate(const final_gather_settings& settings);
+
+struct final_gather_frame {
+  image radiance;  ///< the final image
+  image indirect;  ///< the object's indirect irradiance
+  std::vector<pass_time> pass_times;
+};
+
+/// The buffers the CPU mirror reads.
+struct final_gather_buffers {
+  image small_cube;       ///< 6 M x M: [radiance | distance]
+  image environment_map;  ///< 6 K x K: [irradiance | 1] (baseline only, else empty)
+  image gbuffer[3];       ///< [position | kind], [normal | -], [albedo | -]
+};
+
+class final_gather_pipeline {
+ public:
+  final_gather_pipeline(const shader_library& shaders, const final_gather_scene& source, const final_gather_settings& settings);
+  final_gather_frame render();
+  final_gather_buffers read_buffers() const;
+  const final_gather_scene& source() const { return scene_; }
+  const final_gather_settings& settings() const { return settings_; }
+  final_gather_variant variant() const { return technique_.variant; }
+
+ private:
+  final_gather_scene scene_;
+  final_gather_settings settings_;
+  final_gather_technique technique_;
+  mesh_buffers room_;
+  mesh_buffers object_;
+  program cube_program_;
+  program downsample_program_;
+  program environment_program_;
+  program gbuffer_program_;
+  program shade_program_;
+  framebuffer faces_;
+  framebuffer small_cube_;
+  framebuffer environment_;
+  framebuffer gbuffer_;
+  framebuffer output_;
+  gl_vertex_array empty_vertex_array_;
+  gpu_timer timer_;
+};
+
+}  // namespace vplkit

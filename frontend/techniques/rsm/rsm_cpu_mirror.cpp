@@ -1,0 +1,139 @@
+#include "frontend/techniques/rsm/rsm_cpu_mirror.hpp"
+
+#include "frontend/core/parallel.hpp"
+
+#include <algorithm>
+#include <vector>
+
+#include <vplkit/direct_light.hpp>
+#include <vplkit/transform.hpp>
+
+namespace vplkit {
+namespace {
+
+template <rsm_pattern Pattern, rsm_visibility Visibility>
+glm::vec3 gather_variant(const gather_receiver<float>& receiver, const std::vector<rsm_texel<float>>& rsm, int rsm_width,
+                         const rsm_frame_constants& constants) {
+  return gather_rsm<Pattern, Visibility>(
+      receiver, [&](glm::ivec2 texel) { return rsm[static_cast<std::size_t>(texel.y) * static_cast<std::size_t>(rsm_width) + static_cast<std::size_t>(texel.x)]; },
+      constants.gather);
+}
+
+glm::vec3 gather_dispatch(const gather_receiver<float>& receiver, const std::vector<rsm_texel<float>>& rsm, int rsm_width,
+                          const rsm_frame_constants& constants) {
+  const rsm_technique& technique = constants.technique;
+  if (technique.pattern == rsm_pattern::disk) return gather_variant<rsm_pattern::disk, rsm_visibility::none>(receiver, rsm, rsm_width, constants);
+  switch (technique.visibility) {
+    case rsm_visibility::none: return gather_variant<rsm_pattern::radial, rsm_visibility::none>(receiver, rsm, rsm_width, constants);
+    case rsm_visibility::alg2: return gather_variant<rsm_pattern::radial, rsm_visibility::alg2>(receiver, rsm, rsm_width, constants);
+    case rsm_visibility::alg3: return gather_variant<rsm_pattern::radial, rsm_visibility::alg3>(receiver, rsm, rsm_width, constants);
+    case rsm_visibility::alg6: return gather_variant<rsm_pattern::radial, rsm_visibility::alg6>(receiver, rsm, rsm_width, constants);
+  }
+  return glm::vec3(0.0f);
+}
+
+struct filter_taps {
+  const image& values;
+  const rsm_pass_buffers& buffers;
+  const rsm_frame_constants& constants;
+  bilateral_tap<float> operator()(glm::ivec2 texel) const {
+    const glm::vec4 value = values.at(texel);
+    return {glm::vec3(value), value.w, glm::vec3(buffers.gbuffer[2].at(gbuffer_texel_of(texel, constants)))};
+  }
+};
+
+}  // namespace
+
+glm::ivec2 gbuffer_texel_of(glm::ivec2 texel, const rsm_frame_constants& constants) {
+  return glm::min(texel * constants.indirect_divisor, constants.image_size - 1);
+}
+
+std::optional<gather_receiver<float>> gather_receiver_at(glm::ivec2 texel, const rsm_pass_buffers& buffers, const rsm_frame_constants& constants) {
+  const glm::ivec2 sample = gbuffer_texel_of(texel, constants);
+  const glm::vec4 position_depth = buffers.gbuffer[0].at(sample);
+  if (!(position_depth.w < 0.0f)) return std::nullopt;
+  const glm::vec3 position(position_depth);
+  return gather_receiver<float>{position, glm::vec3(buffers.gbuffer[2].at(sample)),
+                                map_coordinate(constants.light.view_projection, position, constants.gather.rsm_size), glm::uvec2(texel)};
+}
+
+// Interleaved, one texel's pixel light lies in 40 contiguous bytes: a sample then touches one
+// cache line instead of three.
+std::vector<rsm_texel<float>> interleave_rsm(const rsm_pass_buffers& buffers) {
+  std::vector<rsm_texel<float>> texels(buffers.rsm[0].texels.size());
+  for (std::size_t i = 0; i < texels.size(); ++i) {
+    const glm::vec4 position_depth = buffers.rsm[0].texels[i];
+    texels[i] = {glm::vec3(position_depth), position_depth.w, glm::vec3(buffers.rsm[1].texels[i]), glm::vec3(buffers.rsm[2].texels[i])};
+  }
+  return texels;
+}
+
+image cpu_gather_pass(const rsm_pass_buffers& buffers, const rsm_frame_constants& constants, int threads) {
+  image out;
+  out.width = constants.indirect_size.x;
+  out.height = constants.indirect_size.y;
+  out.texels.assign(static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height), glm::vec4(0.0f));
+  const std::vector<rsm_texel<float>> rsm = interleave_rsm(buffers);
+  parallel_tiles(out.width, out.height, threads, [&](int x, int y) {
+    const glm::ivec2 texel(x, y);
+    const std::optional<gather_receiver<float>> receiver = gather_receiver_at(texel, buffers, constants);
+    if (!receiver) return;
+    out.at(texel) = glm::vec4(gather_dispatch(*receiver, rsm, buffers.rsm[0].width, constants), buffers.gbuffer[0].at(gbuffer_texel_of(texel, constants)).w);
+  });
+  return out;
+}
+
+image cpu_blur_x_pass(const image& indirect, const rsm_pass_buffers& buffers,
+                             const rsm_frame_constants& constants, int threads) {
+  image out;
+  out.width = indirect.width;
+  out.height = indirect.height;
+  out.texels.assign(indirect.texels.size(), glm::vec4(0.0f));
+  const filter_taps taps{indirect, buffers, constants};
+  parallel_for(out.height, threads, [&](int y) {
+    for (int x = 0; x < out.width; ++x) {
+      const bilateral_tap<float> centre = taps(glm::ivec2(x, y));
+      if (!(centre.depth < 0.0f)) continue;
+      out.at(glm::ivec2(x, y)) = glm::vec4(
+          bilateral_filter_axis(glm::vec2(x, y) + 0.5f, centre.depth, centre.normal, taps, constants.indirect_size, 0, constants.bilateral),
+          centre.depth);
+    }
+  });
+  return out;
+}
+
+post_images cpu_post_pass(const image& filtered_input, const rsm_pass_buffers& buffers,
+                          const rsm_frame_constants& constants, int threads) {
+  post_images out;
+  for (image* image : {&out.radiance, &out.indirect}) {
+    image->width = constants.image_size.x;
+    image->height = constants.image_size.y;
+    image->texels.assign(static_cast<std::size_t>(image->width) * static_cast<std::size_t>(image->height), glm::vec4(0, 0, 0, 1));
+  }
+  const filter_taps taps{filtered_input, buffers, constants};
+  const bool separable = constants.filter == post_filter::separable;
+  parallel_for(constants.image_size.y, threads, [&](int y) {
+    for (int x = 0; x < constants.image_size.x; ++x) {
+      const glm::ivec2 pixel(x, y);
+      const glm::vec4 position_depth = buffers.gbuffer[0].at(pixel);
+      if (!(position_depth.w < 0.0f)) continue;
+      const glm::vec4 albedo_density = buffers.gbuffer[1].at(pixel);
+      const glm::vec3 n(buffers.gbuffer[2].at(pixel));
+      glm::vec3 indirect(0.0f);
+      if (constants.technique.indirect) {
+        const glm::vec2 centre = (glm::vec2(pixel) + 0.5f) / static_cast<float>(constants.indirect_divisor);
+        indirect = separable ? bilateral_filter_axis(centre, position_depth.w, n, taps, constants.indirect_size, 1, constants.bilateral)
+                             : bilateral_filter(centre, position_depth.w, n, taps, constants.indirect_size, constants.bilateral);
+      }
+      const glm::vec3 direct = constants.primary.kind == light_kind::spot
+                                   ? spot_light_irradiance(glm::vec3(position_depth), n, constants.primary.spot, constants.gather.irradiance)
+                                   : directional_light_irradiance(n, constants.primary.directional);
+      out.radiance.at(pixel) =
+          glm::vec4(glm::vec3(albedo_density) * 0.318309886183790671538f * (direct * albedo_density.w + indirect), 1.0f);
+      out.indirect.at(pixel) = glm::vec4(indirect, 1.0f);
+    }
+  });
+  return out;
+}
+
+}  // namespace vplkit

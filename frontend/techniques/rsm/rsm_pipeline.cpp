@@ -1,0 +1,280 @@
+#include "frontend/techniques/rsm/rsm_pipeline.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "frontend/gl/debug_output.hpp"
+#include "frontend/core/error.hpp"
+#include "frontend/core/named_table.hpp"
+#include "frontend/gl/settings_uniforms.hpp"
+
+namespace vplkit {
+
+const std::vector<rsm_technique>& rsm_techniques() {
+  static const std::vector<rsm_technique> techniques = {
+      {"direct", false, rsm_pattern::radial, rsm_visibility::none, "direct light only (shadow density, Alg. 4)"},
+      {"rsm-original", true, rsm_pattern::disk, rsm_visibility::none, "original RSM: disk pattern, 400 samples, no visibility"},
+      {"rsm-radial", true, rsm_pattern::radial, rsm_visibility::none, "radial pattern, no visibility"},
+      {"rsm-alg2", true, rsm_pattern::radial, rsm_visibility::alg2, "radial pattern, micro linear buffer Alg. 2"},
+      {"rsm-alg3", true, rsm_pattern::radial, rsm_visibility::alg3, "radial pattern, micro linear buffer Alg. 3"},
+      {"rsm-alg6", true, rsm_pattern::radial, rsm_visibility::alg6, "radial pattern, micro linear buffer Alg. 6 (the thesis)"},
+  };
+  return techniques;
+}
+
+const rsm_technique& find_rsm_technique(const std::string& name) { return find_by_name(rsm_techniques(), name, "technique"); }
+
+namespace {
+
+// The patterns with their radius in texels, as make_rsm_gather_settings sets it, for validation.
+std::pair<radial_pattern_settings<float>, disk_pattern_settings<float>> patterns_in_texels(const rsm_pipeline_settings& settings) {
+  std::pair<radial_pattern_settings<float>, disk_pattern_settings<float>> patterns{settings.radial, settings.disk};
+  patterns.first.max_radius = patterns.second.max_radius = rsm_radius_in_texels(settings.radius, glm::ivec2(settings.rsm_size));
+  return patterns;
+}
+
+}  // namespace
+
+std::string validate(const rsm_pipeline_settings& settings) {
+  const auto in_range = [](int value, int low, int high) { return value >= low && value <= high; };
+  if (const std::string problem = validate_image_size(settings.width, settings.height); !problem.empty()) return problem;
+  if (!in_range(settings.rsm_size, 1, max_image_side)) return "RSM size must be in [1, " + std::to_string(max_image_side) + "]";
+  if (settings.indirect_divisor != 1 && settings.indirect_divisor != 2 && settings.indirect_divisor != 4 && settings.indirect_divisor != 8)
+    return "indirect divisor must be 1, 2, 4 or 8";
+  if (settings.format != texel_format::rgba16f && settings.format != texel_format::rgba32f) return "render target format must be rgba16f or rgba32f";
+  try {
+    find_rsm_technique(settings.technique);
+  } catch (const error& failure) {
+    return failure.what();
+  }
+  if (!(settings.radius > 0.0f && settings.radius <= 2.0f)) return "radius must be in (0, 2] (a fraction of the RSM side)";
+  const auto [radial, disk] = patterns_in_texels(settings);
+  for (const char* problem : {validate(radial), validate(disk), validate_slot_count(settings.slots),
+                              validate(settings.irradiance), validate(settings.shadow), validate(settings.bilateral)})
+    if (problem) return problem;
+  return {};
+}
+
+light_frustum make_light_frustum(const scene& source, int rsm_size) {
+  light_frustum frustum;
+  const bounding_box box = bounds(source.geometry);
+  const float radius = std::max(box.radius(), 1e-3f);
+  if (source.light.kind == light_kind::spot) {
+    const spot_light<float>& light = source.light.spot;
+    const glm::vec3 up = std::abs(light.direction.y) > 0.99f ? glm::vec3(0, 0, -1) : glm::vec3(0, 1, 0);
+    frustum.view = glm::lookAt(light.position, light.position + light.direction, up);
+    const float half_angle = spot_light_frustum_half_angle(light);
+    frustum.tan_half_fov = std::tan(half_angle);
+    const float far_plane = glm::length(light.position - box.centre()) + 2.0f * radius;
+    frustum.view_projection = glm::perspective(2.0f * half_angle, 1.0f, 0.01f * radius, far_plane) * frustum.view;
+  } else {
+    const glm::vec3 direction = source.light.directional.direction;
+    const glm::vec3 up = std::abs(direction.y) > 0.99f ? glm::vec3(0, 0, -1) : glm::vec3(0, 1, 0);
+    frustum.view = glm::lookAt(box.centre() - 2.0f * radius * direction, box.centre(), up);
+    frustum.view_projection = glm::ortho(-radius, radius, -radius, radius, 0.5f * radius, 3.5f * radius) * frustum.view;
+    const float texel = 2.0f * radius / static_cast<float>(rsm_size);
+    frustum.texel_area = texel * texel;
+  }
+  return frustum;
+}
+
+rsm_frame_constants make_frame_constants(const scene& source, const rsm_pipeline_settings& settings) {
+  if (const std::string problem = validate(settings); !problem.empty()) throw error("RSM pipeline settings: " + problem);
+  const char* light_problem = source.light.kind == light_kind::spot ? validate(source.light.spot) : validate(source.light.directional);
+  if (light_problem) throw error("scene " + source.name + ": " + light_problem);
+  if (source.geometry.indices.empty()) throw error("scene " + source.name + " has no triangles");
+  rsm_frame_constants constants;
+  constants.technique = find_rsm_technique(settings.technique);
+  constants.light = make_light_frustum(source, settings.rsm_size);
+  constants.primary = source.light;
+  constants.gather = make_rsm_gather_settings(settings.radial, settings.disk, settings.radius, settings.slots, glm::ivec2(settings.rsm_size));
+  constants.gather.irradiance = settings.irradiance;
+  constants.gather.light_view = constants.light.view;
+  constants.camera_view = camera_view_matrix(source.view);
+  constants.camera_view_projection =
+      camera_projection_matrix(source.view, static_cast<float>(settings.width) / static_cast<float>(settings.height)) * constants.camera_view;
+  constants.shadow = settings.shadow;
+  constants.bilateral = settings.bilateral;
+  constants.filter = settings.filter;
+  constants.image_size = glm::ivec2(settings.width, settings.height);
+  constants.indirect_divisor = settings.indirect_divisor;
+  constants.indirect_size = (constants.image_size + settings.indirect_divisor - 1) / settings.indirect_divisor;
+  return constants;
+}
+
+namespace {
+
+const char* flag(bool value) { return value ? "1" : "0"; }
+
+bool is_directional(const scene& source) { return source.light.kind == light_kind::directional; }
+
+void set_light_uniforms(const program& target, const rsm_frame_constants& constants) {
+  if (constants.primary.kind == light_kind::spot) set_uniforms(target, "spot", constants.primary.spot);
+  else set_uniforms(target, "directional", constants.primary.directional);
+}
+
+}  // namespace
+
+rsm_pipeline::rsm_pipeline(const shader_library& shaders, const scene& source, const rsm_pipeline_settings& settings)
+    : scene_(source),
+      settings_(settings),
+      constants_(make_frame_constants(source, settings)),
+      mesh_(source.geometry),
+      rsm_program_(load_program(shaders, "scene.vert", "rsm.frag", {{"VPLKIT_LIGHT_DIRECTIONAL", flag(is_directional(source))}})),
+      gbuffer_program_(load_program(shaders, "scene.vert", "gbuffer.frag")),
+      rsm_target_(settings.rsm_size, settings.rsm_size, {settings.format, settings.format, settings.format}, true),
+      gbuffer_target_(settings.width, settings.height, {settings.format, settings.format, settings.format}, true),
+      indirect_target_(constants_.indirect_size.x, constants_.indirect_size.y, {settings.format}, false),
+      blur_x_target_(settings.filter == post_filter::separable ? constants_.indirect_size.x : 1,
+                     settings.filter == post_filter::separable ? constants_.indirect_size.y : 1, {settings.format}, false),
+      post_target_(settings.width, settings.height, {settings.format, settings.format}, false),
+      empty_vertex_array_(generate_vertex_array()) {
+  const rsm_technique& technique = constants_.technique;
+  const bool separable = settings.filter == post_filter::separable;
+  if (technique.indirect) {
+    gather_program_ = load_program(shaders, "fullscreen.vert", "gather.frag",
+                                   {{"VPLKIT_RSM_PATTERN", std::to_string(static_cast<int>(technique.pattern))},
+                                    {"VPLKIT_VISIBILITY", std::to_string(static_cast<int>(technique.visibility))}});
+    if (separable) blur_x_program_ = load_program(shaders, "fullscreen.vert", "blur_x.frag");
+  }
+  post_program_ = load_program(shaders, "fullscreen.vert", "post.frag",
+                               {{"VPLKIT_INDIRECT", flag(technique.indirect)},
+                                {"VPLKIT_SEPARABLE", flag(separable)},
+                                {"VPLKIT_LIGHT_DIRECTIONAL", flag(is_directional(source))}});
+
+  // Uniforms that stay for the pipeline's life.
+  const light_frustum& light = constants_.light;
+  rsm_program_.set("view_projection", light.view_projection);
+  rsm_program_.set("light_view", light.view);
+  rsm_program_.set("rsm_size", glm::ivec2(settings.rsm_size));
+  rsm_program_.set("tan_half_fov", light.tan_half_fov);
+  rsm_program_.set("texel_area", light.texel_area);
+  set_light_uniforms(rsm_program_, constants_);
+
+  gbuffer_program_.set("view_projection", constants_.camera_view_projection);
+  gbuffer_program_.set("camera_view", constants_.camera_view);
+  gbuffer_program_.set("light_view", light.view);
+  gbuffer_program_.set("light_view_projection", light.view_projection);
+  gbuffer_program_.set("rsm_size", glm::ivec2(settings.rsm_size));
+  set_uniforms(gbuffer_program_, "shadow", constants_.shadow);
+  gbuffer_program_.set("rsm_position_depth", 0);
+
+  if (technique.indirect) {
+    set_uniforms(gather_program_, "settings", constants_.gather);
+    gather_program_.set("light_view_projection", light.view_projection);
+    gather_program_.set("indirect_divisor", constants_.indirect_divisor);
+    gather_program_.set("gbuffer_size", constants_.image_size);
+    int unit = 0;
+    for (const char* name : {"rsm_position_depth", "rsm_normal", "rsm_flux", "gbuffer_position_depth", "gbuffer_normal"})
+      gather_program_.set(name, unit++);
+    if (separable) {
+      set_uniforms(blur_x_program_, "bilateral", constants_.bilateral);
+      blur_x_program_.set("indirect_divisor", constants_.indirect_divisor);
+      blur_x_program_.set("indirect_size", constants_.indirect_size);
+      blur_x_program_.set("gbuffer_size", constants_.image_size);
+      blur_x_program_.set("indirect_buffer", 0);
+      blur_x_program_.set("gbuffer_normal", 1);
+    }
+  }
+  set_uniforms(post_program_, "bilateral", constants_.bilateral);
+  set_uniforms(post_program_, "irradiance", constants_.gather.irradiance);
+  post_program_.set("indirect_divisor", constants_.indirect_divisor);
+  post_program_.set("indirect_size", constants_.indirect_size);
+  post_program_.set("gbuffer_size", constants_.image_size);
+  int unit = 0;
+  for (const char* name : {"indirect_buffer", "gbuffer_position_depth", "gbuffer_albedo_density", "gbuffer_normal"})
+    post_program_.set(name, unit++);
+  set_light_uniforms(post_program_, constants_);
+  check_gl("setting up the RSM pipeline");
+}
+
+rsm_frame rsm_pipeline::render() {
+  draw();
+  rsm_frame frame;
+  frame.radiance = post_target_.read_image(0);
+  frame.indirect = post_target_.read_image(1);
+  frame.pass_times = timer_.collect();
+  return frame;
+}
+
+void rsm_pipeline::draw() {
+  const rsm_technique& technique = constants_.technique;
+  glClearColor(0.0f, 0.0f, 0.0f, 0.0f);  // depth 0 marks "no surface" in every buffer
+  glDisable(GL_BLEND);
+  glDisable(GL_CULL_FACE);
+
+  timer_.begin("RSM generation");
+  glEnable(GL_DEPTH_TEST);
+  rsm_target_.bind();
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  rsm_program_.use();
+  mesh_.draw();
+  timer_.end();
+
+  timer_.begin("G-buffer generation");
+  gbuffer_target_.bind();
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  rsm_target_.colour(0).bind(0);
+  gbuffer_program_.use();
+  mesh_.draw();
+  timer_.end();
+
+  glDisable(GL_DEPTH_TEST);
+  glBindVertexArray(empty_vertex_array_.get());
+  if (technique.indirect) {
+    timer_.begin("RSM sampling");
+    indirect_target_.bind();
+    for (int i = 0; i < 3; ++i) rsm_target_.colour(static_cast<std::size_t>(i)).bind(i);
+    gbuffer_target_.colour(0).bind(3);
+    gbuffer_target_.colour(2).bind(4);
+    gather_program_.use();
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    timer_.end();
+  }
+
+  timer_.begin("post processing");
+  const bool separable = technique.indirect && settings_.filter == post_filter::separable;
+  if (separable) {
+    blur_x_target_.bind();
+    indirect_target_.colour(0).bind(0);
+    gbuffer_target_.colour(2).bind(1);
+    blur_x_program_.use();
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+  }
+  post_target_.bind();
+  (separable ? blur_x_target_ : indirect_target_).colour(0).bind(0);
+  for (int i = 0; i < 3; ++i) gbuffer_target_.colour(static_cast<std::size_t>(i)).bind(i + 1);
+  post_program_.use();
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  timer_.end();
+  glBindVertexArray(0);
+  check_gl("rendering scene " + scene_.name + " with " + technique.name);
+}
+
+double rsm_pipeline::draw_wall_clock_ms() {
+  glFinish();
+  const auto start = std::chrono::steady_clock::now();
+  draw();
+  glFinish();
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  timer_.collect();  // the queries of this frame are not wanted
+  return ms;
+}
+
+rsm_pass_buffers rsm_pipeline::read_buffers() const {
+  rsm_pass_buffers buffers;
+  for (std::size_t i = 0; i < 3; ++i) {
+    buffers.rsm[i] = rsm_target_.read_image(i);
+    buffers.gbuffer[i] = gbuffer_target_.read_image(i);
+  }
+  if (constants_.technique.indirect) {
+    buffers.indirect = indirect_target_.read_image(0);
+    if (settings_.filter == post_filter::separable) buffers.blurred_x = blur_x_target_.read_image(0);
+  }
+  return buffers;
+}
+
+}  // namespace vplkit

@@ -1,0 +1,159 @@
+// The four-pass deferred pipeline of paper 000 (chapter 4): 1. RSM generation, 2. G-buffer
+// generation (with the shadow density of Alg. 4), 3. RSM sampling (the gather, at a reduced
+// resolution), 4. post processing (bilateral upsampling and blur, direct + indirect).
+// Techniques: direct light only, the original RSM (disk pattern, 400 samples), and the radial
+// pattern without visibility or with Alg. 2, 3 or 6.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include <vplkit/bilateral.hpp>
+#include <vplkit/irradiance.hpp>
+#include <vplkit/rsm_gather.hpp>
+#include <vplkit/shadow.hpp>
+
+#include "frontend/gl/gpu_timer.hpp"
+#include "frontend/gl/mesh_buffers.hpp"
+#include "frontend/gl/program.hpp"
+#include "frontend/gl/render_target.hpp"
+#include "frontend/scene/camera.hpp"
+
+namespace vplkit {
+
+/// A technique the pipeline renders.
+struct rsm_technique {
+  const char* name = "";     ///< CLI name, e.g. "rsm-alg6"
+  bool indirect = false;     ///< false: direct light only
+  rsm_pattern pattern = rsm_pattern::radial;
+  rsm_visibility visibility = rsm_visibility::none;
+  const char* description = "";
+};
+
+/// direct, rsm-original, rsm-radial, rsm-alg2, rsm-alg3, rsm-alg6.
+const std::vector<rsm_technique>& rsm_techniques();
+/// Throws vplkit::error listing the names when `name` is unknown.
+const rsm_technique& find_rsm_technique(const std::string& name);
+
+enum class post_filter { full, separable };
+
+/// Every setting of the pipeline, with the thesis's configuration as the defaults.
+struct rsm_pipeline_settings {
+  int width = 512;              ///< final image (the thesis: 512 x 512)
+  int height = 512;
+  int rsm_size = 512;           ///< square RSM (the thesis: 512 x 512)
+  int indirect_divisor = 2;     ///< indirect buffer = image / divisor per axis (2: 256^2, 1: Table 5.2's 512^2)
+  texel_format format = texel_format::rgba16f;  ///< every render target: rgba16f (the thesis) or rgba32f
+  std::string technique = "rsm-alg6";
+  /// r_max of the radial and disk patterns as a fraction of the RSM side, so the radius scales
+  /// with the RSM; make_rsm_gather_settings derives it in texels.
+  float radius = default_rsm_gather_preset<float>().radius_fraction;
+  /// Paths x samples of the default preset; max_radius is not read (see radius).
+  radial_pattern_settings<float> radial = default_radial_settings();
+  disk_pattern_settings<float> disk;            ///< 400 samples; max_radius is not read (see radius)
+  int slots = default_rsm_gather_preset<float>().slots;  ///< micro linear buffer slots
+  irradiance_settings<float> irradiance;
+  shadow_density_settings<float> shadow;
+  bilateral_settings<float> bilateral;          ///< kernel 17
+  /// Separable by default: 2 x 17 taps instead of 17^2, 7x cheaper on llvmpipe for a few percent
+  /// of difference in the filtered indirect light (bench/rsm_sweep measures both).
+  post_filter filter = post_filter::separable;
+
+  static radial_pattern_settings<float> default_radial_settings() {
+    radial_pattern_settings<float> radial;
+    radial.paths = default_rsm_gather_preset<float>().paths;
+    radial.samples_per_path = default_rsm_gather_preset<float>().samples_per_path;
+    return radial;
+  }
+  /// Radius, paths, samples and slots from a preset (default_rsm_gather_preset,
+  /// thesis_rsm_gather_preset); the rest stays.
+  void apply(const rsm_gather_preset<float>& preset) {
+    radius = preset.radius_fraction;
+    radial.paths = preset.paths;
+    radial.samples_per_path = preset.samples_per_path;
+    slots = preset.slots;
+  }
+};
+
+/// Empty when usable, else a message naming the bad setting.
+std::string validate(const rsm_pipeline_settings& settings);
+
+/// Light-space matrices of the RSM: perspective for a spot light (a square frustum around the
+/// outer cone), orthographic for a directional light (around the scene's bounds).
+struct light_frustum {
+  glm::mat4 view{1.0f};
+  glm::mat4 view_projection{1.0f};
+  float tan_half_fov = 0.0f;  ///< spot light
+  float texel_area = 0.0f;    ///< directional light: area one RSM texel covers across the light
+};
+light_frustum make_light_frustum(const scene& source, int rsm_size);
+
+/// The constants of a frame that the GL passes and their CPU mirror share (one derivation).
+struct rsm_frame_constants {
+  rsm_technique technique;
+  rsm_gather_settings<float> gather;
+  light_frustum light;
+  scene_light primary;
+  glm::mat4 camera_view{1.0f};
+  glm::mat4 camera_view_projection{1.0f};
+  shadow_density_settings<float> shadow;
+  bilateral_settings<float> bilateral;
+  post_filter filter = post_filter::full;
+  glm::ivec2 image_size{0};
+  glm::ivec2 indirect_size{0};
+  int indirect_divisor = 2;
+};
+rsm_frame_constants make_frame_constants(const scene& source, const rsm_pipeline_settings& settings);
+
+/// The intermediate buffers of a frame, read back for the CPU mirror and for tests.
+struct rsm_pass_buffers {
+  image rsm[3];      ///< [position | depth], [normal | -], [flux | -]
+  image gbuffer[3];  ///< [position | depth], [albedo | shadow density], [normal | -]
+  image indirect;    ///< [irradiance | depth] (empty for direct light only)
+  image blurred_x;   ///< the separable filter's x pass (empty for the full filter)
+};
+
+struct rsm_frame {
+  image radiance;  ///< the final image
+  image indirect;  ///< filtered indirect irradiance at full resolution
+  std::vector<pass_time> pass_times;
+};
+
+class rsm_pipeline {
+ public:
+  /// Validates, loads the programs and uploads the scene. Throws vplkit::error with the reason.
+  rsm_pipeline(const shader_library& shaders, const scene& source, const rsm_pipeline_settings& settings);
+  rsm_frame render();
+  /// The four passes without reading anything back.
+  void draw();
+  /// draw() timed by wall clock between two glFinish calls: the frame's cost on any renderer
+  /// (llvmpipe's timer queries measure only the span of its last rasterizer tiles).
+  double draw_wall_clock_ms();
+  const rsm_frame_constants& constants() const { return constants_; }
+  /// The intermediate buffers of the last frame.
+  rsm_pass_buffers read_buffers() const;
+  /// The final radiance texture of the last frame.
+  const texture_2d& output() const { return post_target_.colour(0); }
+
+ private:
+  scene scene_;
+  rsm_pipeline_settings settings_;
+  rsm_frame_constants constants_;
+  mesh_buffers mesh_;
+  program rsm_program_;
+  program gbuffer_program_;
+  program gather_program_;
+  program blur_x_program_;
+  program post_program_;
+  framebuffer rsm_target_;
+  framebuffer gbuffer_target_;
+  framebuffer indirect_target_;
+  framebuffer blur_x_target_;
+  framebuffer post_target_;
+  gl_vertex_array empty_vertex_array_;
+  gpu_timer timer_;
+};
+
+}  // namespace vplkit

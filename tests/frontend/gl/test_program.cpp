@@ -1,0 +1,148 @@
+// The program loader: #include expansion, file:line in errors, and the failure messages for
+// missing files and bad GLSL (frontend/program.hpp).
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "frontend/gl/debug_output.hpp"
+#include "frontend/gl/gl.hpp"
+#include "frontend/core/error.hpp"
+#include "frontend/gl/program.hpp"
+#include "tests/parity/parity_harness.hpp"
+
+namespace fs = std::filesystem;
+using namespace vplkit;
+
+namespace {
+
+// A temporary shader folder with the given files, removed at the end of the test.
+struct scratch_shaders {
+  fs::path root;
+  using file_list = std::vector<std::pair<std::string, std::string>>;
+  explicit scratch_shaders(const file_list& files) {
+    root = fs::temp_directory_path() / ("vplkit-shaders-" + std::to_string(std::random_device{}()));
+    for (const auto& [name, text] : files) {
+      fs::create_directories((root / name).parent_path());
+      std::ofstream(root / name) << text;
+    }
+  }
+  ~scratch_shaders() { fs::remove_all(root); }
+};
+
+std::string message_of(const std::function<void()>& action) {
+  try {
+    action();
+  } catch (const vplkit::error& failure) {
+    return failure.what();
+  }
+  return "(no error)";
+}
+
+}  // namespace
+
+TEST_CASE("#include is expanded once per file, with #line directives back to each file") {
+  scratch_shaders files({{"main.frag", "#version 330 core\n#include \"lib/a.glsl\"\n#include \"lib/b.glsl\"\nvoid main() {}\n"},
+                         {"lib/a.glsl", "#include \"lib/b.glsl\"\nfloat a() { return b(); }\n"},
+                         {"lib/b.glsl", "float b() { return 1.0; }\n"}});
+  const shader_library library(files.root);
+  const expanded_source source = library.expand_file("main.frag");
+  CHECK(source.file_names == std::vector<std::string>{"main.frag", "lib/a.glsl", "lib/b.glsl"});
+  CHECK(source.text.find("#version 330 core\n") == 0);
+  // b is defined once, although it is included twice.
+  const auto first = source.text.find("float b()");
+  CHECK(first != std::string::npos);
+  CHECK(source.text.find("float b()", first + 1) == std::string::npos);
+  // After the includes, main.frag's own lines resume with their original numbers.
+  CHECK(source.text.find("#line 4 0\nvoid main()") != std::string::npos);
+}
+
+TEST_CASE("a missing shader file, folder or include is named in the error") {
+  scratch_shaders files(scratch_shaders::file_list{{"main.frag", "#version 330 core\n\n#include \"lib/missing.glsl\"\nvoid main() {}\n"}});
+  const shader_library library(files.root);
+  CHECK(message_of([&] { library.expand_file("nowhere.frag"); }).find("shader file not found: " + (files.root / "nowhere.frag").string()) == 0);
+  const std::string include_error = message_of([&] { library.expand_file("main.frag"); });
+  CHECK(include_error.find("main.frag:3: included file \"lib/missing.glsl\" not found") == 0);
+  CHECK(message_of([&] { shader_library(files.root / "absent"); }).find("shader directory not found") == 0);
+  scratch_shaders nested(scratch_shaders::file_list{{"main.frag", "#version 330 core\n#include \"lib/v.glsl\"\n"}, {"lib/v.glsl", "#version 330 core\n"}});
+  CHECK(message_of([&] { shader_library(nested.root).expand_file("main.frag"); }).find("lib/v.glsl:1: #version must be") == 0);
+}
+
+TEST_CASE("a GLSL syntax error in an included file is reported at that file's line") {
+  parity::test_shaders();  // the headless context
+  scratch_shaders files({{"main.frag", "#version 330 core\n#include \"lib/broken.glsl\"\nout vec4 colour;\nvoid main() { colour = vec4(f()); }\n"},
+                         {"lib/broken.glsl", "// a comment\nfloat f() {\n  return 1.0 +;\n}\n"},
+                         {"main.vert", "#version 330 core\nvoid main() { gl_Position = vec4(0.0); }\n"}});
+  const shader_library library(files.root);
+  const std::string message = message_of([&] { load_program(library, "main.vert", "main.frag"); });
+  CAPTURE(message);
+  CHECK(message.find("GLSL compile error in fragment shader main.frag") == 0);
+  CHECK(message.find("lib/broken.glsl:3:") != std::string::npos);
+}
+
+TEST_CASE("a GLSL error in the top-level file keeps its own line numbers after includes") {
+  parity::test_shaders();
+  scratch_shaders files({{"main.frag", "#version 330 core\n#include \"lib/ok.glsl\"\nout vec4 colour;\nvoid main() { colour = undefined_name; }\n"},
+                         {"lib/ok.glsl", "float g() { return 2.0; }\n\n\n"},
+                         {"main.vert", "#version 330 core\nvoid main() { gl_Position = vec4(0.0); }\n"}});
+  const std::string message = message_of([&] { load_program(shader_library(files.root), "main.vert", "main.frag"); });
+  CAPTURE(message);
+  CHECK(message.find("main.frag:4:") != std::string::npos);
+}
+
+TEST_CASE("a link error names the program's files") {
+  parity::test_shaders();
+  scratch_shaders files({{"main.frag", "#version 330 core\nin vec3 never_written;\nout vec4 colour;\nvoid main() { colour = vec4(never_written, 1.0); }\n"},
+                         {"main.vert", "#version 330 core\nout vec2 never_written;\nvoid main() { never_written = vec2(0.0); gl_Position = vec4(0.0); }\n"}});
+  const std::string message = message_of([&] { load_program(shader_library(files.root), "main.vert", "main.frag"); });
+  CAPTURE(message);
+  CHECK(message.find("GLSL link error in program main.vert + main.frag") == 0);
+}
+
+TEST_CASE("driver logs of Mesa, NVIDIA and AMD are mapped to file:line") {
+  const std::vector<std::string> names = {"main.frag", "lib/x.glsl"};
+  CHECK(map_log_to_files("1:12(5): error: syntax error\n", names) == "  lib/x.glsl:12:5: error: syntax error\n");
+  CHECK(map_log_to_files("0(7) : error C0000: syntax error\n", names) == "  main.frag:7 : error C0000: syntax error\n");
+  CHECK(map_log_to_files("ERROR: 1:3: 'f' : no matching overloaded function\n", names) ==
+        "  lib/x.glsl:3: ERROR 'f' : no matching overloaded function\n");
+  CHECK(map_log_to_files("7:1(1): error: x\n", names) == "  <source 7>:1:1: error: x\n");
+}
+
+TEST_CASE("every shipped pass program compiles and links") {
+  const shader_library& library = parity::test_shaders();
+  for (const auto& [vertex, fragment] : std::vector<std::pair<std::string, std::string>>{
+           {"fullscreen.vert", "present.frag"}, {"fullscreen.vert", "blur_x.frag"}, {"scene.vert", "gbuffer.frag"}}) {
+    CAPTURE(fragment);
+    CHECK_NOTHROW(load_program(library, vertex, fragment));
+  }
+  // The variant programs, every define combination the pipeline uses.
+  for (const char* light : {"0", "1"}) {
+    CHECK_NOTHROW(load_program(library, "scene.vert", "rsm.frag", {{"VPLKIT_LIGHT_DIRECTIONAL", light}}));
+    for (const char* indirect : {"0", "1"})
+      for (const char* separable : {"0", "1"})
+        CHECK_NOTHROW(load_program(library, "fullscreen.vert", "post.frag",
+                                   {{"VPLKIT_INDIRECT", indirect}, {"VPLKIT_SEPARABLE", separable}, {"VPLKIT_LIGHT_DIRECTIONAL", light}}));
+  }
+  for (const char* visibility : {"0", "2", "3", "6"})
+    CHECK_NOTHROW(load_program(library, "fullscreen.vert", "gather.frag", {{"VPLKIT_RSM_PATTERN", "0"}, {"VPLKIT_VISIBILITY", visibility}}));
+  CHECK_NOTHROW(load_program(library, "fullscreen.vert", "gather.frag", {{"VPLKIT_RSM_PATTERN", "1"}, {"VPLKIT_VISIBILITY", "0"}}));
+  // The disk pattern has no paths: asking it for visibility is a compile error that says so.
+  CHECK_THROWS_WITH_AS(load_program(library, "fullscreen.vert", "gather.frag", {{"VPLKIT_RSM_PATTERN", "1"}, {"VPLKIT_VISIBILITY", "6"}}),
+                       doctest::Contains("the disk pattern has no paths"), vplkit::error);
+}
+
+TEST_CASE("GL errors reach the error path with the operation's name") {
+  parity::test_shaders();
+  REQUIRE(GLAD_GL_KHR_debug);  // Mesa has it on every context; the count below relies on it
+  const std::size_t before = unchecked_gl_error_count();
+  glBindTexture(GL_TEXTURE_2D + 1, 0);  // not a texture target: GL_INVALID_ENUM
+  // Counted as soon as the driver reports it, until a check point turns it into an exception.
+  CHECK(unchecked_gl_error_count() == before + 1);
+  const std::string message = message_of([] { check_gl("binding a texture on purpose"); });
+  CHECK(unchecked_gl_error_count() == before);
+  CAPTURE(message);
+  CHECK(message.find("GL error during binding a texture on purpose") == 0);
+  CHECK(message.find("GL_INVALID_ENUM") != std::string::npos);
+  CHECK_NOTHROW(check_gl("nothing"));  // cleared
+}

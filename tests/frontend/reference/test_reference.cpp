@@ -1,0 +1,220 @@
+// The CPU reference (frontend/reference.hpp): closed forms for the direct light and for one
+// bounce off a uniformly lit floor, determinism, and the brute-force RSM gather with visibility
+// converging to the RSM-free Monte Carlo reference as the RSM resolution grows; the brute force
+// against the polygon form factor, with and without a known occluder, and the pattern's own
+// samples with ray-cast visibility.
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "frontend/core/error.hpp"
+#include "frontend/reference/reference.hpp"
+#include "frontend/techniques/rsm/rsm_pipeline.hpp"
+#include "tests/closed_forms.hpp"
+#include "tests/parity/parity_harness.hpp"
+
+using namespace vplkit;
+
+namespace {
+
+using closed_forms::parallel_rectangle;
+
+}  // namespace
+
+TEST_CASE("reference direct light: a spot light over a plane gives I h / r^3, and an occluder casts its shadow") {
+  mesh floor;
+  add_quad(floor, {-5, 0, 5}, {5, 0, 5}, {5, 0, -5}, {-5, 0, -5}, {0, 1, 0}, glm::vec3(0.5f));
+  scene_light light;
+  light.spot.position = {0.0f, 2.0f, 0.0f};
+  light.spot.direction = {0.0f, -1.0f, 0.0f};
+  light.spot.intensity = glm::vec3(3.0f);
+  light.spot.cos_inner = std::cos(glm::radians(70.0f));
+  light.spot.cos_outer = std::cos(glm::radians(80.0f));
+  const ray_scene rays(floor);
+  for (float d : {0.0f, 0.5f, 1.0f, 2.5f}) {
+    const glm::vec3 e = direct_irradiance(rays, light, {}, glm::vec3(d, 0.0f, 0.0f), glm::vec3(0, 1, 0));
+    const double r = std::sqrt(4.0 + d * d);
+    CHECK(e.x == doctest::Approx(3.0 * 2.0 / (r * r * r)).epsilon(1e-5));
+  }
+  mesh blocked = floor;
+  add_quad(blocked, {-0.2f, 1, 0.2f}, {0.2f, 1, 0.2f}, {0.2f, 1, -0.2f}, {-0.2f, 1, -0.2f}, {0, 1, 0}, glm::vec3(0.5f));
+  const ray_scene blocked_rays(blocked);
+  CHECK(direct_irradiance(blocked_rays, light, {}, glm::vec3(0.0f), glm::vec3(0, 1, 0)) == glm::vec3(0.0f));
+  CHECK(direct_irradiance(blocked_rays, light, {}, glm::vec3(2.0f, 0, 0), glm::vec3(0, 1, 0)).x > 0.0f);
+}
+
+TEST_CASE("reference one bounce: a point facing a uniformly lit floor gets albedo E0 F (Howell B-3 x 4)") {
+  // A 2a x 2a floor lit straight down with irradiance E0 (directional light): its radiance is
+  // albedo E0 / pi everywhere, so a point at height h facing it receives albedo E0 F.
+  const float a = 1.0f, h = 0.5f, albedo = 0.6f;
+  mesh floor;
+  add_quad(floor, {-a, 0, a}, {a, 0, a}, {a, 0, -a}, {-a, 0, -a}, {0, 1, 0}, glm::vec3(albedo));
+  scene_light light;
+  light.kind = light_kind::directional;
+  light.directional.direction = {0.0f, -1.0f, 0.0f};
+  light.directional.irradiance = glm::vec3(2.0f);
+  const ray_scene rays(floor);
+  const int samples = 20000;
+  const glm::vec3 e = one_bounce_irradiance(rays, light, {}, glm::vec3(0, h, 0), glm::vec3(0, -1, 0), samples, 7u, 1u);
+  const double exact = albedo * 2.0 * 4.0 * parallel_rectangle(a, a, h);
+  // A Bernoulli estimate of F (hit or miss) times a constant: sigma = sqrt(F (1 - F) / N).
+  const double f = exact / (albedo * 2.0);
+  const double sigma = albedo * 2.0 * std::sqrt(f * (1 - f) / samples);
+  CAPTURE(e.x);
+  CAPTURE(exact);
+  CHECK(std::fabs(e.x - exact) < 4.0 * sigma);
+  // Deterministic for a seed, different for another.
+  CHECK(one_bounce_irradiance(rays, light, {}, glm::vec3(0, h, 0), glm::vec3(0, -1, 0), 256, 7u, 1u) ==
+        one_bounce_irradiance(rays, light, {}, glm::vec3(0, h, 0), glm::vec3(0, -1, 0), 256, 7u, 1u));
+  CHECK(one_bounce_irradiance(rays, light, {}, glm::vec3(0, h, 0), glm::vec3(0, -1, 0), 256, 7u, 1u) !=
+        one_bounce_irradiance(rays, light, {}, glm::vec3(0, h, 0), glm::vec3(0, -1, 0), 256, 8u, 1u));
+}
+
+TEST_CASE("the brute-force RSM gather with visibility converges to the Monte Carlo one-bounce reference as the RSM grows") {
+  const scene box = make_cornell_box();
+  const ray_scene rays(box.geometry);
+  double previous = 1e30;
+  for (int rsm : {16, 32, 64}) {
+    rsm_pipeline_settings settings;
+    settings.width = settings.height = 24;
+    settings.rsm_size = rsm;
+    settings.format = texel_format::rgba32f;
+    settings.technique = "rsm-radial";
+    rsm_pipeline pipeline(parity::test_shaders(), box, settings);
+    pipeline.render();
+    const rsm_pass_buffers buffers = pipeline.read_buffers();
+    rsm_brute_force_options options;
+    options.exact_visibility = true;
+    options.threads = 2;
+    const image brute = reference_rsm_gather(rays, buffers, pipeline.constants(), options);
+    double error = 0.0, level = 0.0;
+    for (int y = 0; y < brute.height; ++y)
+      for (int x = 0; x < brute.width; ++x) {
+        const glm::ivec2 sample = glm::min(glm::ivec2(x, y) * 2, glm::ivec2(23));
+        const glm::vec4 position_depth = buffers.gbuffer[0].at(sample);
+        if (!(position_depth.w < 0.0f)) continue;
+        const glm::vec3 p(position_depth), n(buffers.gbuffer[2].at(sample));
+        const glm::vec3 mc = one_bounce_irradiance(rays, box.light, {}, p, n, 512, 3u, static_cast<std::uint32_t>(y * 64 + x));
+        const glm::vec3 gathered(brute.at(glm::ivec2(x, y)));
+        error += std::fabs(gathered.x + gathered.y + gathered.z - (mc.x + mc.y + mc.z));
+        level += mc.x + mc.y + mc.z;
+      }
+    const double relative = error / level;
+    MESSAGE("RSM " << rsm << "^2: brute-force gather with visibility vs Monte Carlo one bounce, mean absolute difference " << relative
+                   << " of the mean level");
+    CHECK(relative < previous);
+    previous = relative;
+  }
+  CHECK(previous < 0.2);
+}
+
+namespace {
+
+// A synthetic frame for the brute-force RSM gather: an RSM of n x n texels showing a 2a x 2a
+// floor at y = 0 lit uniformly (flux per texel = radiosity x texel area), seen by an orthographic
+// light from straight above, and one receiver at height h facing down over the floor's centre.
+struct floor_frame {
+  rsm_pass_buffers buffers;
+  rsm_frame_constants constants;
+  floor_frame(int n, float a, float h, float radiosity) {
+    const float texel = 2.0f * a / static_cast<float>(n);
+    for (image& target : buffers.rsm) {
+      target.width = target.height = n;
+      target.texels.assign(static_cast<std::size_t>(n) * static_cast<std::size_t>(n), glm::vec4(0.0f));
+    }
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        const glm::ivec2 t(x, y);
+        buffers.rsm[0].at(t) = glm::vec4((static_cast<float>(x) + 0.5f) * texel - a, 0.0f, a - (static_cast<float>(y) + 0.5f) * texel, -5.0f);
+        buffers.rsm[1].at(t) = glm::vec4(0, 1, 0, 0);
+        buffers.rsm[2].at(t) = glm::vec4(glm::vec3(radiosity * texel * texel), 0.0f);
+      }
+    for (int i = 0; i < 3; ++i) {
+      buffers.gbuffer[i].width = buffers.gbuffer[i].height = 1;
+      buffers.gbuffer[i].texels.assign(1, glm::vec4(0.0f));
+    }
+    buffers.gbuffer[0].texels[0] = glm::vec4(0.0f, h, 0.0f, -3.0f);
+    buffers.gbuffer[2].texels[0] = glm::vec4(0.0f, -1.0f, 0.0f, 0.0f);
+    const glm::mat4 view = glm::lookAt(glm::vec3(0, 5, 0), glm::vec3(0), glm::vec3(0, 0, -1));
+    constants.light.view = view;
+    constants.light.view_projection = glm::ortho(-a, a, -a, a, 0.1f, 20.0f) * view;
+    constants.gather.light_view = view;
+    constants.gather.rsm_size = glm::ivec2(n);
+    constants.gather.irradiance.min_distance = 1e-4f;
+    constants.image_size = constants.indirect_size = glm::ivec2(1);
+    constants.indirect_divisor = 1;
+  }
+};
+
+}  // namespace
+
+TEST_CASE("brute-force RSM gather: a receiver facing a uniformly lit square floor gets the polygon form factor (Howell B-3)") {
+  const float a = 1.0f, h = 0.5f, radiosity = 2.0f;
+  const floor_frame frame(256, a, h, radiosity);
+  mesh floor;
+  add_quad(floor, {-a, 0, a}, {a, 0, a}, {a, 0, -a}, {-a, 0, -a}, {0, 1, 0}, glm::vec3(0.5f));
+  const ray_scene rays(floor);
+  rsm_brute_force_options options;
+  options.threads = 2;
+  // E = B F for a Lambertian source of radiosity B; F of the square = 4 x B-3 with a corner below.
+  const double exact = radiosity * 4.0 * parallel_rectangle(a, a, h);
+  const glm::vec4 none = reference_rsm_gather(rays, frame.buffers, frame.constants, options).texels[0];
+  CHECK(none.x == doctest::Approx(exact).epsilon(2e-3));
+  CHECK(none.w == 1.0f);
+  // Nothing between the receiver and the floor: exact visibility keeps everything.
+  options.exact_visibility = true;
+  const glm::vec4 seen = reference_rsm_gather(rays, frame.buffers, frame.constants, options).texels[0];
+  CHECK(seen.x == doctest::Approx(exact).epsilon(2e-3));
+  // Cut to a radius of r texels: a coaxial disk of radius R = r x texel, F = R^2 / (R^2 + h^2).
+  options.exact_visibility = false;
+  options.max_radius = 64.0f;
+  const double disk_radius = 64.0 * 2.0 * a / 256.0;
+  const glm::vec4 cut = reference_rsm_gather(rays, frame.buffers, frame.constants, options).texels[0];
+  CHECK(cut.x == doctest::Approx(radiosity * disk_radius * disk_radius / (disk_radius * disk_radius + h * h)).epsilon(5e-3));
+}
+
+TEST_CASE("brute-force RSM gather with exact visibility: a square occluder halfway up hides the floor square twice its size") {
+  // An occluder [-b, b]^2 at height h/2 (in the ray scene only: the light does not see it, so
+  // the RSM is still the whole floor): from the receiver at height h it hides [-2b, 2b]^2 of the
+  // floor, so the visible irradiance is B (F(a) - F(2b)).
+  const float a = 1.0f, h = 0.5f, b = 0.2f, radiosity = 2.0f;
+  const floor_frame frame(256, a, h, radiosity);
+  mesh scene;
+  add_quad(scene, {-a, 0, a}, {a, 0, a}, {a, 0, -a}, {-a, 0, -a}, {0, 1, 0}, glm::vec3(0.5f));
+  add_quad(scene, {-b, h / 2, b}, {b, h / 2, b}, {b, h / 2, -b}, {-b, h / 2, -b}, {0, 1, 0}, glm::vec3(0.5f));
+  const ray_scene rays(scene);
+  rsm_brute_force_options options;
+  options.exact_visibility = true;
+  options.threads = 2;
+  const glm::vec4 seen = reference_rsm_gather(rays, frame.buffers, frame.constants, options).texels[0];
+  const double whole = 4.0 * parallel_rectangle(a, a, h), hidden = 4.0 * parallel_rectangle(2 * b, 2 * b, h);
+  CHECK(seen.x == doctest::Approx(radiosity * (whole - hidden)).epsilon(1e-2));
+  CHECK(seen.w == doctest::Approx((whole - hidden) / whole).epsilon(1e-2));
+  // The receiver stride leaves the receivers it skips at 0 (here, none: one receiver).
+  options.receiver_stride = 0;
+  CHECK_THROWS_AS(reference_rsm_gather(rays, frame.buffers, frame.constants, options), vplkit::error);
+}
+
+TEST_CASE("the radial pattern's own samples with ray-cast visibility: no occluder equals the gather, an occluder removes its share") {
+  const float a = 1.0f, h = 0.5f, b = 0.2f, radiosity = 2.0f;
+  floor_frame frame(256, a, h, radiosity);
+  frame.constants.gather.radial = make_radial_pattern_constants(radial_pattern_settings<float>{32, 16, 1.0f, 256.0f});
+  mesh floor;
+  add_quad(floor, {-a, 0, a}, {a, 0, a}, {a, 0, -a}, {-a, 0, -a}, {0, 1, 0}, glm::vec3(0.5f));
+  mesh blocked = floor;
+  add_quad(blocked, {-b, h / 2, b}, {b, h / 2, b}, {b, h / 2, -b}, {-b, h / 2, -b}, {0, 1, 0}, glm::vec3(0.5f));
+  const ray_scene open_rays(floor), blocked_rays(blocked);
+  const image open = gather_with_ray_cast_visibility(open_rays, frame.buffers, frame.constants, 1, 1);
+  const auto fetch = [&](glm::ivec2 t) {
+    const glm::vec4 p = frame.buffers.rsm[0].at(t);
+    return rsm_texel<float>{glm::vec3(p), p.w, glm::vec3(frame.buffers.rsm[1].at(t)), glm::vec3(frame.buffers.rsm[2].at(t))};
+  };
+  const gather_receiver<float> receiver{glm::vec3(0, h, 0), glm::vec3(0, -1, 0),
+                                        map_coordinate(frame.constants.light.view_projection, glm::vec3(0, h, 0), glm::ivec2(256)), glm::uvec2(0)};
+  CHECK(open.texels[0].x == doctest::Approx(gather_rsm<rsm_pattern::radial, rsm_visibility::none>(receiver, fetch, frame.constants.gather).x));
+  const image shadowed = gather_with_ray_cast_visibility(blocked_rays, frame.buffers, frame.constants, 1, 1);
+  const double hidden_share = parallel_rectangle(2 * b, 2 * b, h) / parallel_rectangle(a, a, h);
+  CHECK(shadowed.texels[0].x / open.texels[0].x == doctest::Approx(1.0 - hidden_share).epsilon(0.15));
+}
