@@ -10,6 +10,7 @@
 #endif
 #include "lib/direct_light.glsl"
 #include "lib/final_gather.glsl"
+#include "lib/shading.glsl"
 
 uniform spot_light light;
 uniform irradiance_settings irradiance;
@@ -47,6 +48,6 @@ void main() {
 #endif
   }
   vec3 direct = spot_light_irradiance(x, n, light, irradiance);
-  radiance = vec4(albedo * 0.318309886183790671538 * (direct + indirect), 1.0);
+  radiance = vec4(diffuse_radiance(albedo, direct, 1.0, indirect), 1.0);
   indirect_out = vec4(indirect, 1.0);
 }

@@ -6,6 +6,7 @@
 // Writes [radiance | 1] and [filtered indirect irradiance | 1].
 #include "lib/bilateral.glsl"
 #include "lib/direct_light.glsl"
+#include "lib/shading.glsl"
 
 uniform bilateral_settings bilateral;
 uniform irradiance_settings irradiance;
@@ -54,6 +55,6 @@ void main() {
 #else
   vec3 direct = spot_light_irradiance(position_depth.xyz, n, spot, irradiance);
 #endif
-  radiance = vec4(albedo_density.rgb * 0.318309886183790671538 * (direct * albedo_density.a + indirect_irradiance), 1.0);
+  radiance = vec4(diffuse_radiance(albedo_density.rgb, direct, albedo_density.a, indirect_irradiance), 1.0);
   indirect_out = vec4(indirect_irradiance, 1.0);
 }

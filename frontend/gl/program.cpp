@@ -269,7 +269,9 @@ program link_program(const std::string& program_name, const std::vector<stage_so
   }
   for (const gl_shader& shader : shaders) glDetachShader(linked.get(), shader.get());
   check_gl("building program " + program_name);
-  return program(std::move(linked));
+  uniform_declarations declarations;
+  for (const stage_source& stage : stages) declarations.scan(stage.source.text);
+  return program(std::move(linked), program_name, std::move(declarations));
 }
 
 program load_program(const shader_library& library, const std::string& vertex_file,
@@ -281,6 +283,13 @@ program load_program(const shader_library& library, const std::string& vertex_fi
 }
 
 // GL 3.3 has no glProgramUniform (that is 4.1), so a setter binds the program first.
+GLint program::location(const std::string& uniform) const {
+  const GLint found = glGetUniformLocation(name_.get(), uniform.c_str());
+  if (found < 0 && !declarations_.declares(uniform))
+    throw error("program " + program_name_ + " declares no uniform '" + uniform + "' (its uniforms: " + declarations_.names() + ")");
+  return found;
+}
+
 void program::set(const std::string& uniform, int value) const { use(); glUniform1i(location(uniform), value); }
 void program::set(const std::string& uniform, unsigned value) const { use(); glUniform1ui(location(uniform), value); }
 void program::set(const std::string& uniform, float value) const { use(); glUniform1f(location(uniform), value); }

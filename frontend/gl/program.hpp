@@ -13,6 +13,7 @@
 
 #include "frontend/gl/gl.hpp"
 #include "frontend/gl/gl_object.hpp"
+#include "frontend/gl/uniform_declarations.hpp"
 
 namespace vplkit {
 
@@ -49,14 +50,19 @@ class shader_library {
 enum class shader_stage { vertex, fragment };
 
 /// A linked program with uniform setters (each binds the program: GL 3.3 has no glProgramUniform).
-/// Setting a uniform the linker removed is a no-op, as in GL.
+/// Setting a uniform that the source declares but the linker removed (a variant that does not
+/// read it) is a no-op, as in GL; setting a name the source does not declare (a typo, a renamed
+/// field) throws vplkit::error naming the program and the uniform.
 class program {
  public:
   program() = default;
-  explicit program(gl_program name) : name_(std::move(name)) {}
+  program(gl_program name, std::string program_name, uniform_declarations declarations)
+      : name_(std::move(name)), program_name_(std::move(program_name)), declarations_(std::move(declarations)) {}
   GLuint id() const { return name_.get(); }
   void use() const { glUseProgram(name_.get()); }
-  GLint location(const std::string& uniform) const { return glGetUniformLocation(name_.get(), uniform.c_str()); }
+  /// The uniform's location, -1 for a declared uniform the linker removed; throws for an
+  /// undeclared name.
+  GLint location(const std::string& uniform) const;
   void set(const std::string& uniform, int value) const;
   void set(const std::string& uniform, unsigned value) const;
   void set(const std::string& uniform, float value) const;
@@ -68,6 +74,8 @@ class program {
 
  private:
   gl_program name_;
+  std::string program_name_;
+  uniform_declarations declarations_;
 };
 
 struct stage_source {

@@ -65,4 +65,9 @@ void set_uniforms(const program& target, const std::string& name, const bilatera
   target.set(name + ".normal_power", settings.normal_power);
 }
 
+void set_uniforms(const program& target, const std::string& name, const lightwave_shading_settings<float>& settings) {
+  target.set(name + ".specular_strength", settings.specular_strength);
+  target.set(name + ".specular_exponent", settings.specular_exponent);
+}
+
 }  // namespace vplkit

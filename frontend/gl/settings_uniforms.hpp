@@ -7,6 +7,7 @@
 #include <vplkit/bilateral.hpp>
 #include <vplkit/direct_light.hpp>
 #include <vplkit/irradiance.hpp>
+#include <vplkit/lightwave.hpp>
 #include <vplkit/micro_linear_buffer.hpp>
 #include <vplkit/rsm_gather.hpp>
 #include <vplkit/rsm_pattern.hpp>
@@ -25,5 +26,6 @@ void set_uniforms(const program& target, const std::string& name, const disk_pat
 void set_uniforms(const program& target, const std::string& name, const rsm_gather_settings<float>& settings);
 void set_uniforms(const program& target, const std::string& name, const shadow_density_settings<float>& settings);
 void set_uniforms(const program& target, const std::string& name, const bilateral_settings<float>& settings);
+void set_uniforms(const program& target, const std::string& name, const lightwave_shading_settings<float>& settings);
 
 }  // namespace vplkit

@@ -1,5 +1,7 @@
 #include "frontend/reference/reference.hpp"
 
+#include <vplkit/shading.hpp>
+
 #include <embree3/rtcore.h>
 #include <unistd.h>
 
@@ -133,7 +135,7 @@ glm::vec3 one_bounce_irradiance(const ray_scene& bounce_rays, const ray_scene& l
     const glm::vec3 direction = glm::normalize(u * (radius * std::cos(angle)) + v * (radius * std::sin(angle)) + n * std::sqrt(std::max(0.0f, 1.0f - r1)));
     const ray_scene::hit y = bounce_rays.intersect(x + n * 1e-4f, direction);
     if (!y.found || glm::dot(y.normal, direction) >= 0.0f) continue;  // nothing, or the back of a surface
-    sum += y.albedo * 0.318309886183790671538f * direct_irradiance(light_rays, light, irradiance, y.position, y.normal);
+    sum += diffuse_radiance(y.albedo, direct_irradiance(light_rays, light, irradiance, y.position, y.normal), 1.0f, glm::vec3(0.0f));
   }
   return sum * (3.14159265358979323846f / static_cast<float>(std::max(samples, 1)));
 }
@@ -307,7 +309,7 @@ one_bounce_images reference_one_bounce(const scene& source, int width, int heigh
       const std::uint32_t key = static_cast<std::uint32_t>(y * width + x);
       const glm::vec3 direct = direct_irradiance(rays, source.light, irradiance, hit.position, n);
       const glm::vec3 bounce = one_bounce_irradiance(rays, source.light, irradiance, hit.position, n, samples, seed, key);
-      out.radiance.at(x, height - 1 - y) = glm::vec4(hit.albedo * 0.318309886183790671538f * (direct + bounce), 1.0f);
+      out.radiance.at(x, height - 1 - y) = glm::vec4(diffuse_radiance(hit.albedo, direct, 1.0f, bounce), 1.0f);
       out.indirect.at(x, height - 1 - y) = glm::vec4(bounce, 1.0f);
     }
     progress.advance();

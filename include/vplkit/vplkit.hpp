@@ -12,6 +12,7 @@
 #include <vplkit/polynomial_math.hpp>
 #include <vplkit/rsm_gather.hpp>
 #include <vplkit/rsm_pattern.hpp>
+#include <vplkit/shading.hpp>
 #include <vplkit/shadow.hpp>
 #include <vplkit/transform.hpp>
 #include <vplkit/version.hpp>

@@ -8,6 +8,7 @@
 #include <vplkit/lightwave.hpp>
 
 #include "frontend/gl/render_target.hpp"
+#include "frontend/gl/settings_uniforms.hpp"
 #include "tests/parity/parity_harness.hpp"
 
 using namespace vplkit;
@@ -184,8 +185,7 @@ TEST_CASE("parity: Eq. 4.5 summed over 1625 VPLs per vertex, in the vertex stage
     vpl_texture.bind(0);
     p.set("vpl_count", count);
     p.set("eye", eye);
-    p.set("shading.specular_strength", shading.specular_strength);
-    p.set("shading.specular_exponent", shading.specular_exponent);
+    set_uniforms(p, "shading", shading);
   });
   std::vector<glm::vec4> cpu(inputs.size());
   for (std::size_t i = 0; i < inputs.size(); ++i)

@@ -2,6 +2,7 @@
 
 #include <vplkit/direct_light.hpp>
 #include <vplkit/final_gather.hpp>
+#include <vplkit/shading.hpp>
 
 #include "frontend/core/parallel.hpp"
 
@@ -36,7 +37,7 @@ final_gather_images cpu_final_gather_shade(const final_gather_buffers& buffers, 
         }
       }
       const glm::vec3 direct = spot_light_irradiance(p, n, source.light, settings.irradiance);
-      out.radiance.at(pixel) = glm::vec4(albedo * 0.318309886183790671538f * (direct + indirect), 1.0f);
+      out.radiance.at(pixel) = glm::vec4(diffuse_radiance(albedo, direct, 1.0f, indirect), 1.0f);
       out.indirect.at(pixel) = glm::vec4(indirect, 1.0f);
     }
   };

@@ -393,8 +393,7 @@ void lightwave_pipeline::set_vertex_uniforms(const program& target) const {
   target.set("eye", scene_.view.position);
   target.set("vpl_texture", 0);
   target.set("vpl_count", static_cast<int>(vpls_.size()));
-  target.set("shading.specular_strength", settings_.shading.specular_strength);
-  target.set("shading.specular_exponent", settings_.shading.specular_exponent);
+  set_uniforms(target, "shading", settings_.shading);
 }
 
 std::vector<glm::vec3> lightwave_pipeline::capture_vertex_indirect() {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include <vplkit/direct_light.hpp>
+#include <vplkit/shading.hpp>
 #include <vplkit/transform.hpp>
 
 namespace vplkit {
@@ -129,7 +130,7 @@ post_images cpu_post_pass(const image& filtered_input, const rsm_pass_buffers& b
                                    ? spot_light_irradiance(glm::vec3(position_depth), n, constants.primary.spot, constants.gather.irradiance)
                                    : directional_light_irradiance(n, constants.primary.directional);
       out.radiance.at(pixel) =
-          glm::vec4(glm::vec3(albedo_density) * 0.318309886183790671538f * (direct * albedo_density.w + indirect), 1.0f);
+          glm::vec4(diffuse_radiance(glm::vec3(albedo_density), direct, albedo_density.w, indirect), 1.0f);
       out.indirect.at(pixel) = glm::vec4(indirect, 1.0f);
     }
   });

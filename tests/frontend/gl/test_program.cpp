@@ -100,6 +100,25 @@ TEST_CASE("a link error names the program's files") {
   CHECK(message.find("GLSL link error in program main.vert + main.frag") == 0);
 }
 
+TEST_CASE("uniforms by name: a declared uniform the linker removed is a no-op, an undeclared name or field is an error") {
+  parity::test_shaders();
+  scratch_shaders files({{"lib/light.glsl", "struct light_settings {\n  vec3 position; // where\n  float cutoff[2];\n};\n"},
+                         {"main.vert", "#version 330 core\nvoid main() { gl_Position = vec4(0.0); }\n"},
+                         {"main.frag", "#version 330 core\n#include \"lib/light.glsl\"\nuniform light_settings light;\n"
+                                       "uniform float unused_scale; /* declared, never read */\nuniform mat4 matrices[3];\nout vec4 colour;\n"
+                                       "void main() { colour = vec4(light.position * light.cutoff[1], 1.0) * matrices[2][0].x; }\n"}});
+  const program linked = load_program(shader_library(files.root), "main.vert", "main.frag");
+  CHECK(linked.location("light.position") >= 0);
+  CHECK(linked.location("light.cutoff[1]") >= 0);
+  CHECK(linked.location("matrices[2]") >= 0);
+  CHECK(linked.location("unused_scale") == -1);  // optimised away: allowed, setting it does nothing
+  linked.set("unused_scale", 2.0f);
+  CHECK(message_of([&] { linked.set("light.positon", glm::vec3(1.0f)); }) ==
+        "program main.vert + main.frag declares no uniform 'light.positon' (its uniforms: light, matrices, unused_scale)");
+  CHECK(message_of([&] { linked.set("lights.position", glm::vec3(1.0f)); }).find("declares no uniform 'lights.position'") != std::string::npos);
+  check_gl("setting uniforms");
+}
+
 TEST_CASE("driver logs of Mesa, NVIDIA and AMD are mapped to file:line") {
   const std::vector<std::string> names = {"main.frag", "lib/x.glsl"};
   CHECK(map_log_to_files("1:12(5): error: syntax error\n", names) == "  lib/x.glsl:12:5: error: syntax error\n");
