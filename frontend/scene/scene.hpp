@@ -1,6 +1,6 @@
 // Scenes the frontend renders: triangle geometry with a diffuse albedo per vertex, a camera and
 // one primary light (spot or directional). Built-in scenes are made in code, so the default job
-// needs no files; OBJ files load through frontend/obj_loader.hpp.
+// needs no files; OBJ files load through frontend/scene/obj_loader.hpp.
 #pragma once
 
 #include <cstdint>

@@ -1,6 +1,6 @@
-// Properties of the RSM gather (include/vplkit/rsm_gather.hpp), the shadow density (Alg. 4,
-// include/vplkit/shadow.hpp), the bilateral post filter (include/vplkit/bilateral.hpp) and the
-// RSM flux of the lights (include/vplkit/direct_light.hpp), on synthetic RSMs.
+// Properties of the RSM gather (include/vplkit/rsm_gather.hpp) on synthetic RSMs
+// (tests/kernels/synthetic_rsm.hpp): closed forms, visibility that never adds light, and the
+// share of the light the defaults find and remove.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -15,61 +15,11 @@
 #include <vplkit/shadow.hpp>
 
 #include "tests/closed_forms.hpp"
+#include "tests/kernels/synthetic_rsm.hpp"
 
 using namespace vplkit;
+using namespace vplkit::testing;
 
-namespace {
-
-constexpr int rsm_size = 256;
-constexpr double texel = 0.02;   // world units per RSM texel: the RSM covers 5.12 x 5.12
-constexpr double light_height = 10.0;
-
-// An orthographic light looking straight down (-y) at the origin; eye space x = world x,
-// eye y = -world z, eye z = world y - light_height.
-glm::dmat4 light_view() { return glm::lookAt(glm::dvec3(0, light_height, 0), glm::dvec3(0), glm::dvec3(0, 0, -1)); }
-glm::dmat4 light_view_projection() {
-  const double half = 0.5 * rsm_size * texel;
-  return glm::ortho(-half, half, -half, half, 0.1, 20.0) * light_view();
-}
-
-// A synthetic RSM: a floor at y = 0 (normal up) with flux 1 per texel, and optionally a block
-// [x0, x1] x [0, height] x all z standing on it, seen from above as its top face.
-struct synthetic_rsm {
-  double block_x0 = 1e9, block_x1 = 1e9, block_height = 0.0;
-  bool in_block(double x) const { return x >= block_x0 && x <= block_x1; }
-  glm::dvec3 world_of(glm::ivec2 t) const {
-    return {(t.x + 0.5 - rsm_size / 2) * texel, 0.0, -(t.y + 0.5 - rsm_size / 2) * texel};
-  }
-  rsm_texel<double> operator()(glm::ivec2 t) const {
-    glm::dvec3 p = world_of(t);
-    if (in_block(p.x)) p.y = block_height;
-    return {p, p.y - light_height, glm::dvec3(0, 1, 0), glm::dvec3(1.0)};
-  }
-};
-
-rsm_gather_settings<double> gather_settings() {
-  rsm_gather_settings<double> settings;
-  radial_pattern_settings<double> radial;
-  radial.paths = 32;
-  radial.samples_per_path = 16;
-  radial.max_radius = 120.0;
-  settings.radial = make_radial_pattern_constants(radial);
-  settings.light_view = light_view();
-  settings.rsm_size = glm::ivec2(rsm_size);
-  return settings;
-}
-
-// A receiver at height h above the floor, facing down (the underside of a table).
-gather_receiver<double> receiver_at(glm::dvec3 position, glm::uvec2 pixel) {
-  return {position, glm::dvec3(0, -1, 0), glm::dvec2(map_coordinate(light_view_projection(), position, glm::ivec2(rsm_size))), pixel};
-}
-
-template <rsm_visibility V>
-glm::dvec3 gather(const synthetic_rsm& rsm, const gather_receiver<double>& receiver) {
-  return gather_rsm<rsm_pattern::radial, V>(receiver, rsm, gather_settings());
-}
-
-}  // namespace
 
 TEST_CASE("gather of a uniform floor matches the closed form of a Lambertian disk source") {
   // A receiver at height h over an infinite Lambertian floor of radiosity B = flux / texel area
@@ -168,109 +118,6 @@ TEST_CASE("a block between a receiver and the far floor: Alg. 6 removes the shar
   CHECK(ratio < 1.05);
 }
 
-TEST_CASE("Alg. 4: a flat lit floor is lit, an occluder's shadow is dark, the window softens the edge") {
-  // Depths of the synthetic scene: floor at y = 0 (eye depth -10), block top at eye depth -9.2.
-  synthetic_rsm scene;
-  scene.block_x0 = 0.3;
-  scene.block_x1 = 0.8;
-  scene.block_height = 0.8;
-  const auto depth = [&](glm::ivec2 t) { return scene(t).eye_depth; };
-  const shadow_density_settings<double> settings;  // kernel 4, bias 0.02
-  const auto density_at = [&](double x) {
-    const glm::dvec3 floor_point(x, 0.0, 0.1);
-    return shadow_density(map_coordinate(light_view_projection(), floor_point, glm::ivec2(rsm_size)), floor_point.y - light_height,
-                          glm::dvec2(0.0), depth, glm::ivec2(rsm_size), settings);
-  };
-  CHECK(density_at(-1.0) == 1.0);  // open floor
-  CHECK(density_at(0.5) == 0.0);   // under the block (the light looks straight down)
-  const double edge = density_at(0.3);  // straddling the block's edge: partly shadowed
-  CHECK(edge > 0.0);
-  CHECK(edge < 1.0);
-  // The block's own top is lit: its window sees only itself (and the lower floor beyond it).
-  const glm::dvec3 top(0.55, 0.8, 0.1);
-  CHECK(shadow_density(map_coordinate(light_view_projection(), top, glm::ivec2(rsm_size)), top.y - light_height, glm::dvec2(0.0), depth,
-                       glm::ivec2(rsm_size), settings) == 1.0);
-  // Outside the RSM counts as not lit (Alg. 4, line 5).
-  CHECK(shadow_density(glm::dvec2(-10.0), -10.0, glm::dvec2(0.0), depth, glm::ivec2(rsm_size), settings) == 0.0);
-}
-
-TEST_CASE("Alg. 4: the receiver-plane gradient removes self-shadowing of a slope; without it the slope shadows itself") {
-  // A slope whose depth falls 0.05 per RSM texel in x: a 4 x 4 window spans 0.2 of depth.
-  const auto slope_depth = [](glm::ivec2 t) { return -10.0 - 0.05 * (t.x + 0.5 - 128.0); };
-  const shadow_density_settings<double> settings;
-  const glm::dvec2 centre(128.3, 100.6);
-  const double receiver = -10.0 - 0.05 * (centre.x - 128.0);
-  CHECK(shadow_density(centre, receiver, glm::dvec2(-0.05, 0.0), slope_depth, glm::ivec2(256), settings) == 1.0);
-  CHECK(shadow_density(centre, receiver, glm::dvec2(0.0), slope_depth, glm::ivec2(256), settings) < 1.0);
-}
-
-TEST_CASE("bilateral filter keeps a constant image and does not blur across a depth edge") {
-  const glm::ivec2 size(32, 32);
-  bilateral_settings<double> settings;
-  // Constant irradiance on one plane: unchanged.
-  const auto constant = [](glm::ivec2) { return bilateral_tap<double>{glm::dvec3(0.7, 0.2, 0.1), -5.0, glm::dvec3(0, 0, 1)}; };
-  const glm::dvec3 kept = bilateral_filter(glm::dvec2(10.5, 20.5), -5.0, glm::dvec3(0, 0, 1), constant, size, settings);
-  CHECK(kept.x == doctest::Approx(0.7).epsilon(1e-12));
-  CHECK(kept.y == doctest::Approx(0.2).epsilon(1e-12));
-  // Left half near (depth -5, irradiance 1), right half far (depth -10, irradiance 0): a pixel
-  // next to the edge on the near side keeps its value; a plain blur would mix in about 0.4.
-  const auto step = [](glm::ivec2 t) {
-    return t.x < 16 ? bilateral_tap<double>{glm::dvec3(1.0), -5.0, glm::dvec3(0, 0, 1)}
-                    : bilateral_tap<double>{glm::dvec3(0.0), -10.0, glm::dvec3(0, 0, 1)};
-  };
-  CHECK(bilateral_filter(glm::dvec2(15.5, 16.5), -5.0, glm::dvec3(0, 0, 1), step, size, settings).x > 0.999);
-  CHECK(bilateral_filter(glm::dvec2(16.5, 16.5), -10.0, glm::dvec3(0, 0, 1), step, size, settings).x < 0.001);
-  // The same across a crease (normals at 90 degrees, equal depth).
-  const auto crease = [](glm::ivec2 t) {
-    return t.x < 16 ? bilateral_tap<double>{glm::dvec3(1.0), -5.0, glm::dvec3(0, 0, 1)}
-                    : bilateral_tap<double>{glm::dvec3(0.0), -5.0, glm::dvec3(1, 0, 0)};
-  };
-  CHECK(bilateral_filter(glm::dvec2(15.5, 16.5), -5.0, glm::dvec3(0, 0, 1), crease, size, settings).x == doctest::Approx(1.0));
-  // Separable: each axis alone keeps the constant too.
-  CHECK(bilateral_filter_axis(glm::dvec2(3.5, 3.5), -5.0, glm::dvec3(0, 0, 1), constant, size, 0, settings).z ==
-        doctest::Approx(0.1).epsilon(1e-12));
-  // Weights: spatial Gaussian (exp(-1/2) at one sigma), relative depth, normal power.
-  CHECK(bilateral_weight(glm::dvec2(4.0, 0.0), -5.0, -5.0, glm::dvec3(0, 0, 1), glm::dvec3(0, 0, 1), settings) ==
-        doctest::Approx(std::exp(-0.5)).epsilon(1e-12));
-  CHECK(bilateral_weight(glm::dvec2(0.0), -10.0, -10.5, glm::dvec3(0, 0, 1), glm::dvec3(0, 0, 1), settings) ==
-        doctest::Approx(std::exp(-0.5)).epsilon(1e-12));  // 5% of the depth = one depth sigma
-  const glm::dvec3 tilted(std::sin(0.5), 0.0, std::cos(0.5));
-  CHECK(bilateral_weight(glm::dvec2(0.0), -5.0, -5.0, glm::dvec3(0, 0, 1), tilted, settings) ==
-        doctest::Approx(std::pow(std::cos(0.5), 8)).epsilon(1e-12));
-}
-
-TEST_CASE("RSM flux: the texels of a spot light's RSM cover the frustum's solid angle") {
-  // A square frustum of half-angle a subtends 4 asin(sin^2 a); the texel solid angles must add
-  // up to it (a midpoint rule of the exact cos^3 density).
-  for (double half_angle : {0.3, 0.7, 1.2}) {
-    const double t = std::tan(half_angle);
-    const int size = 256;
-    double total = 0.0;
-    for (int y = 0; y < size; ++y)
-      for (int x = 0; x < size; ++x) {
-        const glm::dvec2 ndc((x + 0.5) / size * 2 - 1, (y + 0.5) / size * 2 - 1);
-        total += perspective_texel_solid_angle(ndc, t, glm::ivec2(size));
-      }
-    const double exact = 4.0 * std::asin(std::sin(half_angle) * std::sin(half_angle));
-    CAPTURE(half_angle);
-    CHECK(total == doctest::Approx(exact).epsilon(1e-4));
-  }
-  // A texel flux is albedo * I * cone * solid angle, and nothing for a surface facing away.
-  spot_light<double> light;
-  light.position = {0, 2, 0};
-  light.intensity = glm::dvec3(5.0);
-  const glm::dvec3 albedo(0.5), below(0, 0, 0);
-  const double omega = perspective_texel_solid_angle(glm::dvec2(0.0), 1.0, glm::ivec2(64));
-  CHECK(spot_light_texel_flux(albedo, below, glm::dvec3(0, 1, 0), light, glm::dvec2(0.0), 1.0, glm::ivec2(64)).x ==
-        doctest::Approx(0.5 * 5.0 * omega));
-  CHECK(spot_light_texel_flux(albedo, below, glm::dvec3(0, -1, 0), light, glm::dvec2(0.0), 1.0, glm::ivec2(64)).x == 0.0);
-  directional_light<double> sun;
-  sun.irradiance = glm::dvec3(2.0);
-  CHECK(directional_light_texel_flux(albedo, glm::dvec3(0, 1, 0), sun, 0.01).y == doctest::Approx(0.01));
-  CHECK(directional_light_texel_flux(albedo, glm::dvec3(0, -1, 0), sun, 0.01).y == 0.0);
-  CHECK(directional_light_irradiance(glm::dvec3(0, 1, 0), sun).z == doctest::Approx(2.0));
-}
-
 namespace {
 
 // A flat floor lit uniformly, seen by an orthographic light from straight above, covering
@@ -285,6 +132,7 @@ struct flat_rsm {
 };
 
 }  // namespace
+
 
 TEST_CASE("at the default settings the radial gather finds the light of the whole RSM (within 10 %), whatever the RSM's size") {
   // The defaults scale the radius with the RSM (default_rsm_gather_settings). Over a uniformly

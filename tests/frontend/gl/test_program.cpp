@@ -1,5 +1,5 @@
 // The program loader: #include expansion, file:line in errors, and the failure messages for
-// missing files and bad GLSL (frontend/program.hpp).
+// missing files and bad GLSL (frontend/gl/program.hpp).
 #include <doctest/doctest.h>
 
 #include <filesystem>

@@ -1,5 +1,5 @@
 // Render targets: several float and integer attachments at once, readback, and the RGBA16F
-// rounding (frontend/render_target.hpp).
+// rounding (frontend/gl/render_target.hpp).
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -12,7 +12,7 @@
 
 using namespace vplkit;
 
-TEST_CASE("RGBA32F, RGBA16F and RGBA32UI attachments are written in one pass and read back") {
+TEST_CASE("two RGBA32F and one RGBA32UI attachments are written in one pass and read back") {
   const shader_library& shaders = parity::test_shaders();
   parity::kernel_source source;
   source.name = "write three targets";
@@ -32,6 +32,7 @@ TEST_CASE("RGBA32F, RGBA16F and RGBA32UI attachments are written in one pass and
     for (int x = 0; x < inputs.width; ++x) {
       const std::size_t i = static_cast<std::size_t>(y * inputs.width + x);
       REQUIRE(out.floats[0][i] == glm::vec4(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f, 1.0f / 3.0f, -2.5e7f));
+      REQUIRE(out.floats[1][i] == glm::vec4(1.0f / 3.0f, 65504.0f, 1e-3f, -0.0f));  // 32-bit: exact
       REQUIRE(out.uints[0][i] == glm::uvec4(x, y, 0xdeadbeefu, 7u));
     }
   }

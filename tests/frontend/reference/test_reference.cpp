@@ -1,4 +1,4 @@
-// The CPU reference (frontend/reference.hpp): closed forms for the direct light and for one
+// The CPU reference (frontend/reference/reference.hpp): closed forms for the direct light and for one
 // bounce off a uniformly lit floor, determinism, and the brute-force RSM gather with visibility
 // converging to the RSM-free Monte Carlo reference as the RSM resolution grows; the brute force
 // against the polygon form factor, with and without a known occluder, and the pattern's own

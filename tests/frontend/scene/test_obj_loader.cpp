@@ -1,4 +1,4 @@
-// The OBJ loader (frontend/obj_loader.hpp): good files load with their MTL colours, malformed
+// The OBJ loader (frontend/scene/obj_loader.hpp): good files load with their MTL colours, malformed
 // files are reported with file:line.
 #include <doctest/doctest.h>
 

@@ -1,4 +1,4 @@
-// The Light Wave pipeline (frontend/lightwave_pipeline.hpp): its vertex stage against the CPU sum
+// The Light Wave pipeline (frontend/techniques/lightwave/lightwave_pipeline.hpp): its vertex stage against the CPU sum
 // of Eq. 4.5 through transform feedback, every mode at a small size, rebuilds only on change,
 // the shadow-map memory of Eq. 5.4/5.5, and bad settings.
 #include <doctest/doctest.h>
