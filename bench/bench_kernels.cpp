@@ -106,7 +106,7 @@ BENCHMARK_TEMPLATE(gather_cost, vplkit::rsm_visibility::none);
 BENCHMARK_TEMPLATE(gather_cost, vplkit::rsm_visibility::alg3);
 BENCHMARK_TEMPLATE(gather_cost, vplkit::rsm_visibility::alg6);
 
-// Form factors (paper 004): the clipped polygon-to-point against the point-to-point kernel, one
+// Form factors ([FG]): the clipped polygon-to-point against the point-to-point kernel, one
 // quad each, and the whole gather over a 6 x 4 x 4 distance cube map.
 struct form_factor_inputs {
   std::vector<glm::vec3> normals = std::vector<glm::vec3>(1024), offsets = std::vector<glm::vec3>(1024);

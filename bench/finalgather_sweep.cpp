@@ -1,4 +1,4 @@
-// Final gathering (paper 004) on the current GL implementation: ms per frame for M = 2 and 4,
+// Final gathering ([FG]) on the current GL implementation: ms per frame for M = 2 and 4,
 // each variant (polygon-to-point, point-to-point, environment map), sphere against bunny. The
 // paper's figure to compare with: 150 FPS point-to-point against 32 FPS polygon-to-point (a
 // sphere of ~2300 faces, 700 x 700, GeForce 7950 GX2): polygon 4.7x the cost of point.
@@ -23,7 +23,7 @@ namespace fs = std::filesystem;
 using namespace vplkit;
 
 int main(int argc, char** argv) {
-  CLI::App app{"final gathering sweep (paper 004)"};
+  CLI::App app{"final gathering sweep ([FG])"};
   int size = 256, repeat = 5;
   std::string out = "output/bench", bunny = "meshes/bunny.obj";
   app.add_option("--size", size, "image side (the paper: 700)")->check(CLI::Range(16, 2048))->capture_default_str();

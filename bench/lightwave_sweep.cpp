@@ -1,4 +1,4 @@
-// Light Wave sweep (paper 003, chapter 5) on the current GL implementation: the structure of
+// Light Wave sweep ([LW], chapter 5) on the current GL implementation: the structure of
 // Tables 5.1-5.9 (FPS and % similarity to the default configuration while varying the ray angle,
 // VPLs per ray, resolution and indirect shadow maps, and the alternative methods), Table 5.10's
 // ranking (Eq. 5.3), Tables 5.11-5.13 (integrated shadows over the steps) and 5.14-5.15 (scene
@@ -81,7 +81,7 @@ std::string fixed(double value, int digits) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Light Wave sweep (paper 003, Tables 5.1-5.15)"};
+  CLI::App app{"Light Wave sweep ([LW], Tables 5.1-5.15)"};
   int width = 320, height = 180, repeat = 3;
   bool quick = false;
   std::string out = "output/bench";

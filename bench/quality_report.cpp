@@ -5,13 +5,13 @@
 // Writes report.md, image strips (render | reference | error) and an error-against-time plot
 // (gnuplot, when installed). Generated, not committed.
 // Ground truth, like with like:
-// - RSM techniques (paper 000): their indirect irradiance against the brute-force gather of every
+// - RSM techniques ([RSMV]): their indirect irradiance against the brute-force gather of every
 //   RSM texel with exact visibility on the same RSM and G-buffer (bench/rsm_measure.hpp), raw and
 //   filtered, over the covered receivers, mean of --seeds pattern seeds; the leak region is where
 //   exact visibility removes >= 20 % of the light. A second table compares final images with the
 //   one-bounce Monte Carlo reference.
-// - Light Wave (paper 003): final images against the one-bounce Monte Carlo reference.
-// - Final gathering (paper 004): the exact per-patch irradiance of the room without self-shadowing.
+// - Light Wave ([LW]): final images against the one-bounce Monte Carlo reference.
+// - Final gathering ([FG]): the exact per-patch irradiance of the room without self-shadowing.
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -132,8 +132,8 @@ int main(int argc, char** argv) {
           "gather, final images with the one-bounce Monte Carlo image (metrics on linear radiance: RMSE, relative MSE, PSNR, SSIM on luminance, "
           "Alg. 1 similarity), final gathering with the exact per-patch irradiance.\n";
 
-    // ---- RSM techniques (paper 000): the indirect light against the brute force of the same frame ----
-    md << "\n## RSM gather against the brute force (paper 000, Fig. 5.1d)\n\n"
+    // ---- RSM techniques ([RSMV]): the indirect light against the brute force of the same frame ----
+    md << "\n## RSM gather against the brute force ([RSMV], Fig. 5.1d)\n\n"
        << "The indirect irradiance of each technique against the brute-force gather of every lit RSM texel with exact (ray-cast) visibility, on "
           "the same RSM and G-buffer: a " << rsm_frame_size << "^2 frame (indirect " << (rsm_frame_size + 1) / 2 << "^2), RSM " << rsm_frame_size
        << "^2, at every " << stride << "th receiver of the indirect buffer per axis that the gather covers (in front of the light, inside its "
@@ -237,7 +237,7 @@ int main(int argc, char** argv) {
       }
     }
 
-    // ---- Light Wave (paper 003) ----
+    // ---- Light Wave ([LW]) ----
     for (const std::string scene_name : {"boxes", "teapot"}) {
       scene source;
       try {
@@ -248,7 +248,7 @@ int main(int argc, char** argv) {
       }
       std::cerr << scene_name << ": reference\n";
       const one_bounce_images reference = reference_one_bounce(source, size, size, samples, 1u, hardware_threads());
-      md << "\n## " << scene_name << " (Light Wave, paper 003)\n\n| technique | ms | RMSE | rel. MSE | PSNR | SSIM | % similar | factor < 0.95 |\n"
+      md << "\n## " << scene_name << " (Light Wave, [LW])\n\n| technique | ms | RMSE | rel. MSE | PSNR | SSIM | % similar | factor < 0.95 |\n"
             "|---|---:|---:|---:|---:|---:|---:|---:|\n";
       // Every technique, and the accurate shadows in the thesis's own variant; the last column is
       // the share of surface pixels whose indirect shadow factor is below 0.95.
@@ -291,9 +291,9 @@ int main(int argc, char** argv) {
       md << "\n![" << scene_name << " lightwave-accurate | reference | error](" << scene_name << "-lightwave-accurate.png)\n";
     }
 
-    // ---- Final gathering (paper 004) ----
+    // ---- Final gathering ([FG]) ----
     {
-      md << "\n## Final gathering (paper 004): the object approaching a wall\n\nIndirect irradiance on the object's pixels against the exact per-patch "
+      md << "\n## Final gathering ([FG]): the object approaching a wall\n\nIndirect irradiance on the object's pixels against the exact per-patch "
             "reference (no self-shadowing, the paper's assumption), relative error max and mean; and how much the "
             "object itself changes its irradiance on average (Monte Carlo, Embree: it blocks part of its view of the room and reflects its own "
             "direct light into its concavities), the effect the paper's assumption leaves out.\n\n"

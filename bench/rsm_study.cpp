@@ -1,4 +1,4 @@
-// The study behind the RSM gather's defaults (paper 000): radius x paths x samples x slots,
+// The study behind the RSM gather's defaults ([RSMV]): radius x paths x samples x slots,
 // measured against the brute-force gather of the same frame (the thesis's Fig. 5.1d), with
 // and without exact visibility, and timed in the same run.
 //   build/bench/vplkit_rsm_study [--scenes cornell-box,indirect-shadow,occluder,occluder-white,atrium]
@@ -70,7 +70,7 @@ std::vector<std::string> split(const std::string& text) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"RSM gather study (paper 000): radius x paths x samples x slots against the brute force, with cost"};
+  CLI::App app{"RSM gather study ([RSMV]): radius x paths x samples x slots against the brute force, with cost"};
   std::string scenes_text = "cornell-box,indirect-shadow,occluder,occluder-white,atrium", out = "output/study", timing_scene = "atrium";
   std::string radii_text = "0.0625,0.125,0.25,0.5,0.75,1", samples_text = "15x10,20x15,30x20", slots_text = "4,5,8,12,16";
   int size = 512, rsm_size = 512, stride = 4, seeds = 4, repeat = 3;

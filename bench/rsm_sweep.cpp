@@ -1,5 +1,5 @@
 // Frame-level sweep of the RSM pipeline on the current GL implementation (OSMesa/llvmpipe),
-// in the structure of paper 000's Tables 5.1-5.3, plus a parameter sweep, the full against the
+// in the structure of [RSMV]'s Tables 5.1-5.3, plus a parameter sweep, the full against the
 // separable post filter, and the CPU gather (the C++ mirror, all cores) against the GL gather.
 // GPU times come from GL timer queries (median of --repeat frames after a warm-up frame).
 //   build/bench/vplkit_rsm_sweep [--scene atrium] [--size 512] [--rsm-size 512] [--repeat 3]
@@ -110,7 +110,7 @@ double pass(const measurement& m, const std::string& name) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"RSM pipeline sweep (paper 000, Tables 5.1-5.3)"};
+  CLI::App app{"RSM pipeline sweep ([RSMV], Tables 5.1-5.3)"};
   std::string scene_name = "atrium", out = "output/bench";
   int size = 512, rsm_size = 512, repeat = 3;
   bool quick = false;

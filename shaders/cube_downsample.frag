@@ -1,6 +1,6 @@
 #version 330 core
 // Final gathering, pass 2: each face averaged down from face_size^2 to M^2 texels, radiance and
-// distance alike (paper 004, section 4). Faces lie side by side: texel (face * size + i, j).
+// distance alike ([FG], section 4). Faces lie side by side: texel (face * size + i, j).
 uniform sampler2D faces;
 uniform int face_size;
 uniform int resolution;

@@ -1,5 +1,5 @@
 #version 330 core
-// Final gathering, pass 1 (paper 004, section 4): one face of the cube map around the reference
+// Final gathering, pass 1 ([FG], section 4): one face of the cube map around the reference
 // point o: [radiance | distance from o] of the environment (the object is left out). The
 // environment's radiance is its direct light: albedo / pi * E_spot.
 #include "lib/direct_light.glsl"

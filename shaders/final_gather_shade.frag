@@ -1,5 +1,5 @@
 #version 330 core
-// Final gathering, shading (paper 004): the environment with its direct light; the object with
+// Final gathering, shading ([FG]): the environment with its direct light; the object with
 // direct light plus the indirect irradiance of the variant: VPLKIT_FINAL_GATHER 0 polygon-to-point,
 // 1 point-to-point (lib/final_gather.glsl), 2 the classic environment-map lookup.
 // Writes [radiance | 1] and [indirect irradiance | 1].

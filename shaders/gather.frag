@@ -1,5 +1,5 @@
 #version 330 core
-// Pass 3, RSM sampling (paper 000, section 4.4): the gather at the indirect buffer's resolution,
+// Pass 3, RSM sampling ([RSMV], section 4.4): the gather at the indirect buffer's resolution,
 // one G-buffer sample per texel (G-buffer texel = indirect texel * divisor). Writes
 // [irradiance | camera eye depth] (Fig. 4.4). VPLKIT_RSM_PATTERN and VPLKIT_VISIBILITY select
 // the variant (lib/rsm_gather.glsl).

@@ -1,5 +1,5 @@
 #version 330 core
-// Pass 2, G-buffer generation (paper 000, Fig. 4.3): [world position | camera eye depth],
+// Pass 2, G-buffer generation ([RSMV], Fig. 4.3): [world position | camera eye depth],
 // [albedo | shadow density (Alg. 4)], [world normal | -].
 #include "lib/shadow.glsl"
 #include "lib/transform.glsl"

@@ -1,5 +1,5 @@
 #version 330 core
-// Light Wave main pass, fragment stage (paper 003, section 4.3, Eq. 4.9):
+// Light Wave main pass, fragment stage ([LW], section 4.3, Eq. 4.9):
 //   colour = direct * shadow + indirect * indirect_shadow
 // VPLKIT_LIGHTWAVE_MODE: 0 direct only, 1 faked indirect (Eq. 5.2), 2 indirect without shadows,
 // 3 accurate indirect shadows (the VPL shadow maps), 4 integrated indirect shadows (lookups

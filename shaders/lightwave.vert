@@ -1,5 +1,5 @@
 #version 330 core
-// Light Wave main pass, vertex stage (paper 003, section 4.2): the indirect colour of each vertex
+// Light Wave main pass, vertex stage ([LW], section 4.2): the indirect colour of each vertex
 // from all VPLs (Eq. 4.5, lib/lightwave.glsl), read from a float texture: texel (0, i) holds
 // [position | attenuation] of VPL i, texel (1, i) its [normal | -]. No [0, 1] encoding (Eq. 4.3,
 // 4.4) is needed with float textures.

@@ -1,5 +1,5 @@
 #version 330 core
-// Pass 4, post processing (paper 000, section 4.5): the indirect buffer upsampled and blurred
+// Pass 4, post processing ([RSMV], section 4.5): the indirect buffer upsampled and blurred
 // by the bilateral filter (full 2D, or the y axis over pass 4a's output when VPLKIT_SEPARABLE),
 // then direct light from the G-buffer (albedo, shadow density) plus indirect:
 //   radiance = albedo / pi * (E_direct * shadow_density + E_indirect).

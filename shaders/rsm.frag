@@ -1,5 +1,5 @@
 #version 330 core
-// Pass 1, RSM generation (paper 000, Fig. 4.2): [world position | light eye depth],
+// Pass 1, RSM generation ([RSMV], Fig. 4.2): [world position | light eye depth],
 // [world normal | -], [reflected flux | -]. VPLKIT_LIGHT_DIRECTIONAL selects the light.
 #include "lib/direct_light.glsl"
 #include "lib/transform.glsl"

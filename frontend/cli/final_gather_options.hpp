@@ -1,4 +1,4 @@
-// The final-gathering techniques of `vplkit render` (paper 004: finalgather-polygon,
+// The final-gathering techniques of `vplkit render` ([FG]: finalgather-polygon,
 // finalgather-point and the envmap baseline): their options, the pipeline settings made from
 // them, and the images `render` writes. They render their own room around one dynamic object,
 // so they read no --scene.

@@ -1,4 +1,4 @@
-// The Light Wave techniques of `vplkit render` (paper 003: lightwave-direct, -faked,
+// The Light Wave techniques of `vplkit render` ([LW]: lightwave-direct, -faked,
 // -unshadowed, -accurate, -integrated): their options, each scoped to the techniques that read
 // it, the pipeline settings made from them, and the images `render` writes.
 #pragma once

@@ -1,4 +1,4 @@
-// The RSM techniques of `vplkit render` and `vplkit view` (paper 000: direct, rsm-original,
+// The RSM techniques of `vplkit render` and `vplkit view` ([RSMV]: direct, rsm-original,
 // rsm-radial, rsm-alg2, rsm-alg3, rsm-alg6): their options, each scoped to the techniques that
 // read it, the pipeline settings made from them, and the images `render` writes.
 #pragma once

@@ -30,7 +30,7 @@ class gpu_timer {
   bool open_ = false;
 };
 
-/// "pass | ms | %" table with a total row, in the layout of Table 5.3 of paper 000.
+/// "pass | ms | %" table with a total row, in the layout of Table 5.3 of [RSMV].
 std::string format_pass_table(const std::vector<pass_time>& times);
 
 }  // namespace vplkit

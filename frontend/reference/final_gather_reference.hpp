@@ -1,4 +1,4 @@
-// The exact reference of paper 004's indirect irradiance in the final-gathering room: the walls
+// The exact reference of [FG]'s indirect irradiance in the final-gathering room: the walls
 // cut into small patches, each gathered with the polygon-to-point form factor (exact for a
 // planar polygon), in double precision. It judges both form factors of the technique.
 #pragma once

@@ -1,4 +1,4 @@
-// Ground truth on the CPU, ray cast with Intel Embree: the brute-force RSM gather of paper 000's
+// Ground truth on the CPU, ray cast with Intel Embree: the brute-force RSM gather of [RSMV]'s
 // Fig. 5.1d (every pixel light of the RSM at every G-buffer point, with exact visibility or
 // without), and a one-bounce Monte Carlo reference that does not depend on the RSM (direct light
 // plus one diffuse bounce of direct light, path traced). Deterministic for a seed (per-pixel

@@ -122,7 +122,7 @@ void add_cylinder(mesh& target, glm::vec3 base, float radius, float height, int 
 /// the scale of the thesis's Sponza (262k), for timing the geometry passes.
 scene make_instanced_scene();
 
-/// Light Wave's box scene (paper 003): three boxes, 36 triangles, a spot light above them.
+/// Light Wave's box scene ([LW]): three boxes, 36 triangles, a spot light above them.
 scene make_boxes_scene();
 
 /// Light Wave's teapot scenes: the npm `teapot` mesh (992 triangles, meshes/teapot.obj from the

@@ -1,4 +1,4 @@
-// The post filter of paper 000 (section 4.5): the half-resolution indirect irradiance is
+// The post filter of [RSMV] (section 4.5): the half-resolution indirect irradiance is
 // upsampled and blurred by an edge-aware (bilateral) kernel of size 17 whose weight falls with
 // the distance, the depth difference and the normal difference.
 //

@@ -1,4 +1,4 @@
-// The primary lights of the RSM pipeline (paper 000 renders its RSM from a spot or a
+// The primary lights of the RSM pipeline ([RSMV] renders its RSM from a spot or a
 // directional light): direct irradiance, and the flux an RSM texel reflects.
 //
 // Spot light:  E(x, n) = I * cone(cos_axis) * max(0, <n, l>) / max(|p - x|, min_distance)^2

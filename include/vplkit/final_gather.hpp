@@ -1,4 +1,4 @@
-// Diffuse final gathering from a distance cube map (paper 004): the environment of a dynamic
+// Diffuse final gathering from a distance cube map ([FG]): the environment of a dynamic
 // object, seen from its reference point o, is stored as 6 faces of M x M texels holding the
 // average radiance and the average distance from o of what each texel sees. Each texel stands
 // for a quad area light whose corners lie along the texel's corner directions at the distances

@@ -1,4 +1,4 @@
-// Form factors for diffuse final gathering (paper 004, Umenhoffer and Szirmay-Kalos 2007).
+// Form factors for diffuse final gathering ([FG], Umenhoffer and Szirmay-Kalos 2007).
 //
 // point_form_factor(x, n, y, ny): the differential kernel max(0, cos_x) max(0, cos_y) / (pi r^2)
 // per unit area at y: a virtual point light of area A at y gives x the form factor ~ A times it.
@@ -16,7 +16,7 @@
 // polygon_form_factor_unclipped: the paper's variant, kept under its own name: the same sum
 // with no clipping, for the winding the paper assumes (counter-clockwise seen from x) and the
 // sum clamped at 0 ("max(ff, 0)"). It uses the per-edge angle, not the printed listing's
-// dot(r1, r2) on every edge (SEED_NOTES, C).
+// dot(r1, r2) on every edge (docs/errata.md, FG-1).
 //
 // GLSL twin: shaders/lib/form_factor.glsl.
 #pragma once

@@ -1,6 +1,6 @@
 // Irradiance at a receiver due to one pixel light (a VPL) of a reflective shadow map.
 //
-// Paper 000 (Reflective Shadow Maps with a visibility approximation), Eq. 3.2:
+// [RSMV] (reflective shadow maps with a visibility approximation, docs/papers.md), Eq. 3.2:
 //   E_p(x, n) = Phi_p * max(0, <n_p, x - x_p>) * max(0, <n, x_p - x>) / |x - x_p|^4
 // The equation is singular as x_p approaches x. The thesis is silent about it; every public RSM
 // implementation clamps the distance, and so does this one, through an explicit setting

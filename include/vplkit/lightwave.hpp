@@ -1,4 +1,4 @@
-// Light Wave (paper 003, Larson 2012): virtual point lights floating in space on hemispheres
+// Light Wave ([LW], Larson 2012): virtual point lights floating in space on hemispheres
 // stacked around the primary light, their per-vertex contribution with a lobe widened to 240
 // degrees, the counting of the integrated indirect shadows, and the thesis's image comparison.
 //
@@ -8,7 +8,7 @@
 // lie `per_ray` VPLs, one per hemisphere h = 0 .. per_ray - 1, at the distance
 // max_distance * (1 - 2^-(h+1)) (Eq. 4.1 with i = h + 1), with the attenuation 0.05 * 2^h
 // (Eq. 4.2: 5%, 10%, 20%, 40%, 80%). The paper indexes the two formulas inconsistently; this
-// reading reproduces both of its number sequences (SEED_NOTES, B). A VPL's normal is its ray's
+// reading reproduces both of its number sequences (docs/errata.md, LW-1). A VPL's normal is its ray's
 // direction: the light's direction rotated by the polar angle about an axis perpendicular to it,
 // then by the azimuth about the light's direction. (The thesis's printed update overwrites
 // normal.x before it computes normal.y; this is the rotation it means.)
@@ -20,7 +20,7 @@
 //   light = clamp((<n_vpl, normalize(x - vpl)> + 0.5) / 1.5, 0, 1)        (the 240-degree lobe)
 //   indirect += albedo * obj * light * max(0, 1 - attenuation) + specular
 // with no distance falloff (the thesis has none). The factor 1 - attenuation goes negative from
-// the sixth hemisphere on (160%); it is clamped at 0 (SEED_NOTES). The specular term, which the
+// the sixth hemisphere on (160%); it is clamped at 0 (docs/errata.md, LW-2). The specular term, which the
 // thesis describes but does not print, is specular_strength * max(0, <reflect(l, n), v>)^exponent
 // with l = normalize(x - vpl), v = normalize(eye - x): a Phong lobe of the VPL seen in the mirror
 // direction, 0 for surfaces facing away from the VPL.
@@ -215,7 +215,7 @@ glm::vec<3, T, Q> lightwave_faked_indirect(const glm::vec<3, T, Q>& direct, T sh
   return direct * (T(0.5) * shadow) + direct * (multiplier - T(0.5));
 }
 
-/// Alg. 1, as SEED_NOTES fixes it: the percentage of similarity of two images given as `count`
+/// Alg. 1, as docs/errata.md (LW-4) fixes it: the percentage of similarity of two images given as `count`
 /// 8-bit channel values each: 100 * mean over channels of (min + 1) / (max + 1). (The printed
 /// pseudo-code divides the larger by the smaller, which contradicts its own example: 200 against
 /// 100 is "about 50% different" only as 101 / 201.) Identical images give 100.

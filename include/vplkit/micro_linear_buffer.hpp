@@ -1,4 +1,4 @@
-// The micro linear buffer of paper 000 (section 3.3): approximate visibility of the pixel lights
+// The micro linear buffer of [RSMV] (section 3.3): approximate visibility of the pixel lights
 // sampled along one path of the radial pattern, near to far, as seen from one shading point.
 //
 // Both points are in the light's eye space (xy is the horizontal plane). The elevation of the

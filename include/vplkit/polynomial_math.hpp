@@ -1,7 +1,7 @@
 // Sine and cosine from +, -, * and floor only, so that GLSL and C++ compute the same bits.
 //
 // GPU sin/cos (and llvmpipe's) are approximations that differ from the C library in the last
-// bits. The sampling patterns of paper 000 turn angles into RSM texel offsets, and a texel index
+// bits. The sampling patterns of [RSMV] turn angles into RSM texel offsets, and a texel index
 // taken with floor() flips when its offset moves by one ulp across an integer: with builtin
 // trigonometry, about 2% of gathered pixels would fetch a different pixel light on the GPU than
 // on the CPU. These polynomials are accurate to a few 1e-7 (float), more than the patterns

@@ -1,4 +1,4 @@
-// The per-receiver RSM gather of paper 000: Alg. 1 (with the visibility of Alg. 2 or 3) and
+// The per-receiver RSM gather of [RSMV]: Alg. 1 (with the visibility of Alg. 2 or 3) and
 // Alg. 5 (with the branch-free visibility of Alg. 6), or the original RSM gather with the disk
 // pattern. Returns the irradiance at the receiver due to the RSM's pixel lights.
 //

@@ -1,4 +1,4 @@
-// Where an RSM gather samples: the radial pattern of paper 000 (section 3.2, Alg. 1 and 5) and
+// Where an RSM gather samples: the radial pattern of [RSMV] (section 3.2, Alg. 1 and 5) and
 // the original RSM disk pattern (Dachsbacher and Stamminger 2005) as the baseline. Offsets are
 // in RSM texels from the receiver's projection onto the RSM; weights in texels^2 (the RSM area
 // a sample stands for), so sum(weight * E_p) estimates the sum of E_p over all pixel lights.
@@ -9,7 +9,7 @@
 // jitter) / P. Its weight (2 pi / P) * r * (r_(j+1) - r_j) is the inverse of its area density,
 // so the weighted sum is an unbiased estimate of the integral over the annulus, and since the
 // ring widths grow like r, the weight grows like r^2: "density decreases and weight grows with
-// the square of the distance" (SEED_NOTES derives the same for log-spaced radii). The inner disk
+// the square of the distance" (docs/errata.md, RSMV-2). The inner disk
 // r < r_min is not sampled: with the default r_min = 1 texel it is the receiver's own texel,
 // whose surface cannot light itself (Eq. 3.2 is 0 for coplanar points).
 // Per pixel, the whole pattern is rotated by up to one path spacing and scaled by a factor near

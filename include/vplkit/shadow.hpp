@@ -1,4 +1,4 @@
-// Shadow density (paper 000, Alg. 4): the fraction of a kernelSize x kernelSize window of RSM
+// Shadow density ([RSMV], Alg. 4): the fraction of a kernelSize x kernelSize window of RSM
 // depths around the receiver's projection that do not hide the receiver. 1 = fully lit,
 // 0 = fully in shadow; the G-buffer stores it and the post pass multiplies direct light by it.
 //
@@ -9,7 +9,7 @@
 // it, so the test that does what the thesis describes is
 //     lit  <=>  RSM.depth - zBias <= p.depth
 // (the printed >= would light every receiver behind an occluder and shadow every receiver by
-// its own surface). SEED_NOTES quotes the printed form; the discrepancy is decided by the
+// its own surface). docs/errata.md (RSMV-4) records the printed form; the discrepancy is decided by the
 // thesis's own description and tested on a synthetic occluder. Texels outside the RSM count as
 // not lit (Alg. 4, line 5); empty texels (depth >= 0, nothing there) hide nothing.
 //

@@ -1,4 +1,4 @@
-// GLSL twin of include/vplkit/bilateral.hpp: the edge-aware post filter of paper 000.
+// GLSL twin of include/vplkit/bilateral.hpp: the edge-aware post filter of [RSMV].
 // The including shader defines bilateral_tap bilateral_fetch(ivec2 texel).
 #ifndef VPLKIT_BILATERAL_GLSL
 #define VPLKIT_BILATERAL_GLSL

@@ -1,5 +1,5 @@
 // GLSL twin of include/vplkit/final_gather.hpp: cube-map geometry and the final-gathering sum of
-// paper 004. Define VPLKIT_FORM_FACTOR (0 polygon, 1 point) and provide
+// [FG]. Define VPLKIT_FORM_FACTOR (0 polygon, 1 point) and provide
 // `vec4 small_cube_fetch(int face, int i, int j)` ([radiance | distance]).
 #ifndef VPLKIT_FINAL_GATHER_GLSL
 #define VPLKIT_FINAL_GATHER_GLSL

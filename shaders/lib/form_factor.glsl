@@ -1,5 +1,5 @@
 // GLSL twin of include/vplkit/form_factor.hpp: point-to-point and polygon-to-point form factors
-// (paper 004), the polygon clipped at the tangent plane.
+// ([FG]), the polygon clipped at the tangent plane.
 #ifndef VPLKIT_FORM_FACTOR_GLSL
 #define VPLKIT_FORM_FACTOR_GLSL
 

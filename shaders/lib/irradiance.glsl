@@ -1,4 +1,4 @@
-// GLSL twin of include/vplkit/irradiance.hpp: Eq. 3.2 of paper 000 with the distance clamp.
+// GLSL twin of include/vplkit/irradiance.hpp: Eq. 3.2 of [RSMV] with the distance clamp.
 #ifndef VPLKIT_IRRADIANCE_GLSL
 #define VPLKIT_IRRADIANCE_GLSL
 

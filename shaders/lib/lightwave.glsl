@@ -1,5 +1,5 @@
 // GLSL twin of include/vplkit/lightwave.hpp: the Light Wave layout, lobe, Eq. 4.5 and the
-// integrated-shadow stepping of paper 003. The image comparison (Alg. 1) and the ranking
+// integrated-shadow stepping of [LW]. The image comparison (Alg. 1) and the ranking
 // (Eq. 5.3) are host-side evaluations of whole images and have no shader twin.
 #ifndef VPLKIT_LIGHTWAVE_GLSL
 #define VPLKIT_LIGHTWAVE_GLSL

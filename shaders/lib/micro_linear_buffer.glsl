@@ -1,4 +1,4 @@
-// GLSL twin of include/vplkit/micro_linear_buffer.hpp (paper 000, section 3.3, Alg. 2, 3, 6):
+// GLSL twin of include/vplkit/micro_linear_buffer.hpp ([RSMV], section 3.3, Alg. 2, 3, 6):
 // Alg. 2 and 3 keep one bit per slot, Alg. 6 an 8-bit claim count per slot (see the header).
 // elevation_slots comes from the C++ make_elevation_slots through a uniform, so the bucket
 // decisions are bit-identical on both sides; see the header.

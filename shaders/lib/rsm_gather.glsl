@@ -1,4 +1,4 @@
-// GLSL twin of include/vplkit/rsm_gather.hpp: the RSM gather of paper 000 (Alg. 1/5 with the
+// GLSL twin of include/vplkit/rsm_gather.hpp: the RSM gather of [RSMV] (Alg. 1/5 with the
 // visibility of Alg. 2, 3 or 6, or the original disk pattern).
 // Before including, define
 //   VPLKIT_RSM_PATTERN  0 radial, 1 disk

@@ -1,4 +1,4 @@
-// GLSL twin of include/vplkit/rsm_pattern.hpp: the radial pattern of paper 000 and the original
+// GLSL twin of include/vplkit/rsm_pattern.hpp: the radial pattern of [RSMV] and the original
 // RSM disk pattern, bit-identical offsets (hash.glsl, polynomial_math.glsl).
 #ifndef VPLKIT_RSM_PATTERN_GLSL
 #define VPLKIT_RSM_PATTERN_GLSL

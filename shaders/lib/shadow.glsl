@@ -1,4 +1,4 @@
-// GLSL twin of include/vplkit/shadow.hpp: shadow density, Alg. 4 of paper 000 (see the header
+// GLSL twin of include/vplkit/shadow.hpp: shadow density, Alg. 4 of [RSMV] (see the header
 // for the depth convention and the receiver-plane bias). The including shader defines
 // float rsm_depth_fetch(ivec2 texel).
 #ifndef VPLKIT_SHADOW_GLSL

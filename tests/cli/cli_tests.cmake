@@ -121,7 +121,7 @@ file(WRITE "${WORK}/good.obj" "v -1 0 -1\nv 1 0 -1\nv 0 1 0\nf 1 2 3\n")
 expect_success("an OBJ scene renders" "scene good \\(3 triangles\\)" "${VPLKIT}" render --scene "${WORK}/good.obj" --size 16 --rsm-size 32
                --out "${WORK}/good.png")
 
-# Light Wave (paper 003): every mode renders; bad settings are named.
+# Light Wave ([LW]): every mode renders; bad settings are named.
 foreach(technique lightwave-direct lightwave-faked lightwave-unshadowed lightwave-accurate lightwave-integrated)
   expect_success("render --technique ${technique}" "technique ${technique}.*shadow maps: [0-9.]+ MB.*wrote .*/${technique}\\.png"
                  "${VPLKIT}" render --technique ${technique} --size 64x36 --shadow-map-scale 1 --out "${WORK}/${technique}.png")
@@ -153,7 +153,7 @@ expect_failure("Light Wave shadow maps beyond memory" "GL_OUT_OF_MEMORY" "${WORK
 expect_failure("Light Wave with a directional light" "Light Wave needs a spot light" "${WORK}/lw7.png"
                "${VPLKIT}" render --technique lightwave-accurate --scene indirect-shadow --size 32 --out "${WORK}/lw7.png")
 
-# Final gathering (paper 004): the three variants; the object moved towards a wall; bad input.
+# Final gathering ([FG]): the three variants; the object moved towards a wall; bad input.
 foreach(technique finalgather-polygon finalgather-point envmap)
   expect_success("render --technique ${technique}" "technique ${technique}.*wrote .*/${technique}\\.png.*wrote .*/${technique}-indirect\\.png"
                  "${VPLKIT}" render --technique ${technique} --size 48 --face-size 32 --out "${WORK}/${technique}.png")

@@ -1,4 +1,4 @@
-// The final-gathering sum (include/vplkit/final_gather.hpp, paper 004): the cube-map geometry,
+// The final-gathering sum (include/vplkit/final_gather.hpp, [FG]): the cube-map geometry,
 // a closed environment of radiance 1, and an object approaching a wall against the exact form
 // factors.
 #include <doctest/doctest.h>

@@ -1,4 +1,4 @@
-// Form factors (include/vplkit/form_factor.hpp, paper 004): closed-form configuration factors
+// Form factors (include/vplkit/form_factor.hpp, [FG]): closed-form configuration factors
 // from the heat-transfer literature, Monte Carlo, closed surfaces, clipping, winding, and the
 // convergence of the point-to-point kernel.
 #include <doctest/doctest.h>

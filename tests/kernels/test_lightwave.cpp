@@ -1,5 +1,5 @@
 // Properties of the Light Wave kernels (include/vplkit/lightwave.hpp), against the numbers the
-// thesis prints (paper 003, Tables 5.1, 5.2 and 5.10, Eq. 4.2, 4.8).
+// thesis prints ([LW], Tables 5.1, 5.2 and 5.10, Eq. 4.2, 4.8).
 #include <doctest/doctest.h>
 
 #include <algorithm>

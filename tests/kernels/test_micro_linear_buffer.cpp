@@ -1,5 +1,5 @@
 // Properties of the micro linear buffer (include/vplkit/micro_linear_buffer.hpp): the elevation
-// bucket, Alg. 2, Alg. 3 and Alg. 6 of paper 000, and the situations of Figures 3.3 and 3.4.
+// bucket, Alg. 2, Alg. 3 and Alg. 6 of [RSMV], and the situations of Figures 3.3 and 3.4.
 #include <doctest/doctest.h>
 
 #include <array>

@@ -1,4 +1,4 @@
-// CPU/GPU parity of the form factors of paper 004: shaders/lib/form_factor.glsl against
+// CPU/GPU parity of the form factors of [FG]: shaders/lib/form_factor.glsl against
 // include/vplkit/form_factor.hpp, texel by texel, clipped and unclipped quads.
 #include <doctest/doctest.h>
 

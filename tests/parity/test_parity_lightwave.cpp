@@ -1,4 +1,4 @@
-// CPU/GPU parity of the Light Wave kernels (paper 003): the layout, the lobe and attenuation, the
+// CPU/GPU parity of the Light Wave kernels ([LW]): the layout, the lobe and attenuation, the
 // integrated-shadow stepping, Eq. 5.2, and Eq. 4.5 summed over a VPL texture in the vertex stage
 // (transform feedback), as the thesis evaluates it per vertex.
 #include <doctest/doctest.h>

@@ -1,4 +1,4 @@
-// The final-gathering pipeline of paper 004 for one dynamic object in a coloured box room:
+// The final-gathering pipeline of [FG] for one dynamic object in a coloured box room:
 // 1. the cube map around the object's centre o (6 faces, radiance and distance, the object left
 // out), 2. each face averaged down to M x M, 3. (baseline only) the irradiance environment map,
 // 4. a G-buffer of the camera view, 5. shading: the room with its direct light, the object with

@@ -1,4 +1,4 @@
-// The Light Wave pipeline of paper 003 (chapter 4): VPLs on hemispheres around the spot light
+// The Light Wave pipeline of [LW] (chapter 4): VPLs on hemispheres around the spot light
 // (laid out on the CPU by the lightwave kernels and uploaded to a float texture), shadow maps for
 // the light and for some VPLs in one depth texture array, and one main pass whose vertex stage
 // sums Eq. 4.5 over every VPL and whose fragment stage combines direct and indirect light with

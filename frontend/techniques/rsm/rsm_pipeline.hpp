@@ -1,4 +1,4 @@
-// The four-pass deferred pipeline of paper 000 (chapter 4): 1. RSM generation, 2. G-buffer
+// The four-pass deferred pipeline of [RSMV] (chapter 4): 1. RSM generation, 2. G-buffer
 // generation (with the shadow density of Alg. 4), 3. RSM sampling (the gather, at a reduced
 // resolution), 4. post processing (bilateral upsampling and blur, direct + indirect).
 // Techniques: direct light only, the original RSM (disk pattern, 400 samples), and the radial

@@ -1,4 +1,4 @@
-// The final-gathering pipeline (paper 004): the shading pass against its CPU mirror for every
+// The final-gathering pipeline ([FG]): the shading pass against its CPU mirror for every
 // variant and M = 4 and 2, the gathered irradiance against the exact reference, and the errors
 // for bad input. (The form factors' own parity test is tests/parity/test_parity_form_factor.cpp.)
 #include <doctest/doctest.h>

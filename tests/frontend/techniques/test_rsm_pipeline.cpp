@@ -1,4 +1,4 @@
-// The RSM pipeline of paper 000 (frontend/techniques/rsm/rsm_pipeline.hpp): its gather and post passes against
+// The RSM pipeline of [RSMV] (frontend/techniques/rsm/rsm_pipeline.hpp): its gather and post passes against
 // the CPU mirror (frontend/techniques/rsm/rsm_cpu_mirror.hpp) texel by texel, at small resolutions, for every
 // technique, both lights, both filters and both float formats; and properties of its output.
 #include <doctest/doctest.h>

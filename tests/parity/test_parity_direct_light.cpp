@@ -1,0 +1,47 @@
+// CPU/GPU parity of include/vplkit/direct_light.hpp against shaders/lib/direct_light.glsl: spot_light_irradiance, texel by
+// texel (tests/parity/parity_harness.hpp).
+#include <doctest/doctest.h>
+
+#include <array>
+#include <cstring>
+#include <random>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <vplkit/direct_light.hpp>
+
+#include "frontend/gl/settings_uniforms.hpp"
+#include "tests/parity/parity_harness.hpp"
+#include "tests/parity/parity_inputs.hpp"
+
+using namespace vplkit;
+using namespace vplkit::parity;
+
+TEST_CASE("parity: spot_light_irradiance") {
+  const kernel_inputs inputs = geometry_inputs(10);  // x, n used; the light is a uniform
+  spot_light<float> light;
+  light.position = {0.2f, 1.9f, -0.1f};
+  light.direction = glm::normalize(glm::vec3(0.1f, -1.0f, 0.05f));
+  light.intensity = {6.0f, 5.0f, 4.0f};
+  light.cos_inner = 0.6f;
+  light.cos_outer = 0.3f;
+  const irradiance_settings<float> settings{0.01f};
+  kernel_source source;
+  source.name = "spot_light_irradiance";
+  source.includes = {"lib/direct_light.glsl"};
+  source.declarations = "uniform spot_light light;\nuniform irradiance_settings settings;\n";
+  source.body = "fout0 = vec4(spot_light_irradiance(fin0.xyz, fin1.xyz, light, settings), 0.0);";
+  source.float_outputs = 1;
+  const kernel_outputs gpu = run_fragment(source, inputs, [&](const program& p) {
+    set_uniforms(p, "light", light);
+    set_uniforms(p, "settings", settings);
+  });
+  std::vector<glm::vec4> cpu(inputs.size());
+  for (std::size_t i = 0; i < inputs.size(); ++i)
+    cpu[i] = glm::vec4(spot_light_irradiance(glm::vec3(inputs.floats[0][i]), glm::vec3(inputs.floats[1][i]), light, settings), 0.0f);
+  // A sqrt, a divide per component, two dot products, the smoothstep polynomial: ~15 roundings,
+  // and the smoothstep input (cos_axis - cos_outer) cancels near the outer cone edge, where the
+  // result itself is near 0: 32 ulp, 1e-5 relative or 1e-6 absolute.
+  require_parity(compare("spot_light_irradiance", gpu.floats[0], cpu, inputs,
+                         {1e-6f, 1e-5f, 32, 0.0, "~15 roundings; cancellation at the cone edge where the result is ~0"}, 3));
+}

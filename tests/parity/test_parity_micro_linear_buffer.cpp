@@ -1,0 +1,129 @@
+// CPU/GPU parity of include/vplkit/micro_linear_buffer.hpp against shaders/lib/micro_linear_buffer.glsl: elevation_bucket and the verdicts of Alg. 2, 3 and 6, texel by
+// texel (tests/parity/parity_harness.hpp).
+#include <doctest/doctest.h>
+
+#include <array>
+#include <cstring>
+#include <random>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <vplkit/micro_linear_buffer.hpp>
+
+#include "frontend/gl/settings_uniforms.hpp"
+#include "tests/parity/parity_harness.hpp"
+#include "tests/parity/parity_inputs.hpp"
+
+using namespace vplkit;
+using namespace vplkit::parity;
+
+TEST_CASE("parity: elevation_bucket makes the same decision on both sides, boundaries included") {
+  std::mt19937 random(11);
+  kernel_inputs inputs;
+  inputs.width = grid;
+  inputs.height = grid;
+  inputs.floats.assign(2, std::vector<glm::vec4>(inputs.size()));
+  const int slots = 5;
+  const elevation_slots<float> table = make_elevation_slots<float>(slots);
+  std::uniform_real_distribution<float> uniform(-2.0f, 2.0f);
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    inputs.floats[0][i] = random_point(random, 2.0f);
+    inputs.floats[1][i] = random_point(random, 2.0f);
+    if (i % 4 == 0) {
+      // Exactly on a boundary: dz = tangent * |dxy| computed in float as the kernel does.
+      const glm::vec3 x(inputs.floats[0][i]);
+      const float dx = uniform(random), dy = uniform(random);
+      const float horizontal = std::sqrt(dx * dx + dy * dy);
+      const float tangent = table.boundary_tangent[static_cast<std::size_t>(i / 4) % (slots - 1)];
+      inputs.floats[1][i] = glm::vec4(x.x + dx, x.y + dy, x.z + tangent * horizontal, 0.0f);
+    }
+  }
+  inputs.floats[0][1] = inputs.floats[1][1] = glm::vec4(0.5f);  // coincident
+  kernel_source source;
+  source.name = "elevation_bucket";
+  source.includes = {"lib/micro_linear_buffer.glsl"};
+  source.declarations = "uniform elevation_slots slots;\n";
+  source.body = "uout0 = uvec4(uint(elevation_bucket(fin0.xyz, fin1.xyz, slots)), 0u, 0u, 0u);";
+  source.uint_outputs = 1;
+  const kernel_outputs gpu = run_fragment(source, inputs, [&](const program& p) { set_uniforms(p, "slots", table); });
+  std::vector<glm::uvec4> cpu(inputs.size());
+  for (std::size_t i = 0; i < inputs.size(); ++i)
+    cpu[i] = glm::uvec4(static_cast<unsigned>(elevation_bucket(glm::vec3(inputs.floats[0][i]), glm::vec3(inputs.floats[1][i]), table)), 0u, 0u, 0u);
+  // Subtractions, multiplies, one add, sqrt and compares are IEEE-exact on both sides, and the
+  // tangents are the same floats: no flip is allowed, even on the boundaries.
+  require_parity(compare_exact("elevation_bucket (exact)", gpu.uints[0], cpu, inputs, 0.0, 1));
+}
+
+TEST_CASE("parity: micro_linear_buffer Alg. 2, 3 and 6 verdicts on random slot sequences") {
+  // Each texel holds a path of 10 slot indices (4 bits each, packed into two words) and a slot
+  // count; the outputs are the verdict bit masks of the three algorithms, and the sum of the
+  // unclamped Alg. 6 values (which exercises the decrements).
+  std::mt19937 random(12);
+  kernel_inputs inputs;
+  inputs.width = grid;
+  inputs.height = grid;
+  inputs.uints.assign(1, std::vector<glm::uvec4>(inputs.size()));
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const unsigned slots = 1u + static_cast<unsigned>(i % micro_linear_buffer_max_slots);
+    std::uniform_int_distribution<unsigned> pick(0, slots - 1);
+    glm::uvec4 packed(0u, 0u, slots, 0u);
+    for (unsigned sample = 0; sample < 10; ++sample) {
+      const unsigned index = pick(random);
+      if (sample < 5) packed.x |= index << (4 * sample);
+      else packed.y |= index << (4 * (sample - 5));
+    }
+    inputs.uints[0][i] = packed;
+  }
+  kernel_source source;
+  source.name = "micro_linear_buffer";
+  source.includes = {"lib/micro_linear_buffer.glsl"};
+  source.body = R"(
+    int slots = int(uin0.z);
+    micro_linear_buffer alg2; micro_linear_buffer alg3; micro_linear_buffer alg6;
+    micro_linear_buffer_reset(alg2, slots);
+    micro_linear_buffer_reset(alg3, slots);
+    micro_linear_buffer_reset(alg6, slots);
+    uint mask2 = 0u, mask3 = 0u, mask6 = 0u;
+    float sum6 = 0.0;
+    for (int sample = 0; sample < 10; ++sample) {
+      uint word = sample < 5 ? uin0.x : uin0.y;
+      int index = int((word >> uint(4 * (sample % 5))) & 15u);
+      if (micro_linear_buffer_alg2(alg2, index) > 0.5) mask2 |= 1u << uint(sample);
+      if (micro_linear_buffer_alg3(alg3, index) > 0.5) mask3 |= 1u << uint(sample);
+      float nu = micro_linear_buffer_alg6(alg6, index);
+      sum6 += nu;
+      if (clamp(nu, 0.0, 1.0) > 0.5) mask6 |= 1u << uint(sample);
+    }
+    uout0 = uvec4(mask2, mask3, mask6, floatBitsToUint(sum6));)";
+  source.uint_outputs = 1;
+  const kernel_outputs gpu = run_fragment(source, inputs);
+  std::vector<glm::uvec4> cpu(inputs.size());
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const glm::uvec4& in = inputs.uints[0][i];
+    const int slots = static_cast<int>(in.z);
+    micro_linear_buffer<float> alg2, alg3, alg6;
+    micro_linear_buffer_reset(alg2, slots);
+    micro_linear_buffer_reset(alg3, slots);
+    micro_linear_buffer_reset(alg6, slots);
+    unsigned mask2 = 0, mask3 = 0, mask6 = 0;
+    float sum6 = 0.0f;
+    for (int sample = 0; sample < 10; ++sample) {
+      const unsigned word = sample < 5 ? in.x : in.y;
+      const int index = static_cast<int>((word >> (4 * (sample % 5))) & 15u);
+      if (micro_linear_buffer_alg2(alg2, index) > 0.5f) mask2 |= 1u << sample;
+      if (micro_linear_buffer_alg3(alg3, index) > 0.5f) mask3 |= 1u << sample;
+      const float nu = micro_linear_buffer_alg6(alg6, index);
+      sum6 += nu;
+      if (glm::clamp(nu, 0.0f, 1.0f) > 0.5f) mask6 |= 1u << sample;
+    }
+    std::uint32_t sum_bits;
+    std::memcpy(&sum_bits, &sum6, sizeof sum_bits);
+    cpu[i] = glm::uvec4(mask2, mask3, mask6, sum_bits);
+  }
+  // Small integers in float: every operation is exact, so everything must match to the bit.
+  require_parity(compare_exact("micro_linear_buffer (exact)", gpu.uints[0], cpu, inputs));
+  // And on the GPU too, Alg. 6 agrees with Alg. 3.
+  std::size_t alg6_differs = 0;
+  for (const glm::uvec4& out : gpu.uints[0]) alg6_differs += out.y != out.z;
+  CHECK(alg6_differs == 0);
+}

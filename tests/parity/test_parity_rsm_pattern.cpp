@@ -1,0 +1,61 @@
+// CPU/GPU parity of include/vplkit/rsm_pattern.hpp against shaders/lib/rsm_pattern.glsl: the radial and the disk pattern, offsets and weights, texel by
+// texel (tests/parity/parity_harness.hpp).
+#include <doctest/doctest.h>
+
+#include <array>
+#include <cstring>
+#include <random>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <vplkit/rsm_pattern.hpp>
+#include <vplkit/polynomial_math.hpp>
+
+#include "frontend/gl/settings_uniforms.hpp"
+#include "tests/parity/parity_harness.hpp"
+#include "tests/parity/parity_inputs.hpp"
+
+using namespace vplkit;
+using namespace vplkit::parity;
+
+TEST_CASE("parity: radial_pattern_sample and rsm_disk_sample, offsets and weights") {
+  // Texel (x, y) evaluates path x % 16, sample y % 16 for receiver pixel (x, y): 4096 samples.
+  const kernel_inputs inputs = grid_of(64, 64, 0, 1);
+  kernel_inputs indexed = inputs;
+  for (std::size_t i = 0; i < indexed.size(); ++i)
+    indexed.uints[0][i] = glm::uvec4(static_cast<unsigned>(i % 64), static_cast<unsigned>(i / 64), 0u, 0u);
+  radial_pattern_settings<float> settings;
+  settings.paths = 16;
+  settings.samples_per_path = 16;
+  settings.seed = 99;
+  const radial_pattern_constants<float> constants = make_radial_pattern_constants(settings);
+  disk_pattern_settings<float> disk;
+  disk.seed = 5;
+  kernel_source source;
+  source.name = "patterns";
+  source.includes = {"lib/rsm_pattern.glsl"};
+  source.declarations = "uniform radial_pattern_constants radial;\nuniform disk_pattern_settings disk;\n";
+  source.body = R"(
+    pattern_sample r = radial_pattern_sample(int(uin0.x % 16u), int(uin0.y % 16u), uin0.xy, radial);
+    pattern_sample d = rsm_disk_sample(int(uin0.x + 64u * uin0.y), disk);
+    fout0 = vec4(r.offset, r.weight, 0.0);
+    fout1 = vec4(d.offset, d.weight, 0.0);)";
+  source.float_outputs = 2;
+  const kernel_outputs gpu = run_fragment(source, indexed, [&](const program& p) {
+    set_uniforms(p, "radial", constants);
+    set_uniforms(p, "disk", disk);
+  });
+  std::vector<glm::vec4> cpu_radial(indexed.size()), cpu_disk(indexed.size());
+  for (std::size_t i = 0; i < indexed.size(); ++i) {
+    const glm::uvec2 pixel(indexed.uints[0][i]);
+    const auto r = radial_pattern_sample(static_cast<int>(pixel.x % 16), static_cast<int>(pixel.y % 16), pixel, constants);
+    const auto d = rsm_disk_sample(static_cast<int>(pixel.x + 64 * pixel.y), disk);
+    cpu_radial[i] = glm::vec4(r.offset, r.weight, 0.0f);
+    cpu_disk[i] = glm::vec4(d.offset, d.weight, 0.0f);
+  }
+  // Hash bits, exact float-from-bits, +,* and the polynomial: bit-identical unless llvmpipe
+  // contracts multiply-adds; offsets decide which texel is fetched, so allow 2 ulp at most.
+  require_parity(compare("radial_pattern_sample", gpu.floats[0], cpu_radial, indexed, {0.0f, 0.0f, 2, 0.0, "+,* only"}, 3));
+  // The disk weight divides by N (llvmpipe's divide need not be correctly rounded): 4 ulp.
+  require_parity(compare("rsm_disk_sample", gpu.floats[1], cpu_disk, indexed, {0.0f, 0.0f, 4, 0.0, "+,*, one divide"}, 3));
+}

@@ -1,0 +1,57 @@
+// CPU/GPU parity of include/vplkit/shadow.hpp against shaders/lib/shadow.glsl: shadow_density (Alg. 4), texel by
+// texel (tests/parity/parity_harness.hpp).
+#include <doctest/doctest.h>
+
+#include <array>
+#include <cstring>
+#include <random>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <vplkit/shadow.hpp>
+#include <vplkit/transform.hpp>
+
+#include "frontend/gl/settings_uniforms.hpp"
+#include "tests/parity/parity_harness.hpp"
+#include "tests/parity/parity_inputs.hpp"
+
+using namespace vplkit;
+using namespace vplkit::parity;
+
+TEST_CASE("parity: shadow_density (Alg. 4) over a synthetic depth map") {
+  // float input 0 is the depth map (x), a slope with steps, and float input 1 the receivers:
+  // (rsm coordinate, receiver depth, gradient x); gradient y is 0.
+  kernel_inputs inputs = grid_of(64, 64, 2);
+  std::mt19937 random(22);
+  std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const float x = static_cast<float>(i % 64), y = static_cast<float>(i / 64);
+    const float step = (static_cast<int>(x) / 9 + static_cast<int>(y) / 13) % 3 == 0 ? 0.5f : 0.0f;
+    inputs.floats[0][i] = glm::vec4(-10.0f + 0.01f * x + step, 0, 0, 0);
+    if (i % 97 == 0) inputs.floats[0][i].x = 0.0f;  // empty texels
+    const glm::vec2 coordinate(uniform(random) * 70.0f - 3.0f, uniform(random) * 70.0f - 3.0f);
+    inputs.floats[1][i] = glm::vec4(coordinate, -10.0f + 0.01f * coordinate.x + 0.3f * (uniform(random) - 0.5f),
+                                    0.01f * (uniform(random) - 0.5f));
+  }
+  shadow_density_settings<float> settings;
+  settings.kernel_size = 5;
+  kernel_source source;
+  source.name = "shadow_density";
+  source.includes = {"lib/shadow.glsl"};
+  source.declarations = "uniform shadow_density_settings settings;\n"
+                        "float rsm_depth_fetch(ivec2 texel) { return texelFetch(float_input0, texel, 0).x; }\n";
+  source.body = "fout0 = vec4(shadow_density(fin1.xy, fin1.z, vec2(fin1.w, 0.0), ivec2(64), settings), 0.0, 0.0, 0.0);";
+  source.float_outputs = 1;
+  const kernel_outputs gpu = run_fragment(source, inputs, [&](const program& p) { set_uniforms(p, "settings", settings); });
+  std::vector<glm::vec4> cpu(inputs.size());
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const glm::vec4 r = inputs.floats[1][i];
+    cpu[i] = glm::vec4(shadow_density(glm::vec2(r), r.z, glm::vec2(r.w, 0.0f),
+                                      [&](glm::ivec2 t) { return inputs.floats[0][static_cast<std::size_t>(t.y * 64 + t.x)].x; },
+                                      glm::ivec2(64), settings),
+                       0.0f, 0.0f, 0.0f);
+  }
+  // A count of depth tests over exactly the same floats (the plane depth is +,* only): the
+  // result is a multiple of 1/25 and must match exactly.
+  require_parity(compare("shadow_density", gpu.floats[0], cpu, inputs, {0.0f, 0.0f, 0, 0.0, "exact count"}, 1));
+}
