@@ -18,6 +18,7 @@
 #include <glm/glm.hpp>
 
 #include "frontend/gl/program.hpp"
+#include "frontend/image/image.hpp"
 
 namespace vplkit::parity {
 
@@ -41,6 +42,15 @@ struct kernel_inputs {
   std::vector<std::vector<glm::uvec4>> uints;   ///< each width * height long
   std::size_t size() const { return static_cast<std::size_t>(width) * static_cast<std::size_t>(height); }
 };
+
+/// The grid of a whole image compared texel by texel with its CPU mirror (a pass's output): its
+/// coordinates, no inputs.
+inline kernel_inputs coordinates_of(const image& pass_output) {
+  kernel_inputs inputs;
+  inputs.width = pass_output.width;
+  inputs.height = pass_output.height;
+  return inputs;
+}
 
 struct kernel_outputs {
   std::vector<std::vector<glm::vec4>> floats;

@@ -29,12 +29,6 @@ final_gather_settings small(const char* technique, int resolution) {
   return settings;
 }
 
-kernel_inputs pixels_of(const image& image) {
-  kernel_inputs inputs;
-  inputs.width = image.width;
-  inputs.height = image.height;
-  return inputs;
-}
 
 }  // namespace
 
@@ -55,8 +49,8 @@ TEST_CASE("final gathering shading pass matches the CPU mirror: polygon, point, 
       // sqrt, divides) or the point kernel: a few ulp per term over up to 96 terms: 2e-5
       // relative, or 1e-6 absolute.
       const tolerance bounds{1e-6f, 2e-5f, 64, 0.0, "up to 96 quads of atan2/sqrt/divide terms"};
-      require_parity(compare("final gathering indirect, " + name, frame.indirect.texels, cpu.indirect.texels, pixels_of(cpu.indirect), bounds, 3));
-      require_parity(compare("final gathering radiance, " + name, frame.radiance.texels, cpu.radiance.texels, pixels_of(cpu.radiance), bounds, 3));
+      require_parity(compare("final gathering indirect, " + name, frame.indirect.texels, cpu.indirect.texels, coordinates_of(cpu.indirect), bounds, 3));
+      require_parity(compare("final gathering radiance, " + name, frame.radiance.texels, cpu.radiance.texels, coordinates_of(cpu.radiance), bounds, 3));
     }
   }
 }

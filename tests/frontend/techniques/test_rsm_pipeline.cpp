@@ -26,13 +26,6 @@ rsm_pipeline_settings small_settings(const std::string& technique) {
   return settings;
 }
 
-// The harness compares per-texel outputs; an image's "inputs" are its coordinates only.
-kernel_inputs coordinates_of(const image& image) {
-  kernel_inputs inputs;
-  inputs.width = image.width;
-  inputs.height = image.height;
-  return inputs;
-}
 
 struct pass_parity {
   comparison gather;
