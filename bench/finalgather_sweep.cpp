@@ -3,7 +3,8 @@
 // paper's figure to compare with: 150 FPS point-to-point against 32 FPS polygon-to-point (a
 // sphere of ~2300 faces, 700 x 700, GeForce 7950 GX2): polygon 4.7x the cost of point.
 // Times: the wall clock of a whole frame (every pass, read-back included) and the shading pass
-// from GL timer queries, medians of --repeat frames.
+// from the pass timer (frontend/gl/pass_timer.hpp: timer queries on a GPU, wall clock around
+// glFinish on a software renderer), medians of --repeat frames.
 //   build/bench/vplkit_finalgather_sweep [--size 256] [--repeat 5] [--out output/bench]
 #include <CLI/CLI.hpp>
 
@@ -51,7 +52,7 @@ int main(int argc, char** argv) {
           settings.width = settings.height = size;
           settings.resolution = resolution;
           final_gather_pipeline pipeline(shaders, scene, settings);
-          pipeline.render();  // JIT warm-up; llvmpipe's first timer query is garbage
+          pipeline.render();  // warm-up: shader JIT
           std::vector<double> frames, shading;
           for (int i = 0; i < repeat; ++i) {
             const auto start = std::chrono::steady_clock::now();

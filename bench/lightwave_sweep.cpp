@@ -4,9 +4,10 @@
 // ranking (Eq. 5.3), Tables 5.11-5.13 (integrated shadows over the steps) and 5.14-5.15 (scene
 // complexity). Times: the wall clock of a whole frame in which nothing moved (VPLs and shadow maps
 // are rebuilt only when the light moves), read-back included, median of --repeat frames; the
-// rebuild is the extra time of a frame after the light moved. Not GL timer queries: on llvmpipe
-// GL_TIME_ELAPSED measures the span of the last rasterizer tiles, not the pass (it reported
-// 0.00 ms for frames that take milliseconds). Similarity: Alg. 1 (lightwave_similarity) on 8-bit
+// rebuild is the extra time of a frame after the light moved. The whole frame, not the per-pass
+// table: the sweep compares configurations by what a frame costs (the pass table of
+// frontend/gl/pass_timer.hpp, wall clock on llvmpipe and timer queries on a GPU, is in
+// `vplkit render`). Similarity: Alg. 1 (lightwave_similarity) on 8-bit
 // sRGB images, a smaller render stretched to the default size first, as the thesis does for
 // Table 5.7, next to the thesis's own numbers (Tables 5.5-5.9) and the RMSE of the 8-bit images.
 //   build/bench/vplkit_lightwave_sweep [--width 320] [--height 180] [--repeat 3] [--quick] [--out output/bench]
@@ -108,7 +109,7 @@ int main(int argc, char** argv) {
                          double thesis_similarity = -1.0) {
       const scene& source = scenes.at(scene_name);
       lightwave_pipeline pipeline(shaders, source, settings);
-      pipeline.render();  // JIT warm-up; llvmpipe's first timer query is garbage
+      pipeline.render();  // warm-up: shader JIT
       pipeline.set_light(source.light.spot);
       result r{table, label, settings, 0.0, 0.0, 100.0, source.geometry.triangle_count()};
       const auto timed = [&](lightwave_frame& frame) {

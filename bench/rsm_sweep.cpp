@@ -1,7 +1,9 @@
 // Frame-level sweep of the RSM pipeline on the current GL implementation (OSMesa/llvmpipe),
 // in the structure of [RSMV]'s Tables 5.1-5.3, plus a parameter sweep, the full against the
 // separable post filter, and the CPU gather (the C++ mirror, all cores) against the GL gather.
-// GPU times come from GL timer queries (median of --repeat frames after a warm-up frame).
+// Pass times come from the pass timer (frontend/gl/pass_timer.hpp: GL timer queries on a GPU,
+// wall clock around glFinish per pass on a software renderer), median of --repeat frames after a
+// warm-up frame.
 //   build/bench/vplkit_rsm_sweep [--scene atrium] [--size 512] [--rsm-size 512] [--repeat 3]
 //                                [--quick] [--out output/bench]
 // Writes rsm_sweep.csv and rsm_sweep.md into --out and prints the markdown.
@@ -55,7 +57,7 @@ struct sweep {
     std::vector<std::unique_ptr<rsm_pipeline>> pipelines;
     for (const rsm_pipeline_settings& settings : configurations) {
       pipelines.push_back(std::make_unique<rsm_pipeline>(shaders, source, settings));
-      pipelines.back()->render();  // warm-up: shader JIT, and llvmpipe's first timer query is garbage
+      pipelines.back()->render();  // warm-up: shader JIT
     }
     std::vector<std::map<std::string, std::vector<double>>> samples(configurations.size());
     std::vector<std::vector<double>> totals(configurations.size());
@@ -136,7 +138,7 @@ int main(int argc, char** argv) {
     std::ostringstream md;
     md << "# RSM pipeline sweep\n\nScene " << source.name << " (" << source.geometry.triangle_count() << " triangles), "
        << size << "x" << size << " image, " << rsm_size << "x" << rsm_size << " RSM, median of " << repeat
-       << " frames (configurations compared in one table are rendered interleaved), GL timer queries on:\n\n```\n" << describe_current_context() << "\n```\n\n";
+       << " frames (configurations compared in one table are rendered interleaved), " << describe(timing_method_for_current_context()) << ", on:\n\n```\n" << describe_current_context() << "\n```\n\n";
 
     // Table 5.1: with and without visibility (and the original RSM), thesis configuration.
     std::cerr << "Table 5.1 / 5.3\n";

@@ -52,7 +52,7 @@ int render_final_gather(const session& io, const std::string& technique, const c
   const headless_session gl(common.shaders());
   const final_gather_scene source = make_final_gather_scene(options.object, options.object_position, options.object_size);
   final_gather_pipeline pipeline(gl.shaders, source, settings);
-  pipeline.render();  // JIT warm-up; llvmpipe's first timer query is garbage
+  pipeline.render();  // warm-up: the shader compilers' lazy work
   const final_gather_frame frame = pipeline.render();
   files.add_png(files.main(), frame.radiance);
   files.add_png(files.sibling("-indirect", ".png"), frame.indirect, percentile_exposure(frame.indirect));

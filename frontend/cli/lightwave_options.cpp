@@ -75,8 +75,7 @@ int render_lightwave(const session& io, const std::string& technique, const comm
   const headless_session gl(common.shaders());
   const scene source = load_scene(scene_name);
   lightwave_pipeline pipeline(gl.shaders, source, settings);
-  // The first frame pays for llvmpipe's shader JIT and its first timer query is garbage; the
-  // light is then "moved" onto itself to time a rebuild, and a third frame has nothing to rebuild.
+  // The first frame pays for the shader compilers' lazy work; the light is then "moved" onto itself to time a rebuild, and a third frame has nothing to rebuild.
   pipeline.render();
   pipeline.set_light(source.light.spot);
   const lightwave_frame first = pipeline.render();

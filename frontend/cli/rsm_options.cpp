@@ -104,8 +104,8 @@ int render_rsm(const session& io, const std::string& technique_name, const commo
   const headless_session gl(common.shaders());
   const scene source = load_scene(common.scene);
   rsm_pipeline pipeline(gl.shaders, source, settings);
-  // The first frame pays for llvmpipe's shader JIT, and llvmpipe's first GL_TIME_ELAPSED query
-  // reads a garbage start time (seen: 282 s); the pass table reports a warmed-up frame.
+  // The first frame pays for the shader compilers' lazy work (llvmpipe's JIT, a driver's first
+  // use of a program); the pass table reports a warmed-up frame.
   pipeline.render();
   const rsm_frame frame = pipeline.render();
 

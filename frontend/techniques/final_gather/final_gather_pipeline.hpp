@@ -14,7 +14,7 @@
 #include <vplkit/final_gather.hpp>
 #include <vplkit/irradiance.hpp>
 
-#include "frontend/gl/gpu_timer.hpp"
+#include "frontend/gl/pass_timer.hpp"
 #include "frontend/gl/mesh_buffers.hpp"
 #include "frontend/gl/program.hpp"
 #include "frontend/gl/render_target.hpp"
@@ -103,7 +103,7 @@ class final_gather_pipeline {
   framebuffer gbuffer_;
   framebuffer output_;
   gl_vertex_array empty_vertex_array_;
-  gpu_timer timer_;
+  pass_timer timer_;
 };
 
 }  // namespace vplkit

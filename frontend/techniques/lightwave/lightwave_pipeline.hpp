@@ -15,7 +15,7 @@
 #include <vplkit/irradiance.hpp>
 #include <vplkit/lightwave.hpp>
 
-#include "frontend/gl/gpu_timer.hpp"
+#include "frontend/gl/pass_timer.hpp"
 #include "frontend/gl/mesh_buffers.hpp"
 #include "frontend/gl/program.hpp"
 #include "frontend/gl/render_target.hpp"
@@ -162,7 +162,7 @@ class lightwave_pipeline {
   glm::ivec2 shadow_size_{0};
   int shadow_layers_ = 1;  ///< allocated: 1 + the maps asked for; drawn: 1 + casters_ (fewer when fewer VPLs light the scene)
   framebuffer target_;
-  gpu_timer timer_;
+  pass_timer timer_;
   bool dirty_ = true;
   int rebuilds_ = 0;
 };

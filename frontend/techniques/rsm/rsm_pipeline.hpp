@@ -15,7 +15,7 @@
 #include <vplkit/rsm_gather.hpp>
 #include <vplkit/shadow.hpp>
 
-#include "frontend/gl/gpu_timer.hpp"
+#include "frontend/gl/pass_timer.hpp"
 #include "frontend/gl/mesh_buffers.hpp"
 #include "frontend/gl/program.hpp"
 #include "frontend/gl/render_target.hpp"
@@ -153,7 +153,7 @@ class rsm_pipeline {
   framebuffer blur_x_target_;
   framebuffer post_target_;
   gl_vertex_array empty_vertex_array_;
-  gpu_timer timer_;
+  pass_timer timer_;
 };
 
 }  // namespace vplkit
