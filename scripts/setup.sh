@@ -7,7 +7,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-packages=(cmake g++ make pkg-config libglm-dev doctest-dev libglfw3-dev libosmesa6-dev
+packages=(cmake g++ make pkg-config libglm-dev doctest-dev libglfw3-dev libegl-dev libegl-mesa0 libosmesa6-dev
           python3-glad xvfb xauth libcli11-dev libstb-dev libbenchmark-dev
           assimp-testmodels libembree-dev gnuplot-nox clang libclang-rt-dev)
 # node and npm fetch the test meshes; a machine may have them from elsewhere than Debian.
@@ -19,7 +19,8 @@ cmake_options=(-DCMAKE_BUILD_TYPE=Release)
 case "${1:-}" in
   "") ;;
   --sanitize) build_dir=build-sanitize
-              cmake_options=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DVPLKIT_SANITIZE=ON -DVPLKIT_BUILD_BENCH=OFF) ;;
+              # Also the build without OSMesa (Mesa >= 25.1 has none): EGL only.
+              cmake_options=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DVPLKIT_SANITIZE=ON -DVPLKIT_BUILD_BENCH=OFF -DVPLKIT_WITH_OSMESA=OFF) ;;
   *) echo "setup.sh: unknown option '$1' (known: --sanitize)" >&2; exit 2 ;;
 esac
 

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # README command 2: set up, build, and run the whole test suite twice: the Release build, then
 # the -fsanitize=address,undefined build; then each fuzz target for 30 s (clang's libFuzzer).
-# Tests run headless (OSMesa); the window tests run under xvfb-run.
+# Tests run headless (EGL; the parity tests also under OSMesa in the Release build, and the
+# sanitizer build has no OSMesa); the window tests run under xvfb-run.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc 2>/dev/null || echo 2)

@@ -49,7 +49,7 @@ int render_final_gather(const session& io, const std::string& technique, const c
   const final_gather_settings settings = make_final_gather_settings(technique, common, options);
   output_set files(out, "output/" + std::filesystem::path(options.object).stem().string() + "-" + settings.technique + ".png", ".png", "--out");
   if (io.dry_run) return 0;
-  const headless_session gl(common.shaders());
+  const headless_session gl(common);
   const final_gather_scene source = make_final_gather_scene(options.object, options.object_position, options.object_size);
   final_gather_pipeline pipeline(gl.shaders, source, settings);
   pipeline.render();  // warm-up: the shader compilers' lazy work

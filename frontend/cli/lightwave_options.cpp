@@ -72,7 +72,7 @@ int render_lightwave(const session& io, const std::string& technique, const comm
   const std::string scene_name = common.scene_given ? common.scene : "boxes";
   output_set files(out, "output/" + std::filesystem::path(scene_name).stem().string() + "-" + settings.technique + ".png", ".png", "--out");
   if (io.dry_run) return 0;
-  const headless_session gl(common.shaders());
+  const headless_session gl(common);
   const scene source = load_scene(scene_name);
   lightwave_pipeline pipeline(gl.shaders, source, settings);
   // The first frame pays for the shader compilers' lazy work; the light is then "moved" onto itself to time a rebuild, and a third frame has nothing to rebuild.

@@ -106,6 +106,13 @@ void option_scope::require_read_by(const std::string& choice, const std::string&
       throw usage_error(entry.option->get_name() + " is read by " + entry.readers + ", not by " + what + " " + choice);
 }
 
+headless_request common_options::headless() const {
+  headless_request request;
+  request.api = context == "egl" ? headless_api::egl : context == "osmesa" ? headless_api::osmesa : headless_api::automatic;
+  request.device = device;
+  return request;
+}
+
 fs::path common_options::shaders() const { return shader_dir.empty() ? default_shader_dir() : fs::path(shader_dir); }
 
 common_option_handles add_common_options(CLI::App& command, common_options& options, const std::string& default_size) {
@@ -124,6 +131,11 @@ common_option_handles add_common_options(CLI::App& command, common_options& opti
       ->check(positive_number("scene units"))->capture_default_str();
   handles.shader_dir = command.add_option("--shader-dir", options.shader_dir,
                                          "folder with the vplkit shaders (default: $VPLKIT_SHADER_DIR, then the built-in path)");
+  handles.context = command.add_option("--context", options.context,
+                                      "headless context: auto ($VPLKIT_CONTEXT, else EGL, else OSMesa), egl or osmesa (vplkit info lists them)")
+                        ->check(CLI::IsMember({"auto", "egl", "osmesa"}))->capture_default_str();
+  handles.device = command.add_option("--device", options.device, "EGL device index (default: $VPLKIT_EGL_DEVICE, else the first GPU, else software)")
+                       ->check(CLI::Range(0, 1024));
   return handles;
 }
 

@@ -87,6 +87,9 @@ struct common_options {
   std::string format = "rgba16f";
   float min_distance = 0.01f;
   std::string shader_dir;
+  std::string context = "auto";  ///< headless context: auto, egl or osmesa
+  int device = -1;               ///< EGL device index, -1: automatic
+  headless_request headless() const;
   texel_format texel() const { return format == "rgba32f" ? texel_format::rgba32f : texel_format::rgba16f; }
   std::filesystem::path shaders() const;
 };
@@ -97,14 +100,16 @@ struct common_option_handles {
   CLI::Option* format;
   CLI::Option* min_distance;
   CLI::Option* shader_dir;
+  CLI::Option* context;
+  CLI::Option* device;
 };
-/// --size, --format, --min-distance and --shader-dir (--scene and --seed are added by the
-/// commands that read them). `default_size` is shown in the help.
+/// --size, --format, --min-distance, --shader-dir, --context and --device (--scene and --seed
+/// are added by the commands that read them). `default_size` is shown in the help.
 common_option_handles add_common_options(CLI::App& command, common_options& options, const std::string& default_size);
 
 /// A headless GL context and the shader library: what every drawing command opens first.
 struct headless_session {
-  explicit headless_session(const std::filesystem::path& shader_dir) : context(create_headless_context()), shaders(shader_dir) {}
+  explicit headless_session(const common_options& options) : context(create_headless_context(options.headless())), shaders(options.shaders()) {}
   std::unique_ptr<gl_context> context;
   shader_library shaders;
 };

@@ -38,7 +38,7 @@ int run_rsm_brute_force(const session& io, const reference_state& s) {
   output_set files(s.out, "output/" + stem_of(s.common.scene) + "-rsm-brute-force-" + s.visibility + ".pfm", ".pfm", "--out",
                    "a .png and -receivers.pfm go next to it");
   if (io.dry_run) return 0;
-  const headless_session gl(s.common.shaders());
+  const headless_session gl(s.common);
   const scene source = load_scene(s.common.scene);
   rsm_pipeline pipeline(gl.shaders, source, settings);
   pipeline.render();
@@ -97,7 +97,8 @@ command add_reference_command(CLI::App& app) {
       ->check(CLI::IsMember({"monte-carlo", "rsm-brute-force"}))->capture_default_str();
   add_scene_option(*reference, state->common, "cornell-box");
   const common_option_handles frame = add_common_options(*reference, state->common, "512");
-  for (CLI::Option* option : {frame.format, frame.min_distance, frame.shader_dir}) state->scope.add(option, "--method rsm-brute-force", brute_force);
+  for (CLI::Option* option : {frame.format, frame.min_distance, frame.shader_dir, frame.context, frame.device})
+    state->scope.add(option, "--method rsm-brute-force", brute_force);
   add_rsm_frame_options(*reference, state->rsm, nullptr);
   for (const char* name : {"--rsm-size", "--indirect-divisor"}) state->scope.add(reference->get_option(name), "--method rsm-brute-force", brute_force);
   state->scope.add(reference->add_option("--visibility", state->visibility, "rsm-brute-force: exact (a ray per pixel light) or none")

@@ -101,7 +101,7 @@ int render_rsm(const session& io, const std::string& technique_name, const commo
   output_set files(out, "output/" + std::filesystem::path(common.scene).stem().string() + "-" + technique.name + ".png", ".png", "--out");
   if (io.dry_run) return 0;
 
-  const headless_session gl(common.shaders());
+  const headless_session gl(common);
   const scene source = load_scene(common.scene);
   rsm_pipeline pipeline(gl.shaders, source, settings);
   // The first frame pays for the shader compilers' lazy work (llvmpipe's JIT, a driver's first

@@ -3,10 +3,18 @@
 // glad first: it defines the GL types and blocks <GL/gl.h>, which osmesa.h would include.
 #include "frontend/gl/gl.hpp"
 
+#if VPLKIT_HAVE_OSMESA
 #include <GL/osmesa.h>
+#endif
+#define EGL_NO_X11
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include <cstdlib>
+#include <cstring>
+#include <map>
 #include <sstream>
 #include <vector>
 
@@ -28,10 +36,6 @@ std::string describe_current_context() {
 
 namespace {
 
-GLADapiproc osmesa_get_proc(const char* name) {
-  return reinterpret_cast<GLADapiproc>(OSMesaGetProcAddress(name));
-}
-
 void load_gl(GLADloadfunc loader, const std::string& kind) {
   const int version = gladLoadGL(loader);
   if (version == 0) throw error("no GL context: glad could not load GL entry points for the " + kind + " context");
@@ -40,6 +44,11 @@ void load_gl(GLADloadfunc loader, const std::string& kind) {
                 std::to_string(GLAD_VERSION_MAJOR(version)) + "." +
                 std::to_string(GLAD_VERSION_MINOR(version)) + ", vplkit needs 3.3 core");
   install_debug_output();
+}
+
+#if VPLKIT_HAVE_OSMESA
+GLADapiproc osmesa_get_proc(const char* name) {
+  return reinterpret_cast<GLADapiproc>(OSMesaGetProcAddress(name));
 }
 
 class osmesa_context final : public gl_context {
@@ -75,6 +84,192 @@ class osmesa_context final : public gl_context {
   std::vector<unsigned char> buffer_ = std::vector<unsigned char>(buffer_width * buffer_height * 4);
 };
 
+#endif
+
+// ---- EGL ------------------------------------------------------------------------------------
+
+std::string egl_error_text() {
+  char code[16];
+  std::snprintf(code, sizeof code, "0x%04X", static_cast<unsigned>(eglGetError()));
+  return std::string("EGL error ") + code;
+}
+
+bool has_extension(const char* list, const char* name) {
+  if (!list) return false;
+  const std::size_t length = std::strlen(name);
+  for (const char* at = std::strstr(list, name); at; at = std::strstr(at + 1, name))
+    if ((at == list || at[-1] == ' ') && (at[length] == ' ' || at[length] == '\0')) return true;
+  return false;
+}
+
+GLADapiproc egl_get_proc(const char* name) { return reinterpret_cast<GLADapiproc>(eglGetProcAddress(name)); }
+
+struct egl_device {
+  EGLDeviceEXT handle = nullptr;
+  bool software = false;
+  std::string description;  // "software: EGL_MESA_device_software" or "hardware: /dev/dri/card0"
+};
+
+// The client extensions' entry points, or nulls where the EGL library lacks them.
+struct egl_client {
+  const char* extensions = nullptr;
+  PFNEGLQUERYDEVICESEXTPROC query_devices = nullptr;
+  PFNEGLQUERYDEVICESTRINGEXTPROC query_device_string = nullptr;
+  PFNEGLGETPLATFORMDISPLAYEXTPROC get_platform_display = nullptr;
+
+  egl_client() {
+    extensions = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+    eglGetError();  // without client extensions the query fails; that is not an error here
+    if (has_extension(extensions, "EGL_EXT_device_enumeration") || has_extension(extensions, "EGL_EXT_device_base")) {
+      query_devices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+      query_device_string = reinterpret_cast<PFNEGLQUERYDEVICESTRINGEXTPROC>(eglGetProcAddress("eglQueryDeviceStringEXT"));
+    }
+    if (has_extension(extensions, "EGL_EXT_platform_base"))
+      get_platform_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
+  }
+  bool device_platform() const {
+    return query_devices && query_device_string && get_platform_display && has_extension(extensions, "EGL_EXT_platform_device");
+  }
+  bool surfaceless_platform() const { return get_platform_display && has_extension(extensions, "EGL_MESA_platform_surfaceless"); }
+
+  std::vector<egl_device> devices() const {
+    std::vector<egl_device> found;
+    if (!device_platform()) return found;
+    EGLint count = 0;
+    if (!query_devices(0, nullptr, &count) || count <= 0) return found;
+    std::vector<EGLDeviceEXT> handles(static_cast<std::size_t>(count));
+    if (!query_devices(count, handles.data(), &count)) return found;
+    for (EGLint i = 0; i < count; ++i) {
+      egl_device device;
+      device.handle = handles[static_cast<std::size_t>(i)];
+      const char* device_extensions = query_device_string(device.handle, EGL_EXTENSIONS);
+      device.software = has_extension(device_extensions, "EGL_MESA_device_software");
+      const char* node = has_extension(device_extensions, "EGL_EXT_device_drm") ? query_device_string(device.handle, EGL_DRM_DEVICE_FILE_EXT) : nullptr;
+      device.description = device.software ? "software: EGL_MESA_device_software" : std::string("hardware") + (node ? std::string(": ") + node : "");
+      found.push_back(device);
+    }
+    eglGetError();
+    return found;
+  }
+};
+
+// Displays are shared by every context on them; the last context to close terminates its display.
+std::map<EGLDisplay, int>& display_users() {
+  static std::map<EGLDisplay, int> users;
+  return users;
+}
+
+class egl_context final : public gl_context {
+ public:
+  egl_context(EGLDisplay display, std::string kind) : display_(display), kind_(std::move(kind)) {
+    EGLint major = 0, minor = 0;
+    if (!eglInitialize(display_, &major, &minor)) throw error(kind_ + ": eglInitialize failed (" + egl_error_text() + ")");
+    ++display_users()[display_];
+    try {
+      if (!eglBindAPI(EGL_OPENGL_API)) throw error(kind_ + ": desktop OpenGL is not offered (eglBindAPI: " + egl_error_text() + ")");
+      const char* display_extensions = eglQueryString(display_, EGL_EXTENSIONS);
+      if (!has_extension(display_extensions, "EGL_KHR_surfaceless_context"))
+        throw error(kind_ + ": EGL_KHR_surfaceless_context is missing (vplkit renders to framebuffer objects only)");
+      const EGLint config_attributes[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+      EGLConfig config = nullptr;
+      EGLint configs = 0;
+      if (!eglChooseConfig(display_, config_attributes, &config, 1, &configs) || configs < 1) {
+        eglGetError();
+        if (!has_extension(display_extensions, "EGL_KHR_no_config_context"))
+          throw error(kind_ + ": no EGL config renders desktop OpenGL, and EGL_KHR_no_config_context is missing");
+        config = EGL_NO_CONFIG_KHR;
+      }
+      const EGLint context_attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
+                                           EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+      context_ = eglCreateContext(display_, config, EGL_NO_CONTEXT, context_attributes);
+      if (context_ == EGL_NO_CONTEXT) throw error(kind_ + ": eglCreateContext could not create a 3.3 core context (" + egl_error_text() + ")");
+      make_current();
+    } catch (...) {
+      release();
+      throw;
+    }
+  }
+  ~egl_context() override { release(); }
+  egl_context(const egl_context&) = delete;
+  egl_context& operator=(const egl_context&) = delete;
+
+  void make_current() override {
+    if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_)) throw error(kind_ + ": eglMakeCurrent failed (" + egl_error_text() + ")");
+    load_gl(egl_get_proc, kind_);
+  }
+  std::string kind() const override { return kind_; }
+
+ private:
+  void release() {
+    if (context_ != EGL_NO_CONTEXT) {
+      if (eglGetCurrentContext() == context_) eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+      eglDestroyContext(display_, context_);
+      context_ = EGL_NO_CONTEXT;
+    }
+    if (display_ != EGL_NO_DISPLAY && --display_users()[display_] == 0) {
+      display_users().erase(display_);
+      eglTerminate(display_);
+    }
+    display_ = EGL_NO_DISPLAY;
+  }
+
+  EGLDisplay display_ = EGL_NO_DISPLAY;
+  EGLContext context_ = EGL_NO_CONTEXT;
+  std::string kind_;
+};
+
+// The device `request.device` (or $VPLKIT_EGL_DEVICE), else the first hardware device, else the
+// software one, else the surfaceless platform.
+std::unique_ptr<gl_context> create_egl_context(int device_index) {
+  const egl_client client;
+  const std::vector<egl_device> devices = client.devices();
+  if (device_index < 0) {
+    if (const char* from_environment = std::getenv("VPLKIT_EGL_DEVICE"); from_environment && *from_environment) {
+      char* end = nullptr;
+      const long value = std::strtol(from_environment, &end, 10);
+      if (*end != '\0' || value < 0 || value > 1024)
+        throw error("VPLKIT_EGL_DEVICE must be a device index (0, 1, ...), got '" + std::string(from_environment) + "'");
+      device_index = static_cast<int>(value);
+    }
+  }
+  if (device_index >= 0) {
+    if (static_cast<std::size_t>(device_index) >= devices.size())
+      throw error("no EGL device " + std::to_string(device_index) + ": this machine has " + std::to_string(devices.size()) +
+                  " (vplkit info lists them)");
+  } else {
+    for (std::size_t i = 0; i < devices.size() && device_index < 0; ++i)
+      if (!devices[i].software) device_index = static_cast<int>(i);
+    for (std::size_t i = 0; i < devices.size() && device_index < 0; ++i) device_index = static_cast<int>(i);
+  }
+  std::string tried;
+  if (device_index >= 0) {
+    const egl_device& device = devices[static_cast<std::size_t>(device_index)];
+    const EGLDisplay display = client.get_platform_display(EGL_PLATFORM_DEVICE_EXT, device.handle, nullptr);
+    const std::string kind = "EGL device " + std::to_string(device_index) + " (" + device.description + ")";
+    if (display == EGL_NO_DISPLAY) {
+      tried = kind + ": no display (" + egl_error_text() + ")";
+    } else {
+      try {
+        return std::make_unique<egl_context>(display, kind);
+      } catch (const error& failure) {
+        tried = failure.what();
+      }
+    }
+  }
+  if (client.surfaceless_platform()) {
+    const EGLDisplay display = client.get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+    if (display != EGL_NO_DISPLAY) {
+      try {
+        return std::make_unique<egl_context>(display, "EGL surfaceless");
+      } catch (const error& failure) {
+        tried += (tried.empty() ? "" : "; ") + std::string(failure.what());
+      }
+    }
+  }
+  if (tried.empty()) tried = "the EGL library offers neither EGL_EXT_platform_device nor EGL_MESA_platform_surfaceless";
+  throw error("no GL context: " + tried);
+}
+
 std::string glfw_last_error() {
   const char* description = nullptr;
   glfwGetError(&description);
@@ -83,7 +278,52 @@ std::string glfw_last_error() {
 
 }  // namespace
 
-std::unique_ptr<gl_context> create_headless_context() { return std::make_unique<osmesa_context>(); }
+bool osmesa_built_in() { return VPLKIT_HAVE_OSMESA != 0; }
+
+std::unique_ptr<gl_context> create_headless_context(const headless_request& request) {
+  headless_api api = request.api;
+  if (api == headless_api::automatic) {
+    if (const char* from_environment = std::getenv("VPLKIT_CONTEXT"); from_environment && *from_environment) {
+      const std::string name = from_environment;
+      if (name == "egl") api = headless_api::egl;
+      else if (name == "osmesa") api = headless_api::osmesa;
+      else throw error("VPLKIT_CONTEXT must be egl or osmesa, got '" + name + "'");
+    }
+  }
+  if (api == headless_api::osmesa) {
+#if VPLKIT_HAVE_OSMESA
+    return std::make_unique<osmesa_context>();
+#else
+    throw error("no GL context: this vplkit was built without OSMesa (VPLKIT_WITH_OSMESA=OFF); use the EGL context");
+#endif
+  }
+  if (api == headless_api::egl) return create_egl_context(request.device);
+  try {
+    return create_egl_context(request.device);
+  } catch (const error& egl_failure) {
+#if VPLKIT_HAVE_OSMESA
+    if (request.device >= 0) throw;  // a device was asked for: OSMesa is not it
+    try {
+      return std::make_unique<osmesa_context>();
+    } catch (const error& osmesa_failure) {
+      throw error(std::string(egl_failure.what()) + "; OSMesa: " + osmesa_failure.what());
+    }
+#else
+    throw;
+#endif
+  }
+}
+
+std::vector<std::string> available_headless_contexts() {
+  std::vector<std::string> lines;
+  const egl_client client;
+  const std::vector<egl_device> devices = client.devices();
+  for (std::size_t i = 0; i < devices.size(); ++i) lines.push_back("egl --device " + std::to_string(i) + "  " + devices[i].description);
+  if (!client.device_platform()) lines.push_back("egl devices: not offered (no EGL_EXT_platform_device)");
+  lines.push_back(std::string("egl surfaceless: ") + (client.surfaceless_platform() ? "offered (the fallback)" : "not offered"));
+  lines.push_back(std::string("osmesa: ") + (osmesa_built_in() ? "built in (--context osmesa)" : "not built in (VPLKIT_WITH_OSMESA=OFF)"));
+  return lines;
+}
 
 window_context::window_context(int width, int height, const std::string& title) {
   if (!glfwInit()) throw error("no GL context: GLFW could not initialise: " + glfw_last_error());

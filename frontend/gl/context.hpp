@@ -1,13 +1,20 @@
-// GL contexts: headless (OSMesa, the default everywhere, including tests and CI) and a GLFW window.
+// GL contexts: headless and a GLFW window.
+//
+// Headless is EGL by default (render, tests, benchmarks): the device platform first
+// (EGL_EXT_platform_device: a GPU when there is one, or Mesa's software device,
+// EGL_MESA_device_software, i.e. llvmpipe), then the surfaceless platform
+// (EGL_MESA_platform_surfaceless). OSMesa, which Mesa removed in 25.1, is a build option
+// (VPLKIT_WITH_OSMESA) and a choice (`--context osmesa`, VPLKIT_CONTEXT=osmesa).
 //
 // Each context loads glad from its own GetProcAddress when it becomes current. That matters when
-// a process uses both: function pointers resolved through GLX are not OSMesa's, and OSMesa then
+// a process uses several: function pointers resolved through GLX are not OSMesa's, and OSMesa then
 // silently returns NULL strings and 0 names instead of failing.
 #pragma once
 
 #include <memory>
 #include <string>
 #include <utility>
+#include <vector>
 
 struct GLFWwindow;
 
@@ -18,17 +25,37 @@ class gl_context {
   virtual ~gl_context() = default;
   /// Makes the context current on this thread and (re)loads the GL entry points for it.
   virtual void make_current() = 0;
-  /// "OSMesa" or "GLFW window".
+  /// "EGL device 0 (software: EGL_MESA_device_software)", "EGL surfaceless", "OSMesa" or "GLFW window".
   virtual std::string kind() const = 0;
 };
 
 /// GL_VERSION, GL_RENDERER and GL_VENDOR of the current context, one per line.
 std::string describe_current_context();
 
-/// A headless OSMesa context with a core 3.3 profile, current on return. Rendering goes to
-/// framebuffer objects; the default framebuffer is a small unused buffer.
-/// Throws vplkit::error naming what failed when no such context can be made.
-std::unique_ptr<gl_context> create_headless_context();
+enum class headless_api {
+  automatic,  ///< $VPLKIT_CONTEXT when set (egl or osmesa), else EGL, else OSMesa when built in
+  egl,
+  osmesa,
+};
+
+struct headless_request {
+  headless_api api = headless_api::automatic;
+  /// EGL device index (EGL_EXT_device_enumeration order); -1: $VPLKIT_EGL_DEVICE when set, else
+  /// the first hardware device, else the software device, else the surfaceless platform.
+  int device = -1;
+};
+
+/// A headless context with a core 3.3 profile, current on return. Rendering goes to framebuffer
+/// objects. Throws vplkit::error naming what failed (every API tried, and why) when no context
+/// can be made.
+std::unique_ptr<gl_context> create_headless_context(const headless_request& request = {});
+
+/// Whether this build has OSMesa (VPLKIT_WITH_OSMESA).
+bool osmesa_built_in();
+
+/// The headless contexts this build and machine offer, a line each: every EGL device (index,
+/// software or hardware, its DRM node), the surfaceless platform, OSMesa. For `vplkit info`.
+std::vector<std::string> available_headless_contexts();
 
 /// A window with a core 3.3 context, current on return. Throws vplkit::error with GLFW's reason
 /// (for example no display) when the window cannot be opened.

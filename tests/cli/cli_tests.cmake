@@ -348,6 +348,19 @@ if(NOT before STREQUAL after)
 endif()
 
 # No GL context: a window without a display.
+expect_success("info lists the headless contexts and says which it uses"
+               "available headless contexts:.*egl surfaceless:.*osmesa:.*using +EGL .*GL_RENDERER.*timing +" "${VPLKIT}" info)
+expect_failure("an EGL device that does not exist" "no EGL device 99: this machine has [0-9]+" ""
+               "${VPLKIT}" info --device 99)
+expect_failure("a bad VPLKIT_CONTEXT" "VPLKIT_CONTEXT must be egl or osmesa, got 'gles'" "${WORK}/bad-context.png"
+               ${CMAKE_COMMAND} -E env VPLKIT_CONTEXT=gles "${VPLKIT}" render --size 8 --out "${WORK}/bad-context.png")
+expect_failure("--device with OSMesa" "--device picks an EGL device" "" "${VPLKIT}" info --context osmesa --device 0)
+if(WITH_OSMESA)
+  expect_success("render with --context osmesa" "technique rsm-alg6" "${VPLKIT}" render --context osmesa --size 16 --rsm-size 32 --out "${WORK}/osmesa.png")
+else()
+  expect_failure("--context osmesa without OSMesa" "built without OSMesa" "${WORK}/osmesa.png"
+                 "${VPLKIT}" render --context osmesa --size 16 --rsm-size 32 --out "${WORK}/osmesa.png")
+endif()
 expect_failure("no GL context (window without a display)" "no GL context: GLFW" ""
                ${CMAKE_COMMAND} -E env --unset=DISPLAY --unset=WAYLAND_DISPLAY "${VPLKIT}" info --context window)
 
@@ -359,7 +372,7 @@ if(XVFB_RUN)
   # frontend code on this path (renderer, programs) is leak-checked by the headless tests.
   expect_success("view opens a window under Xvfb" "closed the window"
                  ${CMAKE_COMMAND} -E env "ASAN_OPTIONS=detect_leaks=0" "${XVFB_RUN}" -a "${VPLKIT}" view --size 64 --rsm-size 64 --frames 3)
-  expect_success("info in a window under Xvfb" "context +GLFW window" "${XVFB_RUN}" -a "${VPLKIT}" info --context window)
+  expect_success("info in a window under Xvfb" "using +GLFW window" "${XVFB_RUN}" -a "${VPLKIT}" info --context window)
 else()
   message(STATUS "skipped the window tests: xvfb-run is not installed")
 endif()

@@ -17,11 +17,23 @@
 
 namespace vplkit::parity {
 
+namespace {
+
+// The test process's headless context ($VPLKIT_CONTEXT picks EGL or OSMesa), made on first use.
+const gl_context& test_context() {
+  static const std::unique_ptr<gl_context> context = create_headless_context();
+  return *context;
+}
+
+}  // namespace
+
 const shader_library& test_shaders() {
-  static std::unique_ptr<gl_context> context = create_headless_context();
+  test_context();
   static const shader_library library(default_shader_dir());
   return library;
 }
+
+std::string test_context_kind() { return test_context().kind(); }
 
 namespace {
 
@@ -157,6 +169,11 @@ kernel_outputs run_vertex(const kernel_source& source, const kernel_inputs& inpu
     glBufferData(GL_TRANSFORM_FEEDBACK_BUFFER, static_cast<GLsizeiptr>(inputs.size() * 16), nullptr, GL_STATIC_READ);
     glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, static_cast<GLuint>(i), captured.back().get());
   }
+  kernel.use();
+  // Nothing is rasterised, but a draw still needs a complete framebuffer, and a surfaceless EGL
+  // context has no default one (GL_INVALID_FRAMEBUFFER_OPERATION).
+  const framebuffer nothing_drawn(1, 1, {texel_format::rgba32f}, false);
+  nothing_drawn.bind();
   kernel.use();
   glEnable(GL_RASTERIZER_DISCARD);
   glBeginTransformFeedback(GL_POINTS);

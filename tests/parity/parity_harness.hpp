@@ -24,6 +24,8 @@ namespace vplkit::parity {
 
 /// The process-wide headless context and the source-tree shader library (created once).
 const shader_library& test_shaders();
+/// The kind of the tests' context ("EGL device 0 (...)", "EGL surfaceless", "OSMesa").
+std::string test_context_kind();
 
 struct kernel_source {
   std::string name;                   ///< for messages ("pixel_light_irradiance")

@@ -2,6 +2,9 @@
 // texel is located, the tolerance bounds and the allowed flip fraction work as documented.
 #include <doctest/doctest.h>
 
+#include <cstdlib>
+#include <string>
+
 #include <cmath>
 #include <limits>
 
@@ -61,4 +64,12 @@ TEST_CASE("the vertex-stage path returns one value per input, in order") {
   const kernel_outputs gpu = run_vertex(source, inputs);
   REQUIRE(gpu.floats[0].size() == inputs.size());
   for (std::size_t i = 0; i < inputs.size(); ++i) REQUIRE(gpu.floats[0][i] == inputs.floats[0][i] + glm::vec4(1.0f));
+}
+
+TEST_CASE("the harness runs on the headless context VPLKIT_CONTEXT asks for (EGL by default)") {
+  const char* requested = std::getenv("VPLKIT_CONTEXT");
+  const std::string kind = test_context_kind();
+  MESSAGE("parity context: " << kind);
+  if (requested && std::string(requested) == "osmesa") CHECK(kind == "OSMesa");
+  else CHECK(kind.rfind("EGL", 0) == 0);
 }

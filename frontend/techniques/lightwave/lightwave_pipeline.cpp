@@ -406,6 +406,9 @@ std::vector<glm::vec3> lightwave_pipeline::capture_vertex_indirect() {
   glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, captured.get());
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, vpl_texture_.get());
+  // Nothing is rasterised, but a draw needs a complete framebuffer (a surfaceless EGL context
+  // has no default one).
+  target_.bind();
   capture_program_.use();
   glEnable(GL_RASTERIZER_DISCARD);
   glBeginTransformFeedback(GL_POINTS);
