@@ -16,6 +16,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "frontend/gl/pass_timer.hpp"
 #include "frontend/gl/context.hpp"
 #include "frontend/core/error.hpp"
 #include "frontend/techniques/final_gather/final_gather_pipeline.hpp"
@@ -36,7 +37,8 @@ int main(int argc, char** argv) {
     auto context = create_headless_context();
     const shader_library shaders(default_shader_dir());
     std::ostringstream md, csv;
-    md << "# Final gathering sweep\n\n" << size << "x" << size << ", cube faces 256^2, medians of " << repeat << " frames on:\n\n```\n"
+    md << "# Final gathering sweep\n\n" << size << "x" << size << ", cube faces 256^2, medians of " << repeat << " frames; frame ms by wall clock, shading ms by "
+       << describe(timing_method_for_current_context()) << ", on:\n\n```\n"
        << describe_current_context() << "\n```\n\n| object | triangles | M | technique | frame ms | shading ms | shading vs point |\n|---|---:|---:|---|---:|---:|---:|\n";
     csv << "object,triangles,resolution,technique,frame_ms,shading_ms\n";
     std::vector<std::string> objects = {"sphere"};

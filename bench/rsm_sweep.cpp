@@ -20,6 +20,7 @@
 #include <memory>
 #include <sstream>
 
+#include "frontend/gl/pass_timer.hpp"
 #include "frontend/gl/context.hpp"
 #include "frontend/core/error.hpp"
 #include "frontend/scene/obj_loader.hpp"

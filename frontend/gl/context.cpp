@@ -14,7 +14,6 @@
 
 #include <cstdlib>
 #include <cstring>
-#include <map>
 #include <sstream>
 #include <vector>
 
@@ -88,6 +87,7 @@ class osmesa_context final : public gl_context {
 
 // ---- EGL ------------------------------------------------------------------------------------
 
+
 std::string egl_error_text() {
   char code[16];
   std::snprintf(code, sizeof code, "0x%04X", static_cast<unsigned>(eglGetError()));
@@ -153,18 +153,14 @@ struct egl_client {
   }
 };
 
-// Displays are shared by every context on them; the last context to close terminates its display.
-std::map<EGLDisplay, int>& display_users() {
-  static std::map<EGLDisplay, int> users;
-  return users;
-}
-
 class egl_context final : public gl_context {
  public:
   egl_context(EGLDisplay display, std::string kind) : display_(display), kind_(std::move(kind)) {
     EGLint major = 0, minor = 0;
+    // A display is one per device and process, shared by every context on it; it is initialised
+    // again (a no-op) per context and never terminated: eglTerminate on Mesa 22.3 leaves two of
+    // its blocks unreachable (LeakSanitizer reports them), and the process ends soon after anyway.
     if (!eglInitialize(display_, &major, &minor)) throw error(kind_ + ": eglInitialize failed (" + egl_error_text() + ")");
-    ++display_users()[display_];
     try {
       if (!eglBindAPI(EGL_OPENGL_API)) throw error(kind_ + ": desktop OpenGL is not offered (eglBindAPI: " + egl_error_text() + ")");
       const char* display_extensions = eglQueryString(display_, EGL_EXTENSIONS);
@@ -206,11 +202,6 @@ class egl_context final : public gl_context {
       eglDestroyContext(display_, context_);
       context_ = EGL_NO_CONTEXT;
     }
-    if (display_ != EGL_NO_DISPLAY && --display_users()[display_] == 0) {
-      display_users().erase(display_);
-      eglTerminate(display_);
-    }
-    display_ = EGL_NO_DISPLAY;
   }
 
   EGLDisplay display_ = EGL_NO_DISPLAY;
@@ -244,7 +235,9 @@ std::unique_ptr<gl_context> create_egl_context(int device_index) {
   std::string tried;
   if (device_index >= 0) {
     const egl_device& device = devices[static_cast<std::size_t>(device_index)];
-    const EGLDisplay display = client.get_platform_display(EGL_PLATFORM_DEVICE_EXT, device.handle, nullptr);
+    const EGLDisplay display = [&] {
+        return client.get_platform_display(EGL_PLATFORM_DEVICE_EXT, device.handle, nullptr);
+    }();
     const std::string kind = "EGL device " + std::to_string(device_index) + " (" + device.description + ")";
     if (display == EGL_NO_DISPLAY) {
       tried = kind + ": no display (" + egl_error_text() + ")";
@@ -257,7 +250,9 @@ std::unique_ptr<gl_context> create_egl_context(int device_index) {
     }
   }
   if (client.surfaceless_platform()) {
-    const EGLDisplay display = client.get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+    const EGLDisplay display = [&] {
+        return client.get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+    }();
     if (display != EGL_NO_DISPLAY) {
       try {
         return std::make_unique<egl_context>(display, "EGL surfaceless");
