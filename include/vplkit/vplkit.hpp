@@ -11,6 +11,7 @@
 #include <vplkit/micro_linear_buffer.hpp>
 #include <vplkit/polynomial_math.hpp>
 #include <vplkit/rsm_gather.hpp>
+#include <vplkit/rsm_packing.hpp>
 #include <vplkit/rsm_pattern.hpp>
 #include <vplkit/shading.hpp>
 #include <vplkit/shadow.hpp>
