@@ -1,6 +1,7 @@
-// One RSM texel in one 128-bit texel (RGBA32UI), so that the gather reads one texture per pixel
+// One RSM texel in one 128-bit texel (RGBA32UI), so that a gather can read one texture per pixel
 // light instead of three ([RSMV] stores position, normal and flux in three RGBA16F targets,
-// Fig. 4.2). Every field is encoded with integer and float operations that GLSL 3.30 has and
+// Fig. 4.2). The RSM pipeline does not use it yet: on llvmpipe, decoding a world-space position
+// per sample (the centre ray and a 4x3 transform) cost more than the two fetches it saved. Every field is encoded with integer and float operations that GLSL 3.30 has and
 // that round the same way on both sides, so the C++ twin decodes the same bits:
 //
 //   x: the light eye-space depth, the float's own bits (exact);
