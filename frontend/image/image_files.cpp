@@ -160,6 +160,19 @@ image decode_png(const std::string& bytes, const std::string& name, const image_
   if (claimed_width == 0 || claimed_height == 0 || claimed_width > 0x7fffffffu || claimed_height > 0x7fffffffu)
     throw error(name + ": not a readable PNG (its header claims " + std::to_string(claimed_width) + "x" + std::to_string(claimed_height) + " pixels)");
   check_size(static_cast<int>(claimed_width), static_cast<int>(claimed_height), name, limits);
+  // Every chunk's length must fit in the file before stb reads it: stb grows its IDAT buffer to
+  // the claimed length (doubling) before it finds the data missing, so a 60-byte file claiming a
+  // 2 GiB IDAT would allocate 2 GiB. With this walk stb's buffers stay within twice the file.
+  for (std::size_t at = 8;;) {
+    if (bytes.size() - at < 12) throw error(name + ": not a readable PNG (it ends inside the chunk at byte " + std::to_string(at) + ", before IEND)");
+    const std::uint32_t chunk_length = big_endian(at);
+    const std::string type = bytes.substr(at + 4, 4);
+    if (chunk_length > bytes.size() - at - 12)
+      throw error(name + ": not a readable PNG (its chunk at byte " + std::to_string(at) + " claims " + std::to_string(chunk_length) +
+                  " bytes of data; the file has " + std::to_string(bytes.size() - at - 12) + " after its header)");
+    at += 12 + std::size_t{chunk_length};
+    if (type == "IEND") break;
+  }
   const int length = static_cast<int>(bytes.size());
   int width = 0, height = 0, channels = 0;
   stbi_uc* decoded = stbi_load_from_memory(data, length, &width, &height, &channels, 3);

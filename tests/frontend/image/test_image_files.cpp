@@ -135,3 +135,18 @@ TEST_CASE("write_png writes a PNG, and on failure leaves no file behind") {
   CHECK(!fs::exists(folder / "wrong-size.png"));
   fs::remove_all(folder);
 }
+
+TEST_CASE("PNG decoding: every chunk's length is checked against the file before stb allocates") {
+  const std::vector<std::uint8_t> encoded = encode_png(3, 2, std::vector<std::uint8_t>(3 * 2 * 4, 200));
+  const std::string png(encoded.begin(), encoded.end());
+  CHECK(decode_image(png, image_file_format::png, "ok.png").width == 3);
+  CHECK(decode_image(png + "trailing bytes", image_file_format::png, "ok.png").width == 3);  // after IEND: ignored
+  // The first chunk after IHDR (at byte 33) claiming 2^31 - 1 bytes: stb would grow its IDAT
+  // buffer to that length before finding the data missing.
+  std::string hostile = png;
+  for (int i = 0; i < 4; ++i) hostile[33 + static_cast<std::size_t>(i)] = static_cast<char>(i == 0 ? 0x7f : 0xff);
+  CHECK_THROWS_WITH_AS(decode_image(hostile, image_file_format::png, "t.png"),
+                       doctest::Contains("t.png: not a readable PNG (its chunk at byte 33 claims 2147483647 bytes of data"), vplkit::error);
+  CHECK_THROWS_WITH_AS(decode_image(png.substr(0, png.size() - 12), image_file_format::png, "t.png"),
+                       doctest::Contains("t.png: not a readable PNG (it ends inside the chunk at byte"), vplkit::error);
+}
