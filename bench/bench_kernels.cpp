@@ -73,7 +73,8 @@ BENCHMARK(alg6)->ArgNames({"slots", "samples"})->ArgsProduct({{2, 5, 8, 16}, {5,
 
 // The whole per-receiver gather (Alg. 1/5) on a synthetic 512^2 RSM (a floor with a block, as
 // seen by an orthographic light from above), one thread: the CPU cost of visibility at the same
-// 150 samples, without the GL pipeline around it.
+// 150 samples, without the GL pipeline around it. The gather works in the light's eye space.
+const glm::mat4 bench_light_view(1, 0, 0, 0, 0, 0, -1, 0, 0, 1, 0, 0, 0, 0, -10, 1);
 struct synthetic_rsm {
   std::vector<vplkit::rsm_texel<float>> texels;
   synthetic_rsm() : texels(512 * 512) {
@@ -81,7 +82,8 @@ struct synthetic_rsm {
       for (int x = 0; x < 512; ++x) {
         const float wx = (static_cast<float>(x) - 256.0f) * 0.01f, wz = (static_cast<float>(y) - 256.0f) * 0.01f;
         const float height = (wx > 0.3f && wx < 0.8f) ? 0.6f : 0.0f;
-        texels[static_cast<std::size_t>(y * 512 + x)] = {glm::vec3(wx, height, -wz), height - 10.0f, glm::vec3(0, 1, 0), glm::vec3(1.0f)};
+        texels[static_cast<std::size_t>(y * 512 + x)] = {vplkit::transform_point(bench_light_view, glm::vec3(wx, height, -wz)),
+                                                         vplkit::transform_direction(bench_light_view, glm::vec3(0, 1, 0)), glm::vec3(1.0f)};
       }
   }
 };
@@ -90,13 +92,13 @@ template <vplkit::rsm_visibility Visibility>
 void gather_cost(benchmark::State& state) {
   static const synthetic_rsm rsm;
   vplkit::rsm_gather_settings<float> settings;
-  settings.light_view = glm::mat4(1, 0, 0, 0, 0, 0, -1, 0, 0, 1, 0, 0, 0, 0, -10, 1);  // eye z = y - 10
   const auto fetch = [&](glm::ivec2 t) { return rsm.texels[static_cast<std::size_t>(t.y * 512 + t.x)]; };
   std::uint32_t receiver = 0;
   for (auto _ : state) {
     const float x = static_cast<float>(receiver % 64) * 0.01f, z = static_cast<float>(receiver / 64 % 64) * 0.01f;
-    const vplkit::gather_receiver<float> r{glm::vec3(x, 0.05f, -z), glm::vec3(1, 0, 0), glm::vec2(256.0f + 100.0f * x, 256.0f + 100.0f * z),
-                                           glm::uvec2(receiver % 64, receiver / 64)};
+    const vplkit::gather_receiver<float> r{vplkit::transform_point(bench_light_view, glm::vec3(x, 0.05f, -z)),
+                                           vplkit::transform_direction(bench_light_view, glm::vec3(1, 0, 0)),
+                                           glm::vec2(256.0f + 100.0f * x, 256.0f + 100.0f * z), glm::uvec2(receiver % 64, receiver / 64)};
     benchmark::DoNotOptimize(vplkit::gather_rsm<vplkit::rsm_pattern::radial, Visibility>(r, fetch, settings));
     ++receiver;
   }

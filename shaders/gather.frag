@@ -2,26 +2,25 @@
 // Pass 3, RSM sampling ([RSMV], section 4.4): the gather at the indirect buffer's resolution,
 // one G-buffer sample per texel (G-buffer texel = indirect texel * divisor). Writes
 // [irradiance | camera eye depth] (Fig. 4.4). VPLKIT_RSM_PATTERN and VPLKIT_VISIBILITY select
-// the variant (lib/rsm_gather.glsl).
+// the variant, VPLKIT_SLOT_COUNT fixes the slot count (lib/rsm_gather.glsl). One fetch per
+// sample: the RSM is one packed texture (lib/rsm_packing.glsl), and the gather runs in the
+// light's eye space.
 #include "lib/rsm_gather.glsl"
+#include "lib/rsm_packing.glsl"
 
 uniform rsm_gather_settings settings;
+uniform rsm_unprojection unprojection;
+uniform mat4 light_view;
 uniform mat4 light_view_projection;
 uniform int indirect_divisor;
 uniform ivec2 gbuffer_size;
-uniform sampler2D rsm_position_depth;
-uniform sampler2D rsm_normal;
-uniform sampler2D rsm_flux;
+uniform usampler2D rsm_packed;
 uniform sampler2D gbuffer_position_depth;
 uniform sampler2D gbuffer_normal;
 
 layout(location = 0) out vec4 indirect;
 
-rsm_texel rsm_fetch(ivec2 texel) {
-  vec4 position_depth = texelFetch(rsm_position_depth, texel, 0);
-  return rsm_texel(position_depth.xyz, position_depth.w, texelFetch(rsm_normal, texel, 0).xyz,
-                   texelFetch(rsm_flux, texel, 0).xyz);
-}
+rsm_texel rsm_fetch(ivec2 texel) { return unpack_rsm_texel(texelFetch(rsm_packed, texel, 0), texel, unprojection); }
 
 void main() {
   ivec2 texel = ivec2(gl_FragCoord.xy);
@@ -31,8 +30,7 @@ void main() {
     indirect = vec4(0.0);
     return;
   }
-  gather_receiver receiver = gather_receiver(position_depth.xyz, texelFetch(gbuffer_normal, sample_texel, 0).xyz,
-                                             map_coordinate(light_view_projection, position_depth.xyz, settings.rsm_size),
-                                             uvec2(texel));
+  gather_receiver receiver = make_gather_receiver(position_depth.xyz, texelFetch(gbuffer_normal, sample_texel, 0).xyz, light_view,
+                                                  light_view_projection, settings.rsm_size, uvec2(texel));
   indirect = vec4(gather_rsm(receiver, settings), position_depth.w);
 }

@@ -9,7 +9,7 @@ uniform mat4 light_view;
 uniform mat4 light_view_projection;
 uniform ivec2 rsm_size;
 uniform shadow_density_settings shadow;
-uniform sampler2D rsm_position_depth;
+uniform usampler2D rsm_packed;  // lib/rsm_packing.glsl: x holds the light eye depth's bits
 
 in vec3 world_position;
 in vec3 world_normal;
@@ -18,7 +18,7 @@ layout(location = 0) out vec4 position_depth;
 layout(location = 1) out vec4 albedo_density;
 layout(location = 2) out vec4 normal_out;
 
-float rsm_depth_fetch(ivec2 texel) { return texelFetch(rsm_position_depth, texel, 0).w; }
+float rsm_depth_fetch(ivec2 texel) { return uintBitsToFloat(texelFetch(rsm_packed, texel, 0).x); }
 
 // Change of the light eye depth per RSM texel across this surface, from screen-space
 // derivatives (receiver-plane depth bias, Isidoro 2006): solve

@@ -125,7 +125,7 @@ common_option_handles add_common_options(CLI::App& command, common_options& opti
             return parse_size(text, options.width, options.height);
           },
           "N|WxH"));
-  handles.format = command.add_option("--format", options.format, "float format of every render target")
+  handles.format = command.add_option("--format", options.format, "float format of the render targets (the RSM is packed: RGBA32UI)")
       ->check(CLI::IsMember({"rgba16f", "rgba32f"}))->capture_default_str();
   handles.min_distance = command.add_option("--min-distance", options.min_distance, "distance clamp of the light terms, scene units (irradiance_settings::min_distance)")
       ->check(positive_number("scene units"))->capture_default_str();

@@ -49,8 +49,13 @@ void set_uniforms(const program& target, const std::string& name, const rsm_gath
   set_uniforms(target, name + ".radial", settings.radial);
   set_uniforms(target, name + ".disk", settings.disk);
   set_uniforms(target, name + ".slots", settings.slots);
-  target.set(name + ".light_view", settings.light_view);
   target.set(name + ".rsm_size", settings.rsm_size);
+}
+
+void set_uniforms(const program& target, const std::string& name, const rsm_unprojection<float>& light) {
+  target.set(name + ".ray_origin", light.ray_origin);
+  target.set(name + ".ray_step", light.ray_step);
+  target.set(name + ".perspective", light.perspective);
 }
 
 void set_uniforms(const program& target, const std::string& name, const shadow_density_settings<float>& settings) {

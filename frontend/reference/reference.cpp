@@ -195,14 +195,16 @@ image reference_rsm_gather(const ray_scene& rays, const rsm_pass_buffers& buffer
     glm::vec3 position, normal, flux;
     glm::vec2 texel_centre;
   };
+  // In the light's eye space, like the gather's receivers; the occlusion rays go back to the world.
   std::vector<light_texel> lights;
-  const image& positions = buffers.rsm[0];
-  for (int y = 0; y < positions.height; ++y)
-    for (int x = 0; x < positions.width; ++x) {
-      const glm::ivec2 t(x, y);
-      if (positions.at(t).w < 0.0f && glm::vec3(buffers.rsm[2].at(t)) != glm::vec3(0.0f))
-        lights.push_back({glm::vec3(positions.at(t)), glm::vec3(buffers.rsm[1].at(t)), glm::vec3(buffers.rsm[2].at(t)), glm::vec2(t) + 0.5f});
+  const std::vector<rsm_texel<float>> rsm = unpack_rsm(buffers, constants);
+  for (int y = 0; y < buffers.rsm.height; ++y)
+    for (int x = 0; x < buffers.rsm.width; ++x) {
+      const rsm_texel<float>& texel = rsm[static_cast<std::size_t>(y) * static_cast<std::size_t>(buffers.rsm.width) + static_cast<std::size_t>(x)];
+      if (texel.position.z < 0.0f && texel.flux != glm::vec3(0.0f))
+        lights.push_back({texel.position, texel.normal, texel.flux, glm::vec2(x, y) + 0.5f});
     }
+  const glm::mat4 to_world = glm::inverse(constants.light.view);
   const int stride = options.receiver_stride;
   const int rows = (out.height + stride - 1) / stride;
   progress_bar progress(options.exact_visibility ? "brute-force RSM gather with visibility" : "brute-force RSM gather", static_cast<std::size_t>(rows));
@@ -222,7 +224,9 @@ image reference_rsm_gather(const ray_scene& rays, const rsm_pass_buffers& buffer
         const glm::vec3 e = pixel_light_irradiance(p, n, light.position, light.normal, light.flux, constants.gather.irradiance);
         if (e == glm::vec3(0.0f)) continue;
         all += e;
-        if (!options.exact_visibility || !light_occluded(rays, p, n, light.position, light.normal)) seen += e;
+        if (!options.exact_visibility || !light_occluded(rays, transform_point(to_world, p), transform_direction(to_world, n),
+                                                         transform_point(to_world, light.position), transform_direction(to_world, light.normal)))
+          seen += e;
       }
       const float total = all.x + all.y + all.z;
       out.at(glm::ivec2(x, y)) = glm::vec4(seen * 0.318309886183790671538f, total > 0.0f ? (seen.x + seen.y + seen.z) / total : 1.0f);
@@ -235,12 +239,17 @@ image reference_rsm_gather(const ray_scene& rays, const rsm_pass_buffers& buffer
 
 namespace {
 
-// The visibility object of gather_rsm_with: a ray per sample.
+// The visibility object of gather_rsm_with: a ray per sample, in the world (the gather's points
+// are in the light's eye space).
 struct ray_cast_visibility {
   const ray_scene& rays;
+  glm::mat4 to_world;
   void begin_path() {}
-  float operator()(const gather_receiver<float>& receiver, float, const rsm_texel<float>& light) const {
-    return light_occluded(rays, receiver.position, receiver.normal, light.position, light.normal) ? 0.0f : 1.0f;
+  float operator()(const gather_receiver<float>& receiver, const rsm_texel<float>& light) const {
+    return light_occluded(rays, transform_point(to_world, receiver.position), transform_direction(to_world, receiver.normal),
+                          transform_point(to_world, light.position), transform_direction(to_world, light.normal))
+               ? 0.0f
+               : 1.0f;
   }
 };
 
@@ -250,10 +259,11 @@ image gather_with_ray_cast_visibility(const ray_scene& rays, const rsm_pass_buff
                                              int receiver_stride, int threads) {
   if (receiver_stride < 1) throw error("gather with ray-cast visibility: receiver_stride must be >= 1");
   image out = empty_indirect(constants);
-  const std::vector<rsm_texel<float>> rsm = interleave_rsm(buffers);
+  const std::vector<rsm_texel<float>> rsm = unpack_rsm(buffers, constants);
   const auto fetch = [&](glm::ivec2 texel) {
-    return rsm[static_cast<std::size_t>(texel.y) * static_cast<std::size_t>(buffers.rsm[0].width) + static_cast<std::size_t>(texel.x)];
+    return rsm[static_cast<std::size_t>(texel.y) * static_cast<std::size_t>(buffers.rsm.width) + static_cast<std::size_t>(texel.x)];
   };
+  const ray_cast_visibility visibility{rays, glm::inverse(constants.light.view)};
   const int rows = (out.height + receiver_stride - 1) / receiver_stride;
   parallel_for(rows, threads, [&](int row) {
     const int y = row * receiver_stride;
@@ -262,8 +272,8 @@ image gather_with_ray_cast_visibility(const ray_scene& rays, const rsm_pass_buff
       const std::optional<gather_receiver<float>> receiver = gather_receiver_at(texel, buffers, constants);
       if (!receiver) continue;
       const glm::vec3 e = constants.technique.pattern == rsm_pattern::disk
-                              ? gather_rsm_with<rsm_pattern::disk>(*receiver, fetch, constants.gather, ray_cast_visibility{rays})
-                              : gather_rsm_with<rsm_pattern::radial>(*receiver, fetch, constants.gather, ray_cast_visibility{rays});
+                              ? gather_rsm_with<rsm_pattern::disk>(*receiver, fetch, constants.gather, ray_cast_visibility(visibility))
+                              : gather_rsm_with<rsm_pattern::radial>(*receiver, fetch, constants.gather, ray_cast_visibility(visibility));
       out.at(texel) = glm::vec4(e, buffers.gbuffer[0].at(gbuffer_texel_of(texel, constants)).w);
     }
   });
@@ -278,7 +288,7 @@ std::vector<std::uint8_t> rsm_covered_receivers(const rsm_pass_buffers& buffers,
       const std::optional<gather_receiver<float>> receiver = gather_receiver_at(glm::ivec2(x, y), buffers, constants);
       if (!receiver) continue;
       const glm::vec2 projection = receiver->rsm_coordinate;
-      const bool in_front = transform_point(constants.gather.light_view, receiver->position).z < 0.0f;
+      const bool in_front = receiver->position.z < 0.0f;  // light eye space
       const bool inside = projection.x >= 0.0f && projection.y >= 0.0f && projection.x < static_cast<float>(constants.gather.rsm_size.x) &&
                           projection.y < static_cast<float>(constants.gather.rsm_size.y);
       covered[static_cast<std::size_t>(y) * static_cast<std::size_t>(constants.indirect_size.x) + static_cast<std::size_t>(x)] = in_front && inside ? 1 : 0;

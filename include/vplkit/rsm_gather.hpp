@@ -17,11 +17,12 @@
 // divide mirrors it, and sampling around the mirrored point lit a blob on the Cornell box's
 // ceiling. The RSM has nothing to say about such a receiver: the gather returns 0.
 //
-// Elevation: the thesis stores the light's eye-space depth in the RSM to evaluate the elevation
-// angle (section 4.2), and the light's view is a rigid motion, so the gather takes the vertical
-// component from the stored depths, dz = z_p - z_x, and the horizontal length from the world
-// distance it already has for Eq. 3.2: |dxy| = sqrt(max(0, |x_p - x|^2 - dz^2)). No pixel light
-// is transformed into eye space.
+// Space: the gather runs in the light's eye space. The elevation angle of Alg. 1 is defined
+// there (section 4.2: the thesis stores the light's eye-space depth in the RSM for it), and
+// Eq. 3.2 is unchanged by the light's view, a rigid motion. So a pixel light is its eye-space
+// position and normal, which the one-texel RSM of vplkit/rsm_packing.hpp rebuilds from a depth
+// and the texel's centre ray without a matrix, and the receiver is moved into that space once
+// (make_gather_receiver); dz = z_p - z_x and |dxy| come straight from the two positions.
 //
 // GLSL twin: shaders/lib/rsm_gather.glsl, with VPLKIT_RSM_PATTERN and VPLKIT_VISIBILITY
 // (#defines) for the template parameters.
@@ -41,9 +42,8 @@ namespace vplkit {
 /// One texel of the RSM (Fig. 4.2): a pixel light.
 template <typename T>
 struct rsm_texel {
-  glm::vec<3, T> position;  ///< world space
-  T eye_depth;              ///< z in the light's eye space (negative in front); >= 0: empty
-  glm::vec<3, T> normal;    ///< world space, unit
+  glm::vec<3, T> position;  ///< light eye space; z < 0 in front of the light, z >= 0: empty texel
+  glm::vec<3, T> normal;    ///< light eye space, unit
   glm::vec<3, T> flux;      ///< flux reflected by the texel
 };
 
@@ -69,7 +69,6 @@ struct rsm_gather_settings {
   radial_pattern_constants<T> radial = make_radial_pattern_constants(radial_pattern_settings<T>{});
   disk_pattern_settings<T> disk;
   elevation_slots<T> slots = make_elevation_slots<T>(5);  ///< the thesis's 5 slots
-  glm::mat<4, 4, T> light_view = glm::mat<4, 4, T>(1);    ///< world -> light eye space (rigid)
   glm::ivec2 rsm_size = glm::ivec2(512);
 };
 
@@ -101,14 +100,24 @@ constexpr rsm_gather_preset<T> thesis_rsm_gather_preset() {
   return {T(0.125), 15, 10, 5};
 }
 
-/// The receiver: a G-buffer sample.
+/// The receiver: a G-buffer sample, in the light's eye space like the pixel lights.
 template <typename T>
 struct gather_receiver {
-  glm::vec<3, T> position;        ///< world space
-  glm::vec<3, T> normal;          ///< world space, unit
+  glm::vec<3, T> position;        ///< light eye space
+  glm::vec<3, T> normal;          ///< light eye space, unit
   glm::vec<2, T> rsm_coordinate;  ///< its projection onto the RSM, in texels (continuous)
   glm::uvec2 pixel;               ///< its pixel in the indirect buffer (seeds the pattern)
 };
+
+/// A G-buffer sample (world space) as the gather's receiver: moved into the light's eye space by
+/// `light_view` (rigid, so the normal turns with its upper 3x3, transform_direction) and projected onto the RSM.
+template <typename T>
+gather_receiver<T> make_gather_receiver(const glm::vec<3, T>& world_position, const glm::vec<3, T>& world_normal,
+                                        const glm::mat<4, 4, T>& light_view, const glm::mat<4, 4, T>& light_view_projection,
+                                        glm::ivec2 rsm_size, glm::uvec2 pixel) {
+  return {transform_point(light_view, world_position), transform_direction(light_view, world_normal),
+          map_coordinate(light_view_projection, world_position, rsm_size), pixel};
+}
 
 /// The sampling radius in texels for one given as a fraction of the RSM's larger side.
 template <typename T>
@@ -118,8 +127,7 @@ T rsm_radius_in_texels(T radius_fraction, glm::ivec2 rsm_size) {
 
 /// Gather settings for an RSM of `rsm_size` texels, derived in one place: the radial and disk
 /// patterns with their radius (rsm_radius_in_texels of `radius_fraction`; their own max_radius is
-/// replaced), the pattern constants and the slot tangents. irradiance keeps its default and
-/// light_view the identity: set them.
+/// replaced), the pattern constants and the slot tangents. irradiance keeps its default.
 template <typename T>
 rsm_gather_settings<T> make_rsm_gather_settings(radial_pattern_settings<T> radial, disk_pattern_settings<T> disk, T radius_fraction, int slots,
                                                 glm::ivec2 rsm_size) {
@@ -133,7 +141,7 @@ rsm_gather_settings<T> make_rsm_gather_settings(radial_pattern_settings<T> radia
 }
 
 /// Gather settings for an RSM of `rsm_size` texels from a preset, the other pattern settings at
-/// their defaults (set light_view).
+/// their defaults.
 template <typename T>
 rsm_gather_settings<T> rsm_gather_settings_from(const rsm_gather_preset<T>& preset, glm::ivec2 rsm_size) {
   radial_pattern_settings<T> radial;
@@ -142,7 +150,7 @@ rsm_gather_settings<T> rsm_gather_settings_from(const rsm_gather_preset<T>& pres
   return make_rsm_gather_settings(radial, disk_pattern_settings<T>{}, preset.radius_fraction, preset.slots, rsm_size);
 }
 
-/// The settings `vplkit render` uses for an RSM of `rsm_size` texels (set light_view).
+/// The settings `vplkit render` uses for an RSM of `rsm_size` texels.
 template <typename T>
 rsm_gather_settings<T> default_rsm_gather_settings(glm::ivec2 rsm_size) {
   return rsm_gather_settings_from(default_rsm_gather_preset<T>(), rsm_size);
@@ -151,21 +159,18 @@ rsm_gather_settings<T> default_rsm_gather_settings(glm::ivec2 rsm_size) {
 namespace detail {
 
 /// The per-path visibility of Alg. 2, 3 and 6 (or none): a micro linear buffer, reset for every
-/// path, fed with the elevation slot of each sample (dz from the stored depths, see the top).
+/// path, fed with the elevation slot of each sample (both points in the light's eye space).
 template <rsm_visibility Visibility, typename T>
 struct micro_linear_buffer_visibility {
   const elevation_slots<T>& slots;
   micro_linear_buffer<T> buffer{};
   void begin_path() { micro_linear_buffer_reset(buffer, slots.count); }
-  T operator()(const gather_receiver<T>& receiver, T receiver_depth, const rsm_texel<T>& light) {
+  T operator()(const gather_receiver<T>& receiver, const rsm_texel<T>& light) {
     if constexpr (Visibility == rsm_visibility::none) {
-      (void)receiver, (void)receiver_depth, (void)light;
+      (void)receiver, (void)light;
       return T(1);
     } else {
-      const glm::vec<3, T> offset = light.position - receiver.position;
-      const T dz = light.eye_depth - receiver_depth;
-      const T horizontal = std::sqrt(glm::max(T(0), glm::dot(offset, offset) - dz * dz));
-      const int index = elevation_slot(dz, horizontal, slots);
+      const int index = elevation_bucket(receiver.position, light.position, slots);
       if constexpr (Visibility == rsm_visibility::alg2) return micro_linear_buffer_alg2(buffer, index);
       else if constexpr (Visibility == rsm_visibility::alg3) return micro_linear_buffer_alg3(buffer, index);
       else return glm::clamp(micro_linear_buffer_alg6(buffer, index), T(0), T(1));
@@ -177,7 +182,7 @@ struct micro_linear_buffer_visibility {
 
 /// The gather with the visibility of each sample supplied by `visibility`, an object with
 /// `begin_path()` (called before every path of the radial pattern, once for the disk pattern)
-/// and `T operator()(const gather_receiver<T>&, T receiver_depth, const rsm_texel<T>& light)`,
+/// and `T operator()(const gather_receiver<T>&, const rsm_texel<T>& light)`,
 /// called for every sample that lands on a lit texel, near to far along each path. This is the
 /// one sampling loop: gather_rsm below passes the micro linear buffer, the ground truth
 /// (gather_with_ray_cast_visibility in frontend/reference/reference.hpp) passes a ray cast to measure the
@@ -186,15 +191,14 @@ template <rsm_pattern Pattern, typename T, typename Fetch, typename Visibility>
 glm::vec<3, T> gather_rsm_with(const gather_receiver<T>& receiver, Fetch&& fetch, const rsm_gather_settings<T>& settings,
                                Visibility&& visibility) {
   glm::vec<3, T> irradiance(0);
-  const T receiver_depth = transform_point(settings.light_view, receiver.position).z;
-  if (!(receiver_depth < T(0))) return irradiance;
+  if (!(receiver.position.z < T(0))) return irradiance;
   // One sample: fetch, visibility, Eq. 3.2, accumulate (Alg. 1 lines 9-16, Alg. 5 lines 9-15).
   auto accumulate = [&](const pattern_sample<T>& sample) {
     const glm::ivec2 texel = glm::ivec2(glm::floor(receiver.rsm_coordinate + sample.offset));
     if (texel.x < 0 || texel.y < 0 || texel.x >= settings.rsm_size.x || texel.y >= settings.rsm_size.y) return;
     const rsm_texel<T> light = fetch(texel);
-    if (!(light.eye_depth < T(0))) return;
-    const T seen = visibility(receiver, receiver_depth, light);
+    if (!(light.position.z < T(0))) return;
+    const T seen = visibility(receiver, light);
     const glm::vec<3, T> e = pixel_light_irradiance(receiver.position, receiver.normal, light.position, light.normal,
                                                     light.flux, settings.irradiance);
     irradiance += (seen * sample.weight) * e;

@@ -12,9 +12,18 @@ struct elevation_slots {
   float boundary_tangent[VPLKIT_MAX_SLOTS - 1];
 };
 
+// The loop runs to a constant where the program is built for one slot count (VPLKIT_SLOT_COUNT,
+// equal to slots.count): the compiler unrolls it, which took 30 % off the RSM gather on
+// llvmpipe (8 slots). Without the define it runs to the uniform count.
+#ifdef VPLKIT_SLOT_COUNT
+#define VPLKIT_ELEVATION_BOUNDARIES (VPLKIT_SLOT_COUNT - 1)
+#else
+#define VPLKIT_ELEVATION_BOUNDARIES (slots.count - 1)
+#endif
+
 int elevation_slot(float dz, float horizontal, elevation_slots slots) {
   int index = 0;
-  for (int k = 0; k < slots.count - 1; ++k) index += (dz >= slots.boundary_tangent[k] * horizontal) ? 1 : 0;
+  for (int k = 0; k < VPLKIT_ELEVATION_BOUNDARIES; ++k) index += (dz >= slots.boundary_tangent[k] * horizontal) ? 1 : 0;
   return index;
 }
 

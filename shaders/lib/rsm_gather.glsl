@@ -1,8 +1,9 @@
 // GLSL twin of include/vplkit/rsm_gather.hpp: the RSM gather of [RSMV] (Alg. 1/5 with the
-// visibility of Alg. 2, 3 or 6, or the original disk pattern).
+// visibility of Alg. 2, 3 or 6, or the original disk pattern), in the light's eye space.
 // Before including, define
 //   VPLKIT_RSM_PATTERN  0 radial, 1 disk
 //   VPLKIT_VISIBILITY   0 none, 2 Alg. 2, 3 Alg. 3, 6 Alg. 6
+//   VPLKIT_SLOT_COUNT   (optional) settings.slots.count, as a constant: see lib/micro_linear_buffer.glsl
 // and the function `rsm_texel rsm_fetch(ivec2 texel)` (declare it after including this file's
 // rsm_texel, e.g. with a prototype: the struct comes first, the fetch after).
 #ifndef VPLKIT_RSM_GATHER_GLSL
@@ -24,9 +25,8 @@
 #endif
 
 struct rsm_texel {
-  vec3 position;
-  float eye_depth;
-  vec3 normal;
+  vec3 position;  // light eye space; z >= 0: empty texel
+  vec3 normal;    // light eye space
   vec3 flux;
 };
 
@@ -37,7 +37,6 @@ struct rsm_gather_settings {
   radial_pattern_constants radial;
   disk_pattern_settings disk;
   elevation_slots slots;
-  mat4 light_view;
   ivec2 rsm_size;
 };
 
@@ -48,19 +47,22 @@ struct gather_receiver {
   uvec2 pixel;
 };
 
+gather_receiver make_gather_receiver(vec3 world_position, vec3 world_normal, mat4 light_view, mat4 light_view_projection,
+                                     ivec2 rsm_size, uvec2 pixel) {
+  return gather_receiver(transform_point(light_view, world_position), transform_direction(light_view, world_normal),
+                         map_coordinate(light_view_projection, world_position, rsm_size), pixel);
+}
+
 // The C++ twin is the lambda `accumulate` inside gather_rsm (a function here: GLSL has no lambdas).
-void rsm_gather_accumulate(gather_receiver receiver, float receiver_depth, pattern_sample s, rsm_gather_settings settings,
+void rsm_gather_accumulate(gather_receiver receiver, pattern_sample s, rsm_gather_settings settings,
                            inout micro_linear_buffer buffer, inout vec3 irradiance) {
   ivec2 texel = ivec2(floor(receiver.rsm_coordinate + s.offset));
   if (texel.x < 0 || texel.y < 0 || texel.x >= settings.rsm_size.x || texel.y >= settings.rsm_size.y) return;
   rsm_texel light = rsm_fetch(texel);
-  if (!(light.eye_depth < 0.0)) return;
+  if (!(light.position.z < 0.0)) return;
   float visibility = 1.0;
 #if VPLKIT_VISIBILITY != 0
-  vec3 offset = light.position - receiver.position;
-  float dz = light.eye_depth - receiver_depth;
-  float horizontal = sqrt(max(0.0, dot(offset, offset) - dz * dz));
-  int index = elevation_slot(dz, horizontal, settings.slots);
+  int index = elevation_bucket(receiver.position, light.position, settings.slots);
 #if VPLKIT_VISIBILITY == 2
   visibility = micro_linear_buffer_alg2(buffer, index);
 #elif VPLKIT_VISIBILITY == 3
@@ -76,8 +78,7 @@ void rsm_gather_accumulate(gather_receiver receiver, float receiver_depth, patte
 
 vec3 gather_rsm(gather_receiver receiver, rsm_gather_settings settings) {
   vec3 irradiance = vec3(0.0);
-  float receiver_depth = transform_point(settings.light_view, receiver.position).z;
-  if (!(receiver_depth < 0.0)) return irradiance;  // behind the light: see the C++ twin
+  if (!(receiver.position.z < 0.0)) return irradiance;  // behind the light: see the C++ twin
   micro_linear_buffer buffer;
 #if VPLKIT_RSM_PATTERN == 0
   radial_pixel pixel = radial_pattern_pixel(receiver.pixel, settings.radial);
@@ -85,7 +86,7 @@ vec3 gather_rsm(gather_receiver receiver, rsm_gather_settings settings) {
     micro_linear_buffer_reset(buffer, settings.slots.count);
     float ring_inner_radius = settings.radial.min_radius;
     for (int sample = 0; sample < settings.radial.samples_per_path; ++sample) {
-      rsm_gather_accumulate(receiver, receiver_depth, radial_pattern_sample(path, sample, ring_inner_radius, pixel, settings.radial),
+      rsm_gather_accumulate(receiver, radial_pattern_sample(path, sample, ring_inner_radius, pixel, settings.radial),
                             settings, buffer, irradiance);
       ring_inner_radius *= settings.radial.ring_ratio;
     }
@@ -93,7 +94,7 @@ vec3 gather_rsm(gather_receiver receiver, rsm_gather_settings settings) {
 #else
   micro_linear_buffer_reset(buffer, settings.slots.count);  // unused without paths, but defined
   for (int sample = 0; sample < settings.disk.samples; ++sample)
-    rsm_gather_accumulate(receiver, receiver_depth, rsm_disk_sample(sample, settings.disk), settings, buffer, irradiance);
+    rsm_gather_accumulate(receiver, rsm_disk_sample(sample, settings.disk), settings, buffer, irradiance);
 #endif
   return irradiance * 0.318309886183790671538;
 }

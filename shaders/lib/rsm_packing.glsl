@@ -1,62 +1,39 @@
-// GLSL twin of include/vplkit/rsm_packing.hpp: one RSM texel in one RGBA32UI texel (depth bits,
-// octahedral normal in 2 x 16 bits, flux in 3 x 21 float bits), and the position rebuilt from
-// the texel's centre ray. Same operations in the same order.
+// GLSL twin of include/vplkit/rsm_packing.hpp: one RSM texel in one RGBA32UI texel (light
+// eye-space depth bits, the normal as 3 x 16-bit fixed point, the flux as 3 x 16 float bits),
+// the position rebuilt on the texel's centre ray. Same operations in the same order.
 #ifndef VPLKIT_RSM_PACKING_GLSL
 #define VPLKIT_RSM_PACKING_GLSL
 
 #include "lib/rsm_gather.glsl"
-#include "lib/transform.glsl"
 
 struct rsm_unprojection {
-  mat4 inverse_light_view;
-  float scale;
+  vec2 ray_origin;
+  vec2 ray_step;
   int perspective;
-  ivec2 size;
 };
 
-vec2 octahedral_encode(vec3 n) {
-  float l1 = abs(n.x) + abs(n.y) + abs(n.z);
-  vec2 p = vec2(n.x, n.y) / l1;
-  if (n.z < 0.0) {
-    vec2 folded = vec2(1.0) - abs(vec2(p.y, p.x));
-    p = vec2(p.x >= 0.0 ? folded.x : -folded.x, p.y >= 0.0 ? folded.y : -folded.y);
-  }
-  return p;
+uint snorm16_bits(float v) { return uint(int(floor(clamp(v, -1.0, 1.0) * 32767.0 + 0.5))) & 0xFFFFu; }
+float snorm16_low(uint bits) { return float(int(bits << 16u) >> 16) * (1.0 / 32767.0); }
+float snorm16_high(uint bits) { return float(int(bits) >> 16) * (1.0 / 32767.0); }
+
+uint flux16_bits(float value) {
+  uint bits = floatBitsToUint(max(value, 0.0)) & 0x7FFFFFFFu;
+  return bits >= 0x7F800000u ? (bits == 0x7F800000u ? 0xFEFFu : 0u) : min((bits + 0x4000u) >> 15u, 0xFEFFu);
 }
-
-vec3 octahedral_decode(vec2 p) {
-  vec3 n = vec3(p.x, p.y, 1.0 - abs(p.x) - abs(p.y));
-  if (n.z < 0.0) {
-    vec2 folded = vec2(1.0) - abs(vec2(n.y, n.x));
-    n.x = n.x >= 0.0 ? folded.x : -folded.x;
-    n.y = n.y >= 0.0 ? folded.y : -folded.y;
-  }
-  return normalize(n);
-}
-
-uint quantize_signed_16(float v) { return uint(floor(clamp(v * 0.5 + 0.5, 0.0, 1.0) * 65535.0 + 0.5)); }
-float dequantize_signed_16(uint q) { return float(q) / 65535.0 * 2.0 - 1.0; }
-
-uint flux_bits_21(float value) { return (floatBitsToUint(max(value, 0.0)) >> 10u) & 0x1FFFFFu; }
-float flux_from_bits_21(uint bits) { return uintBitsToFloat(bits << 10u); }
+float flux16_low(uint bits) { return uintBitsToFloat((bits << 15u) & 0x7FFF8000u); }
+float flux16_high(uint bits) { return uintBitsToFloat((bits >> 1u) & 0x7FFF8000u); }
 
 uvec4 pack_rsm_texel(float eye_depth, vec3 normal, vec3 flux) {
-  vec2 oct = octahedral_encode(normal);
-  uint r = flux_bits_21(flux.r), g = flux_bits_21(flux.g), b = flux_bits_21(flux.b);
-  return uvec4(floatBitsToUint(eye_depth), quantize_signed_16(oct.x) | (quantize_signed_16(oct.y) << 16u), r | (g << 21u),
-               (g >> 11u) | (b << 10u));
+  return uvec4(floatBitsToUint(eye_depth), snorm16_bits(normal.x) | (snorm16_bits(normal.y) << 16u),
+               snorm16_bits(normal.z) | (flux16_bits(flux.r) << 16u), flux16_bits(flux.g) | (flux16_bits(flux.b) << 16u));
 }
 
 rsm_texel unpack_rsm_texel(uvec4 bits, ivec2 texel, rsm_unprojection light) {
-  rsm_texel outv;
-  outv.eye_depth = uintBitsToFloat(bits.x);
-  outv.normal = octahedral_decode(vec2(dequantize_signed_16(bits.y & 0xFFFFu), dequantize_signed_16(bits.y >> 16u)));
-  outv.flux = vec3(flux_from_bits_21(bits.z & 0x1FFFFFu), flux_from_bits_21((bits.z >> 21u) | ((bits.w & 0x3FFu) << 11u)),
-                   flux_from_bits_21(bits.w >> 10u));
-  vec2 ndc = (vec2(texel) + 0.5) / vec2(light.size) * 2.0 - 1.0;
-  vec2 eye_xy = light.perspective != 0 ? ndc * light.scale * -outv.eye_depth : ndc * light.scale;
-  outv.position = transform_point(light.inverse_light_view, vec3(eye_xy, outv.eye_depth));
-  return outv;
+  float z = uintBitsToFloat(bits.x);
+  vec2 ray = light.ray_origin + vec2(texel) * light.ray_step;
+  vec2 xy = light.perspective != 0 ? ray * -z : ray;
+  return rsm_texel(vec3(xy, z), vec3(snorm16_low(bits.y), snorm16_high(bits.y), snorm16_low(bits.z)),
+                   vec3(flux16_high(bits.z), flux16_low(bits.w), flux16_high(bits.w)));
 }
 
 #endif

@@ -84,7 +84,7 @@ expect_failure("max radius below min radius" "max_radius must be finite and > mi
 expect_failure("RSM size out of range" "--rsm-size.*16385" "${WORK}/big.png"
                "${VPLKIT}" render --size 8 --rsm-size 16385 --out "${WORK}/big.png")
 # 3 targets of 16384^2 rgba16f: 6 GiB, more than llvmpipe allocates (or above GL_MAX_TEXTURE_SIZE elsewhere).
-expect_failure("RSM too large for the GL implementation" "16384x16384 rgba16f texture" "${WORK}/big.png"
+expect_failure("RSM too large for the GL implementation" "16384x16384 rgba32ui texture" "${WORK}/big.png"
                "${VPLKIT}" render --size 8 --rsm-size 16384 --out "${WORK}/big.png")
 expect_failure("output not a png" "--out must name a \\.png file" "${WORK}/image.jpg" "${VPLKIT}" render --out "${WORK}/image.jpg")
 file(WRITE "${WORK}/a-file" "")

@@ -21,8 +21,14 @@ inline glm::dmat4 light_view_projection() {
   return glm::ortho(-half, half, -half, half, 0.1, 20.0) * light_view();
 }
 
+// A pixel light given in the world, in the light's eye space where the gather works.
+inline rsm_texel<double> light_space_texel(const glm::dvec3& world_position, const glm::dvec3& world_normal, const glm::dvec3& flux) {
+  return {transform_point(light_view(), world_position), transform_direction(light_view(), world_normal), flux};
+}
+
 // A synthetic RSM: a floor at y = 0 (normal up) with flux 1 per texel, and optionally a block
-// [x0, x1] x [0, height] x all z standing on it, seen from above as its top face.
+// [x0, x1] x [0, height] x all z standing on it, seen from above as its top face. Eye x is
+// world x, so tests may read a texel's x as the world's.
 struct synthetic_rsm {
   double block_x0 = 1e9, block_x1 = 1e9, block_height = 0.0;
   bool in_block(double x) const { return x >= block_x0 && x <= block_x1; }
@@ -32,7 +38,7 @@ struct synthetic_rsm {
   rsm_texel<double> operator()(glm::ivec2 t) const {
     glm::dvec3 p = world_of(t);
     if (in_block(p.x)) p.y = block_height;
-    return {p, p.y - light_height, glm::dvec3(0, 1, 0), glm::dvec3(1.0)};
+    return light_space_texel(p, glm::dvec3(0, 1, 0), glm::dvec3(1.0));
   }
 };
 
@@ -43,14 +49,13 @@ inline rsm_gather_settings<double> gather_settings() {
   radial.samples_per_path = 16;
   radial.max_radius = 120.0;
   settings.radial = make_radial_pattern_constants(radial);
-  settings.light_view = light_view();
   settings.rsm_size = glm::ivec2(rsm_size);
   return settings;
 }
 
-// A receiver at height h above the floor, facing down (the underside of a table).
-inline gather_receiver<double> receiver_at(glm::dvec3 position, glm::uvec2 pixel) {
-  return {position, glm::dvec3(0, -1, 0), glm::dvec2(map_coordinate(light_view_projection(), position, glm::ivec2(rsm_size))), pixel};
+// A receiver at a world position, by default facing down (the underside of a table).
+inline gather_receiver<double> receiver_at(glm::dvec3 position, glm::uvec2 pixel, glm::dvec3 normal = glm::dvec3(0, -1, 0)) {
+  return make_gather_receiver(position, normal, light_view(), light_view_projection(), glm::ivec2(rsm_size), pixel);
 }
 
 template <rsm_visibility V>

@@ -197,11 +197,10 @@ TEST_CASE_TEMPLATE("the gathers (RSM with Alg. 6, final gathering) are finite ov
   failures found;
   const glm::ivec2 rsm_size(64, 64);
   rsm_gather_settings<T> settings = default_rsm_gather_settings<T>(rsm_size);
-  settings.light_view = glm::mat<4, 4, T>(1);
   const auto fetch = [&](const glm::ivec2&) {
     rsm_texel<T> texel;
     texel.position = in.point();
-    texel.eye_depth = -std::fabs(in.magnitude());
+    texel.position.z = -std::fabs(in.magnitude());
     texel.normal = in.normal();
     texel.flux = glm::vec<3, T>(std::fabs(in.magnitude()));
     return texel;
@@ -209,7 +208,7 @@ TEST_CASE_TEMPLATE("the gathers (RSM with Alg. 6, final gathering) are finite ov
   const auto cube_fetch = [&](int, int, int) { return glm::vec<4, T>(in.uniform(0, 10), in.uniform(0, 10), in.uniform(0, 10), std::fabs(in.magnitude())); };
   for (int i = 0; i < 2000; ++i) {
     gather_receiver<T> receiver{in.point(), in.normal(), glm::vec<2, T>(in.uniform(-4, 68), in.uniform(-4, 68)), glm::uvec2(i, i * 7)};
-    receiver.position.z = -std::fabs(receiver.position.z);  // in front of the identity light view
+    receiver.position.z = -std::fabs(receiver.position.z);  // in front of the light
     VPLKIT_EXPECT_FINITE("gather_rsm (radial, Alg. 6)", (gather_rsm<rsm_pattern::radial, rsm_visibility::alg6>(receiver, fetch, settings)),
                          text(receiver.position) + " " + text(receiver.normal));
     const glm::vec<3, T> x = in.point(), n = in.normal(), o = i % 5 == 0 ? x : in.point();

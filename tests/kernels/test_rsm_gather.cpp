@@ -92,8 +92,8 @@ TEST_CASE("a block between a receiver and the far floor: Alg. 6 removes the shar
   double removed = 0.0, ratio = 0.0;
   const int receivers = 32;
   for (int i = 0; i < receivers; ++i) {
-    gather_receiver<double> receiver = receiver_at({0.0, 0.05, 0.01 * i - 0.16}, glm::uvec2(static_cast<unsigned>(i), 3u));
-    receiver.normal = glm::dvec3(1, 0, 0);
+    const gather_receiver<double> receiver =
+        receiver_at({0.0, 0.05, 0.01 * i - 0.16}, glm::uvec2(static_cast<unsigned>(i), 3u), glm::dvec3(1, 0, 0));
     // Exact visibility: the floor beyond the block's near face is hidden (the block is taller
     // than the receiver), everything in front of it is seen.
     const auto seen_floor = [&](glm::ivec2 t) {
@@ -127,8 +127,11 @@ struct flat_rsm {
   double flux_per_texel;
   double texel() const { return 2.0 / size; }
   glm::dvec3 world_of(glm::ivec2 t) const { return {(t.x + 0.5) * texel() - 1.0, 0.0, 1.0 - (t.y + 0.5) * texel()}; }
-  rsm_texel<double> operator()(glm::ivec2 t) const { return {world_of(t), -light_height, glm::dvec3(0, 1, 0), glm::dvec3(flux_per_texel)}; }
+  rsm_texel<double> operator()(glm::ivec2 t) const { return light_space_texel(world_of(t), glm::dvec3(0, 1, 0), glm::dvec3(flux_per_texel)); }
   glm::dmat4 view_projection() const { return glm::ortho(-1.0, 1.0, -1.0, 1.0, 0.1, 20.0) * light_view(); }
+  gather_receiver<double> receiver(const glm::dvec3& position, const glm::dvec3& normal, glm::uvec2 pixel) const {
+    return make_gather_receiver(position, normal, light_view(), view_projection(), glm::ivec2(size), pixel);
+  }
 };
 
 }  // namespace
@@ -142,23 +145,22 @@ TEST_CASE("at the default settings the radial gather finds the light of the whol
   for (int size : {128, 256, 512}) {
     const flat_rsm floor{size, 4.0 / (size * size)};  // the same total flux at every size
     rsm_gather_settings<double> settings = default_rsm_gather_settings<double>(glm::ivec2(size));
-    settings.light_view = light_view();
     for (double height : {0.1, 0.5})
       for (glm::dvec2 where : {glm::dvec2(0.05, -0.1), glm::dvec2(-0.7, 0.65)}) {
         const glm::dvec3 position(where.x, height, where.y), normal(0, -1, 0);
+        const gather_receiver<double> at = floor.receiver(position, normal, glm::uvec2(0u));
         double brute_force = 0.0;
         for (int y = 0; y < size; ++y)
           for (int x = 0; x < size; ++x) {
             const rsm_texel<double> light = floor(glm::ivec2(x, y));
-            brute_force += pixel_light_irradiance(position, normal, light.position, light.normal, light.flux, settings.irradiance).x;
+            brute_force += pixel_light_irradiance(at.position, at.normal, light.position, light.normal, light.flux, settings.irradiance).x;
           }
         brute_force /= 3.14159265358979323846;
         double mean = 0.0;
         const int receivers = 256;
         for (int i = 0; i < receivers; ++i) {
-          const gather_receiver<double> receiver{position, normal, map_coordinate(floor.view_projection(), position, glm::ivec2(size)),
-                                                 glm::uvec2(static_cast<unsigned>(i), 7u)};
-          mean += gather_rsm<rsm_pattern::radial, rsm_visibility::none>(receiver, floor, settings).x / receivers;
+          mean += gather_rsm<rsm_pattern::radial, rsm_visibility::none>(floor.receiver(position, normal, glm::uvec2(static_cast<unsigned>(i), 7u)),
+                                                                        floor, settings).x / receivers;
         }
         CAPTURE(size);
         CAPTURE(height);
@@ -178,11 +180,9 @@ TEST_CASE("the thesis's radius (1/8 of the RSM) misses much of a low receiver's 
   const glm::dvec3 position(0.0, 0.5, 0.0), normal(0, -1, 0);
   const auto mean_gather = [&](const rsm_gather_preset<double>& preset) {
     rsm_gather_settings<double> settings = rsm_gather_settings_from(preset, glm::ivec2(size));
-    settings.light_view = light_view();
     double mean = 0.0;
     for (unsigned i = 0; i < 128; ++i)
-      mean += gather_rsm<rsm_pattern::radial, rsm_visibility::none>(
-                  {position, normal, map_coordinate(floor.view_projection(), position, glm::ivec2(size)), glm::uvec2(i, 9u)}, floor, settings).x / 128.0;
+      mean += gather_rsm<rsm_pattern::radial, rsm_visibility::none>(floor.receiver(position, normal, glm::uvec2(i, 9u)), floor, settings).x / 128.0;
     return mean;
   };
   // The floor's radiosity is 1 (flux 4 over area 4), so the receiver gets its form factor to the
@@ -201,11 +201,10 @@ TEST_CASE("at the default settings, Alg. 6 removes most of the light a block hid
   scene.block_height = 0.6;
   const synthetic_rsm open_floor;
   rsm_gather_settings<double> settings = default_rsm_gather_settings<double>(glm::ivec2(rsm_size));
-  settings.light_view = light_view();
   double hidden = 0.0, hidden_kept = 0.0, seen = 0.0, seen_kept = 0.0;
   for (int i = 0; i < 32; ++i) {
-    gather_receiver<double> receiver = receiver_at({0.0, 0.05, 0.01 * i - 0.16}, glm::uvec2(static_cast<unsigned>(i), 4u));
-    receiver.normal = glm::dvec3(1, 0, 0);
+    const gather_receiver<double> receiver =
+        receiver_at({0.0, 0.05, 0.01 * i - 0.16}, glm::uvec2(static_cast<unsigned>(i), 4u), glm::dvec3(1, 0, 0));
     // The two regions: the floor beyond the block's near face (hidden) and in front of it
     // (seen), each alone carrying flux, the geometry (and so the buffer's verdicts) unchanged.
     const auto only = [&](bool beyond) {

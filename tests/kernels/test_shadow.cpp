@@ -17,7 +17,7 @@ TEST_CASE("Alg. 4: a flat lit floor is lit, an occluder's shadow is dark, the wi
   scene.block_x0 = 0.3;
   scene.block_x1 = 0.8;
   scene.block_height = 0.8;
-  const auto depth = [&](glm::ivec2 t) { return scene(t).eye_depth; };
+  const auto depth = [&](glm::ivec2 t) { return scene(t).position.z; };
   const shadow_density_settings<double> settings;  // kernel 4, bias 0.02
   const auto density_at = [&](double x) {
     const glm::dvec3 floor_point(x, 0.0, 0.1);

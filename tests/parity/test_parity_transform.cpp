@@ -1,4 +1,4 @@
-// CPU/GPU parity of include/vplkit/transform.hpp against shaders/lib/transform.glsl: transform_point and map_coordinate, texel by
+// CPU/GPU parity of include/vplkit/transform.hpp against shaders/lib/transform.glsl: transform_point, transform_direction and map_coordinate, texel by
 // texel (tests/parity/parity_harness.hpp).
 #include <doctest/doctest.h>
 
@@ -17,7 +17,7 @@
 using namespace vplkit;
 using namespace vplkit::parity;
 
-TEST_CASE("parity: transform_point and map_coordinate") {
+TEST_CASE("parity: transform_point, transform_direction and map_coordinate") {
   kernel_inputs inputs = grid_of(64, 64, 1);
   std::mt19937 random(21);
   std::uniform_real_distribution<float> uniform(-3.0f, 3.0f);
@@ -29,19 +29,22 @@ TEST_CASE("parity: transform_point and map_coordinate") {
   source.includes = {"lib/transform.glsl"};
   source.declarations = "uniform mat4 view;\nuniform mat4 view_projection;\n";
   source.body = "fout0 = vec4(transform_point(view, fin0.xyz), 0.0);\n"
-                "fout1 = vec4(map_coordinate(view_projection, fin0.xyz, ivec2(512)), 0.0, 0.0);";
-  source.float_outputs = 2;
+                "fout1 = vec4(map_coordinate(view_projection, fin0.xyz, ivec2(512)), 0.0, 0.0);\n"
+                "fout2 = vec4(transform_direction(view, fin0.xyz), 0.0);";
+  source.float_outputs = 3;
   const kernel_outputs gpu = run_fragment(source, inputs, [&](const program& p) {
     p.set("view", view);
     p.set("view_projection", view_projection);
   });
-  std::vector<glm::vec4> eye(inputs.size()), map(inputs.size());
+  std::vector<glm::vec4> eye(inputs.size()), map(inputs.size()), turned(inputs.size());
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     eye[i] = glm::vec4(transform_point(view, glm::vec3(inputs.floats[0][i])), 0.0f);
     map[i] = glm::vec4(map_coordinate(view_projection, glm::vec3(inputs.floats[0][i]), glm::ivec2(512)), 0.0f, 0.0f);
+    turned[i] = glm::vec4(transform_direction(view, glm::vec3(inputs.floats[0][i])), 0.0f);
   }
   // A 3-term sum of products can cancel to near 0 (points near the eye's axes): 1e-6 absolute.
   require_parity(compare("transform_point", gpu.floats[0], eye, inputs, {1e-6f, 0.0f, 4, 0.0, "sums of products, cancellation"}, 3));
+  require_parity(compare("transform_direction", gpu.floats[2], turned, inputs, {1e-6f, 0.0f, 4, 0.0, "sums of products, cancellation"}, 3));
   // The perspective divide: llvmpipe's is not correctly rounded: 1e-5 relative.
   require_parity(compare("map_coordinate", gpu.floats[1], map, inputs, {1e-4f, 1e-5f, 8, 0.0, "perspective divide"}, 2));
 }

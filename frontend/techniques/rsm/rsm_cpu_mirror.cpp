@@ -53,19 +53,19 @@ std::optional<gather_receiver<float>> gather_receiver_at(glm::ivec2 texel, const
   const glm::ivec2 sample = gbuffer_texel_of(texel, constants);
   const glm::vec4 position_depth = buffers.gbuffer[0].at(sample);
   if (!(position_depth.w < 0.0f)) return std::nullopt;
-  const glm::vec3 position(position_depth);
-  return gather_receiver<float>{position, glm::vec3(buffers.gbuffer[2].at(sample)),
-                                map_coordinate(constants.light.view_projection, position, constants.gather.rsm_size), glm::uvec2(texel)};
+  return make_gather_receiver(glm::vec3(position_depth), glm::vec3(buffers.gbuffer[2].at(sample)), constants.light.view,
+                              constants.light.view_projection, constants.gather.rsm_size, glm::uvec2(texel));
 }
 
-// Interleaved, one texel's pixel light lies in 40 contiguous bytes: a sample then touches one
-// cache line instead of three.
-std::vector<rsm_texel<float>> interleave_rsm(const rsm_pass_buffers& buffers) {
-  std::vector<rsm_texel<float>> texels(buffers.rsm[0].texels.size());
-  for (std::size_t i = 0; i < texels.size(); ++i) {
-    const glm::vec4 position_depth = buffers.rsm[0].texels[i];
-    texels[i] = {glm::vec3(position_depth), position_depth.w, glm::vec3(buffers.rsm[1].texels[i]), glm::vec3(buffers.rsm[2].texels[i])};
-  }
+// Decoded once per texel instead of once per sample: the same arithmetic, so the same values.
+std::vector<rsm_texel<float>> unpack_rsm(const rsm_pass_buffers& buffers, const rsm_frame_constants& constants) {
+  const packed_rsm& rsm = buffers.rsm;
+  std::vector<rsm_texel<float>> texels(rsm.texels.size());
+  for (int y = 0; y < rsm.height; ++y)
+    for (int x = 0; x < rsm.width; ++x) {
+      const std::size_t i = static_cast<std::size_t>(y) * static_cast<std::size_t>(rsm.width) + static_cast<std::size_t>(x);
+      texels[i] = unpack_rsm_texel(rsm.texels[i], glm::ivec2(x, y), constants.unprojection);
+    }
   return texels;
 }
 
@@ -74,12 +74,12 @@ image cpu_gather_pass(const rsm_pass_buffers& buffers, const rsm_frame_constants
   out.width = constants.indirect_size.x;
   out.height = constants.indirect_size.y;
   out.texels.assign(static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height), glm::vec4(0.0f));
-  const std::vector<rsm_texel<float>> rsm = interleave_rsm(buffers);
+  const std::vector<rsm_texel<float>> rsm = unpack_rsm(buffers, constants);
   parallel_tiles(out.width, out.height, threads, [&](int x, int y) {
     const glm::ivec2 texel(x, y);
     const std::optional<gather_receiver<float>> receiver = gather_receiver_at(texel, buffers, constants);
     if (!receiver) return;
-    out.at(texel) = glm::vec4(gather_dispatch(*receiver, rsm, buffers.rsm[0].width, constants), buffers.gbuffer[0].at(gbuffer_texel_of(texel, constants)).w);
+    out.at(texel) = glm::vec4(gather_dispatch(*receiver, rsm, buffers.rsm.width, constants), buffers.gbuffer[0].at(gbuffer_texel_of(texel, constants)).w);
   });
   return out;
 }

@@ -16,12 +16,13 @@ namespace vplkit {
 /// as gather.frag reads it.
 glm::ivec2 gbuffer_texel_of(glm::ivec2 texel, const rsm_frame_constants& constants);
 
-/// The receiver of the gather at indirect-buffer texel `texel`, as gather.frag builds it; nothing
-/// where the G-buffer has no surface.
+/// The receiver of the gather at indirect-buffer texel `texel`, as gather.frag builds it (in the
+/// light's eye space); nothing where the G-buffer has no surface.
 std::optional<gather_receiver<float>> gather_receiver_at(glm::ivec2 texel, const rsm_pass_buffers& buffers, const rsm_frame_constants& constants);
 
-/// The RSM's three targets interleaved, one pixel light per element, row-major like the targets.
-std::vector<rsm_texel<float>> interleave_rsm(const rsm_pass_buffers& buffers);
+/// The packed RSM decoded (unpack_rsm_texel, light eye space), one pixel light per element,
+/// row-major like the target.
+std::vector<rsm_texel<float>> unpack_rsm(const rsm_pass_buffers& buffers, const rsm_frame_constants& constants);
 
 /// Pass 3 on the CPU: [irradiance | camera depth] at the indirect buffer's resolution.
 image cpu_gather_pass(const rsm_pass_buffers& buffers, const rsm_frame_constants& constants, int threads);

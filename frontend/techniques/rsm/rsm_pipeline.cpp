@@ -75,6 +75,7 @@ light_frustum make_light_frustum(const scene& source, int rsm_size) {
     const glm::vec3 up = std::abs(direction.y) > 0.99f ? glm::vec3(0, 0, -1) : glm::vec3(0, 1, 0);
     frustum.view = glm::lookAt(box.centre() - 2.0f * radius * direction, box.centre(), up);
     frustum.view_projection = glm::ortho(-radius, radius, -radius, radius, 0.5f * radius, 3.5f * radius) * frustum.view;
+    frustum.half_extent = radius;
     const float texel = 2.0f * radius / static_cast<float>(rsm_size);
     frustum.texel_area = texel * texel;
   }
@@ -92,7 +93,8 @@ rsm_frame_constants make_frame_constants(const scene& source, const rsm_pipeline
   constants.primary = source.light;
   constants.gather = make_rsm_gather_settings(settings.radial, settings.disk, settings.radius, settings.slots, glm::ivec2(settings.rsm_size));
   constants.gather.irradiance = settings.irradiance;
-  constants.gather.light_view = constants.light.view;
+  const bool spot = source.light.kind == light_kind::spot;
+  constants.unprojection = make_rsm_unprojection(spot ? constants.light.tan_half_fov : constants.light.half_extent, spot, glm::ivec2(settings.rsm_size));
   constants.camera_view = camera_view_matrix(source.view);
   constants.camera_view_projection =
       camera_projection_matrix(source.view, static_cast<float>(settings.width) / static_cast<float>(settings.height)) * constants.camera_view;
@@ -125,7 +127,7 @@ rsm_pipeline::rsm_pipeline(const shader_library& shaders, const scene& source, c
       mesh_(source.geometry),
       rsm_program_(load_program(shaders, "scene.vert", "rsm.frag", {{"VPLKIT_LIGHT_DIRECTIONAL", flag(is_directional(source))}})),
       gbuffer_program_(load_program(shaders, "scene.vert", "gbuffer.frag")),
-      rsm_target_(settings.rsm_size, settings.rsm_size, {settings.format, settings.format, settings.format}, true),
+      rsm_target_(settings.rsm_size, settings.rsm_size, {texel_format::rgba32ui}, true),
       gbuffer_target_(settings.width, settings.height, {settings.format, settings.format, settings.format}, true),
       indirect_target_(constants_.indirect_size.x, constants_.indirect_size.y, {settings.format}, false),
       blur_x_target_(settings.filter == post_filter::separable ? constants_.indirect_size.x : 1,
@@ -137,7 +139,8 @@ rsm_pipeline::rsm_pipeline(const shader_library& shaders, const scene& source, c
   if (technique.indirect) {
     gather_program_ = load_program(shaders, "fullscreen.vert", "gather.frag",
                                    {{"VPLKIT_RSM_PATTERN", std::to_string(static_cast<int>(technique.pattern))},
-                                    {"VPLKIT_VISIBILITY", std::to_string(static_cast<int>(technique.visibility))}});
+                                    {"VPLKIT_VISIBILITY", std::to_string(static_cast<int>(technique.visibility))},
+                                    {"VPLKIT_SLOT_COUNT", std::to_string(constants_.gather.slots.count)}});
     if (separable) blur_x_program_ = load_program(shaders, "fullscreen.vert", "blur_x.frag");
   }
   post_program_ = load_program(shaders, "fullscreen.vert", "post.frag",
@@ -160,16 +163,17 @@ rsm_pipeline::rsm_pipeline(const shader_library& shaders, const scene& source, c
   gbuffer_program_.set("light_view_projection", light.view_projection);
   gbuffer_program_.set("rsm_size", glm::ivec2(settings.rsm_size));
   set_uniforms(gbuffer_program_, "shadow", constants_.shadow);
-  gbuffer_program_.set("rsm_position_depth", 0);
+  gbuffer_program_.set("rsm_packed", 0);
 
   if (technique.indirect) {
     set_uniforms(gather_program_, "settings", constants_.gather);
+    set_uniforms(gather_program_, "unprojection", constants_.unprojection);
+    gather_program_.set("light_view", light.view);
     gather_program_.set("light_view_projection", light.view_projection);
     gather_program_.set("indirect_divisor", constants_.indirect_divisor);
     gather_program_.set("gbuffer_size", constants_.image_size);
     int unit = 0;
-    for (const char* name : {"rsm_position_depth", "rsm_normal", "rsm_flux", "gbuffer_position_depth", "gbuffer_normal"})
-      gather_program_.set(name, unit++);
+    for (const char* name : {"rsm_packed", "gbuffer_position_depth", "gbuffer_normal"}) gather_program_.set(name, unit++);
     if (separable) {
       set_uniforms(blur_x_program_, "bilateral", constants_.bilateral);
       blur_x_program_.set("indirect_divisor", constants_.indirect_divisor);
@@ -209,7 +213,9 @@ void rsm_pipeline::draw() {
   timer_.begin("RSM generation");
   glEnable(GL_DEPTH_TEST);
   rsm_target_.bind();
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  const GLuint empty_texel[4] = {0, 0, 0, 0};  // glClear's float colour is undefined for an integer target
+  glClearBufferuiv(GL_COLOR, 0, empty_texel);
+  glClear(GL_DEPTH_BUFFER_BIT);
   rsm_program_.use();
   mesh_.draw();
   timer_.end();
@@ -227,9 +233,9 @@ void rsm_pipeline::draw() {
   if (technique.indirect) {
     timer_.begin("RSM sampling");
     indirect_target_.bind();
-    for (int i = 0; i < 3; ++i) rsm_target_.colour(static_cast<std::size_t>(i)).bind(i);
-    gbuffer_target_.colour(0).bind(3);
-    gbuffer_target_.colour(2).bind(4);
+    rsm_target_.colour(0).bind(0);
+    gbuffer_target_.colour(0).bind(1);
+    gbuffer_target_.colour(2).bind(2);
     gather_program_.use();
     glDrawArrays(GL_TRIANGLES, 0, 3);
     timer_.end();
@@ -266,10 +272,12 @@ double rsm_pipeline::draw_wall_clock_ms() {
 
 rsm_pass_buffers rsm_pipeline::read_buffers() const {
   rsm_pass_buffers buffers;
-  for (std::size_t i = 0; i < 3; ++i) {
-    buffers.rsm[i] = rsm_target_.read_image(i);
-    buffers.gbuffer[i] = gbuffer_target_.read_image(i);
-  }
+  buffers.rsm.width = rsm_target_.width();
+  buffers.rsm.height = rsm_target_.height();
+  const std::vector<std::uint32_t> words = rsm_target_.read_uint(0);
+  buffers.rsm.texels.resize(words.size() / 4);
+  std::memcpy(buffers.rsm.texels.data(), words.data(), words.size() * sizeof(std::uint32_t));
+  for (std::size_t i = 0; i < 3; ++i) buffers.gbuffer[i] = gbuffer_target_.read_image(i);
   if (constants_.technique.indirect) {
     buffers.indirect = indirect_target_.read_image(0);
     if (settings_.filter == post_filter::separable) buffers.blurred_x = blur_x_target_.read_image(0);

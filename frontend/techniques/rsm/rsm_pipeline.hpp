@@ -13,6 +13,7 @@
 #include <vplkit/bilateral.hpp>
 #include <vplkit/irradiance.hpp>
 #include <vplkit/rsm_gather.hpp>
+#include <vplkit/rsm_packing.hpp>
 #include <vplkit/shadow.hpp>
 
 #include "frontend/gl/pass_timer.hpp"
@@ -45,7 +46,7 @@ struct rsm_pipeline_settings {
   int height = 512;
   int rsm_size = 512;           ///< square RSM (the thesis: 512 x 512)
   int indirect_divisor = 2;     ///< indirect buffer = image / divisor per axis (2: 256^2, 1: Table 5.2's 512^2)
-  texel_format format = texel_format::rgba16f;  ///< every render target: rgba16f (the thesis) or rgba32f
+  texel_format format = texel_format::rgba16f;  ///< G-buffer, indirect and output targets: rgba16f (the thesis) or rgba32f; the RSM is packed (RGBA32UI)
   std::string technique = "rsm-alg6";
   /// r_max of the radial and disk patterns as a fraction of the RSM side, so the radius scales
   /// with the RSM; make_rsm_gather_settings derives it in texels.
@@ -86,6 +87,7 @@ struct light_frustum {
   glm::mat4 view{1.0f};
   glm::mat4 view_projection{1.0f};
   float tan_half_fov = 0.0f;  ///< spot light
+  float half_extent = 0.0f;   ///< directional light: half the side of the orthographic frustum
   float texel_area = 0.0f;    ///< directional light: area one RSM texel covers across the light
 };
 light_frustum make_light_frustum(const scene& source, int rsm_size);
@@ -95,6 +97,7 @@ struct rsm_frame_constants {
   rsm_technique technique;
   rsm_gather_settings<float> gather;
   light_frustum light;
+  rsm_unprojection<float> unprojection;  ///< the packed RSM's centre rays (from light)
   scene_light primary;
   glm::mat4 camera_view{1.0f};
   glm::mat4 camera_view_projection{1.0f};
@@ -107,9 +110,20 @@ struct rsm_frame_constants {
 };
 rsm_frame_constants make_frame_constants(const scene& source, const rsm_pipeline_settings& settings);
 
+/// The RSM as the GPU stores it: one packed texel per pixel light (vplkit/rsm_packing.hpp), rows
+/// bottom-up; all bits 0 where nothing was rendered.
+struct packed_rsm {
+  int width = 0;
+  int height = 0;
+  std::vector<glm::uvec4> texels;
+  const glm::uvec4& at(glm::ivec2 texel) const {
+    return texels[static_cast<std::size_t>(texel.y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(texel.x)];
+  }
+};
+
 /// The intermediate buffers of a frame, read back for the CPU mirror and for tests.
 struct rsm_pass_buffers {
-  image rsm[3];      ///< [position | depth], [normal | -], [flux | -]
+  packed_rsm rsm;    ///< the RSM (RGBA32UI)
   image gbuffer[3];  ///< [position | depth], [albedo | shadow density], [normal | -]
   image indirect;    ///< [irradiance | depth] (empty for direct light only)
   image blurred_x;   ///< the separable filter's x pass (empty for the full filter)

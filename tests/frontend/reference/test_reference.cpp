@@ -11,6 +11,7 @@
 
 #include "frontend/core/error.hpp"
 #include "frontend/reference/reference.hpp"
+#include "frontend/techniques/rsm/rsm_cpu_mirror.hpp"
 #include "frontend/techniques/rsm/rsm_pipeline.hpp"
 #include "tests/closed_forms.hpp"
 #include "tests/parity/parity_harness.hpp"
@@ -120,17 +121,11 @@ struct floor_frame {
   rsm_frame_constants constants;
   floor_frame(int n, float a, float h, float radiosity) {
     const float texel = 2.0f * a / static_cast<float>(n);
-    for (image& target : buffers.rsm) {
-      target.width = target.height = n;
-      target.texels.assign(static_cast<std::size_t>(n) * static_cast<std::size_t>(n), glm::vec4(0.0f));
-    }
-    for (int y = 0; y < n; ++y)
-      for (int x = 0; x < n; ++x) {
-        const glm::ivec2 t(x, y);
-        buffers.rsm[0].at(t) = glm::vec4((static_cast<float>(x) + 0.5f) * texel - a, 0.0f, a - (static_cast<float>(y) + 0.5f) * texel, -5.0f);
-        buffers.rsm[1].at(t) = glm::vec4(0, 1, 0, 0);
-        buffers.rsm[2].at(t) = glm::vec4(glm::vec3(radiosity * texel * texel), 0.0f);
-      }
+    // Every texel: the floor 5 below the light (eye depth -5), its normal towards the light
+    // (eye +z); the positions come back from the centre rays of the orthographic unprojection.
+    buffers.rsm.width = buffers.rsm.height = n;
+    buffers.rsm.texels.assign(static_cast<std::size_t>(n) * static_cast<std::size_t>(n),
+                              pack_rsm_texel(-5.0f, glm::vec3(0, 0, 1), glm::vec3(radiosity * texel * texel)));
     for (int i = 0; i < 3; ++i) {
       buffers.gbuffer[i].width = buffers.gbuffer[i].height = 1;
       buffers.gbuffer[i].texels.assign(1, glm::vec4(0.0f));
@@ -140,7 +135,7 @@ struct floor_frame {
     const glm::mat4 view = glm::lookAt(glm::vec3(0, 5, 0), glm::vec3(0), glm::vec3(0, 0, -1));
     constants.light.view = view;
     constants.light.view_projection = glm::ortho(-a, a, -a, a, 0.1f, 20.0f) * view;
-    constants.gather.light_view = view;
+    constants.unprojection = make_rsm_unprojection(a, false, glm::ivec2(n));
     constants.gather.rsm_size = glm::ivec2(n);
     constants.gather.irradiance.min_distance = 1e-4f;
     constants.image_size = constants.indirect_size = glm::ivec2(1);
@@ -207,12 +202,10 @@ TEST_CASE("the radial pattern's own samples with ray-cast visibility: no occlude
   add_quad(blocked, {-b, h / 2, b}, {b, h / 2, b}, {b, h / 2, -b}, {-b, h / 2, -b}, {0, 1, 0}, glm::vec3(0.5f));
   const ray_scene open_rays(floor), blocked_rays(blocked);
   const image open = gather_with_ray_cast_visibility(open_rays, frame.buffers, frame.constants, 1, 1);
-  const auto fetch = [&](glm::ivec2 t) {
-    const glm::vec4 p = frame.buffers.rsm[0].at(t);
-    return rsm_texel<float>{glm::vec3(p), p.w, glm::vec3(frame.buffers.rsm[1].at(t)), glm::vec3(frame.buffers.rsm[2].at(t))};
-  };
-  const gather_receiver<float> receiver{glm::vec3(0, h, 0), glm::vec3(0, -1, 0),
-                                        map_coordinate(frame.constants.light.view_projection, glm::vec3(0, h, 0), glm::ivec2(256)), glm::uvec2(0)};
+  const std::vector<rsm_texel<float>> rsm = unpack_rsm(frame.buffers, frame.constants);
+  const auto fetch = [&](glm::ivec2 t) { return rsm[static_cast<std::size_t>(t.y) * 256u + static_cast<std::size_t>(t.x)]; };
+  const gather_receiver<float> receiver = make_gather_receiver(glm::vec3(0, h, 0), glm::vec3(0, -1, 0), frame.constants.light.view,
+                                                               frame.constants.light.view_projection, glm::ivec2(256), glm::uvec2(0));
   CHECK(open.texels[0].x == doctest::Approx(gather_rsm<rsm_pattern::radial, rsm_visibility::none>(receiver, fetch, frame.constants.gather).x));
   const image shadowed = gather_with_ray_cast_visibility(blocked_rays, frame.buffers, frame.constants, 1, 1);
   const double hidden_share = parallel_rectangle(2 * b, 2 * b, h) / parallel_rectangle(a, a, h);

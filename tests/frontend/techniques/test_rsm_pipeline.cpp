@@ -167,7 +167,7 @@ TEST_CASE("RSM pipeline settings are validated with the setting's name") {
   // Within the limits, but more than llvmpipe will allocate: the GL error names the texture.
   settings.rsm_size = 1 << 14;
   settings.width = settings.height = 16;
-  CHECK_THROWS_WITH_AS(rsm_pipeline(shaders, make_cornell_box(), settings), doctest::Contains("16384x16384 rgba32f texture"), vplkit::error);
+  CHECK_THROWS_WITH_AS(rsm_pipeline(shaders, make_cornell_box(), settings), doctest::Contains("16384x16384 rgba32ui texture"), vplkit::error);
 }
 
 TEST_CASE("built-in scenes: the instanced scene reaches the thesis's scale, every scene renders") {
