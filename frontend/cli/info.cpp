@@ -15,11 +15,13 @@ command add_info_command(CLI::App& app) {
   };
   auto state = std::make_shared<info_state>();
   CLI::App* info = app.add_subcommand("info", "list the GL contexts and devices available, open one, and print its GL version and renderer");
-  info->add_option("--context", state->context, "which context to open: auto ($VPLKIT_CONTEXT, else EGL, else OSMesa), egl, osmesa or window")
-      ->check(CLI::IsMember({"auto", "egl", "osmesa", "window", "headless"}))->capture_default_str();
+  std::vector<std::string> choices = headless_api_names();
+  choices.push_back("window");
+  info->add_option("--context", state->context, "which context to open: auto ($VPLKIT_CONTEXT, else EGL, else OSMesa), egl, egl-surfaceless, osmesa or window")
+      ->check(CLI::IsMember(choices))->capture_default_str();
   info->add_option("--device", state->device, "EGL device index (default: $VPLKIT_EGL_DEVICE, else the first GPU, else software)")->check(CLI::Range(0, 1024));
   return {info, [state](const session& io) {
-            if (state->device >= 0 && (state->context == "osmesa" || state->context == "window"))
+            if (state->device >= 0 && (state->context == "osmesa" || state->context == "egl-surfaceless" || state->context == "window"))
               throw usage_error("--device picks an EGL device; --context " + state->context + " has none");
             if (io.dry_run) return 0;
             io.out << "vplkit " << version_string << "\navailable headless contexts:\n";
@@ -29,7 +31,7 @@ command add_info_command(CLI::App& app) {
               context = std::make_unique<window_context>(64, 64, "vplkit info");
             } else {
               headless_request request;
-              request.api = state->context == "egl" ? headless_api::egl : state->context == "osmesa" ? headless_api::osmesa : headless_api::automatic;
+              request.api = headless_api_from_name(state->context, "--context");
               request.device = state->device;
               context = create_headless_context(request);
             }

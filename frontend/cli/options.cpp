@@ -108,7 +108,7 @@ void option_scope::require_read_by(const std::string& choice, const std::string&
 
 headless_request common_options::headless() const {
   headless_request request;
-  request.api = context == "egl" ? headless_api::egl : context == "osmesa" ? headless_api::osmesa : headless_api::automatic;
+  request.api = headless_api_from_name(context, "--context");
   request.device = device;
   return request;
 }
@@ -132,8 +132,8 @@ common_option_handles add_common_options(CLI::App& command, common_options& opti
   handles.shader_dir = command.add_option("--shader-dir", options.shader_dir,
                                          "folder with the vplkit shaders (default: $VPLKIT_SHADER_DIR, then the built-in path)");
   handles.context = command.add_option("--context", options.context,
-                                      "headless context: auto ($VPLKIT_CONTEXT, else EGL, else OSMesa), egl or osmesa (vplkit info lists them)")
-                        ->check(CLI::IsMember({"auto", "egl", "osmesa"}))->capture_default_str();
+                                      "headless context: auto ($VPLKIT_CONTEXT, else EGL, else OSMesa), egl (a device, else surfaceless), egl-surfaceless or osmesa (vplkit info lists them)")
+                        ->check(CLI::IsMember(headless_api_names()))->capture_default_str();
   handles.device = command.add_option("--device", options.device, "EGL device index (default: $VPLKIT_EGL_DEVICE, else the first GPU, else software)")
                        ->check(CLI::Range(0, 1024));
   return handles;

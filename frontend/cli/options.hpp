@@ -87,7 +87,7 @@ struct common_options {
   std::string format = "rgba16f";
   float min_distance = 0.01f;
   std::string shader_dir;
-  std::string context = "auto";  ///< headless context: auto, egl or osmesa
+  std::string context = "auto";  ///< headless context: a name of headless_api_names()
   int device = -1;               ///< EGL device index, -1: automatic
   headless_request headless() const;
   texel_format texel() const { return format == "rgba32f" ? texel_format::rgba32f : texel_format::rgba16f; }

@@ -210,11 +210,12 @@ class egl_context final : public gl_context {
 };
 
 // The device `request.device` (or $VPLKIT_EGL_DEVICE), else the first hardware device, else the
-// software one, else the surfaceless platform.
-std::unique_ptr<gl_context> create_egl_context(int device_index) {
+// software one, else the surfaceless platform; only the last with `surfaceless_only`.
+std::unique_ptr<gl_context> create_egl_context(int device_index, bool surfaceless_only) {
   const egl_client client;
-  const std::vector<egl_device> devices = client.devices();
-  if (device_index < 0) {
+  const std::vector<egl_device> devices = surfaceless_only ? std::vector<egl_device>{} : client.devices();
+  if (surfaceless_only && device_index >= 0) throw error("no GL context: --device picks an EGL device; egl-surfaceless has none");
+  if (!surfaceless_only && device_index < 0) {
     if (const char* from_environment = std::getenv("VPLKIT_EGL_DEVICE"); from_environment && *from_environment) {
       char* end = nullptr;
       const long value = std::strtol(from_environment, &end, 10);
@@ -261,7 +262,9 @@ std::unique_ptr<gl_context> create_egl_context(int device_index) {
       }
     }
   }
-  if (tried.empty()) tried = "the EGL library offers neither EGL_EXT_platform_device nor EGL_MESA_platform_surfaceless";
+  if (tried.empty())
+    tried = surfaceless_only ? "the EGL library does not offer EGL_MESA_platform_surfaceless"
+                             : "the EGL library offers neither EGL_EXT_platform_device nor EGL_MESA_platform_surfaceless";
   throw error("no GL context: " + tried);
 }
 
@@ -275,15 +278,24 @@ std::string glfw_last_error() {
 
 bool osmesa_built_in() { return VPLKIT_HAVE_OSMESA != 0; }
 
+const std::vector<std::string>& headless_api_names() {
+  static const std::vector<std::string> names = {"auto", "egl", "egl-surfaceless", "osmesa"};
+  return names;
+}
+
+headless_api headless_api_from_name(const std::string& name, const std::string& what) {
+  if (name == "auto") return headless_api::automatic;
+  if (name == "egl") return headless_api::egl;
+  if (name == "egl-surfaceless") return headless_api::egl_surfaceless;
+  if (name == "osmesa") return headless_api::osmesa;
+  throw error(what + " must be one of auto, egl, egl-surfaceless, osmesa; got '" + name + "'");
+}
+
 std::unique_ptr<gl_context> create_headless_context(const headless_request& request) {
   headless_api api = request.api;
   if (api == headless_api::automatic) {
-    if (const char* from_environment = std::getenv("VPLKIT_CONTEXT"); from_environment && *from_environment) {
-      const std::string name = from_environment;
-      if (name == "egl") api = headless_api::egl;
-      else if (name == "osmesa") api = headless_api::osmesa;
-      else throw error("VPLKIT_CONTEXT must be egl or osmesa, got '" + name + "'");
-    }
+    if (const char* from_environment = std::getenv("VPLKIT_CONTEXT"); from_environment && *from_environment)
+      api = headless_api_from_name(from_environment, "VPLKIT_CONTEXT");
   }
   if (api == headless_api::osmesa) {
 #if VPLKIT_HAVE_OSMESA
@@ -292,9 +304,10 @@ std::unique_ptr<gl_context> create_headless_context(const headless_request& requ
     throw error("no GL context: this vplkit was built without OSMesa (VPLKIT_WITH_OSMESA=OFF); use the EGL context");
 #endif
   }
-  if (api == headless_api::egl) return create_egl_context(request.device);
+  if (api == headless_api::egl || api == headless_api::egl_surfaceless)
+    return create_egl_context(request.device, api == headless_api::egl_surfaceless);
   try {
-    return create_egl_context(request.device);
+    return create_egl_context(request.device, false);
   } catch (const error& egl_failure) {
 #if VPLKIT_HAVE_OSMESA
     if (request.device >= 0) throw;  // a device was asked for: OSMesa is not it
@@ -315,7 +328,8 @@ std::vector<std::string> available_headless_contexts() {
   const std::vector<egl_device> devices = client.devices();
   for (std::size_t i = 0; i < devices.size(); ++i) lines.push_back("egl --device " + std::to_string(i) + "  " + devices[i].description);
   if (!client.device_platform()) lines.push_back("egl devices: not offered (no EGL_EXT_platform_device)");
-  lines.push_back(std::string("egl surfaceless: ") + (client.surfaceless_platform() ? "offered (the fallback)" : "not offered"));
+  lines.push_back(std::string("egl surfaceless: ") +
+                  (client.surfaceless_platform() ? "offered (the fallback; --context egl-surfaceless)" : "not offered"));
   lines.push_back(std::string("osmesa: ") + (osmesa_built_in() ? "built in (--context osmesa)" : "not built in (VPLKIT_WITH_OSMESA=OFF)"));
   return lines;
 }

@@ -33,10 +33,16 @@ class gl_context {
 std::string describe_current_context();
 
 enum class headless_api {
-  automatic,  ///< $VPLKIT_CONTEXT when set (egl or osmesa), else EGL, else OSMesa when built in
-  egl,
+  automatic,        ///< $VPLKIT_CONTEXT when set, else EGL, else OSMesa when built in
+  egl,              ///< an EGL device (see headless_request::device), else the surfaceless platform
+  egl_surfaceless,  ///< EGL_MESA_platform_surfaceless only: the fallback, chosen outright
   osmesa,
 };
+
+/// The names of the APIs for --context and $VPLKIT_CONTEXT: auto, egl, egl-surfaceless, osmesa.
+const std::vector<std::string>& headless_api_names();
+/// The API of a name from headless_api_names(); throws vplkit::error naming `what` otherwise.
+headless_api headless_api_from_name(const std::string& name, const std::string& what);
 
 struct headless_request {
   headless_api api = headless_api::automatic;
