@@ -7,6 +7,7 @@
 # (default 9) alternating pairs with the same render options, and prints the median of each pass
 # of the pass table and the ratio (this checkout / REV). Each binary uses its own shaders.
 # Example: scripts/ab_timing.sh HEAD~1 9 --technique rsm-alg6
+# Afterwards `git worktree remove build-ab/src-<commit>` removes REV's checkout.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if [ $# -lt 1 ]; then
