@@ -3,6 +3,7 @@
 // share of the light the defaults find and remove.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <vector>
@@ -37,6 +38,26 @@ TEST_CASE("gather of a uniform floor matches the closed form of a Lambertian dis
   CAPTURE(mean);
   CAPTURE(exact);
   CHECK(mean == doctest::Approx(exact).epsilon(0.03));
+}
+
+TEST_CASE("the gather's light eye space changes nothing of Eq. 3.2: make_gather_receiver is a rigid move") {
+  // The gather runs in the light's eye space; the light's view is a rigid motion, so every
+  // distance and cosine of Eq. 3.2, and so the irradiance, is what it was in the world.
+  const glm::dmat4 view = glm::lookAt(glm::dvec3(0.4, 3.0, 1.2), glm::dvec3(-0.2, 0.0, 0.1), glm::dvec3(0, 0, -1));
+  const glm::dmat4 view_projection = glm::perspective(1.3, 1.0, 0.05, 20.0) * view;
+  const irradiance_settings<double> settings;
+  for (int i = 0; i < 200; ++i) {
+    const double t = 0.37 * i;
+    const glm::dvec3 x(std::sin(t), 0.1 * i / 200.0, std::cos(1.3 * t)), n = glm::normalize(glm::dvec3(std::sin(2 * t), 1.0, 0.3));
+    const glm::dvec3 xp(std::cos(0.7 * t), 0.8, std::sin(1.9 * t)), np = glm::normalize(glm::dvec3(0.2, std::cos(t), std::sin(t)));
+    const gather_receiver<double> receiver = make_gather_receiver(x, n, view, view_projection, glm::ivec2(512), glm::uvec2(0u));
+    const rsm_texel<double> light{transform_point(view, xp), transform_direction(view, np), glm::dvec3(1.0)};
+    const glm::dvec3 world = pixel_light_irradiance(x, n, xp, np, glm::dvec3(1.0), settings);
+    const glm::dvec3 eye = pixel_light_irradiance(receiver.position, receiver.normal, light.position, light.normal, light.flux, settings);
+    REQUIRE(std::fabs(eye.x - world.x) <= 1e-12 * std::max(1.0, world.x));
+    REQUIRE(glm::length(receiver.normal) == doctest::Approx(1.0).epsilon(1e-12));
+    REQUIRE(receiver.rsm_coordinate == map_coordinate(view_projection, x, glm::ivec2(512)));
+  }
 }
 
 TEST_CASE("with no occluder, Alg. 6 and Alg. 3 equal no visibility exactly") {
