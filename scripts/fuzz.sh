@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Fuzzes vplkit's input paths with libFuzzer (clang, with address and undefined-behaviour
-# sanitizers): the OBJ/MTL parser, the PFM and PNG decoders, the comparison metrics and the
-# command line's option checks (tests/fuzz/).
+# sanitizers): the OBJ/MTL parser, the PFM and PNG decoders, the comparison metrics, the command
+# line's option checks and the glTF reader (tests/fuzz/; tinygltf itself is Debian's build, not
+# instrumented: crashes in it are caught, its coverage does not guide the fuzzer).
 #   scripts/fuzz.sh [seconds] [target...]   each target for `seconds` (default 60); all by default
 # Builds build-fuzz/ (CC=clang CXX=clang++, VPLKIT_FUZZ=ON). The working corpora live in
 # build-fuzz/corpus/<target>, seeded from tests/fuzz/corpus, the regression inputs, Debian's assimp
@@ -17,7 +18,7 @@ if ! [[ "$seconds" =~ ^[0-9]+$ ]] || [ "$seconds" -lt 1 ] || [ "$seconds" -gt 86
   exit 2
 fi
 shift || true
-all_targets=(obj pfm png compare cli_options)
+all_targets=(obj pfm png compare cli_options gltf)
 targets=("$@")
 [ ${#targets[@]} -eq 0 ] && targets=("${all_targets[@]}")
 for target in "${targets[@]}"; do
@@ -73,6 +74,12 @@ seed_png() {
     cp "$png" "$folder/assimp-$(echo "$png" | tr '/' '_')"
   done < <(find /usr/share/assimp/models -name '*.png' -size -16k 2>/dev/null | head -20)
 }
+seed_gltf() {
+  local folder=build-fuzz/corpus/gltf
+  while IFS= read -r file; do
+    cp "$file" "$folder/assimp-$(echo "$file" | tr '/' '_')"
+  done < <(find /usr/share/assimp/models/glTF2 \( -name '*.gltf' -o -name '*.glb' \) -size -64k 2>/dev/null | head -40)
+}
 
 status=0
 summary=()
@@ -82,6 +89,7 @@ for target in "${targets[@]}"; do
   cp tests/fuzz/corpus/"$target"/* tests/fuzz/regressions/"$target"/* "$corpus"/ 2>/dev/null || true
   [ "$target" = obj ] && seed_obj
   [ "$target" = png ] && seed_png
+  [ "$target" = gltf ] && seed_gltf
   log=build-fuzz/fuzz-$target.log
   echo "== fuzzing $target for ${seconds} s (corpus $corpus)"
   set +e

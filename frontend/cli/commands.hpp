@@ -21,5 +21,6 @@ command add_render_command(CLI::App& app);
 command add_view_command(CLI::App& app);
 command add_compare_command(CLI::App& app);
 command add_reference_command(CLI::App& app);
+command add_export_scene_command(CLI::App& app);
 
 }  // namespace vplkit::cli

@@ -10,6 +10,7 @@
 
 #include "frontend/gl/program.hpp"
 #include "frontend/image/image.hpp"
+#include "frontend/scene/gltf_scene.hpp"
 #include "frontend/scene/obj_loader.hpp"
 
 namespace vplkit::cli {
@@ -146,12 +147,15 @@ CLI::Option* add_scene_option(CLI::App& command, common_options& options, const 
                     std::string names;
                     for (const std::string& name : built_in_scene_names()) names += (names.empty() ? "" : ", ") + name;
                     return names;
-                  }() + ") or an .obj file [" + default_scene + "]")
+                  }() + ") or an .obj, .gltf or .glb file [" + default_scene + "]")
       ->each([&options](const std::string&) { options.scene_given = true; });
 }
 
 scene load_scene(const std::string& name) {
-  scene loaded = fs::path(name).extension() == ".obj" ? frame_mesh(fs::path(name).stem().string(), load_obj(name)) : built_in_scene(name);
+  const std::string extension = fs::path(name).extension().string();
+  scene loaded = extension == ".obj"                          ? frame_mesh(fs::path(name).stem().string(), load_obj(name))
+                 : extension == ".gltf" || extension == ".glb" ? load_gltf(name)
+                                                               : built_in_scene(name);
   check_scene(loaded);
   return loaded;
 }

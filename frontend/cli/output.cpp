@@ -31,6 +31,10 @@ void output_set::add_pfm(const fs::path& path, image linear) {
   files_.push_back({path, [pixels = std::move(linear)] { return encode_pfm(pixels); }});
 }
 
+void output_set::add_text(const fs::path& path, std::string text) {
+  files_.push_back({path, [bytes = std::move(text)] { return std::vector<std::uint8_t>(bytes.begin(), bytes.end()); }});
+}
+
 void output_set::write(std::ostream& out) const {
   write_all_or_nothing(files_);
   for (const output_file& file : files_) out << "wrote " << fs::absolute(file.path).string() << "\n";

@@ -31,6 +31,8 @@ class output_set {
   void add_png(const std::filesystem::path& path, int width, int height, std::vector<std::uint8_t> rgba8);
   /// A linear PFM.
   void add_pfm(const std::filesystem::path& path, image linear);
+  /// Text as it is (e.g. a glTF scene).
+  void add_text(const std::filesystem::path& path, std::string text);
 
   /// Writes every file added, all or nothing, and prints "wrote <absolute path>" for each.
   void write(std::ostream& out) const;

@@ -1,0 +1,52 @@
+// glTF 2.0 scenes (.gltf with embedded or external buffers, .glb), read and written with
+// tinygltf (Debian's libtinygltf-dev). What a scene carries in vplkit and how it maps:
+//
+//   geometry  every TRIANGLES primitive of the scene's node tree (the default scene, else the
+//             first, else every root node), in world space through the node transforms (matrix
+//             or TRS; a mirroring transform keeps the front faces front). Points and lines are
+//             skipped. Without NORMAL a primitive gets flat normals, as the glTF spec asks.
+//   albedo    the material's baseColorFactor (linear RGB); a base colour texture is not sampled
+//             (its factor is used alone); no material: the spec's default, white (1, 1, 1).
+//   camera    the first perspective camera node met (depth first): it looks down its -Z with
+//             +Y up, yfov is the vertical field of view, znear/zfar the planes (zfar absent:
+//             1000 x znear). Orthographic cameras are not read.
+//   light     the first KHR_lights_punctual spot or directional light node met, shining down
+//             its -Z. glTF states intensity photometrically (cd for a spot, lux for a sun);
+//             vplkit's lights are radiometric and unit-free, so intensity x color is read as the
+//             spot's radiant intensity (W/sr) and the sun's irradiance (W/m^2), one to one
+//             (write_gltf writes the same numbers back). Cone angles become cos_inner/cos_outer.
+//             Point lights are not read.
+// A file without a light is framed like an OBJ (frame_mesh: a floor, a spot light, a camera),
+// its own camera kept; a file with a light but no camera gets frame_mesh's camera and no floor.
+//
+// Every index, count, offset and stride is checked against its buffer before it is read, every
+// number for being finite; a bad file throws vplkit::error naming the file and the problem.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "frontend/scene/scene.hpp"
+
+namespace vplkit {
+
+/// What a glTF file may make vplkit read and allocate.
+struct gltf_limits {
+  std::uintmax_t max_file_bytes = std::uintmax_t{1} << 30;    ///< the .gltf/.glb and each external buffer
+  std::size_t max_triangles = std::size_t{1} << 24;
+};
+
+/// Loads a .gltf or .glb file (external buffers are read from its folder; images are not read).
+scene load_gltf(const std::filesystem::path& path, const gltf_limits& limits = {});
+
+/// The same from bytes in memory: `binary` for GLB; external buffers are looked up in
+/// `base_dir`, or refused when it is empty. `name` starts every message.
+scene parse_gltf(const std::string& bytes, bool binary, const std::string& name, const std::filesystem::path& base_dir,
+                 const gltf_limits& limits = {});
+
+/// The scene as glTF 2.0 text with its buffer embedded (a data URI): one mesh with a primitive
+/// per albedo, a perspective camera node and a KHR_lights_punctual light node.
+std::string gltf_text(const scene& source);
+
+}  // namespace vplkit
