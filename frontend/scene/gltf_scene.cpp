@@ -487,26 +487,27 @@ std::string gltf_text(const scene& source) {
   pose(camera_node, source.view.position, source.view.target - source.view.position, source.view.up);
   model.nodes.push_back(camera_node);
 
+  // glTF splits a light's power into an intensity and a colour: the brightest channel and the
+  // colour relative to it (read back as intensity x color).
+  const auto set_power = [](tinygltf::Light& light, const glm::vec3& power) {
+    const float peak = std::max({power.r, power.g, power.b});
+    light.intensity = peak;
+    light.color = peak > 0.0f ? std::vector<double>{power.r / peak, power.g / peak, power.b / peak} : std::vector<double>{1.0, 1.0, 1.0};
+  };
   tinygltf::Light out_light;
   tinygltf::Node light_node;
   light_node.name = "light";
   if (source.light.kind == light_kind::spot) {
     const spot_light<float>& spot = source.light.spot;
-    const float peak = std::max({spot.intensity.r, spot.intensity.g, spot.intensity.b});
     out_light.type = "spot";
-    out_light.intensity = peak;
-    out_light.color = peak > 0.0f ? std::vector<double>{spot.intensity.r / peak, spot.intensity.g / peak, spot.intensity.b / peak}
-                                  : std::vector<double>{1.0, 1.0, 1.0};
+    set_power(out_light, spot.intensity);
     out_light.spot.innerConeAngle = std::acos(static_cast<double>(spot.cos_inner));
     out_light.spot.outerConeAngle = std::acos(static_cast<double>(spot.cos_outer));
     pose(light_node, spot.position, spot.direction, glm::vec3(0, 1, 0));
   } else {
     const directional_light<float>& sun = source.light.directional;
-    const float peak = std::max({sun.irradiance.r, sun.irradiance.g, sun.irradiance.b});
     out_light.type = "directional";
-    out_light.intensity = peak;
-    out_light.color = peak > 0.0f ? std::vector<double>{sun.irradiance.r / peak, sun.irradiance.g / peak, sun.irradiance.b / peak}
-                                  : std::vector<double>{1.0, 1.0, 1.0};
+    set_power(out_light, sun.irradiance);
     pose(light_node, glm::vec3(0.0f), sun.direction, glm::vec3(0, 1, 0));
   }
   model.lights.push_back(out_light);
