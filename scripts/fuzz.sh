@@ -36,7 +36,10 @@ done
 
 jobs=$(nproc 2>/dev/null || echo 2)
 CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVPLKIT_FUZZ=ON -DVPLKIT_BUILD_BENCH=OFF >/dev/null
-cmake --build build-fuzz -j "$jobs" >/dev/null
+# Only the fuzz targets asked for (and what they link): the tests and tools need no clang build.
+fuzz_binaries=()
+for target in "${targets[@]}"; do fuzz_binaries+=(--target "vplkit_fuzz_$target"); done
+cmake --build build-fuzz -j "$jobs" "${fuzz_binaries[@]}" >/dev/null
 
 # Seeds. OBJ inputs are the OBJ text, then a NUL byte and the text of its material library.
 seed_obj() {
