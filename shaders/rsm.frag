@@ -4,12 +4,8 @@
 // position is rebuilt from the depth on the texel's centre ray). VPLKIT_LIGHT_DIRECTIONAL
 // selects the light.
 #include "lib/direct_light.glsl"
-#include "lib/transform.glsl"
-#define VPLKIT_RSM_PATTERN 0
-#define VPLKIT_VISIBILITY 0
 #include "lib/rsm_packing.glsl"
-
-rsm_texel rsm_fetch(ivec2 texel) { return rsm_texel(vec3(0.0), vec3(0.0), vec3(0.0)); }  // not gathered here
+#include "lib/transform.glsl"
 
 uniform mat4 light_view;
 uniform ivec2 rsm_size;

@@ -236,9 +236,7 @@ std::unique_ptr<gl_context> create_egl_context(int device_index, bool surfaceles
   std::string tried;
   if (device_index >= 0) {
     const egl_device& device = devices[static_cast<std::size_t>(device_index)];
-    const EGLDisplay display = [&] {
-        return client.get_platform_display(EGL_PLATFORM_DEVICE_EXT, device.handle, nullptr);
-    }();
+    const EGLDisplay display = client.get_platform_display(EGL_PLATFORM_DEVICE_EXT, device.handle, nullptr);
     const std::string kind = "EGL device " + std::to_string(device_index) + " (" + device.description + ")";
     if (display == EGL_NO_DISPLAY) {
       tried = kind + ": no display (" + egl_error_text() + ")";
@@ -251,9 +249,7 @@ std::unique_ptr<gl_context> create_egl_context(int device_index, bool surfaceles
     }
   }
   if (client.surfaceless_platform()) {
-    const EGLDisplay display = [&] {
-        return client.get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-    }();
+    const EGLDisplay display = client.get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
     if (display != EGL_NO_DISPLAY) {
       try {
         return std::make_unique<egl_context>(display, "EGL surfaceless");

@@ -191,20 +191,23 @@ image reference_rsm_gather(const ray_scene& rays, const rsm_pass_buffers& buffer
   if (!(options.max_radius >= 0.0f)) throw error("brute-force RSM gather: max_radius must be >= 0");
   image out = empty_indirect(constants);
   // Every lit RSM texel is a pixel light.
+  // Eq. 3.2 in the light's eye space, like the gather's receivers; the occlusion rays in the world,
+  // each light's world position and normal computed once.
   struct light_texel {
     glm::vec3 position, normal, flux;
     glm::vec2 texel_centre;
+    glm::vec3 world_position, world_normal;
   };
-  // In the light's eye space, like the gather's receivers; the occlusion rays go back to the world.
+  const glm::mat4 to_world = glm::inverse(constants.light.view);
   std::vector<light_texel> lights;
   const std::vector<rsm_texel<float>> rsm = unpack_rsm(buffers, constants);
   for (int y = 0; y < buffers.rsm.height; ++y)
     for (int x = 0; x < buffers.rsm.width; ++x) {
       const rsm_texel<float>& texel = rsm[static_cast<std::size_t>(y) * static_cast<std::size_t>(buffers.rsm.width) + static_cast<std::size_t>(x)];
       if (texel.position.z < 0.0f && texel.flux != glm::vec3(0.0f))
-        lights.push_back({texel.position, texel.normal, texel.flux, glm::vec2(x, y) + 0.5f});
+        lights.push_back({texel.position, texel.normal, texel.flux, glm::vec2(x, y) + 0.5f, transform_point(to_world, texel.position),
+                          transform_direction(to_world, texel.normal)});
     }
-  const glm::mat4 to_world = glm::inverse(constants.light.view);
   const int stride = options.receiver_stride;
   const int rows = (out.height + stride - 1) / stride;
   progress_bar progress(options.exact_visibility ? "brute-force RSM gather with visibility" : "brute-force RSM gather", static_cast<std::size_t>(rows));
@@ -215,6 +218,7 @@ image reference_rsm_gather(const ray_scene& rays, const rsm_pass_buffers& buffer
       const std::optional<gather_receiver<float>> receiver = gather_receiver_at(glm::ivec2(x, y), buffers, constants);
       if (!receiver) continue;
       const glm::vec3 p = receiver->position, n = receiver->normal;
+      const glm::vec3 world_p = transform_point(to_world, p), world_n = transform_direction(to_world, n);
       glm::vec3 all(0.0f), seen(0.0f);
       for (const light_texel& light : lights) {
         if (radius_squared > 0.0f) {
@@ -224,9 +228,7 @@ image reference_rsm_gather(const ray_scene& rays, const rsm_pass_buffers& buffer
         const glm::vec3 e = pixel_light_irradiance(p, n, light.position, light.normal, light.flux, constants.gather.irradiance);
         if (e == glm::vec3(0.0f)) continue;
         all += e;
-        if (!options.exact_visibility || !light_occluded(rays, transform_point(to_world, p), transform_direction(to_world, n),
-                                                         transform_point(to_world, light.position), transform_direction(to_world, light.normal)))
-          seen += e;
+        if (!options.exact_visibility || !light_occluded(rays, world_p, world_n, light.world_position, light.world_normal)) seen += e;
       }
       const float total = all.x + all.y + all.z;
       out.at(glm::ivec2(x, y)) = glm::vec4(seen * 0.318309886183790671538f, total > 0.0f ? (seen.x + seen.y + seen.z) / total : 1.0f);
@@ -241,13 +243,19 @@ namespace {
 
 // The visibility object of gather_rsm_with: a ray per sample, in the world (the gather's points
 // are in the light's eye space).
+// One object per receiver: its world position and normal are computed once, not per sample.
 struct ray_cast_visibility {
   const ray_scene& rays;
-  glm::mat4 to_world;
+  const glm::mat4& to_world;
+  glm::vec3 receiver_position, receiver_normal;  ///< world space
+  ray_cast_visibility(const ray_scene& scene_rays, const glm::mat4& light_to_world, const gather_receiver<float>& receiver)
+      : rays(scene_rays),
+        to_world(light_to_world),
+        receiver_position(transform_point(light_to_world, receiver.position)),
+        receiver_normal(transform_direction(light_to_world, receiver.normal)) {}
   void begin_path() {}
-  float operator()(const gather_receiver<float>& receiver, const rsm_texel<float>& light) const {
-    return light_occluded(rays, transform_point(to_world, receiver.position), transform_direction(to_world, receiver.normal),
-                          transform_point(to_world, light.position), transform_direction(to_world, light.normal))
+  float operator()(const gather_receiver<float>&, const rsm_texel<float>& light) const {
+    return light_occluded(rays, receiver_position, receiver_normal, transform_point(to_world, light.position), transform_direction(to_world, light.normal))
                ? 0.0f
                : 1.0f;
   }
@@ -263,7 +271,7 @@ image gather_with_ray_cast_visibility(const ray_scene& rays, const rsm_pass_buff
   const auto fetch = [&](glm::ivec2 texel) {
     return rsm[static_cast<std::size_t>(texel.y) * static_cast<std::size_t>(buffers.rsm.width) + static_cast<std::size_t>(texel.x)];
   };
-  const ray_cast_visibility visibility{rays, glm::inverse(constants.light.view)};
+  const glm::mat4 to_world = glm::inverse(constants.light.view);
   const int rows = (out.height + receiver_stride - 1) / receiver_stride;
   parallel_for(rows, threads, [&](int row) {
     const int y = row * receiver_stride;
@@ -272,8 +280,8 @@ image gather_with_ray_cast_visibility(const ray_scene& rays, const rsm_pass_buff
       const std::optional<gather_receiver<float>> receiver = gather_receiver_at(texel, buffers, constants);
       if (!receiver) continue;
       const glm::vec3 e = constants.technique.pattern == rsm_pattern::disk
-                              ? gather_rsm_with<rsm_pattern::disk>(*receiver, fetch, constants.gather, ray_cast_visibility(visibility))
-                              : gather_rsm_with<rsm_pattern::radial>(*receiver, fetch, constants.gather, ray_cast_visibility(visibility));
+                              ? gather_rsm_with<rsm_pattern::disk>(*receiver, fetch, constants.gather, ray_cast_visibility(rays, to_world, *receiver))
+                              : gather_rsm_with<rsm_pattern::radial>(*receiver, fetch, constants.gather, ray_cast_visibility(rays, to_world, *receiver));
       out.at(texel) = glm::vec4(e, buffers.gbuffer[0].at(gbuffer_texel_of(texel, constants)).w);
     }
   });

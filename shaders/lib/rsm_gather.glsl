@@ -12,6 +12,7 @@
 #include "lib/irradiance.glsl"
 #include "lib/micro_linear_buffer.glsl"
 #include "lib/rsm_pattern.glsl"
+#include "lib/rsm_texel.glsl"
 #include "lib/transform.glsl"
 
 #ifndef VPLKIT_RSM_PATTERN
@@ -23,12 +24,6 @@
 #if VPLKIT_RSM_PATTERN == 1 && VPLKIT_VISIBILITY != 0
 #error "the disk pattern has no paths: visibility needs VPLKIT_RSM_PATTERN 0"
 #endif
-
-struct rsm_texel {
-  vec3 position;  // light eye space; z >= 0: empty texel
-  vec3 normal;    // light eye space
-  vec3 flux;
-};
 
 rsm_texel rsm_fetch(ivec2 texel);
 

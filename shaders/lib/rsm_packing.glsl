@@ -4,7 +4,7 @@
 #ifndef VPLKIT_RSM_PACKING_GLSL
 #define VPLKIT_RSM_PACKING_GLSL
 
-#include "lib/rsm_gather.glsl"
+#include "lib/rsm_texel.glsl"
 
 struct rsm_unprojection {
   vec2 ray_origin;

@@ -34,10 +34,8 @@ TEST_CASE("parity: pack_rsm_texel bit for bit, unpack_rsm_texel exactly") {
   kernel_source source;
   source.name = "rsm_packing";
   source.includes = {"lib/rsm_packing.glsl"};
-  source.defines = {{"VPLKIT_RSM_PATTERN", "0"}, {"VPLKIT_VISIBILITY", "0"}};
   source.declarations =
-      "uniform rsm_unprojection light;\n"
-      "rsm_texel rsm_fetch(ivec2 texel) { return rsm_texel(vec3(0.0), vec3(0.0), vec3(0.0)); }\n";
+      "uniform rsm_unprojection light;\n";
   source.body =
       "uvec4 bits = pack_rsm_texel(fin0.w, fin0.xyz, fin1.xyz);\n"
       "rsm_texel back = unpack_rsm_texel(bits, texel, light);\n"

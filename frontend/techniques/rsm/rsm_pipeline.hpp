@@ -116,9 +116,6 @@ struct packed_rsm {
   int width = 0;
   int height = 0;
   std::vector<glm::uvec4> texels;
-  const glm::uvec4& at(glm::ivec2 texel) const {
-    return texels[static_cast<std::size_t>(texel.y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(texel.x)];
-  }
 };
 
 /// The intermediate buffers of a frame, read back for the CPU mirror and for tests.
