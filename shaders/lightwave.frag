@@ -8,7 +8,8 @@
 // VPL's diffuse weight here over the probability it was drawn with, lookups outside a map not
 // voting; 1 thesis, the plain mean with outside counting as lit. See lightwave_settings.
 // Shadow maps: layer 0 of the depth array is the spot light's, layers 1 .. maps the VPLs'.
-// Output 1 is the indirect shadow factor (red), for tests and reports.
+// Output 1 is the indirect shadow factor (red), output 2 the indirect radiance added to the
+// direct light (after the factor), for tests, reports and the viewer.
 #include "lib/direct_light.glsl"
 #include "lib/lightwave.glsl"
 
@@ -33,6 +34,7 @@ in vec3 surface_albedo;
 in vec3 vertex_indirect;
 layout(location = 0) out vec4 colour;
 layout(location = 1) out vec4 indirect_shadow;
+layout(location = 2) out vec4 indirect_out;
 
 // (x, y, depth) in [0, 1] and whether the point is inside map `layer`'s frustum (lib/lightwave.glsl).
 vec4 map_coordinate(int layer) { return lightwave_map_coordinate(shadow_matrix[layer] * vec4(world_position, 1.0)); }
@@ -47,12 +49,15 @@ void main() {
   vec4 light_coordinate = map_coordinate(0);
   float shadow = light_coordinate.w > 0.5 ? shadow_lookup(light_coordinate.xyz, 0) : 1.0;
   float factor = 1.0;
+  vec3 indirect = vec3(0.0);
 #if VPLKIT_LIGHTWAVE_MODE == 0
   colour = vec4(direct * shadow, 1.0);
 #elif VPLKIT_LIGHTWAVE_MODE == 1
   colour = vec4(lightwave_faked_indirect(direct, shadow, faked_multiplier), 1.0);
+  indirect = colour.rgb - direct * shadow;
 #elif VPLKIT_LIGHTWAVE_MODE == 2
-  colour = vec4(direct * shadow + vertex_indirect, 1.0);
+  indirect = vertex_indirect;
+  colour = vec4(direct * shadow + indirect, 1.0);
 #elif VPLKIT_LIGHTWAVE_MODE == 3
 #if VPLKIT_LIGHTWAVE_SHADOW_VARIANT == 0
   float lit = 0.0, weight = 0.0;
@@ -67,7 +72,7 @@ void main() {
     }
   }
   factor = weight > 0.0 ? lit / weight : 1.0;
-#else
+#else  // thesis variant
   float lit = 0.0;
   for (int i = 1; i <= indirect_maps; ++i) {
     vec4 coordinate = map_coordinate(i);
@@ -75,7 +80,8 @@ void main() {
   }
   factor = indirect_maps > 0 ? lit / float(indirect_maps) : 1.0;
 #endif
-  colour = vec4(direct * shadow + vertex_indirect * factor, 1.0);
+  indirect = vertex_indirect * factor;
+  colour = vec4(direct * shadow + indirect, 1.0);
 #else
   // An endpoint behind or outside its map does not vote; the in-between lookups run only
   // between two valid endpoints (their line then stays inside both maps' [0, 1] cube).
@@ -96,7 +102,9 @@ void main() {
     }
   }
   factor = lookups > 0 ? lit / float(lookups) : 1.0;
-  colour = vec4(direct * shadow + vertex_indirect * factor, 1.0);
+  indirect = vertex_indirect * factor;
+  colour = vec4(direct * shadow + indirect, 1.0);
 #endif
   indirect_shadow = vec4(factor, 0.0, 0.0, 1.0);
+  indirect_out = vec4(indirect, 1.0);
 }

@@ -50,12 +50,15 @@ int render_final_gather(const session& io, const std::string& technique, const c
   output_set files(out, "output/" + std::filesystem::path(options.object).stem().string() + "-" + settings.technique + ".png", ".png", "--out");
   if (io.dry_run) return 0;
   const headless_session gl(common);
-  const final_gather_scene source = make_final_gather_scene(options.object, options.object_position, options.object_size);
+  final_gather_scene source = make_final_gather_scene(options.object, options.object_position, options.object_size);
+  apply_poses(common, source.view, source.light);
   final_gather_pipeline pipeline(gl.shaders, source, settings);
   pipeline.render();  // warm-up: the shader compilers' lazy work
   const final_gather_frame frame = pipeline.render();
   files.add_png(files.main(), frame.radiance);
   files.add_png(files.sibling("-indirect", ".png"), frame.indirect, percentile_exposure(frame.indirect));
+  // The object's indirect irradiance, linear (0 elsewhere).
+  files.add_pfm(files.sibling("-indirect", ".pfm"), frame.indirect);
   io.out << "object " << source.name << " (" << source.object.triangle_count() << " triangles) at (" << source.reference_point.x << ", "
          << source.reference_point.y << ", " << source.reference_point.z << "), technique " << settings.technique << ", " << settings.width << "x"
          << settings.height << ", cube map 6 x " << settings.face_size << "^2 -> 6 x " << settings.resolution << "^2\n"

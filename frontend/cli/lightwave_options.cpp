@@ -66,14 +66,16 @@ lightwave_settings make_lightwave_settings(const std::string& technique, const c
   return lw;
 }
 
+std::string lightwave_scene_name(const common_options& common) { return common.scene_given ? common.scene : "boxes"; }
+
 int render_lightwave(const session& io, const std::string& technique, const common_options& common, const lightwave_options& options,
                      const std::string& out) {
   const lightwave_settings settings = make_lightwave_settings(technique, common, options);
-  const std::string scene_name = common.scene_given ? common.scene : "boxes";
+  const std::string scene_name = lightwave_scene_name(common);
   output_set files(out, "output/" + std::filesystem::path(scene_name).stem().string() + "-" + settings.technique + ".png", ".png", "--out");
   if (io.dry_run) return 0;
   const headless_session gl(common);
-  const scene source = load_scene(scene_name);
+  const scene source = load_scene(common, scene_name);
   lightwave_pipeline pipeline(gl.shaders, source, settings);
   // The first frame pays for the shader compilers' lazy work; the light is then "moved" onto itself to time a rebuild, and a third frame has nothing to rebuild.
   pipeline.render();
@@ -83,6 +85,8 @@ int render_lightwave(const session& io, const std::string& technique, const comm
   files.add_png(files.main(), frame.radiance);
   // The indirect shadow factor as grey, linear (1 = white = not shadowed).
   if (!pipeline.shadow_casters().empty()) files.add_png(files.sibling("-indirect-shadow", ".png"), red_as_grey(frame.indirect_shadow));
+  // The indirect radiance added to the direct light, linear (0 for lightwave-direct).
+  files.add_pfm(files.sibling("-indirect", ".pfm"), frame.indirect);
   const double mebibytes = static_cast<double>(pipeline.shadow_map_bytes()) / (1024.0 * 1024.0);
   io.out << "scene " << source.name << " (" << source.geometry.triangle_count() << " triangles), technique " << settings.technique << ", "
          << settings.width << "x" << settings.height << ", " << pipeline.vpl_count() << " VPLs (" << settings.angle_deg << " degrees, " << settings.per_ray

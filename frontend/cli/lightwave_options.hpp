@@ -18,6 +18,9 @@ struct lightwave_options {
 /// Whether `technique` is one of the Light Wave family.
 bool is_lightwave_technique(const std::string& technique);
 
+/// The scene the Light Wave techniques render: --scene, else boxes.
+std::string lightwave_scene_name(const common_options& common);
+
 /// --ray-angle, --vpls-per-ray, --vpl-max-distance, --shadow-maps, --shadow-variant,
 /// --integrated-steps, --shadow-map-scale, --faked-multiplier.
 void add_lightwave_options(CLI::App& command, lightwave_options& options, option_scope& scope);

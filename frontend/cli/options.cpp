@@ -8,10 +8,12 @@
 
 #include <vplkit/irradiance.hpp>
 
+#include "frontend/core/error.hpp"
 #include "frontend/gl/program.hpp"
 #include "frontend/image/image.hpp"
 #include "frontend/scene/gltf_scene.hpp"
 #include "frontend/scene/obj_loader.hpp"
+#include "frontend/scene/pose.hpp"
 
 namespace vplkit::cli {
 
@@ -63,23 +65,10 @@ std::string parse_size(const std::string& text, int& width, int& height) {
 }
 
 std::string parse_position(const std::string& text, glm::vec3& position, float limit) {
-  const std::string expected = "expected x,y,z (for example 0,0.7,0), got " + shown(text);
-  std::string_view rest = text;
-  glm::vec3 parsed(0.0f);
-  for (int axis = 0; axis < 3; ++axis) {
-    const std::size_t comma = rest.find(',');
-    if ((axis < 2) != (comma != std::string_view::npos)) return expected;
-    std::string_view number = rest.substr(0, comma);
-    rest = comma == std::string_view::npos ? std::string_view() : rest.substr(comma + 1);
-    while (!number.empty() && number.front() == ' ') number.remove_prefix(1);
-    while (!number.empty() && number.back() == ' ') number.remove_suffix(1);
-    if (number.size() > 1 && number[0] == '+' && number[1] != '-') number.remove_prefix(1);
-    const auto [end, code] = std::from_chars(number.data(), number.data() + number.size(), parsed[axis]);
-    if (number.empty() || code != std::errc() || end != number.data() + number.size() || !std::isfinite(parsed[axis]) ||
-        std::fabs(parsed[axis]) > limit)
-      return "each of x,y,z must be a finite number within +-" + format_number(limit) + ", got " + shown(text);
-  }
-  position = parsed;
+  float values[3];
+  if (!parse_number_list(text, values, 3, limit))
+    return "expected x,y,z, each a finite number within +-" + format_number(limit) + " (for example 0,0.7,0), got " + shown(text);
+  position = glm::vec3(values[0], values[1], values[2]);
   return {};
 }
 
@@ -151,11 +140,47 @@ CLI::Option* add_scene_option(CLI::App& command, common_options& options, const 
       ->each([&options](const std::string&) { options.scene_given = true; });
 }
 
-scene load_scene(const std::string& name) {
+std::pair<CLI::Option*, CLI::Option*> add_pose_options(CLI::App& command, common_options& options) {
+  const auto pose_option = [&command](const std::string& name, std::optional<pose>& target, const std::string& help) {
+    return command
+        .add_option_function<std::string>(
+            name,
+            [&target, name](const std::string& text) {
+              pose parsed;
+              if (const std::string problem = parse_pose(text, parsed); !problem.empty()) throw CLI::ValidationError(name, problem + ", got " + shown(text));
+              target = parsed;
+            },
+            help)
+        ->type_name("x,y,z,tx,ty,tz");
+  };
+  return {pose_option("--camera", options.camera_pose, "start from this camera: its position and the point it looks at (the viewer prints its pose)"),
+          pose_option("--light", options.light_pose,
+                      "start from this light: a spot light's position and the point it aims at; a directional light shines from the first "
+                      "point towards the second")};
+}
+
+void apply_poses(const common_options& options, camera& view, scene_light& light) {
+  try {
+    if (options.camera_pose) apply_pose(*options.camera_pose, view, "--camera");
+    if (options.light_pose) apply_pose(*options.light_pose, light, "--light");
+  } catch (const vplkit::error& failure) {
+    throw usage_error(failure.what());
+  }
+}
+
+void apply_poses(const common_options& options, camera& view, spot_light<float>& light) {
+  scene_light spot;
+  spot.spot = light;
+  apply_poses(options, view, spot);
+  light = spot.spot;
+}
+
+scene load_scene(const common_options& options, const std::string& name) {
   const std::string extension = fs::path(name).extension().string();
   scene loaded = extension == ".obj"                          ? frame_mesh(fs::path(name).stem().string(), load_obj(name))
                  : extension == ".gltf" || extension == ".glb" ? load_gltf(name)
                                                                : built_in_scene(name);
+  apply_poses(options, loaded.view, loaded.light);
   check_scene(loaded);
   return loaded;
 }

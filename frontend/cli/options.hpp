@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <ostream>
 #include <stdexcept>
 #include <string>
@@ -20,6 +21,7 @@
 #include "frontend/gl/context.hpp"
 #include "frontend/gl/program.hpp"
 #include "frontend/gl/render_target.hpp"
+#include "frontend/scene/pose.hpp"
 #include "frontend/scene/scene.hpp"
 
 namespace vplkit::cli {
@@ -89,6 +91,8 @@ struct common_options {
   std::string shader_dir;
   std::string context = "auto";  ///< headless context: a name of headless_api_names()
   int device = -1;               ///< EGL device index, -1: automatic
+  std::optional<pose> camera_pose;  ///< --camera: instead of the scene's camera
+  std::optional<pose> light_pose;   ///< --light: instead of the scene's light
   headless_request headless() const;
   texel_format texel() const { return format == "rgba32f" ? texel_format::rgba32f : texel_format::rgba16f; }
   std::filesystem::path shaders() const;
@@ -117,7 +121,17 @@ struct headless_session {
 /// --scene, with `default_scene` shown in the help.
 CLI::Option* add_scene_option(CLI::App& command, common_options& options, const std::string& default_scene);
 
-/// A built-in scene by name or an .obj file, checked (finite, in range) before it is used.
-scene load_scene(const std::string& name);
+/// --camera and --light (poses "x,y,z,tx,ty,tz", frontend/scene/pose.hpp), which move the
+/// scene's camera and light before the first frame; returns them for scoping.
+std::pair<CLI::Option*, CLI::Option*> add_pose_options(CLI::App& command, common_options& options);
+
+/// The camera and light moved to --camera and --light where given. Throws usage_error naming the
+/// option when the scene cannot take the pose (e.g. a camera looking along its up vector).
+void apply_poses(const common_options& options, camera& view, scene_light& light);
+void apply_poses(const common_options& options, camera& view, spot_light<float>& light);
+
+/// A built-in scene by name or an .obj, .gltf or .glb file, checked (finite, in range) before it
+/// is used, with --camera and --light applied.
+scene load_scene(const common_options& options, const std::string& name);
 
 }  // namespace vplkit::cli

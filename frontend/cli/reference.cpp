@@ -39,7 +39,7 @@ int run_rsm_brute_force(const session& io, const reference_state& s) {
                    "a .png and -receivers.pfm go next to it");
   if (io.dry_run) return 0;
   const headless_session gl(s.common);
-  const scene source = load_scene(s.common.scene);
+  const scene source = load_scene(s.common, s.common.scene);
   rsm_pipeline pipeline(gl.shaders, source, settings);
   pipeline.render();
   const rsm_pass_buffers buffers = pipeline.read_buffers();
@@ -71,7 +71,7 @@ int run_rsm_brute_force(const session& io, const reference_state& s) {
 int run_monte_carlo(const session& io, const reference_state& s) {
   output_set files(s.out, "output/" + stem_of(s.common.scene) + "-reference.pfm", ".pfm", "--out", "a .png and -indirect.pfm go next to it");
   if (io.dry_run) return 0;
-  const scene source = load_scene(s.common.scene);
+  const scene source = load_scene(s.common, s.common.scene);
   const int w = s.common.width, h = s.common.height;
   const one_bounce_images images = reference_one_bounce(source, w, h, s.samples, s.seed, hardware_threads());
   // PFM and PNG of the final image, PFM of the indirect irradiance: written only after all is done.
@@ -97,6 +97,7 @@ command add_reference_command(CLI::App& app) {
       ->check(CLI::IsMember({"monte-carlo", "rsm-brute-force"}))->capture_default_str();
   add_scene_option(*reference, state->common, "cornell-box");
   const common_option_handles frame = add_common_options(*reference, state->common, "512");
+  add_pose_options(*reference, state->common);
   for (CLI::Option* option : {frame.format, frame.min_distance, frame.shader_dir, frame.context, frame.device})
     state->scope.add(option, "--method rsm-brute-force", brute_force);
   add_rsm_frame_options(*reference, state->rsm, nullptr);

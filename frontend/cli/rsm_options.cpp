@@ -102,7 +102,7 @@ int render_rsm(const session& io, const std::string& technique_name, const commo
   if (io.dry_run) return 0;
 
   const headless_session gl(common);
-  const scene source = load_scene(common.scene);
+  const scene source = load_scene(common, common.scene);
   rsm_pipeline pipeline(gl.shaders, source, settings);
   // The first frame pays for the shader compilers' lazy work (llvmpipe's JIT, a driver's first
   // use of a program); the pass table reports a warmed-up frame.

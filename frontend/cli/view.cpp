@@ -1,60 +1,76 @@
-// vplkit view: the RSM pipeline in a window, frame after frame (xvfb-run without a display).
+// vplkit view: any technique in a window with live controls (frontend/viewer/viewer.hpp); use
+// xvfb-run without a display. It takes render's options (technique_options), so a pose or a
+// setting seen in the window renders headless with the same arguments.
+#include <algorithm>
+
 #include "frontend/cli/commands.hpp"
-#include "frontend/cli/rsm_options.hpp"
+#include "frontend/cli/output.hpp"
+#include "frontend/cli/technique_options.hpp"
 #include "frontend/core/named_table.hpp"
-#include "frontend/gl/debug_output.hpp"
+#include "frontend/viewer/viewer.hpp"
 
 namespace vplkit::cli {
 
 namespace {
 
 struct view_state {
-  std::string technique = rsm_pipeline_settings().technique;
-  common_options common;
-  rsm_options rsm;
-  option_scope scope;
+  technique_options options;
   int frames = 0;
+  std::string screenshot;
+  bool hide_panel = false;
 };
 
 }  // namespace
 
 command add_view_command(CLI::App& app) {
   auto state = std::make_shared<view_state>();
-  CLI::App* view = app.add_subcommand("view", "show an RSM technique in a window (use xvfb-run without a display)");
-  view->add_option("--technique", state->technique, "RSM technique (direct, rsm-*)")->check(CLI::IsMember(names_of(rsm_techniques())))->capture_default_str();
-  add_scene_option(*view, state->common, "cornell-box");
-  add_common_options(*view, state->common, "512");
-  state->scope.add(view->add_option("--seed", state->common.seed, "seed of the sampling patterns")->capture_default_str(), "the rsm-* techniques",
-                   [](const std::string& technique) { return technique != "direct"; });
-  add_rsm_frame_options(*view, state->rsm, &state->scope);
-  add_rsm_gather_options(*view, state->rsm, state->scope, false);
+  CLI::App* view = app.add_subcommand("view", "show any technique in a window with live controls (use xvfb-run without a display)");
+  add_technique_options(*view, state->options, false);
   view->add_option("--frames", state->frames, "close after this many frames (0: when the window is closed)")
       ->check(CLI::NonNegativeNumber)->capture_default_str();
+  view->add_option("--screenshot", state->screenshot,
+                   "where the P key saves the window (.png; <stem>-indirect.pfm next to it) [output/<scene or object>-<technique>-view.png]; "
+                   "with --frames, saved after the last frame as well");
+  view->add_flag("--hide-panel", state->hide_panel, "start with the panel hidden (H shows it)");
   return {view, [state](const session& io) {
             const view_state& s = *state;
-            s.scope.require_read_by(s.technique, "technique");
-            const rsm_pipeline_settings settings = make_rsm_settings(s.technique, s.common, s.rsm);
+            const technique_options& o = s.options;
+            o.scope.require_read_by(o.technique, "technique");
+            const bool final_gather = is_final_gather_technique(o.technique);
+            const std::string shown_scene = final_gather ? o.final_gather.object : is_lightwave_technique(o.technique) ? lightwave_scene_name(o.common) : o.common.scene;
+            output_set files(s.screenshot, "output/" + std::filesystem::path(shown_scene).stem().string() + "-" + o.technique + "-view.png", ".png",
+                             "--screenshot", "<stem>-indirect.pfm goes next to it");
+            // Every family's settings from the same options, so that the panel can switch to any
+            // technique; the chosen family's are checked here (a usage error, exit 2).
+            viewer_options options;
+            options.technique = o.technique;
+            options.panel = !s.hide_panel;
+            options.screenshot = files.main();
+            viewer_scenes& scenes = options.scenes;
+            const auto family_settings = [&](const std::vector<std::string>& names, auto make) {
+              const bool chosen = std::find(names.begin(), names.end(), o.technique) != names.end();
+              return make(chosen ? o.technique : names.front());
+            };
+            scenes.rsm_setup = family_settings(names_of(rsm_techniques()), [&](const std::string& t) { return make_rsm_settings(t, o.common, o.rsm); });
+            scenes.lightwave_setup =
+                family_settings(names_of(lightwave_techniques()), [&](const std::string& t) { return make_lightwave_settings(t, o.common, o.lightwave); });
+            scenes.final_gather_setup = family_settings(names_of(final_gather_techniques()),
+                                                           [&](const std::string& t) { return make_final_gather_settings(t, o.common, o.final_gather); });
+            // One window size for every family: the chosen technique's.
+            const glm::ivec2 size = final_gather                           ? glm::ivec2(scenes.final_gather_setup.width, scenes.final_gather_setup.height)
+                                    : is_lightwave_technique(o.technique) ? glm::ivec2(scenes.lightwave_setup.width, scenes.lightwave_setup.height)
+                                                                          : glm::ivec2(scenes.rsm_setup.width, scenes.rsm_setup.height);
+            scenes.rsm_setup.width = scenes.lightwave_setup.width = scenes.final_gather_setup.width = size.x;
+            scenes.rsm_setup.height = scenes.lightwave_setup.height = scenes.final_gather_setup.height = size.y;
             if (io.dry_run) return 0;
-            window_context window(settings.width, settings.height, "vplkit - " + s.common.scene);
-            const shader_library shaders(s.common.shaders());
-            rsm_pipeline pipeline(shaders, load_scene(s.common.scene), settings);
-            program present = load_program(shaders, "fullscreen.vert", "present.frag");
-            gl_vertex_array empty_vertex_array(generate_vertex_array());
-            for (int frame = 0; (s.frames == 0 || frame < s.frames) && !window.should_close(); ++frame) {
-              pipeline.render();
-              const auto [width, height] = window.framebuffer_size();
-              glBindFramebuffer(GL_FRAMEBUFFER, 0);
-              glViewport(0, 0, width, height);
-              present.set("image", 0);
-              pipeline.output().bind(0);
-              present.use();
-              glBindVertexArray(empty_vertex_array.get());
-              glDrawArrays(GL_TRIANGLES, 0, 3);
-              check_gl("presenting a frame");
-              window.swap_and_poll();
-            }
-            io.out << "closed the window after showing scene " << s.common.scene << "\n";
-            return 0;
+
+            scenes.rsm = load_scene(o.common, o.common.scene);
+            scenes.lightwave = load_scene(o.common, lightwave_scene_name(o.common));
+            scenes.final_gather = make_final_gather_scene(o.final_gather.object, o.final_gather.object_position, o.final_gather.object_size);
+            apply_poses(o.common, scenes.final_gather.view, scenes.final_gather.light);
+            window_context window(size.x, size.y, "vplkit view - " + shown_scene);
+            const shader_library shaders(o.common.shaders());
+            return run_viewer(window, shaders, std::move(options), s.frames, s.frames > 0 && !s.screenshot.empty(), io.out);
           }};
 }
 

@@ -111,18 +111,19 @@ void framebuffer::bind() const {
   else glDrawBuffers(static_cast<GLsizei>(buffers.size()), buffers.data());
 }
 
-image framebuffer::read_image(std::size_t index) const {
-  const texture_2d& texture = colours_.at(index);
-  if (texture.format() == texel_format::rgba32ui) throw error("read_image on a rgba32ui attachment");
+image texture_2d::read_image() const {
+  if (format_ != texel_format::rgba32f && format_ != texel_format::rgba16f) throw error(std::string("read_image on a ") + format_name(format_) + " texture");
   image texels(width_, height_);
-  static_assert(sizeof(glm::vec4) == 4 * sizeof(float), "glReadPixels writes packed RGBA floats");
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, name_.get());
-  glReadBuffer(static_cast<GLenum>(GL_COLOR_ATTACHMENT0 + index));
+  static_assert(sizeof(glm::vec4) == 4 * sizeof(float), "glGetTexImage writes packed RGBA floats");
+  glBindTexture(GL_TEXTURE_2D, name_.get());
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glReadPixels(0, 0, width_, height_, GL_RGBA, GL_FLOAT, texels.texels.data());
-  check_gl("reading back colour attachment " + std::to_string(index));
+  glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_FLOAT, texels.texels.data());
+  glBindTexture(GL_TEXTURE_2D, 0);
+  check_gl(std::string("reading back a ") + format_name(format_) + " texture");
   return texels;
 }
+
+image framebuffer::read_image(std::size_t index) const { return colours_.at(index).read_image(); }
 
 std::vector<std::uint32_t> framebuffer::read_uint(std::size_t index) const {
   const texture_2d& texture = colours_.at(index);

@@ -32,6 +32,8 @@ class texture_2d {
   void bind(int unit) const;
   /// Depth textures only: sample with a sampler2DShadow (GL_LEQUAL compare, bilinear PCF).
   void enable_depth_compare() const;
+  /// Reads a float colour texture (rows bottom-up, as vplkit::image keeps them).
+  image read_image() const;
 
  private:
   gl_texture name_;
@@ -49,7 +51,7 @@ class framebuffer {
   int height() const { return height_; }
   const texture_2d& colour(std::size_t index) const { return colours_.at(index); }
   const texture_2d& depth() const { return depth_.at(0); }
-  /// Reads float colour attachment `index` (rows bottom-up, as vplkit::image keeps them).
+  /// Reads float colour attachment `index` (texture_2d::read_image).
   image read_image(std::size_t index) const;
   /// Reads a rgba32ui colour attachment as width * height * 4 uint32s, rows bottom-up.
   std::vector<std::uint32_t> read_uint(std::size_t index) const;

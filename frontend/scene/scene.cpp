@@ -481,21 +481,34 @@ void check_mesh(const mesh& geometry, const std::string& name) {
     if (index >= geometry.vertices.size()) fail("index " + std::to_string(index) + " is past the " + std::to_string(geometry.vertices.size()) + " vertices");
 }
 
-void check_scene(const scene& s) {
-  const auto fail = [&](const std::string& what) { throw error("scene " + s.name + ": " + what); };
-  check_mesh(s.geometry, "scene " + s.name);
-  if (!finite(s.view.position) || !finite(s.view.target) || !finite(s.view.up) || !std::isfinite(s.view.vertical_fov_degrees) ||
-      !(s.view.near_plane > 0.0f) || !(s.view.far_plane > s.view.near_plane) || !std::isfinite(s.view.far_plane))
-    fail("the camera has a non-finite value or bad near/far planes");
-  if (s.light.kind == light_kind::spot) {
-    const spot_light<float>& spot = s.light.spot;
-    if (!finite(spot.position) || !finite(spot.direction) || !finite(spot.intensity)) fail("the spot light has a non-finite value");
-    if (const char* problem = validate(spot)) fail(problem);
+void check_camera(const camera& view, const std::string& owner) {
+  if (!finite(view.position) || !finite(view.target) || !finite(view.up) || !std::isfinite(view.vertical_fov_degrees) ||
+      !(view.near_plane > 0.0f) || !(view.far_plane > view.near_plane) || !std::isfinite(view.far_plane))
+    throw error(owner + ": the camera has a non-finite value or bad near/far planes");
+  if (!(view.vertical_fov_degrees > 0.0f && view.vertical_fov_degrees < 180.0f))
+    throw error(owner + ": the camera's vertical field of view must be in (0, 180) degrees");
+  const glm::vec3 forward = view.target - view.position;
+  if (!(glm::dot(forward, forward) > 0.0f)) throw error(owner + ": the camera's position and target are the same point");
+  if (!(glm::length(glm::cross(forward, view.up)) > 1e-6f * glm::length(forward) * glm::length(view.up)))
+    throw error(owner + ": the camera looks along its up vector");
+}
+
+void check_light(const scene_light& light, const std::string& owner) {
+  if (light.kind == light_kind::spot) {
+    const spot_light<float>& spot = light.spot;
+    if (!finite(spot.position) || !finite(spot.direction) || !finite(spot.intensity)) throw error(owner + ": the spot light has a non-finite value");
+    if (const char* problem = validate(spot)) throw error(owner + ": " + problem);
   } else {
-    const directional_light<float>& sun = s.light.directional;
-    if (!finite(sun.direction) || !finite(sun.irradiance)) fail("the directional light has a non-finite value");
-    if (const char* problem = validate(sun)) fail(problem);
+    const directional_light<float>& sun = light.directional;
+    if (!finite(sun.direction) || !finite(sun.irradiance)) throw error(owner + ": the directional light has a non-finite value");
+    if (const char* problem = validate(sun)) throw error(owner + ": " + problem);
   }
+}
+
+void check_scene(const scene& s) {
+  check_mesh(s.geometry, "scene " + s.name);
+  check_camera(s.view, "scene " + s.name);
+  check_light(s.light, "scene " + s.name);
 }
 
 }  // namespace vplkit

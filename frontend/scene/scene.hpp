@@ -71,6 +71,14 @@ struct scene {
 /// or no triangles.
 void check_mesh(const mesh& geometry, const std::string& name);
 
+/// Throws vplkit::error starting with `owner` when the camera has a non-finite value, bad near/far
+/// planes, a field of view outside (0, 180) degrees, its target at its position or its up vector
+/// along its view direction.
+void check_camera(const camera& view, const std::string& owner);
+/// Throws vplkit::error starting with `owner` when the light has a non-finite value or fails its
+/// kernel's validate (a zero direction, cone angles out of order, ...).
+void check_light(const scene_light& light, const std::string& owner);
+
 /// Throws vplkit::error naming the scene and the first bad value: check_mesh's, or a non-finite
 /// camera or light value. Loaders check their input as they read it; this is the last gate before
 /// a pipeline or the ray tracer sees a scene.

@@ -120,11 +120,7 @@ final_gather_pipeline::final_gather_pipeline(const shader_library& shaders, cons
   if (source.object.indices.empty()) throw error("final gathering: the object " + source.name + " has no triangles");
   if (technique_.variant == final_gather_variant::environment_map)
     environment_program_ = load_program(shaders, "fullscreen.vert", "environment_convolution.frag");
-  for (const program* target : {&cube_program_, &shade_program_}) {
-    set_uniforms(*target, "light", scene_.light);
-    set_uniforms(*target, "irradiance", settings_.irradiance);
-  }
-  cube_program_.set("reference_point", scene_.reference_point);
+  for (const program* target : {&cube_program_, &shade_program_}) set_uniforms(*target, "irradiance", settings_.irradiance);
   downsample_program_.set("faces", 0);
   downsample_program_.set("face_size", settings_.face_size);
   downsample_program_.set("resolution", settings_.resolution);
@@ -132,65 +128,118 @@ final_gather_pipeline::final_gather_pipeline(const shader_library& shaders, cons
     environment_program_.set("small_cube", 0);
     environment_program_.set("resolution", settings_.resolution);
     environment_program_.set("environment_resolution", settings_.environment_resolution);
-    environment_program_.set("reference_point", scene_.reference_point);
   }
-  const glm::mat4 camera = camera_projection_matrix(scene_.view, static_cast<float>(settings_.width) / static_cast<float>(settings_.height)) *
-                           camera_view_matrix(scene_.view);
-  gbuffer_program_.set("view_projection", camera);
   int unit = 0;
   for (const char* name : {"small_cube", "environment_map", "gbuffer_position_kind", "gbuffer_normal", "gbuffer_albedo"}) shade_program_.set(name, unit++);
   shade_program_.set("resolution", settings_.resolution);
   shade_program_.set("environment_resolution", settings_.environment_resolution);
-  shade_program_.set("reference_point", scene_.reference_point);
+  set_pose_uniforms();
   check_gl("setting up the final gathering pipeline");
 }
 
+void final_gather_pipeline::set_pose_uniforms() {
+  for (const program* target : {&cube_program_, &shade_program_}) {
+    set_uniforms(*target, "light", scene_.light);
+    target->set("reference_point", scene_.reference_point);
+  }
+  if (technique_.variant == final_gather_variant::environment_map) environment_program_.set("reference_point", scene_.reference_point);
+  const glm::mat4 camera = camera_projection_matrix(scene_.view, static_cast<float>(settings_.width) / static_cast<float>(settings_.height)) *
+                           camera_view_matrix(scene_.view);
+  gbuffer_program_.set("view_projection", camera);
+}
+
+void final_gather_pipeline::set_camera(const camera& view) {
+  check_camera(view, "final gathering, object " + scene_.name);
+  scene_.view = view;
+  set_pose_uniforms();
+  view_valid_ = false;
+}
+
+void final_gather_pipeline::set_light(const spot_light<float>& light) {
+  scene_light checked;
+  checked.spot = light;
+  check_light(checked, "final gathering, object " + scene_.name);
+  scene_.light = light;
+  set_pose_uniforms();
+  cube_valid_ = view_valid_ = false;
+}
+
+void final_gather_pipeline::set_object_position(glm::vec3 centre) {
+  if (!(std::isfinite(centre.x) && std::isfinite(centre.y) && std::isfinite(centre.z) && glm::length(centre) <= max_scene_coordinate))
+    throw error("final gathering: the object's position must be finite and within " + std::to_string(max_scene_coordinate) + " of the origin");
+  const glm::vec3 offset = centre - scene_.reference_point;
+  for (vertex& v : scene_.object.vertices) v.position += offset;
+  scene_.reference_point = centre;
+  object_ = mesh_buffers(scene_.object);
+  set_pose_uniforms();
+  cube_valid_ = view_valid_ = false;
+}
+
 final_gather_frame final_gather_pipeline::render() {
+  draw();
+  final_gather_frame frame;
+  frame.radiance = output_.read_image(0);
+  frame.indirect = output_.read_image(1);
+  frame.pass_times = timer_.collect();
+  return frame;
+}
+
+void final_gather_pipeline::draw() { draw_passes(true); }
+
+void final_gather_pipeline::draw_changed() {
+  if (!cube_valid_ || !view_valid_) draw_passes(!cube_valid_);
+}
+
+void final_gather_pipeline::draw_passes(bool with_cube) {
   glDisable(GL_BLEND);
   glDisable(GL_CULL_FACE);
   glClearColor(0.0f, 0.0f, 0.0f, 0.0f);  // distance 0: nothing seen
   const float room_size = bounds(scene_.room).radius();
 
-  timer_.begin("cube map");
-  faces_.bind();
-  glEnable(GL_DEPTH_TEST);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  const glm::mat4 projection = glm::perspective(glm::radians(90.0f), 1.0f, 0.001f * room_size, 4.0f * room_size);
-  for (int face = 0; face < 6; ++face) {
-    glViewport(face * settings_.face_size, 0, settings_.face_size, settings_.face_size);
-    cube_program_.set("view_projection", projection * face_view(face, scene_.reference_point));
-    cube_program_.use();
-    room_.draw();  // the object is left out
-  }
-  timer_.end();
+  if (with_cube) {
+    timer_.begin("cube map");
+    faces_.bind();
+    glEnable(GL_DEPTH_TEST);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    const glm::mat4 projection = glm::perspective(glm::radians(90.0f), 1.0f, 0.001f * room_size, 4.0f * room_size);
+    for (int face = 0; face < 6; ++face) {
+      glViewport(face * settings_.face_size, 0, settings_.face_size, settings_.face_size);
+      cube_program_.set("view_projection", projection * face_view(face, scene_.reference_point));
+      cube_program_.use();
+      room_.draw();  // the object is left out
+    }
+    timer_.end();
 
-  glDisable(GL_DEPTH_TEST);
-  glBindVertexArray(empty_vertex_array_.get());
-  timer_.begin("downsample");
-  small_cube_.bind();
-  faces_.colour(0).bind(0);
-  downsample_program_.use();
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-  timer_.end();
-
-  // A reference point outside the room, or an object reaching into it, shows as texels that
-  // saw nothing (distance 0) or that are nearer than the object's own radius.
-  const image small = small_cube_.read_image(0);
-  float nearest = 1e30f;
-  for (const glm::vec4& texel : small.texels) nearest = std::min(nearest, texel.w);
-  if (!(nearest > scene_.object_radius))
-    throw error("final gathering: the environment seen from the reference point (" + std::to_string(scene_.reference_point.x) + ", " +
-                std::to_string(scene_.reference_point.y) + ", " + std::to_string(scene_.reference_point.z) + ") comes as near as " +
-                std::to_string(nearest) + ", within the object's radius " + std::to_string(scene_.object_radius) +
-                ": the reference point is outside the room or inside geometry, or the object intersects a wall");
-
-  if (technique_.variant == final_gather_variant::environment_map) {
-    timer_.begin("environment convolution");
-    environment_.bind();
-    small_cube_.colour(0).bind(0);
-    environment_program_.use();
+    glDisable(GL_DEPTH_TEST);
+    glBindVertexArray(empty_vertex_array_.get());
+    timer_.begin("downsample");
+    small_cube_.bind();
+    faces_.colour(0).bind(0);
+    downsample_program_.use();
     glDrawArrays(GL_TRIANGLES, 0, 3);
     timer_.end();
+
+    // A reference point outside the room, or an object reaching into it, shows as texels that
+    // saw nothing (distance 0) or that are nearer than the object's own radius.
+    const image small = small_cube_.read_image(0);
+    float nearest = 1e30f;
+    for (const glm::vec4& texel : small.texels) nearest = std::min(nearest, texel.w);
+    if (!(nearest > scene_.object_radius))
+      throw error("final gathering: the environment seen from the reference point (" + std::to_string(scene_.reference_point.x) + ", " +
+                  std::to_string(scene_.reference_point.y) + ", " + std::to_string(scene_.reference_point.z) + ") comes as near as " +
+                  std::to_string(nearest) + ", within the object's radius " + std::to_string(scene_.object_radius) +
+                  ": the reference point is outside the room or inside geometry, or the object intersects a wall");
+
+    if (technique_.variant == final_gather_variant::environment_map) {
+      timer_.begin("environment convolution");
+      environment_.bind();
+      small_cube_.colour(0).bind(0);
+      environment_program_.use();
+      glDrawArrays(GL_TRIANGLES, 0, 3);
+      timer_.end();
+    }
+    cube_valid_ = true;
+    ++cube_draws_;
   }
 
   timer_.begin("G-buffer");
@@ -219,12 +268,8 @@ final_gather_frame final_gather_pipeline::render() {
   glBindVertexArray(0);
   timer_.end();
   check_gl("final gathering, object " + scene_.name + ", " + technique_.name);
-
-  final_gather_frame frame;
-  frame.radiance = output_.read_image(0);
-  frame.indirect = output_.read_image(1);
-  frame.pass_times = timer_.collect();
-  return frame;
+  view_valid_ = true;
+  ++view_draws_;
 }
 
 final_gather_buffers final_gather_pipeline::read_buffers() const {

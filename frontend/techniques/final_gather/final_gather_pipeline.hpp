@@ -80,7 +80,28 @@ struct final_gather_buffers {
 class final_gather_pipeline {
  public:
   final_gather_pipeline(const shader_library& shaders, const final_gather_scene& source, const final_gather_settings& settings);
+  /// draw(), then the images read back.
   final_gather_frame render();
+  /// Every pass without reading anything back (a frame as the paper times it).
+  void draw();
+  /// The passes the moves since the last frame invalidated: the cube map (and the averaged and
+  /// convolved maps) after set_light or set_object_position, the G-buffer and the shading after
+  /// any move; nothing when nothing moved. The viewer draws its frames this way.
+  void draw_changed();
+  void set_camera(const camera& view);
+  /// Throws vplkit::error for an invalid light.
+  void set_light(const spot_light<float>& light);
+  /// Moves the object (and its reference point) so that its centre is at `centre`. The cube map
+  /// is checked on the next frame: an object reaching into a wall or out of the room throws there.
+  void set_object_position(glm::vec3 centre);
+  /// How many times the cube map was drawn, and the G-buffer and shading.
+  int cube_draws() const { return cube_draws_; }
+  int view_draws() const { return view_draws_; }
+  /// The pass times since the last render() or collect_pass_times().
+  std::vector<pass_time> collect_pass_times() { return timer_.collect(); }
+  /// The last frame's radiance and the object's indirect irradiance (black elsewhere).
+  const texture_2d& output() const { return output_.colour(0); }
+  const texture_2d& indirect_output() const { return output_.colour(1); }
   final_gather_buffers read_buffers() const;
   const final_gather_scene& source() const { return scene_; }
   const final_gather_settings& settings() const { return settings_; }
@@ -104,6 +125,13 @@ class final_gather_pipeline {
   framebuffer output_;
   gl_vertex_array empty_vertex_array_;
   pass_timer timer_;
+  bool cube_valid_ = false;
+  bool view_valid_ = false;
+  int cube_draws_ = 0;
+  int view_draws_ = 0;
+
+  void set_pose_uniforms();
+  void draw_passes(bool with_cube);
 };
 
 }  // namespace vplkit

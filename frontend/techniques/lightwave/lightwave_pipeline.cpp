@@ -221,7 +221,7 @@ lightwave_pipeline::lightwave_pipeline(const shader_library& shaders, const scen
       mesh_(source.geometry),
       depth_program_(load_program(shaders, "scene.vert", "depth_only.frag")),
       shadow_framebuffer_(generate_framebuffer()),
-      target_(settings.width, settings.height, {settings.format, settings.format}, true) {
+      target_(settings.width, settings.height, {settings.format, settings.format, settings.format}, true) {
   if (source.light.kind != light_kind::spot) throw error("Light Wave needs a spot light; scene " + source.name + " has a directional one");
   if (const char* problem = validate(source.light.spot)) throw error("scene " + source.name + ": " + problem);
   const shader_defines defines = {{"VPLKIT_LIGHTWAVE_MODE", std::to_string(static_cast<int>(technique_.mode))},
@@ -257,7 +257,9 @@ lightwave_pipeline::lightwave_pipeline(const shader_library& shaders, const scen
 std::uint64_t lightwave_pipeline::shadow_map_bytes() const { return lightwave_shadow_map_bytes(shadow_size_.x, shadow_size_.y, shadow_layers_); }
 
 void lightwave_pipeline::set_light(const spot_light<float>& light) {
-  if (const char* problem = validate(light)) throw error(std::string("Light Wave light: ") + problem);
+  scene_light checked;
+  checked.spot = light;
+  check_light(checked, "Light Wave scene " + scene_.name);
   scene_.light.spot = light;
   dirty_ = true;
 }
@@ -350,9 +352,24 @@ void lightwave_pipeline::rebuild() {
   ++rebuilds_;
 }
 
+void lightwave_pipeline::set_camera(const camera& view) {
+  check_camera(view, "Light Wave scene " + scene_.name);
+  scene_.view = view;
+  if (settings_.shadow_variant == lightwave_shadow_variant::importance && technique_.mode == lightwave_mode::accurate) dirty_ = true;
+}
+
 lightwave_frame lightwave_pipeline::render() {
-  const bool rebuilding = dirty_;
-  if (rebuilding) {
+  draw();
+  lightwave_frame frame;
+  frame.radiance = target_.read_image(0);
+  frame.indirect_shadow = target_.read_image(1);
+  frame.indirect = target_.read_image(2);
+  frame.pass_times = timer_.collect();
+  return frame;
+}
+
+void lightwave_pipeline::draw() {
+  if (dirty_) {
     timer_.begin("VPLs and shadow maps");
     rebuild();
     timer_.end();
@@ -380,11 +397,6 @@ lightwave_frame lightwave_pipeline::render() {
   mesh_.draw();
   timer_.end();
   check_gl("rendering scene " + scene_.name + " with " + technique_.name);
-  lightwave_frame frame;
-  frame.radiance = target_.read_image(0);
-  frame.indirect_shadow = target_.read_image(1);
-  frame.pass_times = timer_.collect();
-  return frame;
 }
 
 void lightwave_pipeline::set_vertex_uniforms(const program& target) const {

@@ -118,15 +118,32 @@ struct lightwave_frame {
   /// The indirect shadow factor of each pixel in the red channel (1 = unshadowed; 1 for the
   /// modes without indirect shadows and where no surface is).
   image indirect_shadow;
+  /// The indirect radiance each pixel adds to its direct light (Eq. 4.9's indirect term after
+  /// its shadow factor; Eq. 5.2's addition for the faked mode; 0 for direct light only).
+  image indirect;
   std::vector<pass_time> pass_times;
 };
 
 class lightwave_pipeline {
  public:
   lightwave_pipeline(const shader_library& shaders, const scene& source, const lightwave_settings& settings);
+  /// draw(), then the images read back.
   lightwave_frame render();
+  /// One frame without reading anything back: the VPLs and shadow maps when a move invalidated
+  /// them (the first frame, set_light, set_camera for the importance variant), then the main pass.
+  void draw();
   /// Moves the spot light: VPLs and shadow maps are rebuilt on the next frame.
   void set_light(const spot_light<float>& light);
+  /// Moves the camera. The VPLs stay; the shadow maps are rebuilt on the next frame only for the
+  /// importance variant of the accurate shadows, whose casters are drawn and aimed for the
+  /// visible surface.
+  void set_camera(const camera& view);
+  /// The pass times since the last render() or collect_pass_times().
+  std::vector<pass_time> collect_pass_times() { return timer_.collect(); }
+  /// The last frame's radiance, indirect shadow factor (red) and indirect radiance textures.
+  const texture_2d& output() const { return target_.colour(0); }
+  const texture_2d& indirect_shadow_output() const { return target_.colour(1); }
+  const texture_2d& indirect_output() const { return target_.colour(2); }
   /// How many times VPLs and shadow maps have been built (1 after the first frame).
   int rebuilds() const { return rebuilds_; }
   std::uint64_t shadow_map_bytes() const;

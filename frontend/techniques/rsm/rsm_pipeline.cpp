@@ -148,28 +148,14 @@ rsm_pipeline::rsm_pipeline(const shader_library& shaders, const scene& source, c
                                 {"VPLKIT_SEPARABLE", flag(separable)},
                                 {"VPLKIT_LIGHT_DIRECTIONAL", flag(is_directional(source))}});
 
-  // Uniforms that stay for the pipeline's life.
-  const light_frustum& light = constants_.light;
-  rsm_program_.set("view_projection", light.view_projection);
-  rsm_program_.set("light_view", light.view);
+  // Uniforms that stay for the pipeline's life; the pose's are set by set_pose_uniforms.
   rsm_program_.set("rsm_size", glm::ivec2(settings.rsm_size));
-  rsm_program_.set("tan_half_fov", light.tan_half_fov);
-  rsm_program_.set("texel_area", light.texel_area);
-  set_light_uniforms(rsm_program_, constants_);
-
-  gbuffer_program_.set("view_projection", constants_.camera_view_projection);
-  gbuffer_program_.set("camera_view", constants_.camera_view);
-  gbuffer_program_.set("light_view", light.view);
-  gbuffer_program_.set("light_view_projection", light.view_projection);
   gbuffer_program_.set("rsm_size", glm::ivec2(settings.rsm_size));
   set_uniforms(gbuffer_program_, "shadow", constants_.shadow);
   gbuffer_program_.set("rsm_packed", 0);
 
   if (technique.indirect) {
     set_uniforms(gather_program_, "settings", constants_.gather);
-    set_uniforms(gather_program_, "unprojection", constants_.unprojection);
-    gather_program_.set("light_view", light.view);
-    gather_program_.set("light_view_projection", light.view_projection);
     gather_program_.set("indirect_divisor", constants_.indirect_divisor);
     gather_program_.set("gbuffer_size", constants_.image_size);
     int unit = 0;
@@ -191,8 +177,58 @@ rsm_pipeline::rsm_pipeline(const shader_library& shaders, const scene& source, c
   int unit = 0;
   for (const char* name : {"indirect_buffer", "gbuffer_position_depth", "gbuffer_albedo_density", "gbuffer_normal"})
     post_program_.set(name, unit++);
-  set_light_uniforms(post_program_, constants_);
+  set_pose_uniforms();
   check_gl("setting up the RSM pipeline");
+}
+
+void rsm_pipeline::set_pose_uniforms() {
+  const light_frustum& light = constants_.light;
+  rsm_program_.set("view_projection", light.view_projection);
+  rsm_program_.set("light_view", light.view);
+  rsm_program_.set("tan_half_fov", light.tan_half_fov);
+  rsm_program_.set("texel_area", light.texel_area);
+  set_light_uniforms(rsm_program_, constants_);
+  gbuffer_program_.set("view_projection", constants_.camera_view_projection);
+  gbuffer_program_.set("camera_view", constants_.camera_view);
+  gbuffer_program_.set("light_view", light.view);
+  gbuffer_program_.set("light_view_projection", light.view_projection);
+  if (constants_.technique.indirect) {
+    set_uniforms(gather_program_, "unprojection", constants_.unprojection);
+    gather_program_.set("light_view", light.view);
+    gather_program_.set("light_view_projection", light.view_projection);
+  }
+  set_light_uniforms(post_program_, constants_);
+}
+
+void rsm_pipeline::set_camera(const camera& view) {
+  check_camera(view, "scene " + scene_.name);
+  const camera previous = scene_.view;
+  scene_.view = view;
+  try {
+    constants_ = make_frame_constants(scene_, settings_);
+  } catch (...) {
+    scene_.view = previous;
+    throw;
+  }
+  set_pose_uniforms();
+  view_valid_ = false;
+}
+
+void rsm_pipeline::set_light(const scene_light& light) {
+  if (light.kind != scene_.light.kind)
+    throw error("scene " + scene_.name + ": the RSM pipeline was built for a " + (scene_.light.kind == light_kind::spot ? "spot" : "directional") +
+                " light; make a new pipeline for another kind");
+  check_light(light, "scene " + scene_.name);
+  const scene_light previous = scene_.light;
+  scene_.light = light;
+  try {
+    constants_ = make_frame_constants(scene_, settings_);
+  } catch (...) {
+    scene_.light = previous;
+    throw;
+  }
+  set_pose_uniforms();
+  rsm_valid_ = view_valid_ = false;
 }
 
 rsm_frame rsm_pipeline::render() {
@@ -204,21 +240,31 @@ rsm_frame rsm_pipeline::render() {
   return frame;
 }
 
-void rsm_pipeline::draw() {
+void rsm_pipeline::draw() { draw_passes(true); }
+
+void rsm_pipeline::draw_changed() {
+  if (!rsm_valid_ || !view_valid_) draw_passes(!rsm_valid_);
+}
+
+void rsm_pipeline::draw_passes(bool with_rsm) {
   const rsm_technique& technique = constants_.technique;
   glClearColor(0.0f, 0.0f, 0.0f, 0.0f);  // depth 0 marks "no surface" in every buffer
   glDisable(GL_BLEND);
   glDisable(GL_CULL_FACE);
 
-  timer_.begin("RSM generation");
   glEnable(GL_DEPTH_TEST);
-  rsm_target_.bind();
-  const GLuint empty_texel[4] = {0, 0, 0, 0};  // glClear's float colour is undefined for an integer target
-  glClearBufferuiv(GL_COLOR, 0, empty_texel);
-  glClear(GL_DEPTH_BUFFER_BIT);
-  rsm_program_.use();
-  mesh_.draw();
-  timer_.end();
+  if (with_rsm) {
+    timer_.begin("RSM generation");
+    rsm_target_.bind();
+    const GLuint empty_texel[4] = {0, 0, 0, 0};  // glClear's float colour is undefined for an integer target
+    glClearBufferuiv(GL_COLOR, 0, empty_texel);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    rsm_program_.use();
+    mesh_.draw();
+    timer_.end();
+    rsm_valid_ = true;
+    ++rsm_draws_;
+  }
 
   timer_.begin("G-buffer generation");
   gbuffer_target_.bind();
@@ -258,6 +304,8 @@ void rsm_pipeline::draw() {
   timer_.end();
   glBindVertexArray(0);
   check_gl("rendering scene " + scene_.name + " with " + technique.name);
+  view_valid_ = true;
+  ++view_draws_;
 }
 
 double rsm_pipeline::draw_wall_clock_ms() {

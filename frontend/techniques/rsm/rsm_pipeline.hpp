@@ -137,8 +137,26 @@ class rsm_pipeline {
   /// Validates, loads the programs and uploads the scene. Throws vplkit::error with the reason.
   rsm_pipeline(const shader_library& shaders, const scene& source, const rsm_pipeline_settings& settings);
   rsm_frame render();
-  /// The four passes without reading anything back.
+  /// The four passes without reading anything back (a frame as Table 5.3 times it: the light
+  /// may have moved, so the RSM is drawn as well).
   void draw();
+  /// The passes that the moves since the last frame invalidated: after set_camera only the
+  /// G-buffer, the gather and the post filter; after set_light the RSM as well; nothing when
+  /// nothing moved. The viewer draws its frames this way.
+  void draw_changed();
+  /// Moves the camera (the RSM stays valid).
+  void set_camera(const camera& view);
+  /// Moves the light. Throws vplkit::error for an invalid light or one of another kind than the
+  /// scene's (the programs are built for a spot or a directional light).
+  void set_light(const scene_light& light);
+  /// How many times the RSM has been drawn.
+  int rsm_draws() const { return rsm_draws_; }
+  /// How many times the camera-dependent passes (G-buffer to post filter) have been drawn.
+  int view_draws() const { return view_draws_; }
+  /// The pass times since the last render() or collect_pass_times().
+  std::vector<pass_time> collect_pass_times() { return timer_.collect(); }
+  const scene& source() const { return scene_; }
+  const rsm_pipeline_settings& settings() const { return settings_; }
   /// draw() timed by wall clock between two glFinish calls: the frame's cost on any renderer
   /// (llvmpipe's timer queries measure only the span of its last rasterizer tiles).
   double draw_wall_clock_ms();
@@ -147,8 +165,13 @@ class rsm_pipeline {
   rsm_pass_buffers read_buffers() const;
   /// The final radiance texture of the last frame.
   const texture_2d& output() const { return post_target_.colour(0); }
+  /// The filtered indirect irradiance of the last frame at the image's size (black for direct light).
+  const texture_2d& indirect_output() const { return post_target_.colour(1); }
 
  private:
+  void set_pose_uniforms();
+  void draw_passes(bool with_rsm);
+
   scene scene_;
   rsm_pipeline_settings settings_;
   rsm_frame_constants constants_;
@@ -165,6 +188,10 @@ class rsm_pipeline {
   framebuffer post_target_;
   gl_vertex_array empty_vertex_array_;
   pass_timer timer_;
+  bool rsm_valid_ = false;   ///< the RSM matches the light
+  bool view_valid_ = false;  ///< the G-buffer to post filter match the camera and the RSM
+  int rsm_draws_ = 0;
+  int view_draws_ = 0;
 };
 
 }  // namespace vplkit

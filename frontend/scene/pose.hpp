@@ -1,0 +1,46 @@
+// Where a camera or a light is and where it looks: the --camera / --light options of render,
+// reference and view, the viewer's moves, and the pose the viewer prints so that a headless render
+// can start from what was seen. A pose is a position and a target point; the camera keeps its up
+// vector and field of view, a spot light its cone and intensity, a directional light shines from
+// the position towards the target (only the direction is kept).
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include <glm/glm.hpp>
+
+#include "frontend/scene/scene.hpp"
+
+namespace vplkit {
+
+struct pose {
+  glm::vec3 position{0.0f};
+  glm::vec3 target{0.0f, 0.0f, -1.0f};
+};
+
+pose pose_of(const camera& view);
+/// A spot light: its position and the point one unit along its axis. A directional light: the
+/// origin minus its direction, and the origin.
+pose pose_of(const scene_light& light);
+
+/// Throws vplkit::error starting with `owner` when the pose's position equals its target or a
+/// value is not finite, and check_camera's errors for the moved camera.
+void apply_pose(const pose& where, camera& view, const std::string& owner);
+void apply_pose(const pose& where, scene_light& light, const std::string& owner);
+void apply_pose(const pose& where, spot_light<float>& light, const std::string& owner);
+
+/// `count` comma-separated numbers (spaces allowed around each, a leading '+' too), each finite
+/// within +-limit, into `values`. Returns false, leaving `values` unspecified, on anything else.
+bool parse_number_list(std::string_view text, float* values, int count, float limit);
+
+/// "x,y,z" with 9 significant digits (enough for a float to read back the same).
+std::string format_point(glm::vec3 point);
+/// "x,y,z,tx,ty,tz" with 9 significant digits: parse_pose reads back the same floats.
+std::string format_pose(const pose& where);
+/// Parses "x,y,z,tx,ty,tz" (each finite within +-max_scene_coordinate; position != target).
+/// Empty on success, else the reason (without the text, which the caller shows as it shows
+/// arguments).
+std::string parse_pose(const std::string& text, pose& where);
+
+}  // namespace vplkit

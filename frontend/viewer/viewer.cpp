@@ -1,0 +1,340 @@
+#include "frontend/viewer/viewer.hpp"
+
+#define GLFW_INCLUDE_NONE  // GL comes from glad (frontend/gl/gl.hpp)
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+#include <imgui_impl_opengl3.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "frontend/core/error.hpp"
+#include "frontend/core/files.hpp"
+#include "frontend/core/named_table.hpp"
+#include "frontend/gl/debug_output.hpp"
+#include "frontend/image/image_files.hpp"
+#include "frontend/viewer/pose_controls.hpp"
+
+namespace vplkit {
+
+namespace {
+
+constexpr float radians_per_pixel = 0.005f;
+
+// Dear ImGui keeps one current context and its GLFW backend installs callbacks on the window:
+// one viewer at a time.
+bool viewer_exists = false;
+
+std::vector<std::string> every_technique() {
+  std::vector<std::string> names = names_of(rsm_techniques());
+  for (const std::string& name : names_of(lightwave_techniques())) names.push_back(name);
+  for (const std::string& name : names_of(final_gather_techniques())) names.push_back(name);
+  return names;
+}
+
+const char* describe(move_target target) {
+  switch (target) {
+    case move_target::camera: return "camera";
+    case move_target::light: return "light";
+    case move_target::object: return "object";
+  }
+  return "";
+}
+
+}  // namespace
+
+viewer::viewer(window_context& window, const shader_library& shaders, viewer_options options)
+    : window_(window),
+      shaders_(shaders),
+      scenes_(std::move(options.scenes)),
+      technique_(options.technique),
+      view_(make_technique_view(shaders, scenes_, technique_)),
+      last_good_{view_->camera_pose(), view_->light_pose(), view_->object_position()},
+      present_program_(load_program(shaders, "fullscreen.vert", "present.frag")),
+      empty_vertex_array_(generate_vertex_array()),
+      panel_(options.panel),
+      screenshot_path_(std::move(options.screenshot)),
+      last_frame_(std::chrono::steady_clock::now()) {
+  if (viewer_exists) throw error("a viewer is already open: Dear ImGui allows one at a time");
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;  // the viewer writes no imgui.ini
+  ImGui::StyleColorsDark();
+  if (!ImGui_ImplGlfw_InitForOpenGL(window_.window(), true) || !ImGui_ImplOpenGL3_Init("#version 330 core")) {
+    ImGui::DestroyContext();
+    throw error("Dear ImGui could not set up its GLFW and OpenGL 3 backends");
+  }
+  imgui_ready_ = true;
+  viewer_exists = true;
+}
+
+viewer::~viewer() {
+  if (!imgui_ready_) return;
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui_ImplGlfw_Shutdown();
+  ImGui::DestroyContext();
+  viewer_exists = false;
+}
+
+bool viewer::try_action(const std::function<void()>& action) {
+  try {
+    action();
+    message_.clear();
+    return true;
+  } catch (const error& failure) {
+    message_ = failure.what();
+    return false;
+  }
+}
+
+void viewer::select_technique(const std::string& technique) {
+  try_action([&] {
+    view_->store_pose(scenes_);
+    std::unique_ptr<technique_view> next = make_technique_view(shaders_, scenes_, technique);
+    view_ = std::move(next);
+    technique_ = technique;
+    last_good_ = {view_->camera_pose(), view_->light_pose(), view_->object_position()};
+    const std::vector<view_layer> layers = view_->layers();
+    if (std::find(layers.begin(), layers.end(), layer_) == layers.end()) layer_ = view_layer::image;
+    if (target_ == move_target::object && !view_->has_object()) target_ = move_target::camera;
+    exposure_stale_ = true;
+  });
+}
+
+void viewer::select_layer(view_layer layer) {
+  const std::vector<view_layer> layers = view_->layers();
+  if (std::find(layers.begin(), layers.end(), layer) == layers.end()) {
+    message_ = std::string("technique ") + technique_ + " has no layer \"" + describe(layer) + "\"";
+    return;
+  }
+  layer_ = layer;
+  exposure_stale_ = true;
+}
+
+void viewer::move_camera(const pose& where) { try_action([&] { view_->set_camera_pose(where); }); }
+void viewer::move_light(const pose& where) { try_action([&] { view_->set_light_pose(where); }); }
+void viewer::move_object(glm::vec3 centre) { try_action([&] { view_->set_object_position(centre); }); }
+
+std::string viewer::pose_arguments() const {
+  std::string arguments = "--technique " + technique_ + " --camera " + format_pose(view_->camera_pose()) + " --light " + format_pose(view_->light_pose());
+  if (view_->has_object()) arguments += " --object-position " + format_point(view_->object_position());
+  return arguments;
+}
+
+void viewer::handle_input() {
+  const ImGuiIO& io = ImGui::GetIO();
+  if (!io.WantCaptureKeyboard) {
+    if (ImGui::IsKeyPressed(GLFW_KEY_H, false)) panel_ = !panel_;
+    if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false)) glfwSetWindowShouldClose(window_.window(), GLFW_TRUE);
+    if (ImGui::IsKeyPressed(GLFW_KEY_TAB, false)) {
+      target_ = target_ == move_target::camera ? move_target::light
+                : target_ == move_target::light && view_->has_object() ? move_target::object
+                                                                        : move_target::camera;
+    }
+    if (ImGui::IsKeyPressed(GLFW_KEY_L, false)) {
+      const std::vector<view_layer> layers = view_->layers();
+      const auto current = std::find(layers.begin(), layers.end(), layer_);
+      select_layer(current == layers.end() || current + 1 == layers.end() ? layers.front() : *(current + 1));
+    }
+    if (ImGui::IsKeyPressed(GLFW_KEY_P, false)) {
+      try_action([&] { save_screenshot(screenshot_path_); });
+    }
+  }
+
+  // The mouse and keys move the chosen target: orbit/look/dolly/fly for a pose, WASD/QE for the object.
+  const bool is_pose = target_ != move_target::object;
+  const pose current = target_ == move_target::light ? view_->light_pose() : view_->camera_pose();
+  pose moved = current;
+  if (!io.WantCaptureMouse) {
+    if (io.MouseDown[0] && is_pose) moved = orbit(moved, -io.MouseDelta.x * radians_per_pixel, io.MouseDelta.y * radians_per_pixel);
+    if (io.MouseDown[1] && is_pose) moved = look(moved, -io.MouseDelta.x * radians_per_pixel, -io.MouseDelta.y * radians_per_pixel);
+    if (io.MouseWheel != 0.0f && is_pose) moved = dolly(moved, std::pow(0.9f, io.MouseWheel));
+  }
+  glm::vec3 step(0.0f);
+  if (!io.WantCaptureKeyboard) {
+    const auto key = [](int code) { return ImGui::IsKeyDown(code) ? 1.0f : 0.0f; };
+    step = glm::vec3(key(GLFW_KEY_D) - key(GLFW_KEY_A), key(GLFW_KEY_E) - key(GLFW_KEY_Q), key(GLFW_KEY_W) - key(GLFW_KEY_S));
+  }
+  if (step != glm::vec3(0.0f)) {
+    // Half the distance to the target per second, so that a move feels the same in any scene.
+    const float speed = 0.5f * std::max(glm::length(current.target - current.position), 0.05f) * std::min(io.DeltaTime, 0.1f);
+    if (is_pose) {
+      moved = fly(moved, step * speed);
+    } else {
+      // The object moves along the camera's horizontal axes and world up.
+      const pose_axes axes = axes_of(view_->camera_pose());
+      const glm::vec3 flat_forward = glm::normalize(glm::vec3(axes.forward.x, 0.0f, axes.forward.z) + glm::vec3(0.0f, 0.0f, 1e-6f));
+      const glm::vec3 flat_right = glm::normalize(glm::cross(flat_forward, glm::vec3(0.0f, 1.0f, 0.0f)));
+      move_object(view_->object_position() + speed * (step.x * flat_right + step.y * glm::vec3(0.0f, 1.0f, 0.0f) + step.z * flat_forward));
+    }
+  }
+  if (is_pose && (moved.position != current.position || moved.target != current.target)) {
+    if (target_ == move_target::light) move_light(moved);
+    else move_camera(moved);
+  }
+}
+
+void viewer::build_panel() {
+  ImGui::SetNextWindowPos(ImVec2(8.0f, 8.0f), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowBgAlpha(0.85f);
+  ImGui::Begin("vplkit", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  if (ImGui::BeginCombo("technique", technique_.c_str())) {
+    for (const std::string& name : every_technique())
+      if (ImGui::Selectable(name.c_str(), name == technique_) && name != technique_) select_technique(name);
+    ImGui::EndCombo();
+  }
+  for (view_layer layer : view_->layers())
+    if (ImGui::RadioButton(describe(layer), layer_ == layer)) select_layer(layer);
+  ImGui::Text("mouse and WASD/QE move the %s (Tab: next)", describe(target_));
+
+  if (ImGui::CollapsingHeader("settings", ImGuiTreeNodeFlags_DefaultOpen)) {
+    std::string problem;
+    if (view_->edit_settings(scenes_, problem)) select_technique(technique_);
+    if (!problem.empty()) message_ = problem;
+  }
+
+  if (ImGui::CollapsingHeader("pose", ImGuiTreeNodeFlags_DefaultOpen)) {
+    const auto edit_pose = [&](const char* label, pose where, bool light) {
+      ImGui::PushID(label);
+      bool changed = ImGui::DragFloat3("position", &where.position.x, 0.01f);
+      changed |= ImGui::DragFloat3("target", &where.target.x, 0.01f);
+      ImGui::PopID();
+      if (changed) (light ? move_light(where) : move_camera(where));
+    };
+    ImGui::TextUnformatted("camera");
+    edit_pose("camera", view_->camera_pose(), false);
+    ImGui::TextUnformatted("light");
+    edit_pose("light", view_->light_pose(), true);
+    if (view_->has_object()) {
+      glm::vec3 centre = view_->object_position();
+      if (ImGui::DragFloat3("object", &centre.x, 0.01f)) move_object(centre);
+    }
+    if (ImGui::Button("copy as vplkit render arguments")) ImGui::SetClipboardText(pose_arguments().c_str());
+  }
+
+  if (ImGui::CollapsingHeader("timing", ImGuiTreeNodeFlags_DefaultOpen)) {
+    ImGui::Text("frame %.2f ms", frame_ms_);
+    ImGui::TextUnformatted(describe(timing_method_for_current_context()).c_str());
+    double total = 0.0;
+    for (const pass_time& pass : last_pass_times_) {
+      ImGui::Text("%-26s %9.2f ms", pass.pass.c_str(), pass.milliseconds);
+      total += pass.milliseconds;
+    }
+    ImGui::Text("%-26s %9.2f ms", "passes drawn last", total);
+    ImGui::TextWrapped("drawn so far: %s", view_->draw_counts().c_str());
+  }
+  if (!message_.empty()) ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.3f, 1.0f), "%s", message_.c_str());
+  ImGui::TextDisabled("H panel, L layer, P screenshot, Esc close");
+  const ImVec2 position = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+  panel_rectangle_ = glm::vec4(position.x, position.y, size.x, size.y);
+  ImGui::End();
+}
+
+void viewer::present() {
+  const layer_display display = view_->display(layer_);
+  if (display.auto_exposure && exposure_stale_) {
+    exposure_ = percentile_exposure(view_->read_indirect());
+    exposure_stale_ = false;
+  }
+  const auto [width, height] = window_.framebuffer_size();
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glViewport(0, 0, width, height);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  glDisable(GL_SCISSOR_TEST);
+  display.image->bind(0);
+  (display.other ? display.other : display.image)->bind(1);
+  present_program_.use();
+  present_program_.set("image", 0);
+  present_program_.set("other", 1);
+  present_program_.set("mode", display.mode);
+  present_program_.set("exposure", (display.auto_exposure ? exposure_ : 1.0f) * display.scale);
+  present_program_.set("viewport_size", glm::ivec2(width, height));
+  glBindVertexArray(empty_vertex_array_.get());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glBindVertexArray(0);
+  check_gl("presenting " + technique_);
+}
+
+void viewer::frame() {
+  const auto now = std::chrono::steady_clock::now();
+  frame_ms_ = std::chrono::duration<double, std::milli>(now - last_frame_).count();
+  last_frame_ = now;
+
+  ImGui_ImplOpenGL3_NewFrame();
+  ImGui_ImplGlfw_NewFrame();
+  ImGui::NewFrame();
+  // A hidden panel takes no input: everything goes to the moves.
+  if (!panel_) ImGui::GetIO().WantCaptureMouse = ImGui::GetIO().WantCaptureKeyboard = false;
+  handle_input();
+  if (panel_) build_panel();
+  ImGui::Render();
+
+  bool drawn = false;
+  if (try_action([&] { drawn = view_->draw(); })) {
+    last_good_ = {view_->camera_pose(), view_->light_pose(), view_->object_position()};
+  } else {
+    // A move the pipeline refused while drawing (the object into a wall): back to the last pose
+    // that drew.
+    const std::string reason = message_;
+    try_action([&] {
+      view_->set_camera_pose(last_good_.camera);
+      view_->set_light_pose(last_good_.light);
+      if (view_->has_object()) view_->set_object_position(last_good_.object);
+      drawn = view_->draw();
+    });
+    message_ = reason;
+  }
+  if (drawn) {
+    last_pass_times_ = view_->collect_pass_times();
+    exposure_stale_ = true;
+  }
+  present();
+  if (panel_) ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+}
+
+window_pixels viewer::read_window() const {
+  window_pixels pixels;
+  std::tie(pixels.width, pixels.height) = window_.framebuffer_size();
+  const std::size_t row = static_cast<std::size_t>(pixels.width) * 4;
+  std::vector<std::uint8_t> bottom_up(row * static_cast<std::size_t>(pixels.height));
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  glReadBuffer(GL_BACK);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, pixels.width, pixels.height, GL_RGBA, GL_UNSIGNED_BYTE, bottom_up.data());
+  check_gl("reading the window");
+  pixels.rgba8.resize(bottom_up.size());
+  for (int y = 0; y < pixels.height; ++y)
+    std::copy_n(bottom_up.begin() + static_cast<std::ptrdiff_t>(row * static_cast<std::size_t>(y)), row,
+                pixels.rgba8.begin() + static_cast<std::ptrdiff_t>(row * static_cast<std::size_t>(pixels.height - 1 - y)));
+  return pixels;
+}
+
+std::vector<std::filesystem::path> viewer::save_screenshot(const std::filesystem::path& png) {
+  if (png.extension() != ".png") throw error("screenshot " + png.string() + ": the file name must end in .png");
+  const window_pixels pixels = read_window();
+  const image indirect = view_->read_indirect();
+  std::filesystem::path pfm = png;
+  pfm.replace_filename(png.stem().string() + "-indirect.pfm");
+  write_all_or_nothing({{png, [&] { return encode_png(pixels.width, pixels.height, pixels.rgba8); }}, {pfm, [&] { return encode_pfm(indirect); }}});
+  return {png, pfm};
+}
+
+int run_viewer(window_context& window, const shader_library& shaders, viewer_options options, int frames, bool screenshot_at_end, std::ostream& out) {
+  const std::filesystem::path screenshot = options.screenshot;
+  viewer app(window, shaders, std::move(options));
+  int shown = 0;
+  for (; (frames == 0 || shown < frames) && !window.should_close(); ++shown) {
+    app.frame();
+    if (screenshot_at_end && shown + 1 == frames)
+      for (const std::filesystem::path& path : app.save_screenshot(screenshot)) out << "wrote " << std::filesystem::absolute(path).string() << "\n";
+    window.swap_and_poll();
+  }
+  if (!app.message().empty()) out << "last message: " << app.message() << "\n";
+  out << "closed the window after " << shown << " frames of " << app.technique() << " (drawn: " << app.view().draw_counts() << ")\n"
+      << "pose: " << app.pose_arguments() << "\n";
+  return 0;
+}
+
+}  // namespace vplkit

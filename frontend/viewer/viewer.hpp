@@ -1,0 +1,118 @@
+// vplkit view: any technique in a GLFW window with a Dear ImGui panel. The camera orbits (left
+// drag), looks around (right drag), dollies (wheel) and flies (WASD, Q/E down/up); Tab makes the
+// mouse and keys move the light instead, or the object (final gathering). The panel switches the
+// technique and the layer shown, edits the technique's settings live, shows the per-pass times of
+// the last frame that drew anything (the pass_timer's method), the frame time, what each stage
+// has been drawn so far, and the pose as --camera/--light arguments. H hides the panel, P saves a
+// screenshot PNG and the indirect PFM, L cycles the layers, Esc closes. A move redraws only what
+// it invalidates (technique_view.hpp).
+#pragma once
+
+#include <chrono>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "frontend/gl/context.hpp"
+#include "frontend/gl/program.hpp"
+#include "frontend/viewer/technique_view.hpp"
+
+namespace vplkit {
+
+struct viewer_options {
+  std::string technique;
+  viewer_scenes scenes;
+  bool panel = true;
+  /// Where the P key (and run_viewer after a scripted run's last frame) saves the screenshot; the
+  /// indirect PFM goes next to it as <stem>-indirect.pfm.
+  std::filesystem::path screenshot = "output/view.png";
+};
+
+/// What moves with the mouse and the keys.
+enum class move_target { camera, light, object };
+
+/// The window's pixels: RGBA8, rows top-down (the PNG raster order).
+struct window_pixels {
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint8_t> rgba8;
+};
+
+class viewer {
+ public:
+  /// Sets up Dear ImGui on the window and builds the first technique's view. Throws vplkit::error
+  /// when the technique's pipeline cannot be built, or while another viewer exists (Dear ImGui
+  /// has one current context).
+  viewer(window_context& window, const shader_library& shaders, viewer_options options);
+  ~viewer();
+  viewer(const viewer&) = delete;
+  viewer& operator=(const viewer&) = delete;
+
+  /// One frame: input, moves, the passes they invalidated, the layer, the panel. Does not swap.
+  void frame();
+
+  technique_view& view() { return *view_; }
+  const std::string& technique() const { return technique_; }
+  /// Switches technique (settings kept per family, poses kept). A refusal leaves the current one
+  /// and sets message().
+  void select_technique(const std::string& technique);
+  void select_layer(view_layer layer);
+  view_layer layer() const { return layer_; }
+  void show_panel(bool shown) { panel_ = shown; }
+  bool panel_shown() const { return panel_; }
+  /// Moves as the controls make them; a move the view refuses changes nothing and sets message().
+  void move_camera(const pose& where);
+  void move_light(const pose& where);
+  void move_object(glm::vec3 centre);
+  /// The last error from a move, a setting or a switch ("" when the last action succeeded).
+  const std::string& message() const { return message_; }
+  /// The panel's rectangle in window pixels from the top left (x, y, width, height) in the last frame.
+  glm::vec4 panel_rectangle() const { return panel_rectangle_; }
+  /// "--technique T --camera ... --light ..." (and --object-position): the pose as `vplkit render` takes it.
+  std::string pose_arguments() const;
+  /// The back buffer after frame(), before the swap.
+  window_pixels read_window() const;
+  /// The window as a PNG and the indirect light as <stem>-indirect.pfm, all or nothing; returns
+  /// the paths written.
+  std::vector<std::filesystem::path> save_screenshot(const std::filesystem::path& png);
+
+ private:
+  void handle_input();
+  void build_panel();
+  void present();
+  bool try_action(const std::function<void()>& action);
+
+  window_context& window_;
+  const shader_library& shaders_;
+  viewer_scenes scenes_;
+  std::string technique_;
+  std::unique_ptr<technique_view> view_;
+  /// The poses of the last frame that drew, restored when a move fails while drawing.
+  struct poses {
+    pose camera, light;
+    glm::vec3 object;
+  } last_good_;
+  program present_program_;
+  gl_vertex_array empty_vertex_array_;
+  view_layer layer_ = view_layer::image;
+  move_target target_ = move_target::camera;
+  bool panel_ = true;
+  std::filesystem::path screenshot_path_;
+  std::string message_;
+  std::vector<pass_time> last_pass_times_;
+  float exposure_ = 1.0f;
+  bool exposure_stale_ = true;
+  double frame_ms_ = 0.0;
+  std::chrono::steady_clock::time_point last_frame_;
+  glm::vec4 panel_rectangle_{0.0f};
+  bool imgui_ready_ = false;
+};
+
+/// Runs `frames` frames (0: until the window is closed or Esc), saves the screenshot after the
+/// last scripted frame when `screenshot_at_end`, and prints the pose to `out` at the end.
+int run_viewer(window_context& window, const shader_library& shaders, viewer_options options, int frames, bool screenshot_at_end, std::ostream& out);
+
+}  // namespace vplkit

@@ -1,0 +1,266 @@
+// frontend/viewer/viewer.hpp in a real GLFW window (run under xvfb-run by ctest): scripted frames
+// change when the camera, the light or the object moves, and each move redraws only what it
+// invalidates; the panel covers its own rectangle and nothing else; every technique and each of
+// its layers can be shown; screenshots are written whole or not at all.
+#define DOCTEST_CONFIG_IMPLEMENT
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+
+#include "frontend/core/error.hpp"
+#include "frontend/gl/context.hpp"
+#include "frontend/gl/debug_output.hpp"
+#include "frontend/image/image.hpp"
+#include "frontend/image/image_files.hpp"
+#include "frontend/viewer/pose_controls.hpp"
+#include "frontend/viewer/viewer.hpp"
+
+using namespace vplkit;
+
+namespace {
+
+constexpr int side = 96;
+
+window_context& window() {
+  static window_context context(side, side, "vplkit viewer test");
+  return context;
+}
+
+const shader_library& shaders() {
+  static const shader_library library(default_shader_dir());
+  return library;
+}
+
+viewer_options small_setup(const std::string& technique) {
+  viewer_options options;
+  options.technique = technique;
+  viewer_scenes& scenes = options.scenes;
+  scenes.rsm = built_in_scene("cornell-box");
+  scenes.lightwave = built_in_scene("boxes");
+  scenes.final_gather = make_final_gather_scene("sphere", glm::vec3(0.0f, 0.7f, 0.0f), 0.5f);
+  scenes.rsm_setup.width = scenes.lightwave_setup.width = scenes.final_gather_setup.width = side;
+  scenes.rsm_setup.height = scenes.lightwave_setup.height = scenes.final_gather_setup.height = side;
+  scenes.rsm_setup.rsm_size = 64;
+  scenes.lightwave_setup.shadow_map_scale = 1.0f;
+  scenes.final_gather_setup.face_size = 32;
+  options.screenshot = std::filesystem::temp_directory_path() / "vplkit-viewer-test" / "shot.png";
+  return options;
+}
+
+// The share of pixels whose largest channel moved by more than `codes` 8-bit steps.
+double changed_share(const window_pixels& a, const window_pixels& b, int codes = 8) {
+  REQUIRE(a.rgba8.size() == b.rgba8.size());
+  std::size_t changed = 0;
+  for (std::size_t i = 0; i < a.rgba8.size(); i += 4) {
+    int largest = 0;
+    for (std::size_t c = 0; c < 3; ++c) largest = std::max(largest, std::abs(int(a.rgba8[i + c]) - int(b.rgba8[i + c])));
+    changed += largest > codes;
+  }
+  return static_cast<double>(changed) / static_cast<double>(a.rgba8.size() / 4);
+}
+
+window_pixels shown_frame(viewer& app) {
+  app.frame();
+  const window_pixels pixels = app.read_window();
+  window().swap_and_poll();
+  return pixels;
+}
+
+// The frame that moves brought about, redrawing only what they invalidated, is bit for bit the
+// frame of a new pipeline built at the final pose (no stale uniform or buffer).
+void check_same_as_new_pipeline(viewer& app, viewer_scenes scenes) {
+  app.view().store_pose(scenes);
+  const std::unique_ptr<technique_view> fresh = make_technique_view(shaders(), scenes, app.technique());
+  fresh->draw();
+  for (view_layer layer : fresh->layers()) {
+    if (layer == view_layer::visibility_difference) continue;  // built on demand from the same pipeline
+    CAPTURE(describe(layer));
+    const image moved = app.view().display(layer).image->read_image();
+    const image rebuilt = fresh->display(layer).image->read_image();
+    REQUIRE(moved.same_size(rebuilt));
+    std::size_t different = 0;
+    for (std::size_t i = 0; i < moved.texels.size(); ++i) different += moved.texels[i] != rebuilt.texels[i];
+    CHECK(different == 0);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("RSM: a camera move redraws the G-buffer to the post filter, a light move the RSM too, no move nothing") {
+  viewer app(window(), shaders(), small_setup("rsm-alg6"));
+  app.show_panel(false);
+  const window_pixels first = shown_frame(app);
+  CHECK(app.view().draw_counts() == "RSM 1, G-buffer to post filter 1");
+  const window_pixels still = shown_frame(app);
+  CHECK(app.view().draw_counts() == "RSM 1, G-buffer to post filter 1");
+  CHECK(changed_share(first, still, 0) == 0.0);
+
+  app.move_camera(orbit(app.view().camera_pose(), 0.35f, 0.1f));
+  const window_pixels orbited = shown_frame(app);
+  CHECK(app.message().empty());
+  CHECK(app.view().draw_counts() == "RSM 1, G-buffer to post filter 2");
+  CHECK(changed_share(first, orbited) > 0.2);
+
+  // Tilt the spot light: the lit spot on the floor and its bounce move.
+  app.move_light(orbit(app.view().light_pose(), 0.0f, -0.4f));
+  const window_pixels tilted = shown_frame(app);
+  CHECK(app.view().draw_counts() == "RSM 2, G-buffer to post filter 3");
+  CHECK(changed_share(orbited, tilted) > 0.05);
+  app.move_camera(dolly(app.view().camera_pose(), 0.8f));
+  shown_frame(app);
+  CHECK(app.view().draw_counts() == "RSM 2, G-buffer to post filter 4");
+  check_same_as_new_pipeline(app, small_setup("rsm-alg6").scenes);
+
+  // A refused move changes nothing.
+  const pose camera_before = app.view().camera_pose();
+  app.move_camera({camera_before.position, camera_before.position});
+  CHECK(app.message().find("same point") != std::string::npos);
+  CHECK(app.view().camera_pose().target == camera_before.target);
+}
+
+TEST_CASE("Light Wave: VPLs and shadow maps are rebuilt when the light moves; a camera move rebuilds only the importance variant's maps") {
+  viewer_options thesis = small_setup("lightwave-accurate");
+  thesis.scenes.lightwave_setup.shadow_variant = lightwave_shadow_variant::thesis;
+  thesis.panel = false;
+  {
+  viewer app(window(), shaders(), thesis);
+  const window_pixels first = shown_frame(app);
+  CHECK(app.view().draw_counts() == "VPLs and shadow maps 1, main pass 1");
+  shown_frame(app);
+  CHECK(app.view().draw_counts() == "VPLs and shadow maps 1, main pass 1");
+  app.move_camera(orbit(app.view().camera_pose(), 0.3f, 0.0f));
+  const window_pixels orbited = shown_frame(app);
+  CHECK(app.view().draw_counts() == "VPLs and shadow maps 1, main pass 2");
+  CHECK(changed_share(first, orbited) > 0.1);
+  app.move_light(fly(app.view().light_pose(), {0.4f, 0.0f, 0.0f}));
+  const window_pixels moved = shown_frame(app);
+  CHECK(app.view().draw_counts() == "VPLs and shadow maps 2, main pass 3");
+  CHECK(changed_share(orbited, moved) > 0.05);
+  check_same_as_new_pipeline(app, thesis.scenes);
+  }  // one viewer per window at a time
+
+  viewer_options importance = small_setup("lightwave-accurate");
+  importance.panel = false;
+  viewer aimed(window(), shaders(), importance);
+  shown_frame(aimed);
+  aimed.move_camera(orbit(aimed.view().camera_pose(), 0.3f, 0.0f));
+  shown_frame(aimed);
+  CHECK(aimed.view().draw_counts() == "VPLs and shadow maps 2, main pass 2");
+  check_same_as_new_pipeline(aimed, importance.scenes);
+}
+
+TEST_CASE("Final gathering: an object move redraws the cube map, a camera move does not; an object in a wall is refused") {
+  viewer_options setup = small_setup("finalgather-polygon");
+  setup.panel = false;
+  viewer app(window(), shaders(), setup);
+  const window_pixels first = shown_frame(app);
+  CHECK(app.view().draw_counts() == "cube map 1, G-buffer and shading 1");
+  app.move_object(glm::vec3(0.3f, 0.7f, 0.0f));
+  const window_pixels moved = shown_frame(app);
+  CHECK(app.view().draw_counts() == "cube map 2, G-buffer and shading 2");
+  CHECK(changed_share(first, moved) > 0.02);
+  app.move_camera(orbit(app.view().camera_pose(), -0.3f, 0.0f));
+  shown_frame(app);
+  CHECK(app.view().draw_counts() == "cube map 2, G-buffer and shading 3");
+  check_same_as_new_pipeline(app, setup.scenes);
+  const window_pixels before_wall = shown_frame(app);
+  app.move_object(glm::vec3(0.95f, 0.7f, 0.0f));  // the sphere (radius 0.25) reaches into the wall at x = 1
+  const window_pixels after_wall = shown_frame(app);
+  CHECK(app.message().find("intersects a wall") != std::string::npos);
+  CHECK(app.view().object_position() == glm::vec3(0.3f, 0.7f, 0.0f));
+  CHECK(changed_share(before_wall, after_wall, 1) == 0.0);
+}
+
+TEST_CASE("the panel is drawn inside its rectangle and nowhere else, and the hidden panel shows the technique's own pixels") {
+  viewer app(window(), shaders(), small_setup("rsm-radial"));
+  app.show_panel(false);
+  const window_pixels hidden = shown_frame(app);
+  // The window shows the final image as the PNG writer encodes it.
+  const std::vector<std::uint8_t> expected = to_srgb8(app.view().display(view_layer::image).image->read_image());
+  REQUIRE(expected.size() == hidden.rgba8.size());
+  int largest = 0;
+  for (std::size_t i = 0; i < expected.size(); ++i) largest = std::max(largest, std::abs(int(expected[i]) - int(hidden.rgba8[i])));
+  CHECK(largest <= 1);
+
+  app.show_panel(true);
+  shown_frame(app);  // Dear ImGui sizes an auto-resizing window in its first frame and shows it from the second
+  const window_pixels shown = shown_frame(app);
+  const glm::vec4 panel = app.panel_rectangle();
+  CHECK(panel.z > 20.0f);
+  CHECK(panel.w > 20.0f);
+  std::size_t inside = 0, inside_changed = 0, outside_changed = 0;
+  for (int y = 0; y < side; ++y)
+    for (int x = 0; x < side; ++x) {
+      const std::size_t i = 4 * (static_cast<std::size_t>(y) * side + static_cast<std::size_t>(x));
+      bool changed = false;
+      for (std::size_t c = 0; c < 3; ++c) changed |= hidden.rgba8[i + c] != shown.rgba8[i + c];
+      // Pixel centres within a pixel of the rectangle (rows counted from the top, as ImGui does).
+      const float cx = static_cast<float>(x) + 0.5f, cy = static_cast<float>(y) + 0.5f;
+      const bool in_panel = cx >= panel.x - 1.0f && cx <= panel.x + panel.z + 1.0f && cy >= panel.y - 1.0f && cy <= panel.y + panel.w + 1.0f;
+      inside += in_panel;
+      inside_changed += in_panel && changed;
+      outside_changed += !in_panel && changed;
+    }
+  CHECK(outside_changed == 0);
+  CHECK(static_cast<double>(inside_changed) > 0.5 * static_cast<double>(inside));
+}
+
+TEST_CASE("every technique and each of its layers can be shown") {
+  viewer app(window(), shaders(), small_setup("direct"));
+  app.show_panel(false);
+  for (const char* technique : {"direct", "rsm-original", "rsm-radial", "rsm-alg2", "rsm-alg3", "rsm-alg6", "lightwave-direct", "lightwave-faked",
+                                       "lightwave-unshadowed", "lightwave-accurate", "lightwave-integrated", "finalgather-polygon", "finalgather-point",
+                                       "envmap"}) {
+    CAPTURE(technique);
+    app.select_technique(technique);
+    REQUIRE(app.message().empty());
+    CHECK(app.technique() == technique);
+    for (view_layer layer : app.view().layers()) {
+      CAPTURE(describe(layer));
+      app.select_layer(layer);
+      const window_pixels pixels = shown_frame(app);
+      CHECK(app.message().empty());
+      // Every layer shows something: light, or (shadow factor) a shadow somewhere.
+      const bool lit = std::any_of(pixels.rgba8.begin(), pixels.rgba8.end(), [](std::uint8_t v) { return v > 16; });
+      CHECK(lit);
+    }
+  }
+  // A layer the technique lacks is refused.
+  app.select_layer(view_layer::indirect_shadow);
+  CHECK(app.message().find("has no layer") != std::string::npos);
+  CHECK(app.layer() != view_layer::indirect_shadow);
+}
+
+TEST_CASE("a screenshot writes the window PNG and the indirect PFM, or nothing") {
+  viewer app(window(), shaders(), small_setup("rsm-alg6"));
+  app.show_panel(false);
+  app.frame();
+  const std::filesystem::path folder = std::filesystem::temp_directory_path() / "vplkit-viewer-test";
+  std::filesystem::remove_all(folder);
+  const std::vector<std::filesystem::path> written = app.save_screenshot(folder / "shot.png");
+  REQUIRE(written.size() == 2);
+  const image png = read_image_file(written[0]);
+  CHECK(png.width == side);
+  const image pfm = read_image_file(written[1]);
+  const image indirect = app.view().read_indirect();
+  REQUIRE(pfm.same_size(indirect));
+  CHECK(std::equal(pfm.texels.begin(), pfm.texels.end(), indirect.texels.begin()));
+  CHECK_THROWS_WITH_AS(app.save_screenshot(folder / "shot.jpg"), doctest::Contains("must end in .png"), error);
+  CHECK_FALSE(std::filesystem::exists(folder / "shot-indirect.pfm.tmp"));
+  window().swap_and_poll();
+  std::filesystem::remove_all(folder);
+}
+
+int main(int argc, char** argv) {
+  doctest::Context context(argc, argv);
+  const int result = context.run();
+  if (context.shouldExit()) return result;
+  if (const std::size_t unchecked = unchecked_gl_error_count(); unchecked > 0) {
+    std::fprintf(stderr, "FAILED: the GL driver reported %zu error(s) through KHR_debug that no check_gl saw\n", unchecked);
+    return result != 0 ? result : 1;
+  }
+  return result;
+}
