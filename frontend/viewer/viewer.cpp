@@ -55,6 +55,7 @@ viewer::viewer(window_context& window, const shader_library& shaders, viewer_opt
       empty_vertex_array_(generate_vertex_array()),
       panel_(options.panel),
       screenshot_path_(std::move(options.screenshot)),
+      log_(options.log),
       last_frame_(std::chrono::steady_clock::now()) {
   if (viewer_exists) throw error("a viewer is already open: Dear ImGui allows one at a time");
   IMGUI_CHECKVERSION();
@@ -138,7 +139,10 @@ void viewer::handle_input() {
       select_layer(current == layers.end() || current + 1 == layers.end() ? layers.front() : *(current + 1));
     }
     if (ImGui::IsKeyPressed(GLFW_KEY_P, false)) {
-      try_action([&] { save_screenshot(screenshot_path_); });
+      try_action([&] {
+        for (const std::filesystem::path& path : save_screenshot(screenshot_path_))
+          if (log_) *log_ << "wrote " << std::filesystem::absolute(path).string() << std::endl;
+      });
     }
   }
 
@@ -178,7 +182,12 @@ void viewer::handle_input() {
 void viewer::build_panel() {
   ImGui::SetNextWindowPos(ImVec2(8.0f, 8.0f), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowBgAlpha(0.85f);
+  // At most the window's height (a scroll bar beyond), so that a small window still shows the image.
+  const auto [window_width, window_height] = window_.framebuffer_size();
+  ImGui::SetNextWindowSizeConstraints(ImVec2(0.0f, 0.0f), ImVec2(static_cast<float>(window_width) - 16.0f, static_cast<float>(window_height) - 16.0f));
   ImGui::Begin("vplkit", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+  ImGui::PushItemWidth(120.0f);
+  ImGui::PushTextWrapPos(300.0f);
   if (ImGui::BeginCombo("technique", technique_.c_str())) {
     for (const std::string& name : every_technique())
       if (ImGui::Selectable(name.c_str(), name == technique_) && name != technique_) select_technique(name);
@@ -186,7 +195,7 @@ void viewer::build_panel() {
   }
   for (view_layer layer : view_->layers())
     if (ImGui::RadioButton(describe(layer), layer_ == layer)) select_layer(layer);
-  ImGui::Text("mouse and WASD/QE move the %s (Tab: next)", describe(target_));
+  ImGui::Text("mouse, WASD and Q/E move the %s (Tab: next)", describe(target_));
 
   if (ImGui::CollapsingHeader("settings", ImGuiTreeNodeFlags_DefaultOpen)) {
     std::string problem;
@@ -194,7 +203,7 @@ void viewer::build_panel() {
     if (!problem.empty()) message_ = problem;
   }
 
-  if (ImGui::CollapsingHeader("pose", ImGuiTreeNodeFlags_DefaultOpen)) {
+  if (ImGui::CollapsingHeader("pose")) {
     const auto edit_pose = [&](const char* label, pose where, bool light) {
       ImGui::PushID(label);
       bool changed = ImGui::DragFloat3("position", &where.position.x, 0.01f);
@@ -214,7 +223,7 @@ void viewer::build_panel() {
   }
 
   if (ImGui::CollapsingHeader("timing", ImGuiTreeNodeFlags_DefaultOpen)) {
-    ImGui::Text("frame %.2f ms", frame_ms_);
+    ImGui::Text("frame interval %.2f ms", frame_ms_);
     ImGui::TextUnformatted(describe(timing_method_for_current_context()).c_str());
     double total = 0.0;
     for (const pass_time& pass : last_pass_times_) {
@@ -228,6 +237,8 @@ void viewer::build_panel() {
   ImGui::TextDisabled("H panel, L layer, P screenshot, Esc close");
   const ImVec2 position = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
   panel_rectangle_ = glm::vec4(position.x, position.y, size.x, size.y);
+  ImGui::PopTextWrapPos();
+  ImGui::PopItemWidth();
   ImGui::End();
 }
 
@@ -290,6 +301,10 @@ void viewer::frame() {
     last_pass_times_ = view_->collect_pass_times();
     exposure_stale_ = true;
   }
+  const ImGuiIO& io = ImGui::GetIO();
+  const bool held = std::any_of(std::begin(io.MouseDown), std::end(io.MouseDown), [](bool down) { return down; }) ||
+                    std::any_of(std::begin(io.KeysDown), std::end(io.KeysDown), [](bool down) { return down; });
+  idle_ = !drawn && !held;
   present();
   if (panel_) ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 }
@@ -323,6 +338,7 @@ std::vector<std::filesystem::path> viewer::save_screenshot(const std::filesystem
 
 int run_viewer(window_context& window, const shader_library& shaders, viewer_options options, int frames, bool screenshot_at_end, std::ostream& out) {
   const std::filesystem::path screenshot = options.screenshot;
+  options.log = &out;
   viewer app(window, shaders, std::move(options));
   int shown = 0;
   for (; (frames == 0 || shown < frames) && !window.should_close(); ++shown) {
@@ -330,6 +346,8 @@ int run_viewer(window_context& window, const shader_library& shaders, viewer_opt
     if (screenshot_at_end && shown + 1 == frames)
       for (const std::filesystem::path& path : app.save_screenshot(screenshot)) out << "wrote " << std::filesystem::absolute(path).string() << "\n";
     window.swap_and_poll();
+    // Nothing moved and nothing is held: wait for input (at most 1/30 s) instead of spinning.
+    if (app.idle()) glfwWaitEventsTimeout(1.0 / 30.0);
   }
   if (!app.message().empty()) out << "last message: " << app.message() << "\n";
   out << "closed the window after " << shown << " frames of " << app.technique() << " (drawn: " << app.view().draw_counts() << ")\n"

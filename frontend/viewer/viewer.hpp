@@ -29,6 +29,8 @@ struct viewer_options {
   /// Where the P key (and run_viewer after a scripted run's last frame) saves the screenshot; the
   /// indirect PFM goes next to it as <stem>-indirect.pfm.
   std::filesystem::path screenshot = "output/view.png";
+  /// Where "wrote <path>" goes when the P key saves (none when null).
+  std::ostream* log = nullptr;
 };
 
 /// What moves with the mouse and the keys.
@@ -73,6 +75,9 @@ class viewer {
   glm::vec4 panel_rectangle() const { return panel_rectangle_; }
   /// "--technique T --camera ... --light ..." (and --object-position): the pose as `vplkit render` takes it.
   std::string pose_arguments() const;
+  /// Whether the last frame drew nothing and no key or button is held (run_viewer then waits for
+  /// input instead of spinning).
+  bool idle() const { return idle_; }
   /// The back buffer after frame(), before the swap.
   window_pixels read_window() const;
   /// The window as a PNG and the indirect light as <stem>-indirect.pfm, all or nothing; returns
@@ -101,6 +106,7 @@ class viewer {
   move_target target_ = move_target::camera;
   bool panel_ = true;
   std::filesystem::path screenshot_path_;
+  std::ostream* log_;
   std::string message_;
   std::vector<pass_time> last_pass_times_;
   float exposure_ = 1.0f;
@@ -109,6 +115,7 @@ class viewer {
   std::chrono::steady_clock::time_point last_frame_;
   glm::vec4 panel_rectangle_{0.0f};
   bool imgui_ready_ = false;
+  bool idle_ = false;
 };
 
 /// Runs `frames` frames (0: until the window is closed or Esc), saves the screenshot after the

@@ -448,6 +448,30 @@ if(XVFB_RUN)
     message(SEND_ERROR "FAILED the panel shows in the screenshot: RMSE against the render '${CMAKE_MATCH_1}'")
     math(EXPR failures "${failures} + 1")
   endif()
+  # The real input path: a left drag orbits the camera (the RSM stays), Tab then D moves the light
+  # (the RSM is redrawn), P saves the screenshot, Esc closes. xdotool drives the X server.
+  find_program(XDOTOOL xdotool)
+  if(XDOTOOL)
+    file(WRITE "${WORK}/input.sh" "set -e
+\"$1\" view --size 64 --rsm-size 64 --hide-panel --screenshot \"$2\" > \"$3\" 2>&1 &
+pid=$!
+w=$(xdotool search --sync --onlyvisible --name 'vplkit view')
+sleep 0.5
+xdotool mousemove --window \"$w\" 20 30; sleep 0.2
+xdotool mousedown 1; sleep 0.2; xdotool mousemove --window \"$w\" 50 30; sleep 0.2; xdotool mouseup 1; sleep 0.2
+xdotool key Tab; sleep 0.2
+xdotool keydown d; sleep 0.4; xdotool keyup d; sleep 0.2
+xdotool key p; sleep 0.5
+xdotool key Escape
+wait $pid
+cat \"$3\"
+")
+    expect_success("mouse and keys move the camera and the light, P saves, Esc closes"
+                   "wrote .*keys\\.png.*wrote .*keys-indirect\\.pfm.*closed the window after [0-9]+ frames of rsm-alg6 \\(drawn: RSM ([2-9]|[1-9][0-9]+), G-buffer to post filter [0-9]+\\).*pose: --technique rsm-alg6 --camera -0\\.[0-9]+,1,3\\.[0-9]+,0,1,0 --light 0\\.[0-9]*[1-9][0-9]*,1\\.91999996,0,"
+                   ${CMAKE_COMMAND} -E env "ASAN_OPTIONS=detect_leaks=0" "${XVFB_RUN}" -a sh "${WORK}/input.sh" "${VPLKIT}" "${WORK}/keys.png" "${WORK}/keys.log")
+  else()
+    message(STATUS "skipped the input test: xdotool is not installed")
+  endif()
   expect_failure("view --screenshot must be a PNG" "--screenshot.*\\.png" "${WORK}/shot.jpg" "${VPLKIT}" view --frames 1 --screenshot "${WORK}/shot.jpg")
   expect_failure("view scopes options like render" "--ray-angle is read by" "" "${VPLKIT}" view --technique rsm-alg6 --ray-angle 3 --frames 1)
   expect_success("info in a window under Xvfb" "using +GLFW window" "${XVFB_RUN}" -a "${VPLKIT}" info --context window)
