@@ -30,10 +30,8 @@ bool in_table(const Table& table, const std::string& name) {
 
 // A slider or drag edits `value` live; the setting counts as changed when the user lets go (a new
 // pipeline per mouse pixel would recompile the programs continuously).
-bool released(bool) { return ImGui::IsItemDeactivatedAfterEdit(); }
-
 bool edit_int(const char* label, int& value, int low, int high) {
-  released(ImGui::SliderInt(label, &value, low, high));
+  ImGui::SliderInt(label, &value, low, high);
   return ImGui::IsItemDeactivatedAfterEdit();
 }
 
@@ -72,12 +70,32 @@ bool accept(bool changed, const Settings& edited, Settings& target, std::string&
   return true;
 }
 
-class rsm_view final : public technique_view {
+// What every family's view reads the same way from its pipeline.
+template <typename Pipeline>
+class pipeline_view : public technique_view {
+ public:
+  template <typename Source, typename Settings>
+  pipeline_view(const shader_library& shaders, const Source& source, const Settings& settings) : pipeline_(shaders, source, settings) {}
+  std::string technique() const override { return pipeline_.settings().technique; }
+  image read_indirect() const override { return pipeline_.indirect_output().read_image(); }
+  std::vector<pass_time> collect_pass_times() override { return pipeline_.collect_pass_times(); }
+  pose camera_pose() const override { return pose_of(pipeline_.source().view); }
+
+ protected:
+  // The pipeline's camera moved to `where`.
+  camera posed_camera(const pose& where) const {
+    camera view = pipeline_.source().view;
+    apply_pose(where, view, "camera");
+    return view;
+  }
+
+  Pipeline pipeline_;
+};
+
+class rsm_view final : public pipeline_view<rsm_pipeline> {
  public:
   rsm_view(const shader_library& shaders, const scene& source, const rsm_pipeline_settings& settings)
-      : shaders_(shaders), pipeline_(shaders, source, settings) {}
-
-  std::string technique() const override { return pipeline_.settings().technique; }
+      : pipeline_view(shaders, source, settings), shaders_(shaders) {}
 
   bool draw() override {
     const int before = pipeline_.view_draws();
@@ -110,17 +128,14 @@ class rsm_view final : public technique_view {
     return {&pipeline_.output(), nullptr, 0, false, 1.0f};
   }
 
-  image read_indirect() const override { return pipeline_.indirect_output().read_image(); }
   std::vector<pass_time> collect_pass_times() override {
     if (difference_) difference_->collect_pass_times();  // the overlay times the technique itself
     return pipeline_.collect_pass_times();
   }
-  pose camera_pose() const override { return pose_of(pipeline_.source().view); }
   pose light_pose() const override { return pose_of(pipeline_.source().light); }
 
   void set_camera_pose(const pose& where) override {
-    camera view = pipeline_.source().view;
-    apply_pose(where, view, "camera");
+    const camera view = posed_camera(where);
     pipeline_.set_camera(view);
     if (difference_) difference_->set_camera(view);
   }
@@ -169,15 +184,12 @@ class rsm_view final : public technique_view {
 
  private:
   const shader_library& shaders_;
-  rsm_pipeline pipeline_;
   std::unique_ptr<rsm_pipeline> difference_;
 };
 
-class lightwave_view final : public technique_view {
+class lightwave_view final : public pipeline_view<lightwave_pipeline> {
  public:
-  lightwave_view(const shader_library& shaders, const scene& source, const lightwave_settings& settings) : pipeline_(shaders, source, settings) {}
-
-  std::string technique() const override { return pipeline_.settings().technique; }
+  lightwave_view(const shader_library& shaders, const scene& source, const lightwave_settings& settings) : pipeline_view(shaders, source, settings) {}
 
   bool draw() override {
     if (!moved_) return false;
@@ -201,15 +213,10 @@ class lightwave_view final : public technique_view {
     return {&pipeline_.output(), nullptr, 0, false, 1.0f};
   }
 
-  image read_indirect() const override { return pipeline_.indirect_output().read_image(); }
-  std::vector<pass_time> collect_pass_times() override { return pipeline_.collect_pass_times(); }
-  pose camera_pose() const override { return pose_of(pipeline_.source().view); }
   pose light_pose() const override { return pose_of(pipeline_.source().light); }
 
   void set_camera_pose(const pose& where) override {
-    camera view = pipeline_.source().view;
-    apply_pose(where, view, "camera");
-    pipeline_.set_camera(view);
+    pipeline_.set_camera(posed_camera(where));
     moved_ = true;
   }
 
@@ -256,17 +263,14 @@ class lightwave_view final : public technique_view {
   }
 
  private:
-  lightwave_pipeline pipeline_;
   bool moved_ = true;  // the first frame draws
   int main_draws_ = 0;
 };
 
-class final_gather_view final : public technique_view {
+class final_gather_view final : public pipeline_view<final_gather_pipeline> {
  public:
   final_gather_view(const shader_library& shaders, const final_gather_scene& source, const final_gather_settings& settings)
-      : pipeline_(shaders, source, settings) {}
-
-  std::string technique() const override { return pipeline_.settings().technique; }
+      : pipeline_view(shaders, source, settings) {}
 
   bool draw() override {
     const int before = pipeline_.view_draws();
@@ -281,20 +285,13 @@ class final_gather_view final : public technique_view {
     return {&pipeline_.output(), nullptr, 0, false, 1.0f};
   }
 
-  image read_indirect() const override { return pipeline_.indirect_output().read_image(); }
-  std::vector<pass_time> collect_pass_times() override { return pipeline_.collect_pass_times(); }
-  pose camera_pose() const override { return pose_of(pipeline_.source().view); }
   pose light_pose() const override {
     scene_light light;
     light.spot = pipeline_.source().light;
     return pose_of(light);
   }
 
-  void set_camera_pose(const pose& where) override {
-    camera view = pipeline_.source().view;
-    apply_pose(where, view, "camera");
-    pipeline_.set_camera(view);
-  }
+  void set_camera_pose(const pose& where) override { pipeline_.set_camera(posed_camera(where)); }
 
   void set_light_pose(const pose& where) override {
     spot_light<float> light = pipeline_.source().light;
@@ -320,9 +317,6 @@ class final_gather_view final : public technique_view {
     if (pipeline_.variant() == final_gather_variant::environment_map) changed |= edit_int("K (irradiance map side)", edited.environment_resolution, 2, 64);
     return accept(changed, edited, scenes.final_gather_setup, problem);
   }
-
- private:
-  final_gather_pipeline pipeline_;
 };
 
 }  // namespace

@@ -200,17 +200,24 @@ void rsm_pipeline::set_pose_uniforms() {
   set_light_uniforms(post_program_, constants_);
 }
 
-void rsm_pipeline::set_camera(const camera& view) {
-  check_camera(view, "scene " + scene_.name);
-  const camera previous = scene_.view;
+void rsm_pipeline::move_to(const camera& view, const scene_light& light) {
+  const camera previous_view = scene_.view;
+  const scene_light previous_light = scene_.light;
   scene_.view = view;
+  scene_.light = light;
   try {
     constants_ = make_frame_constants(scene_, settings_);
   } catch (...) {
-    scene_.view = previous;
+    scene_.view = previous_view;
+    scene_.light = previous_light;
     throw;
   }
   set_pose_uniforms();
+}
+
+void rsm_pipeline::set_camera(const camera& view) {
+  check_camera(view, "scene " + scene_.name);
+  move_to(view, scene_.light);
   view_valid_ = false;
 }
 
@@ -219,15 +226,7 @@ void rsm_pipeline::set_light(const scene_light& light) {
     throw error("scene " + scene_.name + ": the RSM pipeline was built for a " + (scene_.light.kind == light_kind::spot ? "spot" : "directional") +
                 " light; make a new pipeline for another kind");
   check_light(light, "scene " + scene_.name);
-  const scene_light previous = scene_.light;
-  scene_.light = light;
-  try {
-    constants_ = make_frame_constants(scene_, settings_);
-  } catch (...) {
-    scene_.light = previous;
-    throw;
-  }
-  set_pose_uniforms();
+  move_to(scene_.view, light);
   rsm_valid_ = view_valid_ = false;
 }
 

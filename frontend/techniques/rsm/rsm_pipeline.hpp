@@ -170,6 +170,9 @@ class rsm_pipeline {
 
  private:
   void set_pose_uniforms();
+  /// The camera and light of the next frame; leaves both as they were when the frame constants
+  /// cannot be made.
+  void move_to(const camera& view, const scene_light& light);
   void draw_passes(bool with_rsm);
 
   scene scene_;
