@@ -65,7 +65,8 @@ command add_view_command(CLI::App& app) {
             if (io.dry_run) return 0;
 
             scenes.rsm = load_scene(o.common, o.common.scene);
-            scenes.lightwave = load_scene(o.common, lightwave_scene_name(o.common));
+            const std::string lightwave_scene = lightwave_scene_name(o.common);
+            scenes.lightwave = lightwave_scene == o.common.scene ? scenes.rsm : load_scene(o.common, lightwave_scene);
             scenes.final_gather = make_final_gather_scene(o.final_gather.object, o.final_gather.object_position, o.final_gather.object_size);
             apply_poses(o.common, scenes.final_gather.view, scenes.final_gather.light);
             window_context window(size.x, size.y, "vplkit view - " + shown_scene);

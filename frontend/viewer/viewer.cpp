@@ -58,12 +58,20 @@ viewer::viewer(window_context& window, const shader_library& shaders, viewer_opt
       log_(options.log),
       last_frame_(std::chrono::steady_clock::now()) {
   if (viewer_exists) throw error("a viewer is already open: Dear ImGui allows one at a time");
+  // Key presses are queued by a callback rather than read from ImGui's key state: a press and its
+  // release handled in the same glfwPollEvents (a slow frame, or an idle wait) would leave no
+  // frame in which the key reads as down. Installed before ImGui's backend, which chains to it.
+  glfwSetWindowUserPointer(window_.window(), this);
+  glfwSetKeyCallback(window_.window(), [](GLFWwindow* handle, int key, int, int action, int) {
+    if (action == GLFW_PRESS) static_cast<viewer*>(glfwGetWindowUserPointer(handle))->pressed_keys_.push_back(key);
+  });
   IMGUI_CHECKVERSION();
   ImGui::CreateContext();
   ImGui::GetIO().IniFilename = nullptr;  // the viewer writes no imgui.ini
   ImGui::StyleColorsDark();
   if (!ImGui_ImplGlfw_InitForOpenGL(window_.window(), true) || !ImGui_ImplOpenGL3_Init("#version 330 core")) {
     ImGui::DestroyContext();
+    glfwSetKeyCallback(window_.window(), nullptr);
     throw error("Dear ImGui could not set up its GLFW and OpenGL 3 backends");
   }
   imgui_ready_ = true;
@@ -75,6 +83,8 @@ viewer::~viewer() {
   ImGui_ImplOpenGL3_Shutdown();
   ImGui_ImplGlfw_Shutdown();
   ImGui::DestroyContext();
+  glfwSetKeyCallback(window_.window(), nullptr);
+  glfwSetWindowUserPointer(window_.window(), nullptr);
   viewer_exists = false;
 }
 
@@ -125,24 +135,28 @@ std::string viewer::pose_arguments() const {
 
 void viewer::handle_input() {
   const ImGuiIO& io = ImGui::GetIO();
+  std::vector<int> pressed;
+  pressed.swap(pressed_keys_);
   if (!io.WantCaptureKeyboard) {
-    if (ImGui::IsKeyPressed(GLFW_KEY_H, false)) panel_ = !panel_;
-    if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false)) glfwSetWindowShouldClose(window_.window(), GLFW_TRUE);
-    if (ImGui::IsKeyPressed(GLFW_KEY_TAB, false)) {
-      target_ = target_ == move_target::camera ? move_target::light
-                : target_ == move_target::light && view_->has_object() ? move_target::object
-                                                                        : move_target::camera;
-    }
-    if (ImGui::IsKeyPressed(GLFW_KEY_L, false)) {
-      const std::vector<view_layer> layers = view_->layers();
-      const auto current = std::find(layers.begin(), layers.end(), layer_);
-      select_layer(current == layers.end() || current + 1 == layers.end() ? layers.front() : *(current + 1));
-    }
-    if (ImGui::IsKeyPressed(GLFW_KEY_P, false)) {
-      try_action([&] {
-        for (const std::filesystem::path& path : save_screenshot(screenshot_path_))
-          if (log_) *log_ << "wrote " << std::filesystem::absolute(path).string() << std::endl;
-      });
+    for (int key : pressed) {
+      if (key == GLFW_KEY_H) panel_ = !panel_;
+      if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(window_.window(), GLFW_TRUE);
+      if (key == GLFW_KEY_TAB) {
+        target_ = target_ == move_target::camera ? move_target::light
+                  : target_ == move_target::light && view_->has_object() ? move_target::object
+                                                                          : move_target::camera;
+      }
+      if (key == GLFW_KEY_L) {
+        const std::vector<view_layer> layers = view_->layers();
+        const auto current = std::find(layers.begin(), layers.end(), layer_);
+        select_layer(current == layers.end() || current + 1 == layers.end() ? layers.front() : *(current + 1));
+      }
+      if (key == GLFW_KEY_P) {
+        try_action([&] {
+          for (const std::filesystem::path& path : save_screenshot(screenshot_path_))
+            if (log_) *log_ << "wrote " << std::filesystem::absolute(path).string() << std::endl;
+        });
+      }
     }
   }
 

@@ -116,6 +116,7 @@ class viewer {
   glm::vec4 panel_rectangle_{0.0f};
   bool imgui_ready_ = false;
   bool idle_ = false;
+  std::vector<int> pressed_keys_;  ///< GLFW keys pressed since the last frame, in order
 };
 
 /// Runs `frames` frames (0: until the window is closed or Esc), saves the screenshot after the

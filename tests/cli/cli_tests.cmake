@@ -452,10 +452,11 @@ if(XVFB_RUN)
   # (the RSM is redrawn), P saves the screenshot, Esc closes. xdotool drives the X server.
   find_program(XDOTOOL xdotool)
   if(XDOTOOL)
+    # Every wait is bounded, so that a key the viewer misses fails the check instead of hanging.
     file(WRITE "${WORK}/input.sh" "set -e
-\"$1\" view --size 64 --rsm-size 64 --hide-panel --screenshot \"$2\" > \"$3\" 2>&1 &
+timeout 120 \"$1\" view --size 64 --rsm-size 64 --hide-panel --screenshot \"$2\" > \"$3\" 2>&1 &
 pid=$!
-w=$(xdotool search --sync --onlyvisible --name 'vplkit view')
+w=$(timeout 60 xdotool search --sync --onlyvisible --name 'vplkit view')
 sleep 0.5
 xdotool mousemove --window \"$w\" 20 30; sleep 0.2
 xdotool mousedown 1; sleep 0.2; xdotool mousemove --window \"$w\" 50 30; sleep 0.2; xdotool mouseup 1; sleep 0.2
@@ -463,7 +464,7 @@ xdotool key Tab; sleep 0.2
 xdotool keydown d; sleep 0.4; xdotool keyup d; sleep 0.2
 xdotool key p; sleep 0.5
 xdotool key Escape
-wait $pid
+wait $pid || true
 cat \"$3\"
 ")
     expect_success("mouse and keys move the camera and the light, P saves, Esc closes"
