@@ -20,4 +20,9 @@ for technique in finalgather-polygon finalgather-point; do
   build/vplkit render --technique "$technique" --size 192 --object-position 0.6,0.7,0 --out "$work/sphere-$technique.png" >/dev/null
   cp "$work/sphere-$technique.png" "$out/"
 done
+# The viewer with its panel, under a virtual X server when there is no display.
+xvfb=()
+[ -n "${DISPLAY:-}" ] || xvfb=(xvfb-run -a)
+"${xvfb[@]}" build/vplkit view --technique rsm-alg6 --size 512 --frames 3 --screenshot "$work/viewer.png" >/dev/null
+cp "$work/viewer.png" "$out/"
 ls -l "$out"
