@@ -12,13 +12,15 @@ uniform float exposure;
 uniform ivec2 viewport_size;
 layout(location = 0) out vec4 colour;
 
+// As linear_to_srgb in image.cpp: 0 unless > 0 (negative, zero and NaN), at most 1, the linear
+// segment up to 0.0031308 inclusive.
 vec3 linear_to_srgb(vec3 value) {
-  value = clamp(value, 0.0, 1.0);
-  return mix(12.92 * value, 1.055 * pow(value, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), value));
+  value = mix(vec3(0.0), min(value, vec3(1.0)), greaterThan(value, vec3(0.0)));
+  return mix(1.055 * pow(value, vec3(1.0 / 2.4)) - 0.055, 12.92 * value, lessThanEqual(value, vec3(0.0031308)));
 }
 
-// Rec. 709, as vplkit::luminance.
-float luminance(vec3 rgb) { return dot(rgb, vec3(0.2126, 0.7152, 0.0722)); }
+// Rec. 709, as vplkit::luminance, in its order.
+float luminance(vec3 rgb) { return 0.2126 * rgb.r + 0.7152 * rgb.g + 0.0722 * rgb.b; }
 
 void main() {
   ivec2 size = textureSize(image, 0);

@@ -1,14 +1,11 @@
 #include "frontend/cli/final_gather_options.hpp"
 
 #include "frontend/cli/output.hpp"
+#include "frontend/core/named_table.hpp"
 
 namespace vplkit::cli {
 
-bool is_final_gather_technique(const std::string& technique) {
-  for (const final_gather_technique& entry : final_gather_techniques())
-    if (technique == entry.name) return true;
-  return false;
-}
+bool is_final_gather_technique(const std::string& technique) { return has_name(final_gather_techniques(), technique); }
 
 void add_final_gather_options(CLI::App& command, final_gather_options& options, option_scope& scope) {
   const std::string readers = "the final-gathering techniques (finalgather-*, envmap)";

@@ -3,6 +3,7 @@
 #include <iomanip>
 
 #include "frontend/cli/output.hpp"
+#include "frontend/core/named_table.hpp"
 
 namespace vplkit::cli {
 
@@ -18,7 +19,7 @@ std::function<bool(const std::string&)> one_of(std::vector<lightwave_mode> modes
 
 }  // namespace
 
-bool is_lightwave_technique(const std::string& technique) { return starts_with(technique, "lightwave-"); }
+bool is_lightwave_technique(const std::string& technique) { return has_name(lightwave_techniques(), technique); }
 
 void add_lightwave_options(CLI::App& command, lightwave_options& options, option_scope& scope) {
   lightwave_settings& lw = options.settings;

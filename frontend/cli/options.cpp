@@ -140,7 +140,7 @@ CLI::Option* add_scene_option(CLI::App& command, common_options& options, const 
       ->each([&options](const std::string&) { options.scene_given = true; });
 }
 
-std::pair<CLI::Option*, CLI::Option*> add_pose_options(CLI::App& command, common_options& options) {
+void add_pose_options(CLI::App& command, common_options& options) {
   const auto pose_option = [&command](const std::string& name, std::optional<pose>& target, const std::string& help) {
     return command
         .add_option_function<std::string>(
@@ -153,10 +153,10 @@ std::pair<CLI::Option*, CLI::Option*> add_pose_options(CLI::App& command, common
             help)
         ->type_name("x,y,z,tx,ty,tz");
   };
-  return {pose_option("--camera", options.camera_pose, "start from this camera: its position and the point it looks at (the viewer prints its pose)"),
-          pose_option("--light", options.light_pose,
-                      "start from this light: a spot light's position and the point it aims at; a directional light shines from the first "
-                      "point towards the second")};
+  pose_option("--camera", options.camera_pose, "start from this camera: its position and the point it looks at (the viewer prints its pose)");
+  pose_option("--light", options.light_pose,
+              "start from this light: a spot light's position and the point it aims at; a directional light shines from the first point "
+              "towards the second");
 }
 
 void apply_poses(const common_options& options, camera& view, scene_light& light) {

@@ -122,8 +122,8 @@ struct headless_session {
 CLI::Option* add_scene_option(CLI::App& command, common_options& options, const std::string& default_scene);
 
 /// --camera and --light (poses "x,y,z,tx,ty,tz", frontend/scene/pose.hpp), which move the
-/// scene's camera and light before the first frame; returns them for scoping.
-std::pair<CLI::Option*, CLI::Option*> add_pose_options(CLI::App& command, common_options& options);
+/// scene's camera and light before the first frame (every technique and method reads them).
+void add_pose_options(CLI::App& command, common_options& options);
 
 /// The camera and light moved to --camera and --light where given. Throws usage_error naming the
 /// option when the scene cannot take the pose (e.g. a camera looking along its up vector).

@@ -1,6 +1,6 @@
 #include "frontend/cli/technique_options.hpp"
 
-#include "frontend/core/named_table.hpp"
+#include "frontend/viewer/technique_view.hpp"
 
 namespace vplkit::cli {
 
@@ -16,19 +16,12 @@ bool reads_seed(const std::string& technique) {
 
 }  // namespace
 
-std::vector<std::string> all_technique_names() {
-  std::vector<std::string> techniques = names_of(rsm_techniques());
-  for (const std::string& name : names_of(lightwave_techniques())) techniques.push_back(name);
-  for (const std::string& name : names_of(final_gather_techniques())) techniques.push_back(name);
-  return techniques;
-}
-
 void add_technique_options(CLI::App& command, technique_options& options, bool with_raw_indirect) {
   command
       .add_option("--technique", options.technique,
                   "rendering technique: direct and rsm-* (reflective shadow maps, docs/papers.md [RSMV]), lightwave-* (Light Wave, [LW]), "
                   "finalgather-* and envmap (robust final gathering, [FG])")
-      ->check(CLI::IsMember(all_technique_names()))
+      ->check(CLI::IsMember(technique_names()))
       ->capture_default_str();
   options.scope.add(add_scene_option(command, options.common, "cornell-box; boxes for lightwave-*"), "the rsm-* and lightwave-* techniques", reads_scene);
   add_common_options(command, options.common, "512; 1280x720 for lightwave-*");

@@ -21,9 +21,6 @@ struct technique_options {
   option_scope scope;
 };
 
-/// Every technique's name: direct and rsm-*, lightwave-*, finalgather-* and envmap.
-std::vector<std::string> all_technique_names();
-
 /// Registers the options above on `command`. `with_raw_indirect`: --raw-indirect (render only).
 void add_technique_options(CLI::App& command, technique_options& options, bool with_raw_indirect);
 

@@ -17,6 +17,14 @@ std::vector<std::string> names_of(const std::vector<Entry>& table) {
   return names;
 }
 
+/// Whether the table has an entry called `name`.
+template <typename Entry>
+bool has_name(const std::vector<Entry>& table, const std::string& name) {
+  for (const Entry& entry : table)
+    if (name == entry.name) return true;
+  return false;
+}
+
 /// The entry called `name`. Throws vplkit::error "unknown <what> '<name>' (known: ...)".
 template <typename Entry>
 const Entry& find_by_name(const std::vector<Entry>& table, const std::string& name, const std::string& what) {

@@ -24,8 +24,9 @@ pose pose_of(const camera& view);
 /// origin minus its direction, and the origin.
 pose pose_of(const scene_light& light);
 
-/// Throws vplkit::error starting with `owner` when the pose's position equals its target or a
-/// value is not finite, and check_camera's errors for the moved camera.
+/// Throws vplkit::error starting with `owner`, leaving the camera or light as it was: for a
+/// camera, check_camera's errors for the moved camera; for a light, a pose whose position equals
+/// its target or has a value that is not finite.
 void apply_pose(const pose& where, camera& view, const std::string& owner);
 void apply_pose(const pose& where, scene_light& light, const std::string& owner);
 void apply_pose(const pose& where, spot_light<float>& light, const std::string& owner);

@@ -1,7 +1,5 @@
 #include "frontend/viewer/technique_view.hpp"
 
-#include <algorithm>
-#include <iterator>
 
 #include <imgui.h>
 
@@ -22,11 +20,6 @@ const char* describe(view_layer layer) {
 }
 
 namespace {
-
-template <typename Table>
-bool in_table(const Table& table, const std::string& name) {
-  return std::any_of(table.begin(), table.end(), [&](const auto& entry) { return name == entry.name; });
-}
 
 // A slider or drag edits `value` live; the setting counts as changed when the user lets go (a new
 // pipeline per mouse pixel would recompile the programs continuously).
@@ -321,13 +314,20 @@ class final_gather_view final : public pipeline_view<final_gather_pipeline> {
 
 }  // namespace
 
+std::vector<std::string> technique_names() {
+  std::vector<std::string> names = names_of(rsm_techniques());
+  for (const std::string& name : names_of(lightwave_techniques())) names.push_back(name);
+  for (const std::string& name : names_of(final_gather_techniques())) names.push_back(name);
+  return names;
+}
+
 std::unique_ptr<technique_view> make_technique_view(const shader_library& shaders, const viewer_scenes& scenes, const std::string& technique) {
-  if (in_table(rsm_techniques(), technique)) {
+  if (has_name(rsm_techniques(), technique)) {
     rsm_pipeline_settings settings = scenes.rsm_setup;
     settings.technique = technique;
     return std::make_unique<rsm_view>(shaders, scenes.rsm, settings);
   }
-  if (in_table(lightwave_techniques(), technique)) {
+  if (has_name(lightwave_techniques(), technique)) {
     if (scenes.lightwave.light.kind != light_kind::spot)
       throw error("scene " + scenes.lightwave.name + " has a directional light; the Light Wave techniques need a spot light");
     lightwave_settings settings = scenes.lightwave_setup;

@@ -77,6 +77,9 @@ class technique_view {
   virtual bool edit_settings(viewer_scenes& scenes, std::string& problem) = 0;
 };
 
+/// Every technique make_technique_view knows: direct and rsm-*, lightwave-*, finalgather-* and envmap.
+std::vector<std::string> technique_names();
+
 /// The view of `technique` (any family) over `scenes`, with the family's settings from `scenes`
 /// and the technique set. Throws vplkit::error when the pipeline refuses them (e.g. Light Wave
 /// with a directional light).

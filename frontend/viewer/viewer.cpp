@@ -11,7 +11,6 @@
 
 #include "frontend/core/error.hpp"
 #include "frontend/core/files.hpp"
-#include "frontend/core/named_table.hpp"
 #include "frontend/gl/debug_output.hpp"
 #include "frontend/image/image_files.hpp"
 #include "frontend/viewer/pose_controls.hpp"
@@ -25,13 +24,6 @@ constexpr float radians_per_pixel = 0.005f;
 // Dear ImGui keeps one current context and its GLFW backend installs callbacks on the window:
 // one viewer at a time.
 bool viewer_exists = false;
-
-std::vector<std::string> every_technique() {
-  std::vector<std::string> names = names_of(rsm_techniques());
-  for (const std::string& name : names_of(lightwave_techniques())) names.push_back(name);
-  for (const std::string& name : names_of(final_gather_techniques())) names.push_back(name);
-  return names;
-}
 
 const char* describe(move_target target) {
   switch (target) {
@@ -203,7 +195,7 @@ void viewer::build_panel() {
   ImGui::PushItemWidth(120.0f);
   ImGui::PushTextWrapPos(300.0f);
   if (ImGui::BeginCombo("technique", technique_.c_str())) {
-    for (const std::string& name : every_technique())
+    for (const std::string& name : technique_names())
       if (ImGui::Selectable(name.c_str(), name == technique_) && name != technique_) select_technique(name);
     ImGui::EndCombo();
   }

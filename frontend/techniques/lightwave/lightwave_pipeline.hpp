@@ -160,6 +160,11 @@ class lightwave_pipeline {
 
  private:
   void rebuild();
+  /// The accurate shadows' importance variant: casters drawn and maps aimed for the visible
+  /// surface, so they depend on the camera.
+  bool casters_follow_camera() const {
+    return settings_.shadow_variant == lightwave_shadow_variant::importance && technique_.mode == lightwave_mode::accurate;
+  }
   void set_vertex_uniforms(const program& target) const;
 
   scene scene_;
