@@ -6,13 +6,27 @@
 #pragma once
 
 #include <algorithm>
+#include <cstdlib>
+#include <string>
 #include <thread>
 #include <vector>
 
+#include "frontend/core/error.hpp"
+
 namespace vplkit {
 
-/// Number of threads to use for "all cores".
-inline int hardware_threads() { return static_cast<int>(std::max(1u, std::thread::hardware_concurrency())); }
+/// Number of threads to use for "all cores": the cores, or $VPLKIT_THREADS where it is set (the
+/// test suite sets it so that tests running side by side share the cores instead of each taking
+/// all of them). Throws vplkit::error when the variable is not a whole number in [1, 1024].
+inline int hardware_threads() {
+  if (const char* from_environment = std::getenv("VPLKIT_THREADS"); from_environment && *from_environment) {
+    const std::string text(from_environment);
+    if (text.size() > 4 || text.find_first_not_of("0123456789") != std::string::npos || std::stoi(text) < 1 || std::stoi(text) > 1024)
+      throw error("VPLKIT_THREADS must be a whole number in [1, 1024]; got '" + text.substr(0, 60) + "'");
+    return std::stoi(text);
+  }
+  return static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+}
 
 template <typename Body>
 void parallel_for(int count, int threads, const Body& body) {

@@ -29,7 +29,9 @@ struct ray_scene::state {
 
 ray_scene::ray_scene(const mesh& geometry) : state_(std::make_unique<state>()), geometry_(geometry) {
   check_mesh(geometry, "ray tracer scene");  // Embree asserts (aborts) on bounds it cannot represent
-  state_->device = rtcNewDevice(nullptr);
+  // Embree's own threads build the BVH; as many as the frontend's (hardware_threads()).
+  const std::string configuration = "threads=" + std::to_string(hardware_threads());
+  state_->device = rtcNewDevice(configuration.c_str());
   if (!state_->device) throw error("Embree: could not create a device (error " + std::to_string(rtcGetDeviceError(nullptr)) + ")");
   state_->scene = rtcNewScene(state_->device);
   RTCGeometry triangles = rtcNewGeometry(state_->device, RTC_GEOMETRY_TYPE_TRIANGLE);

@@ -73,7 +73,7 @@ TEST_CASE("reference one bounce: a point facing a uniformly lit floor gets albed
         one_bounce_irradiance(rays, light, {}, glm::vec3(0, h, 0), glm::vec3(0, -1, 0), 256, 8u, 1u));
 }
 
-TEST_CASE("the brute-force RSM gather with visibility converges to the Monte Carlo one-bounce reference as the RSM grows") {
+TEST_CASE("the brute-force RSM gather with visibility converges to the Monte Carlo one-bounce reference as the RSM grows" * doctest::test_suite("slow")) {
   const scene box = make_cornell_box();
   const ray_scene rays(box.geometry);
   double previous = 1e30;

@@ -170,7 +170,7 @@ TEST_CASE("RSM pipeline settings are validated with the setting's name") {
   CHECK_THROWS_WITH_AS(rsm_pipeline(shaders, make_cornell_box(), settings), doctest::Contains("16384x16384 rgba32ui texture"), vplkit::error);
 }
 
-TEST_CASE("built-in scenes: the instanced scene reaches the thesis's scale, every scene renders") {
+TEST_CASE("built-in scenes: the instanced scene reaches the thesis's scale, every scene renders" * doctest::test_suite("slow")) {
   CHECK(make_instanced_scene().geometry.triangle_count() >= 250000);
   const shader_library& shaders = test_shaders();
   // (The teapot scenes need the npm mesh: the mesh tests render them.)
@@ -190,7 +190,7 @@ TEST_CASE("built-in scenes: the instanced scene reaches the thesis's scale, ever
   }
 }
 
-TEST_CASE("the occlusion scenes: the atrium reaches the thesis's Sponza scale, the occluder variants differ only in the panel") {
+TEST_CASE("the occlusion scenes: the atrium reaches the thesis's Sponza scale, the occluder variants differ only in the panel" * doctest::test_suite("slow")) {
   const scene atrium = built_in_scene("atrium");
   CHECK(atrium.geometry.triangle_count() >= 250000);
   CHECK(atrium.light.kind == light_kind::directional);

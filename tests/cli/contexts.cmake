@@ -1,0 +1,36 @@
+# GL contexts: vplkit info, EGL devices and the surfaceless platform, OSMesa, VPLKIT_CONTEXT.
+include("${CMAKE_CURRENT_LIST_DIR}/cli_common.cmake")
+
+expect_success("info prints GL and library versions" "vplkit [0-9]+\\.[0-9]+\\.[0-9]+.*GL_VERSION.*GL_RENDERER" "${VPLKIT}" info)
+# No GL context: a window without a display.
+expect_success("info lists the headless contexts and says which it uses"
+               "available headless contexts:.*egl surfaceless:.*osmesa:.*using +EGL .*GL_RENDERER.*timing +" "${VPLKIT}" info)
+expect_failure("an EGL device that does not exist" "no EGL device 99: this machine has [0-9]+" ""
+               "${VPLKIT}" info --device 99)
+expect_failure("a bad VPLKIT_CONTEXT" "VPLKIT_CONTEXT must be one of auto, egl, egl-surfaceless, osmesa; got 'gles'" "${WORK}/bad-context.png"
+               ${CMAKE_COMMAND} -E env VPLKIT_CONTEXT=gles "${VPLKIT}" render --size 8 --out "${WORK}/bad-context.png")
+expect_failure("--device with OSMesa" "--device picks an EGL device" "" "${VPLKIT}" info --context osmesa --device 0)
+# The surfaceless platform, the fallback when no device platform answers, chosen outright: it
+# renders the same image as the device the default picks.
+expect_success("info --context egl-surfaceless" "using +EGL surfaceless.*GL_RENDERER" "${VPLKIT}" info --context egl-surfaceless)
+expect_success("render on the surfaceless platform" "technique rsm-alg6"
+               "${VPLKIT}" render --context egl-surfaceless --size 16 --rsm-size 32 --out "${WORK}/surfaceless.png")
+expect_success("render on the default EGL context" "technique rsm-alg6" "${VPLKIT}" render --size 16 --rsm-size 32 --out "${WORK}/default-egl.png")
+file(SHA256 "${WORK}/surfaceless.png" surfaceless_hash)
+file(SHA256 "${WORK}/default-egl.png" default_hash)
+if(NOT surfaceless_hash STREQUAL default_hash)
+  message(SEND_ERROR "FAILED the surfaceless platform rendered a different image from the default EGL context")
+  math(EXPR failures "${failures} + 1")
+endif()
+expect_failure("--device with egl-surfaceless" "--device picks an EGL device; egl-surfaceless has none" "${WORK}/surfaceless-device.png"
+               "${VPLKIT}" render --context egl-surfaceless --device 0 --size 8 --out "${WORK}/surfaceless-device.png")
+if(WITH_OSMESA)
+  expect_success("render with --context osmesa" "technique rsm-alg6" "${VPLKIT}" render --context osmesa --size 16 --rsm-size 32 --out "${WORK}/osmesa.png")
+else()
+  expect_failure("--context osmesa without OSMesa" "built without OSMesa" "${WORK}/osmesa.png"
+                 "${VPLKIT}" render --context osmesa --size 16 --rsm-size 32 --out "${WORK}/osmesa.png")
+endif()
+expect_failure("no GL context (window without a display)" "no GL context: GLFW" ""
+               ${CMAKE_COMMAND} -E env --unset=DISPLAY --unset=WAYLAND_DISPLAY "${VPLKIT}" info --context window)
+
+cli_report()

@@ -1,0 +1,36 @@
+# Light Wave ([LW]): every mode renders; bad settings are named.
+include("${CMAKE_CURRENT_LIST_DIR}/cli_common.cmake")
+
+# Light Wave ([LW]): every mode renders; bad settings are named.
+foreach(technique lightwave-direct lightwave-faked lightwave-unshadowed lightwave-accurate lightwave-integrated)
+  expect_success("render --technique ${technique}" "technique ${technique}.*shadow maps: [0-9.]+ MB.*wrote .*/${technique}\\.png"
+                 "${VPLKIT}" render --technique ${technique} --size 64x36 --shadow-map-scale 1 --out "${WORK}/${technique}.png")
+endforeach()
+expect_failure("Light Wave ray angle that does not divide 90" "must divide 90 and 360" "${WORK}/lw1.png"
+               "${VPLKIT}" render --technique lightwave-accurate --ray-angle 7 --size 32 --out "${WORK}/lw1.png")
+expect_failure("Light Wave zero VPLs per ray" "--vpls-per-ray.*not in range 1 to 32" "${WORK}/lw2.png"
+               "${VPLKIT}" render --technique lightwave-accurate --vpls-per-ray 0 --size 32 --out "${WORK}/lw2.png")
+expect_failure("Light Wave more maps than VPLs" "more accurate shadow maps \\(20\\) than VPLs \\(5\\)" "${WORK}/lw3.png"
+               "${VPLKIT}" render --technique lightwave-accurate --ray-angle 90 --vpls-per-ray 1 --size 32 --out "${WORK}/lw3.png")
+expect_failure("Light Wave negative steps" "--integrated-steps.*not in range 0 to 64" "${WORK}/lw4.png"
+               "${VPLKIT}" render --technique lightwave-integrated --integrated-steps -1 --size 32 --out "${WORK}/lw4.png")
+expect_failure("Light Wave shadow maps beyond GL_MAX_TEXTURE_SIZE" "GL_MAX_TEXTURE_SIZE" "${WORK}/lw5.png"
+               "${VPLKIT}" render --technique lightwave-accurate --shadow-map-scale 14 --size 1280x720 --out "${WORK}/lw5.png")
+expect_failure("Light Wave shadow map scale out of range" "--shadow-map-scale.*must be a number in \\(0, 16\\]" "${WORK}/lw6.png"
+               "${VPLKIT}" render --technique lightwave-accurate --shadow-map-scale 100 --size 320x180 --out "${WORK}/lw6.png")
+foreach(bad nan -1 0.2 9 inf)
+  expect_failure("--faked-multiplier ${bad}" "--faked-multiplier.*must be a number in \\[0.5, 4\\]" "${WORK}/lw7.png"
+                 "${VPLKIT}" render --technique lightwave-faked --faked-multiplier ${bad} --size 32x18 --out "${WORK}/lw7.png")
+endforeach()
+expect_success("Light Wave writes its indirect shadow factor" "wrote .*/lw8\\.png.*wrote .*/lw8-indirect-shadow\\.png"
+               "${VPLKIT}" render --technique lightwave-accurate --size 64x36 --shadow-map-scale 1 --out "${WORK}/lw8.png")
+expect_success("Light Wave: the thesis's shadow variant, and no maps" "technique lightwave-accurate"
+               "${VPLKIT}" render --technique lightwave-accurate --shadow-variant thesis --shadow-maps 0 --size 64x36 --shadow-map-scale 1 --out "${WORK}/lw9.png")
+expect_failure("--shadow-variant that does not exist" "--shadow-variant.*not in" "${WORK}/lw10.png"
+               "${VPLKIT}" render --technique lightwave-accurate --shadow-variant fancy --size 64x36 --out "${WORK}/lw10.png")
+expect_failure("Light Wave shadow maps beyond memory" "GL_OUT_OF_MEMORY" "${WORK}/lw6.png"
+               "${VPLKIT}" render --technique lightwave-accurate --shadow-map-scale 12 --size 1280x720 --out "${WORK}/lw6.png")
+expect_failure("Light Wave with a directional light" "Light Wave needs a spot light" "${WORK}/lw7.png"
+               "${VPLKIT}" render --technique lightwave-accurate --scene indirect-shadow --size 32 --out "${WORK}/lw7.png")
+
+cli_report()

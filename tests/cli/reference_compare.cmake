@@ -1,0 +1,46 @@
+# Ground truth: the Monte Carlo reference and `vplkit compare`.
+include("${CMAKE_CURRENT_LIST_DIR}/cli_common.cmake")
+
+# The images this part compares: a 48x32 render, a malformed and a good OBJ.
+expect_success("render a 48x32 image" "wrote" "${VPLKIT}" render --size 48x32 --rsm-size 64 --out "${WORK}/small.png")
+file(WRITE "${WORK}/bad.obj" "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n")
+file(WRITE "${WORK}/good.obj" "v -1 0 -1\nv 1 0 -1\nv 0 1 0\nf 1 2 3\n")
+set(H "${WORK}/hostile")
+file(MAKE_DIRECTORY "${H}")
+# Ground truth: the reference renderer and the comparison (issue 6).
+expect_success("reference writes PFM and PNG" "wrote .*/ref\\.pfm.*wrote .*/ref-indirect\\.pfm.*wrote .*/ref\\.png"
+               "${VPLKIT}" reference --size 24 --samples 8 --out "${WORK}/ref.pfm")
+expect_success("compare an image with itself" "\\| RMSE \\| 0 \\|.*\\| similarity \\(Alg. 1, %\\) \\| 100 \\|"
+               "${VPLKIT}" compare "${WORK}/ref.pfm" "${WORK}/ref.pfm")
+expect_success("compare with a mask and an error image" "masked RMSE.*masked relative RMSE.*wrote .*/err\\.png"
+               "${VPLKIT}" compare "${WORK}/ref.png" "${WORK}/ref.pfm" --mask "${WORK}/ref.pfm" --error-image "${WORK}/err.png")
+expect_failure("compare images of different sizes" "the image ${WORK}/ref\\.pfm is 24x24 but the reference ${WORK}/small\\.png is 48x32" "${WORK}/err2.png"
+               "${VPLKIT}" compare "${WORK}/ref.pfm" "${WORK}/small.png" --error-image "${WORK}/err2.png")
+expect_failure("compare an unreadable file" "${WORK}/missing\\.pfm: no such PFM image" "" "${VPLKIT}" compare "${WORK}/missing.pfm" "${WORK}/ref.pfm")
+file(WRITE "${WORK}/bad.pfm" "P6 garbage")
+expect_failure("compare a malformed PFM" "bad\\.pfm: not an RGB PFM file" "" "${VPLKIT}" compare "${WORK}/bad.pfm" "${WORK}/ref.pfm")
+expect_failure("compare an unsupported format" "unsupported image format '.obj'" "" "${VPLKIT}" compare "${WORK}/good.obj" "${WORK}/ref.pfm")
+expect_failure("reference of a scene it cannot load" "bad\\.obj:4: face vertex index 9" "${WORK}/bad-ref.pfm"
+               "${VPLKIT}" reference --scene "${WORK}/bad.obj" --size 16 --out "${WORK}/bad-ref.pfm")
+expect_failure("reference output not a .pfm" "--out must name a .pfm file" "" "${VPLKIT}" reference --size 16 --out "${WORK}/ref.png")
+
+# 9. A multi-file output with one file blocked: nothing written, and the reason (not "Success").
+file(MAKE_DIRECTORY "${H}/blocked-indirect.pfm")
+expect_failure("reference: one output blocked by a folder" "cannot write .*blocked-indirect\\.pfm: a folder of that name is in the way" "${H}/blocked.pfm"
+               "${VPLKIT}" reference --size 16 --samples 1 --out "${H}/blocked.pfm")
+if(EXISTS "${H}/blocked.png")
+  message(SEND_ERROR "FAILED reference: a blocked output left blocked.png behind")
+  math(EXPR failures "${failures} + 1")
+endif()
+# 10. compare: sizes named with their files; an error image that is an input.
+expect_failure("compare: --error-image is an input" "--error-image .*kd-zero-copy\\.png is the input" "${H}/out*"
+               "${VPLKIT}" compare "${WORK}/ref.png" "${H}/kd-zero-copy.png" --error-image "${H}/./kd-zero-copy.png")
+file(SHA256 "${WORK}/ref.png" before)
+expect_failure("compare: --error-image is the image itself" "is the input" "${H}/out*" "${VPLKIT}" compare "${WORK}/ref.png" "${WORK}/ref.png" --error-image "${WORK}/ref.png")
+file(SHA256 "${WORK}/ref.png" after)
+if(NOT before STREQUAL after)
+  message(SEND_ERROR "FAILED compare: --error-image overwrote its input")
+  math(EXPR failures "${failures} + 1")
+endif()
+
+cli_report()
