@@ -209,21 +209,24 @@ class egl_context final : public gl_context {
   std::string kind_;
 };
 
-// The device `request.device` (or $VPLKIT_EGL_DEVICE), else the first hardware device, else the
-// software one, else the surfaceless platform; only the last with `surfaceless_only`.
+// $VPLKIT_EGL_DEVICE as a device index, -1 when it is not set.
+int device_from_environment() {
+  const char* from_environment = std::getenv("VPLKIT_EGL_DEVICE");
+  if (!from_environment || !*from_environment) return -1;
+  char* end = nullptr;
+  const long value = std::strtol(from_environment, &end, 10);
+  if (*end != '\0' || value < 0 || value > 1024)
+    throw error("VPLKIT_EGL_DEVICE must be a device index (0, 1, ...), got '" + std::string(from_environment) + "'");
+  return static_cast<int>(value);
+}
+
+// The device `device_index` (the caller resolved $VPLKIT_EGL_DEVICE), else the first hardware
+// device, else the software one, else the surfaceless platform; only the last with
+// `surfaceless_only`.
 std::unique_ptr<gl_context> create_egl_context(int device_index, bool surfaceless_only) {
   const egl_client client;
   const std::vector<egl_device> devices = surfaceless_only ? std::vector<egl_device>{} : client.devices();
   if (surfaceless_only && device_index >= 0) throw error("no GL context: --device picks an EGL device; egl-surfaceless has none");
-  if (!surfaceless_only && device_index < 0) {
-    if (const char* from_environment = std::getenv("VPLKIT_EGL_DEVICE"); from_environment && *from_environment) {
-      char* end = nullptr;
-      const long value = std::strtol(from_environment, &end, 10);
-      if (*end != '\0' || value < 0 || value > 1024)
-        throw error("VPLKIT_EGL_DEVICE must be a device index (0, 1, ...), got '" + std::string(from_environment) + "'");
-      device_index = static_cast<int>(value);
-    }
-  }
   if (device_index >= 0) {
     if (static_cast<std::size_t>(device_index) >= devices.size())
       throw error("no EGL device " + std::to_string(device_index) + ": this machine has " + std::to_string(devices.size()) +
@@ -300,13 +303,15 @@ std::unique_ptr<gl_context> create_headless_context(const headless_request& requ
     throw error("no GL context: this vplkit was built without OSMesa (VPLKIT_WITH_OSMESA=OFF); use the EGL context");
 #endif
   }
-  if (api == headless_api::egl || api == headless_api::egl_surfaceless)
-    return create_egl_context(request.device, api == headless_api::egl_surfaceless);
+  if (api == headless_api::egl_surfaceless) return create_egl_context(request.device, true);
+  // A device asked for by --device, else by $VPLKIT_EGL_DEVICE.
+  const int device = request.device >= 0 ? request.device : device_from_environment();
+  if (api == headless_api::egl) return create_egl_context(device, false);
   try {
-    return create_egl_context(request.device, false);
+    return create_egl_context(device, false);
   } catch (const error& egl_failure) {
 #if VPLKIT_HAVE_OSMESA
-    if (request.device >= 0) throw;  // a device was asked for: OSMesa is not it
+    if (device >= 0) throw;  // a device was asked for: OSMesa is not it
     try {
       return std::make_unique<osmesa_context>();
     } catch (const error& osmesa_failure) {

@@ -53,7 +53,8 @@ struct headless_request {
 
 /// A headless context with a core 3.3 profile, current on return. Rendering goes to framebuffer
 /// objects. Throws vplkit::error naming what failed (every API tried, and why) when no context
-/// can be made.
+/// can be made. An EGL device asked for (request.device or $VPLKIT_EGL_DEVICE) that cannot be
+/// used is an error, never replaced by OSMesa.
 std::unique_ptr<gl_context> create_headless_context(const headless_request& request = {});
 
 /// Whether this build has OSMesa (VPLKIT_WITH_OSMESA).
