@@ -73,7 +73,7 @@ std::string validate(const final_gather_settings& settings) {
            ": every small texel must average a whole block of face texels";
   if (settings.environment_resolution < 1 || settings.environment_resolution > 256) return "environment map resolution must be in [1, 256]";
   if (settings.format != texel_format::rgba32f && settings.format != texel_format::rgba16f) return "render target format must be rgba16f or rgba32f";
-  if (const char* problem = validate(settings.irradiance)) return problem;
+  if (const setting_problem problem = validate(settings.irradiance)) return problem.message();
   return {};
 }
 

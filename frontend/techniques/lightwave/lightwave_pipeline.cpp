@@ -55,7 +55,7 @@ std::string validate(const lightwave_settings& settings) {
     return failure.what();
   }
   if (const std::string problem = validate_image_size(settings.width, settings.height); !problem.empty()) return problem;
-  if (const char* problem = validate_lightwave_layout(settings.angle_deg, settings.per_ray)) return problem;
+  if (const setting_problem problem = validate_lightwave_layout(settings.angle_deg, settings.per_ray)) return problem.message();
   const int vpls = lightwave_vpl_count(settings.angle_deg, settings.per_ray);
   // The vertex stage loops over every VPL, and llvmpipe ends a loop after 65535 iterations.
   if (vpls > 65535) return "at most 65535 VPLs (the per-vertex loop; llvmpipe stops loops there), got " + std::to_string(vpls);
@@ -77,7 +77,7 @@ std::string validate(const lightwave_settings& settings) {
   if (!(settings.vpl_field_of_view > 1.0f && settings.vpl_field_of_view < 179.0f)) return "VPL shadow map field of view must be in (1, 179) degrees";
   if (settings.shading.specular_exponent < 1 || settings.shading.specular_exponent > 256) return "specular exponent must be in [1, 256]";
   if (!(settings.shading.specular_strength >= 0.0f && std::isfinite(settings.shading.specular_strength))) return "specular strength must be finite and >= 0";
-  if (const char* problem = validate(settings.irradiance)) return problem;
+  if (const setting_problem problem = validate(settings.irradiance)) return problem.message();
   return {};
 }
 
@@ -223,7 +223,7 @@ lightwave_pipeline::lightwave_pipeline(const shader_library& shaders, const scen
       shadow_framebuffer_(generate_framebuffer()),
       target_(settings.width, settings.height, {settings.format, settings.format, settings.format}, true) {
   if (source.light.kind != light_kind::spot) throw error("Light Wave needs a spot light; scene " + source.name + " has a directional one");
-  if (const char* problem = validate(source.light.spot)) throw error("scene " + source.name + ": " + problem);
+  if (const setting_problem problem = validate(source.light.spot)) throw error("scene " + source.name + ": " + problem.message());
   const shader_defines defines = {{"VPLKIT_LIGHTWAVE_MODE", std::to_string(static_cast<int>(technique_.mode))},
                                   {"VPLKIT_LIGHTWAVE_SHADOW_VARIANT", std::to_string(static_cast<int>(settings_.shadow_variant))},
                                   {"VPLKIT_LIGHTWAVE_INDIRECT", technique_.mode >= lightwave_mode::unshadowed ? "1" : "0"},

@@ -52,9 +52,9 @@ std::string validate(const rsm_pipeline_settings& settings) {
   }
   if (!(settings.radius > 0.0f && settings.radius <= 2.0f)) return "radius must be in (0, 2] (a fraction of the RSM side)";
   const auto [radial, disk] = patterns_in_texels(settings);
-  for (const char* problem : {validate(radial), validate(disk), validate_slot_count(settings.slots),
-                              validate(settings.irradiance), validate(settings.shadow), validate(settings.bilateral)})
-    if (problem) return problem;
+  for (const setting_problem& problem : {validate(radial), validate(disk), validate_slot_count(settings.slots),
+                                         validate(settings.irradiance), validate(settings.shadow), validate(settings.bilateral)})
+    if (problem) return problem.message();
   return {};
 }
 
@@ -84,8 +84,8 @@ light_frustum make_light_frustum(const scene& source, int rsm_size) {
 
 rsm_frame_constants make_frame_constants(const scene& source, const rsm_pipeline_settings& settings) {
   if (const std::string problem = validate(settings); !problem.empty()) throw error("RSM pipeline settings: " + problem);
-  const char* light_problem = source.light.kind == light_kind::spot ? validate(source.light.spot) : validate(source.light.directional);
-  if (light_problem) throw error("scene " + source.name + ": " + light_problem);
+  const setting_problem light_problem = source.light.kind == light_kind::spot ? validate(source.light.spot) : validate(source.light.directional);
+  if (light_problem) throw error("scene " + source.name + ": " + light_problem.message());
   if (source.geometry.indices.empty()) throw error("scene " + source.name + " has no triangles");
   rsm_frame_constants constants;
   constants.technique = find_rsm_technique(settings.technique);
