@@ -6,7 +6,7 @@
 
 #include "frontend/cli/commands.hpp"
 #include "frontend/cli/output.hpp"
-#include "frontend/cli/rsm_options.hpp"
+#include "frontend/cli/technique_options.hpp"
 #include "frontend/core/parallel.hpp"
 #include "frontend/reference/reference.hpp"
 
@@ -24,9 +24,12 @@ struct reference_state {
   int receiver_stride = 1;
   std::string out;
   common_options common;
-  rsm_options rsm;
+  given_settings given;  ///< the frame's settings: --size, and for the brute force --format, --min-distance, --rsm-size, --indirect-divisor
   option_scope scope;
 };
+
+// The frame's settings, as `vplkit render` makes them for an RSM technique.
+std::unique_ptr<technique_settings> frame_settings(const reference_state& s) { return make_technique_settings(s.given, "rsm-radial"); }
 
 std::string stem_of(const std::string& scene_name) { return fs::path(scene_name).stem().string(); }
 
@@ -34,12 +37,14 @@ std::string stem_of(const std::string& scene_name) { return fs::path(scene_name)
 // size, indirect divisor and format, at the receivers of its indirect buffer.
 int run_rsm_brute_force(const session& io, const reference_state& s) {
   // The RSM and the G-buffer do not depend on the gather: any radial technique gives them.
-  const rsm_pipeline_settings settings = make_rsm_settings("rsm-radial", s.common, s.rsm);
-  output_set files(s.out, "output/" + stem_of(s.common.scene) + "-rsm-brute-force-" + s.visibility + ".pfm", ".pfm", "--out",
+  const std::unique_ptr<technique_settings> frame = frame_settings(s);
+  const rsm_pipeline_settings& settings = settings_struct<rsm_pipeline_settings, rsm_technique>(*frame);
+  const std::string scene_name = drawn_scene_name(s.common, *frame);
+  output_set files(s.out, "output/" + stem_of(scene_name) + "-rsm-brute-force-" + s.visibility + ".pfm", ".pfm", "--out",
                    "a .png and -receivers.pfm go next to it");
   if (io.dry_run) return 0;
   const headless_session gl(s.common);
-  const scene source = load_scene(s.common, s.common.scene);
+  const scene source = load_scene(s.common, scene_name);
   rsm_pipeline pipeline(gl.shaders, source, settings);
   pipeline.render();
   const rsm_pass_buffers buffers = pipeline.read_buffers();
@@ -69,10 +74,13 @@ int run_rsm_brute_force(const session& io, const reference_state& s) {
 }
 
 int run_monte_carlo(const session& io, const reference_state& s) {
-  output_set files(s.out, "output/" + stem_of(s.common.scene) + "-reference.pfm", ".pfm", "--out", "a .png and -indirect.pfm go next to it");
+  const std::unique_ptr<technique_settings> frame = frame_settings(s);
+  const std::string scene_name = drawn_scene_name(s.common, *frame);
+  output_set files(s.out, "output/" + stem_of(scene_name) + "-reference.pfm", ".pfm", "--out", "a .png and -indirect.pfm go next to it");
   if (io.dry_run) return 0;
-  const scene source = load_scene(s.common, s.common.scene);
-  const int w = s.common.width, h = s.common.height;
+  const scene source = load_scene(s.common, scene_name);
+  const rsm_pipeline_settings& settings = settings_struct<rsm_pipeline_settings, rsm_technique>(*frame);
+  const int w = settings.width, h = settings.height;
   const one_bounce_images images = reference_one_bounce(source, w, h, s.samples, s.seed, hardware_threads());
   // PFM and PNG of the final image, PFM of the indirect irradiance: written only after all is done.
   files.add_pfm(files.main(), images.radiance);
@@ -96,12 +104,13 @@ command add_reference_command(CLI::App& app) {
                         "receiver of the frame's indirect buffer (the thesis's Fig. 5.1d)")
       ->check(CLI::IsMember({"monte-carlo", "rsm-brute-force"}))->capture_default_str();
   add_scene_option(*reference, state->common, "cornell-box");
-  const common_option_handles frame = add_common_options(*reference, state->common, "512");
   add_pose_options(*reference, state->common);
-  for (CLI::Option* option : {frame.format, frame.min_distance, frame.shader_dir, frame.context, frame.device})
+  const common_option_handles frame = add_common_options(*reference, state->common);
+  for (CLI::Option* option : {frame.shader_dir, frame.context, frame.device}) state->scope.add(option, "--method rsm-brute-force", brute_force);
+  // The frame `vplkit render` draws: its size for both methods, the rest for the brute force.
+  add_setting_options(*reference, state->given, {"size"});
+  for (CLI::Option* option : add_setting_options(*reference, state->given, {"format", "min-distance", "rsm-size", "indirect-divisor"}))
     state->scope.add(option, "--method rsm-brute-force", brute_force);
-  add_rsm_frame_options(*reference, state->rsm, nullptr);
-  for (const char* name : {"--rsm-size", "--indirect-divisor"}) state->scope.add(reference->get_option(name), "--method rsm-brute-force", brute_force);
   state->scope.add(reference->add_option("--visibility", state->visibility, "rsm-brute-force: exact (a ray per pixel light) or none")
                        ->check(CLI::IsMember({"exact", "none"}))->capture_default_str(),
                    "--method rsm-brute-force", brute_force);

@@ -21,7 +21,7 @@
 //
 // Storage, chosen so that the whole buffer lives in registers: indexing a local array by a
 // run-time index makes llvmpipe (and many GPU compilers) keep the array in memory, which cost
-// 2.8x the gather without visibility instead of 1.17x (bench/rsm_sweep, 512^2, Cornell box).
+// 2.8x the gather without visibility instead of 1.17x (the RSM sweep of bench/, 512^2, Cornell box).
 // - Alg. 2 and 3 keep a "visible"/"occluded" flag per slot: one bit per slot of `occluded`.
 // - Alg. 6 keeps a real number per slot, 1 at the start and decremented by each claim, so its
 //   values are the integers 1, 0, -1, ...: stored as claim counts, 8 bits per slot in the four

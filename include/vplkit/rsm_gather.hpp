@@ -112,7 +112,7 @@ struct settings_description<rsm_gather_preset<T>> {
   static setting_problem rules(const S& settings) { return no_rules(settings); }
 };
 
-/// The defaults, chosen by the study of bench/rsm_study.cpp (docs/rsm-study.md) against the
+/// The defaults, chosen by the study of bench/rsm-study.sweep (docs/rsm-study.md) against the
 /// brute-force gather on five occlusion scenes: 3/4 of the RSM side is the smallest radius of
 /// the study whose gather misses at most ~1 % of the light the whole RSM delivers (1/8 missed
 /// 64-75 %, 1/2 up to 7 %), and 20 paths x 15 samples with 8 slots is the cheapest point of the

@@ -37,15 +37,15 @@ const shader_library& shaders() {
 viewer_options small_setup(const std::string& technique) {
   viewer_options options;
   options.technique = technique;
-  viewer_scenes& scenes = options.scenes;
-  scenes.rsm = built_in_scene("cornell-box");
-  scenes.lightwave = built_in_scene("boxes");
-  scenes.final_gather = make_final_gather_scene("sphere", glm::vec3(0.0f, 0.7f, 0.0f), 0.5f);
-  scenes.rsm_setup.width = scenes.lightwave_setup.width = scenes.final_gather_setup.width = side;
-  scenes.rsm_setup.height = scenes.lightwave_setup.height = scenes.final_gather_setup.height = side;
-  scenes.rsm_setup.rsm_size = 64;
-  scenes.lightwave_setup.shadow_map_scale = 1.0f;
-  scenes.final_gather_setup.face_size = 32;
+  for (const technique_family& family : technique_families()) {
+    viewer_family& state = options.scenes.families[family.name];
+    state.settings = family.make_settings(family.has(technique) ? technique : family.techniques.front().name);
+    REQUIRE(state.settings->set("size", std::to_string(side)).empty());
+    if (family.reads_scene()) state.source = built_in_scene(family.default_scene);
+  }
+  REQUIRE(options.scenes.families.at("rsm").settings->set("rsm-size", "64").empty());
+  REQUIRE(options.scenes.families.at("lightwave").settings->set("shadow-map-scale", "1").empty());
+  REQUIRE(options.scenes.families.at("final-gather").settings->set("face-size", "32").empty());
   options.screenshot = std::filesystem::temp_directory_path() / "vplkit-viewer-test" / "shot.png";
   return options;
 }
@@ -123,7 +123,7 @@ TEST_CASE("RSM: a camera move redraws the G-buffer to the post filter, a light m
 
 TEST_CASE("Light Wave: VPLs and shadow maps are rebuilt when the light moves; a camera move rebuilds only the importance variant's maps") {
   viewer_options thesis = small_setup("lightwave-accurate");
-  thesis.scenes.lightwave_setup.shadow_variant = lightwave_shadow_variant::thesis;
+  REQUIRE(thesis.scenes.families.at("lightwave").settings->set("shadow-variant", "thesis").empty());
   thesis.panel = false;
   {
   viewer app(window(), shaders(), thesis);
