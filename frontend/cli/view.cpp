@@ -19,6 +19,7 @@ struct view_state {
   int frames = 0;
   std::string screenshot;
   bool hide_panel = false;
+  bool dock_panel = false;
 };
 
 int run_view(const session& io, const view_state& s) {
@@ -33,6 +34,7 @@ int run_view(const session& io, const view_state& s) {
   viewer_options options;
   options.technique = o.technique;
   options.panel = !s.hide_panel;
+  options.docked_panel_width = s.dock_panel ? docked_panel_width : 0;
   options.screenshot = files.main();
   // One window size for every family: the chosen technique's.
   const std::string size = chosen->get("size");
@@ -57,7 +59,7 @@ int run_view(const session& io, const view_state& s) {
     if (!loaded.count(name)) loaded.emplace(name, load_scene(o.common, name));
     options.scenes.families[family.name].source = loaded.at(name);
   }
-  window_context window(width, height, "vplkit view - " + shown_scene);
+  window_context window(width + options.docked_panel_width, height, "vplkit view - " + shown_scene);
   const shader_library shaders(o.common.shaders());
   // The poses of a family without a scene: from a pipeline built once at the start.
   for (const technique_family& family : technique_families())
@@ -83,6 +85,7 @@ command add_view_command(CLI::App& app) {
                    "where the P key saves the window (.png; <stem>-indirect.pfm next to it) [output/<scene or object>-<technique>-view.png]; "
                    "with --frames, saved after the last frame as well");
   view->add_flag("--hide-panel", state->hide_panel, "start with the panel hidden (H shows it)");
+  view->add_flag("--dock-panel", state->dock_panel, "put the panel in a column beside the image (the window is that much wider) instead of over it");
   return {view, [state](const session& io) { return run_view(io, *state); }};
 }
 
