@@ -1,6 +1,5 @@
 #include "frontend/cli/options.hpp"
 
-#include <charconv>
 #include <cmath>
 #include <limits>
 #include <optional>

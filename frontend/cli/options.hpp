@@ -1,5 +1,5 @@
 // What every subcommand of the command line shares: the session (where messages go, whether it
-// is a dry run), the checked parsers of sizes, positions and numbers, and option scoping, with
+// is a dry run), a checked number parser, the scene and pose options, and option scoping, with
 // which an option that the chosen technique or method does not read is an error naming it.
 #pragma once
 
@@ -68,9 +68,6 @@ class option_scope {
   };
   std::vector<scoped> options_;
 };
-
-/// Whether `name` starts with `prefix` (technique families: "rsm-", "lightwave-", ...).
-inline bool starts_with(const std::string& name, std::string_view prefix) { return name.rfind(prefix, 0) == 0; }
 
 /// What every drawing command reads besides the technique's settings: the scene and the poses,
 /// where the shaders are, and which headless context to open.

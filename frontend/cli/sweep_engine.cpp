@@ -448,10 +448,16 @@ void run_sweep(const session& io, const sweep_request& request, const sweep_plan
       if (!done.count(key_of(c, scene_of(c, scene_name)))) pending.push_back(&c);
     if (pending.empty()) continue;
     if (plan.base) {
-      const std::unique_ptr<pipeline> base = build(*plan.base);
-      base->draw();
-      references.set_base(base->output().read_image());
-      base->collect_pass_times();
+      // The base configuration at every seed the rows are measured with (once where it reads none).
+      const int base_seeds = seeds_of(*plan.base);
+      for (int seed = 1; seed <= base_seeds; ++seed) {
+        std::unique_ptr<technique_settings> seeded_base = plan.base->clone();
+        if (base_seeds > 1) seeded_base->set("seed", std::to_string(seed));
+        const std::unique_ptr<pipeline> base = build(*seeded_base);
+        base->draw();
+        references.set_base(base->output().read_image(), seeded_base->reads("seed") ? seeded_base->get("seed") : std::string());
+        base->collect_pass_times();
+      }
     }
     for (std::size_t first = 0; first < pending.size(); first += static_cast<std::size_t>(request.group)) {
       const std::size_t last = std::min(pending.size(), first + static_cast<std::size_t>(request.group));

@@ -60,8 +60,7 @@ std::vector<std::string> csv_cells(const std::string& line) {
 
 // A title gnuplot shows between single quotes.
 std::string gnuplot_text(std::string text) {
-  std::replace(text.begin(), text.end(), '\'', '`');
-  std::replace(text.begin(), text.end(), '_', '-');  // enhanced text mode reads _ as a subscript
+  std::replace(text.begin(), text.end(), '\'', '`');  // the terminals are noenhanced: the rest shows as it is
   return text;
 }
 

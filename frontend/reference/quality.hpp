@@ -11,8 +11,9 @@
 //   camera and size (every pixel; Alg. 1 similarity as Light Wave measures images); for final
 //   gathering, the object's indirect irradiance against one bounce from the room (its own
 //   cube map leaves the object out) at the object's pixels.
-// - base: the final image against the base configuration's (Light Wave's % similar to the
-//   default, Tables 5.5-5.9), a smaller image stretched to the base's size (Table 5.7).
+// - base: the final image against the base configuration's at the same seed (Light Wave's %
+//   similar to the default, Tables 5.5-5.9), a smaller image stretched to the base's size
+//   (Table 5.7).
 #pragma once
 
 #include <cstdint>
@@ -65,8 +66,9 @@ class scene_references {
   ~scene_references();
   /// The quality of the frame `drawn` has just drawn with `settings` (after draw()).
   frame_quality measure(pipeline& drawn, const technique_settings& settings);
-  /// The base configuration's final image (kind base).
-  void set_base(image radiance) { base_ = std::move(radiance); }
+  /// The base configuration's final image at `seed` (kind base): a frame is compared with the
+  /// base drawn with its own seed where the base has one, so that the seeds' noise is not counted.
+  void set_base(image radiance, const std::string& seed = "") { bases_[seed] = std::move(radiance); }
   /// The noise of several seeds' raw gathers of one configuration (rsm-brute-force), else 0.
   double seed_noise(const std::vector<image>& raws, const technique_settings& settings);
   /// What the metrics cover and count, one paragraph (markdown), for the references made so far.
@@ -84,7 +86,7 @@ class scene_references {
   std::map<std::string, image> radius_cuts_;
   std::map<std::string, image> monte_carlo_;
   std::size_t last_receivers_ = 0;
-  image base_;
+  std::map<std::string, image> bases_;  ///< by seed ("": a base without one)
 };
 
 }  // namespace vplkit
