@@ -137,14 +137,16 @@ std::unique_ptr<technique_settings> make_technique_settings(const given_settings
   return settings;
 }
 
-void add_reference_options(CLI::App& command, reference_options& options, option_scope& scope) {
+void add_reference_options(CLI::App& command, reference_options& options, option_scope& scope, const std::string& chooser) {
   const auto named = [](const char* name) { return [name](const std::string& reference) { return reference == name; }; };
-  scope.add(command.add_option("--receiver-stride", options.receiver_stride, "rsm-brute-force: every N-th receiver of the indirect buffer per axis")
+  scope.add(command
+                .add_option("--receiver-stride", options.receiver_stride,
+                            "rsm-brute-force: every N-th receiver of the indirect buffer per axis (the others are not computed or counted)")
                 ->check(CLI::Range(1, 64))->capture_default_str(),
-            "--reference rsm-brute-force", named("rsm-brute-force"));
+            chooser + " rsm-brute-force", named("rsm-brute-force"));
   scope.add(command.add_option("--samples", options.samples, "monte-carlo: bounce rays per pixel")->check(CLI::Range(1, 1 << 20))->capture_default_str(),
-            "--reference monte-carlo", named("monte-carlo"));
-  scope.add(command.add_option("--reference-seed", options.seed, "monte-carlo: seed of the estimate")->capture_default_str(), "--reference monte-carlo",
+            chooser + " monte-carlo", named("monte-carlo"));
+  scope.add(command.add_option("--reference-seed", options.seed, "monte-carlo: seed of the estimate")->capture_default_str(), chooser + " monte-carlo",
             named("monte-carlo"));
 }
 

@@ -51,8 +51,9 @@ std::string unread_setting(const given_settings& given, const std::string& techn
 std::unique_ptr<technique_settings> make_technique_settings(const given_settings& given, const std::string& technique);
 
 /// --receiver-stride (rsm-brute-force), --samples and --reference-seed (monte-carlo), scoped in
-/// `scope` to the reference that reads them (the choice is the reference's name).
-void add_reference_options(CLI::App& command, reference_options& options, option_scope& scope);
+/// `scope` to the reference that reads them (the choice is the reference's name, which the
+/// option `chooser` gives: --reference, or --method for `vplkit reference`).
+void add_reference_options(CLI::App& command, reference_options& options, option_scope& scope, const std::string& chooser = "--reference");
 
 /// The scene a technique draws: --scene, else its family's default; for a family that draws its
 /// own (final gathering), its object.
