@@ -3,6 +3,7 @@
 // [albedo | shadow density (Alg. 4)], [world normal | -].
 #include "lib/shadow.glsl"
 #include "lib/transform.glsl"
+#include "surface_material.glsl"
 
 uniform mat4 camera_view;
 uniform mat4 light_view;
@@ -35,10 +36,11 @@ vec2 receiver_depth_gradient(vec2 rsm_coordinate, float receiver_depth) {
 }
 
 void main() {
+  vec3 albedo = material_albedo(surface_albedo);
   vec2 rsm_coordinate = map_coordinate(light_view_projection, world_position, rsm_size);
   float receiver_depth = transform_point(light_view, world_position).z;
   vec2 depth_gradient = receiver_depth_gradient(rsm_coordinate, receiver_depth);
   position_depth = vec4(world_position, transform_point(camera_view, world_position).z);
-  albedo_density = vec4(surface_albedo, shadow_density(rsm_coordinate, receiver_depth, depth_gradient, rsm_size, shadow));
+  albedo_density = vec4(albedo, shadow_density(rsm_coordinate, receiver_depth, depth_gradient, rsm_size, shadow));
   normal_out = vec4(normalize(world_normal), 0.0);
 }

@@ -12,6 +12,7 @@
 // direct light (after the factor), for tests, reports and the viewer.
 #include "lib/direct_light.glsl"
 #include "lib/lightwave.glsl"
+#include "surface_material.glsl"
 
 // VPLKIT_MAX_SHADOW_MAPS comes from lightwave_max_shadow_maps (lightwave_pipeline.hpp).
 #ifndef VPLKIT_MAX_SHADOW_MAPS
@@ -43,8 +44,12 @@ vec4 map_coordinate(int layer) { return lightwave_map_coordinate(shadow_matrix[l
 float shadow_lookup(vec3 coordinate, int layer) { return texture(shadow_maps, vec4(coordinate.xy, float(layer), coordinate.z)); }
 
 void main() {
+  // The base-colour texture at this fragment multiplies the vertex's albedo in the direct light
+  // and in the vertex's indirect light (Eq. 4.5 is linear in the receiver's albedo).
+  vec3 texture_colour = material_albedo(vec3(1.0));
+  vec3 textured_indirect = vertex_indirect * texture_colour;
   vec3 n = normalize(world_normal);
-  vec3 direct = surface_albedo * 0.318309886183790671538 * spot_light_irradiance(world_position, n, light, irradiance);
+  vec3 direct = surface_albedo * texture_colour * 0.318309886183790671538 * spot_light_irradiance(world_position, n, light, irradiance);
   // Outside the light's frustum there is no direct light to shadow.
   vec4 light_coordinate = map_coordinate(0);
   float shadow = light_coordinate.w > 0.5 ? shadow_lookup(light_coordinate.xyz, 0) : 1.0;
@@ -56,7 +61,7 @@ void main() {
   colour = vec4(lightwave_faked_indirect(direct, shadow, faked_multiplier), 1.0);
   indirect = colour.rgb - direct * shadow;
 #elif VPLKIT_LIGHTWAVE_MODE == 2
-  indirect = vertex_indirect;
+  indirect = textured_indirect;
   colour = vec4(direct * shadow + indirect, 1.0);
 #elif VPLKIT_LIGHTWAVE_MODE == 3
 #if VPLKIT_LIGHTWAVE_SHADOW_VARIANT == 0
@@ -80,7 +85,7 @@ void main() {
   }
   factor = indirect_maps > 0 ? lit / float(indirect_maps) : 1.0;
 #endif
-  indirect = vertex_indirect * factor;
+  indirect = textured_indirect * factor;
   colour = vec4(direct * shadow + indirect, 1.0);
 #else
   // An endpoint behind or outside its map does not vote; the in-between lookups run only
@@ -102,7 +107,7 @@ void main() {
     }
   }
   factor = lookups > 0 ? lit / float(lookups) : 1.0;
-  indirect = vertex_indirect * factor;
+  indirect = textured_indirect * factor;
   colour = vec4(direct * shadow + indirect, 1.0);
 #endif
   indirect_shadow = vec4(factor, 0.0, 0.0, 1.0);

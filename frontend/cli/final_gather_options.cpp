@@ -52,7 +52,7 @@ int render_final_gather(const session& io, const std::string& technique, const c
   final_gather_pipeline pipeline(gl.shaders, source, settings);
   pipeline.render();  // warm-up: the shader compilers' lazy work
   const final_gather_frame frame = pipeline.render();
-  files.add_png(files.main(), frame.radiance);
+  files.add_png(files.main(), frame.radiance, exposure_scale(common, frame.radiance, io.out));
   files.add_png(files.sibling("-indirect", ".png"), frame.indirect, percentile_exposure(frame.indirect));
   // The object's indirect irradiance, linear (0 elsewhere).
   files.add_pfm(files.sibling("-indirect", ".pfm"), frame.indirect);

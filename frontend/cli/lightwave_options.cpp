@@ -83,7 +83,7 @@ int render_lightwave(const session& io, const std::string& technique, const comm
   pipeline.set_light(source.light.spot);
   const lightwave_frame first = pipeline.render();
   const lightwave_frame frame = pipeline.render();
-  files.add_png(files.main(), frame.radiance);
+  files.add_png(files.main(), frame.radiance, exposure_scale(common, frame.radiance, io.out));
   // The indirect shadow factor as grey, linear (1 = white = not shadowed).
   if (!pipeline.shadow_casters().empty()) files.add_png(files.sibling("-indirect-shadow", ".png"), red_as_grey(frame.indirect_shadow));
   // The indirect radiance added to the direct light, linear (0 for lightwave-direct).

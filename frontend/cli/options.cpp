@@ -1,7 +1,9 @@
 #include "frontend/cli/options.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <iostream>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -157,6 +159,45 @@ void add_pose_options(CLI::App& command, common_options& options) {
   pose_option("--light", options.light_pose,
               "start from this light: a spot light's position and the point it aims at; a directional light shines from the first point "
               "towards the second");
+  command
+      .add_option_function<float>(
+          "--light-intensity", [&options](const float& value) { options.light_intensity = value; },
+          "the light's radiant intensity, W/sr (a spot light), or irradiance, W/m^2 (a directional light), instead of the scene's; its colour "
+          "is kept (the brightest channel becomes this); every output is linear in it")
+      ->check(number_in(0.0, 1.0e12, false, "W/sr or W/m^2"))
+      ->type_name("W");
+}
+
+CLI::Option* add_exposure_option(CLI::App& command, common_options& options) {
+  return command
+      .add_option_function<std::string>(
+          "--exposure",
+          [&options](const std::string& text) {
+            if (text == "auto") {
+              options.auto_exposure = true;
+              return;
+            }
+            options.auto_exposure = false;
+            options.exposure_ev = static_cast<float>(std::stod(text));
+          },
+          "the final image's PNG scaled by 2^EV before the sRGB curve, or auto: the EV that puts the 99th percentile of its luminance at 0.8 "
+          "(printed); the PFMs stay linear [0]")
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            if (text == "auto") return std::string();
+            double value = 0.0;
+            return CLI::detail::lexical_cast(text, value) && value >= -32.0 && value <= 32.0 ? std::string()
+                                                                                              : "must be auto or a number in [-32, 32] (EV), got " + shown(text);
+          },
+          "EV|auto"))
+      ->type_name("EV|auto");
+}
+
+float exposure_scale(const common_options& options, const image& linear, std::ostream& out) {
+  if (!options.auto_exposure) return std::exp2(options.exposure_ev);
+  const float scale = percentile_exposure(linear);
+  out << "exposure: auto, " << format_number(std::log2(scale)) << " EV\n";
+  return scale;
 }
 
 void apply_poses(const common_options& options, camera& view, scene_light& light) {
@@ -165,6 +206,12 @@ void apply_poses(const common_options& options, camera& view, scene_light& light
     if (options.light_pose) apply_pose(*options.light_pose, light, "--light");
   } catch (const vplkit::error& failure) {
     throw usage_error(failure.what());
+  }
+  if (options.light_intensity) {
+    // The colour kept, its brightest channel set to the intensity (white for a black light).
+    glm::vec3& power = light.kind == light_kind::spot ? light.spot.intensity : light.directional.irradiance;
+    const float peak = std::max({power.r, power.g, power.b});
+    power = (peak > 0.0f ? power / peak : glm::vec3(1.0f)) * *options.light_intensity;
   }
 }
 
@@ -182,6 +229,9 @@ scene load_scene(const common_options& options, const std::string& name) {
                                                                : built_in_scene(name);
   apply_poses(options, loaded.view, loaded.light);
   check_scene(loaded);
+  // std::cout, not a session's stream: loading happens after the dry run stops, where a command
+  // writes to standard output.
+  for (const std::string& note : loaded.notes) std::cout << "note: " << note << "\n";
   return loaded;
 }
 

@@ -77,7 +77,7 @@ int run_monte_carlo(const session& io, const reference_state& s) {
   // PFM and PNG of the final image, PFM of the indirect irradiance: written only after all is done.
   files.add_pfm(files.main(), images.radiance);
   files.add_pfm(files.sibling("-indirect", ".pfm"), images.indirect);
-  files.add_png(files.sibling("", ".png"), images.radiance);
+  files.add_png(files.sibling("", ".png"), images.radiance, exposure_scale(s.common, images.radiance, io.out));
   io.out << "scene " << source.name << ", one-bounce Monte Carlo reference, " << w << "x" << h << ", " << s.samples << " bounce rays per pixel, seed "
          << s.seed << "\n";
   files.write(io.out);
@@ -98,6 +98,7 @@ command add_reference_command(CLI::App& app) {
   add_scene_option(*reference, state->common, "cornell-box");
   const common_option_handles frame = add_common_options(*reference, state->common, "512");
   add_pose_options(*reference, state->common);
+  state->scope.add(add_exposure_option(*reference, state->common), "--method monte-carlo", monte_carlo);
   for (CLI::Option* option : {frame.format, frame.min_distance, frame.shader_dir, frame.context, frame.device})
     state->scope.add(option, "--method rsm-brute-force", brute_force);
   add_rsm_frame_options(*reference, state->rsm, nullptr);

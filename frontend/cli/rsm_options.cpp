@@ -110,7 +110,7 @@ int render_rsm(const session& io, const std::string& technique_name, const commo
   const rsm_frame frame = pipeline.render();
 
   // Everything is rendered before anything is written, so a failure leaves no partial set.
-  files.add_png(files.main(), frame.radiance);
+  files.add_png(files.main(), frame.radiance, exposure_scale(common, frame.radiance, io.out));
   if (technique.indirect) {
     const float exposure = percentile_exposure(frame.indirect);
     files.add_png(files.sibling("-indirect", ".png"), frame.indirect, exposure);

@@ -26,6 +26,7 @@ void add_technique_options(CLI::App& command, technique_options& options, bool w
   options.scope.add(add_scene_option(command, options.common, "cornell-box; boxes for lightwave-*"), "the rsm-* and lightwave-* techniques", reads_scene);
   add_common_options(command, options.common, "512; 1280x720 for lightwave-*");
   add_pose_options(command, options.common);
+  add_exposure_option(command, options.common);
   options.scope.add(command.add_option("--seed", options.common.seed, "seed of the sampling patterns (rsm-*) and of the accurate shadows' VPLs")
                         ->capture_default_str(),
                     "the rsm-* techniques and lightwave-accurate", reads_seed);

@@ -46,6 +46,8 @@ command add_view_command(CLI::App& app) {
             options.technique = o.technique;
             options.panel = !s.hide_panel;
             options.screenshot = files.main();
+            options.exposure_ev = o.common.exposure_ev;
+            options.auto_exposure = o.common.auto_exposure;
             viewer_scenes& scenes = options.scenes;
             const auto family_settings = [&](const std::vector<std::string>& names, auto make) {
               const bool chosen = std::find(names.begin(), names.end(), o.technique) != names.end();

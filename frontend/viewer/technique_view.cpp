@@ -126,6 +126,10 @@ class rsm_view final : public pipeline_view<rsm_pipeline> {
     return pipeline_.collect_pass_times();
   }
   pose light_pose() const override { return pose_of(pipeline_.source().light); }
+  glm::vec3 light_power() const override {
+    const scene_light& light = pipeline_.source().light;
+    return light.kind == light_kind::spot ? light.spot.intensity : light.directional.irradiance;
+  }
 
   void set_camera_pose(const pose& where) override {
     const camera view = posed_camera(where);
@@ -207,6 +211,10 @@ class lightwave_view final : public pipeline_view<lightwave_pipeline> {
   }
 
   pose light_pose() const override { return pose_of(pipeline_.source().light); }
+  glm::vec3 light_power() const override {
+    const scene_light& light = pipeline_.source().light;
+    return light.kind == light_kind::spot ? light.spot.intensity : light.directional.irradiance;
+  }
 
   void set_camera_pose(const pose& where) override {
     pipeline_.set_camera(posed_camera(where));
@@ -283,6 +291,7 @@ class final_gather_view final : public pipeline_view<final_gather_pipeline> {
     light.spot = pipeline_.source().light;
     return pose_of(light);
   }
+  glm::vec3 light_power() const override { return pipeline_.source().light.intensity; }
 
   void set_camera_pose(const pose& where) override { pipeline_.set_camera(posed_camera(where)); }
 

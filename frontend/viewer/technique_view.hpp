@@ -60,6 +60,8 @@ class technique_view {
   virtual std::vector<pass_time> collect_pass_times() = 0;
   virtual pose camera_pose() const = 0;
   virtual pose light_pose() const = 0;
+  /// The light's intensity (spot, W/sr) or irradiance (sun, W/m^2) per channel.
+  virtual glm::vec3 light_power() const = 0;
   /// Throw vplkit::error, leaving the view as it was, for a pose the pipeline refuses.
   virtual void set_camera_pose(const pose& where) = 0;
   virtual void set_light_pose(const pose& where) = 0;

@@ -48,6 +48,8 @@ viewer::viewer(window_context& window, const shader_library& shaders, viewer_opt
       panel_(options.panel),
       screenshot_path_(std::move(options.screenshot)),
       log_(options.log),
+      image_exposure_ev_(options.exposure_ev),
+      image_auto_exposure_(options.auto_exposure),
       last_frame_(std::chrono::steady_clock::now()) {
   if (viewer_exists) throw error("a viewer is already open: Dear ImGui allows one at a time");
   // Key presses are queued by a callback rather than read from ImGui's key state: a press and its
@@ -116,6 +118,39 @@ void viewer::select_layer(view_layer layer) {
 }
 
 void viewer::move_camera(const pose& where) { try_action([&] { view_->set_camera_pose(where); }); }
+
+float viewer::light_intensity() const {
+  const glm::vec3 power = view_->light_power();
+  return std::max({power.r, power.g, power.b});
+}
+
+void viewer::set_light_intensity(float intensity) {
+  try_action([&] {
+    if (!(intensity >= 0.0f && std::isfinite(intensity))) throw error("the light intensity must be finite and >= 0");
+    view_->store_pose(scenes_);
+    viewer_scenes edited = scenes_;
+    const auto scaled = [intensity](glm::vec3 power) {
+      const float peak = std::max({power.r, power.g, power.b});
+      return (peak > 0.0f ? power / peak : glm::vec3(1.0f)) * intensity;
+    };
+    for (scene* s : {&edited.rsm, &edited.lightwave}) {
+      glm::vec3& power = s->light.kind == light_kind::spot ? s->light.spot.intensity : s->light.directional.irradiance;
+      power = scaled(power);
+    }
+    edited.final_gather.light.intensity = scaled(edited.final_gather.light.intensity);
+    std::unique_ptr<technique_view> next = make_technique_view(shaders_, edited, technique_);
+    scenes_ = std::move(edited);
+    view_ = std::move(next);
+    last_good_ = {view_->camera_pose(), view_->light_pose(), view_->object_position()};
+    exposure_stale_ = true;
+  });
+}
+
+void viewer::set_exposure(float ev, bool automatic) {
+  image_exposure_ev_ = ev;
+  image_auto_exposure_ = automatic;
+  exposure_stale_ = true;
+}
 void viewer::move_light(const pose& where) { try_action([&] { view_->set_light_pose(where); }); }
 void viewer::move_object(glm::vec3 centre) { try_action([&] { view_->set_object_position(centre); }); }
 
@@ -209,6 +244,20 @@ void viewer::build_panel() {
     if (!problem.empty()) message_ = problem;
   }
 
+  if (ImGui::CollapsingHeader("light and exposure", ImGuiTreeNodeFlags_DefaultOpen)) {
+    // The intensity applies when the slider is let go: the pipeline is built anew.
+    float intensity = intensity_editing_ ? intensity_edit_ : light_intensity();
+    ImGui::DragFloat("light intensity", &intensity, 0.01f * std::max(intensity, 1e-3f), 0.0f, 1e6f, "%.4g W/sr or W/m^2", ImGuiSliderFlags_Logarithmic);
+    intensity_editing_ = ImGui::IsItemActive();
+    intensity_edit_ = intensity;
+    if (ImGui::IsItemDeactivatedAfterEdit()) set_light_intensity(intensity);
+    float ev = image_exposure_ev_;
+    bool automatic = image_auto_exposure_;
+    const bool moved = ImGui::SliderFloat("exposure (EV)", &ev, -10.0f, 10.0f, "%.2f");
+    const bool toggled = ImGui::Checkbox("auto exposure", &automatic);
+    if (moved || toggled) set_exposure(ev, automatic);
+  }
+
   if (ImGui::CollapsingHeader("pose")) {
     const auto edit_pose = [&](const char* label, pose where, bool light) {
       ImGui::PushID(label);
@@ -250,10 +299,14 @@ void viewer::build_panel() {
 
 void viewer::present() {
   const layer_display display = view_->display(layer_);
-  if (display.auto_exposure && exposure_stale_) {
-    exposure_ = percentile_exposure(view_->read_indirect());
+  // The indirect layers are auto-exposed from the indirect light; the final image takes
+  // --exposure (2^EV, or auto from its own luminance, as vplkit render's PNG).
+  const bool final_image = layer_ == view_layer::image;
+  if (exposure_stale_ && (display.auto_exposure || (final_image && image_auto_exposure_))) {
+    exposure_ = percentile_exposure(final_image ? display.image->read_image() : view_->read_indirect());
     exposure_stale_ = false;
   }
+  const float shown_exposure = final_image ? (image_auto_exposure_ ? exposure_ : std::exp2(image_exposure_ev_)) : display.auto_exposure ? exposure_ : 1.0f;
   const auto [width, height] = window_.framebuffer_size();
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glViewport(0, 0, width, height);
@@ -266,7 +319,7 @@ void viewer::present() {
   present_program_.set("image", 0);
   present_program_.set("other", 1);
   present_program_.set("mode", display.mode);
-  present_program_.set("exposure", (display.auto_exposure ? exposure_ : 1.0f) * display.scale);
+  present_program_.set("exposure", shown_exposure * display.scale);
   present_program_.set("viewport_size", glm::ivec2(width, height));
   glBindVertexArray(empty_vertex_array_.get());
   glDrawArrays(GL_TRIANGLES, 0, 3);

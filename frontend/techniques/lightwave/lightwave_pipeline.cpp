@@ -334,7 +334,7 @@ void lightwave_pipeline::rebuild() {
       throw error("Light Wave shadow map framebuffer is incomplete");
     glClear(GL_DEPTH_BUFFER_BIT);
     depth_program_.set("view_projection", shadow_matrices_[layer]);
-    mesh_.draw();
+    mesh_.draw(depth_program_);
   }
   glDisable(GL_POLYGON_OFFSET_FILL);
 
@@ -393,8 +393,7 @@ void lightwave_pipeline::draw() {
   glBindTexture(GL_TEXTURE_2D, vpl_texture_.get());
   glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_2D_ARRAY, shadow_maps_.get());
-  main_program_.use();
-  mesh_.draw();
+  mesh_.draw(main_program_);
   timer_.end();
   check_gl("rendering scene " + scene_.name + " with " + technique_.name);
 }

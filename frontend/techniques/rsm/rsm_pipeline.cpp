@@ -258,8 +258,7 @@ void rsm_pipeline::draw_passes(bool with_rsm) {
     const GLuint empty_texel[4] = {0, 0, 0, 0};  // glClear's float colour is undefined for an integer target
     glClearBufferuiv(GL_COLOR, 0, empty_texel);
     glClear(GL_DEPTH_BUFFER_BIT);
-    rsm_program_.use();
-    mesh_.draw();
+    mesh_.draw(rsm_program_);
     timer_.end();
     rsm_valid_ = true;
     ++rsm_draws_;
@@ -269,8 +268,7 @@ void rsm_pipeline::draw_passes(bool with_rsm) {
   gbuffer_target_.bind();
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   rsm_target_.colour(0).bind(0);
-  gbuffer_program_.use();
-  mesh_.draw();
+  mesh_.draw(gbuffer_program_);
   timer_.end();
 
   glDisable(GL_DEPTH_TEST);
