@@ -12,6 +12,8 @@
 // direct light (after the factor), for tests, reports and the viewer.
 #include "lib/direct_light.glsl"
 #include "lib/lightwave.glsl"
+#define VPLKIT_SHADOW_BIAS_ONLY
+#include "lib/shadow.glsl"
 #include "surface_material.glsl"
 
 // VPLKIT_MAX_SHADOW_MAPS comes from lightwave_max_shadow_maps (lightwave_pipeline.hpp).
@@ -28,6 +30,8 @@ uniform vec4 caster_normal_weight[VPLKIT_MAX_SHADOW_MAPS];         // its normal
 uniform int indirect_maps;
 uniform int integrated_steps;
 uniform float faked_multiplier;
+uniform int shadow_map_width;
+uniform shadow_density_settings shadow_bias;  // its normal offset and slope-scaled bias (lib/shadow.glsl)
 
 in vec3 world_position;
 in vec3 world_normal;
@@ -37,10 +41,24 @@ layout(location = 0) out vec4 colour;
 layout(location = 1) out vec4 indirect_shadow;
 layout(location = 2) out vec4 indirect_out;
 
-// (x, y, depth) in [0, 1] and whether the point is inside map `layer`'s frustum (lib/lightwave.glsl).
-vec4 map_coordinate(int layer) { return lightwave_map_coordinate(shadow_matrix[layer] * vec4(world_position, 1.0)); }
+// (x, y, depth) in [0, 1] and whether the point is inside map `layer`'s frustum (lib/lightwave.glsl),
+// looked up from the receiver moved along its normal and towards the map's origin (the light,
+// or the VPL of map i > 0) by lib/shadow.glsl's normal offset and slope-scaled bias, in the
+// receiver's texel footprint in that map. The map's view is rigid, so the projection's x scale
+// is the length of the matrix's first row.
+vec4 map_coordinate(int layer) {
+  mat4 m = shadow_matrix[layer];
+  vec3 origin = layer == 0 ? light.position : caster_position_attenuation[max(layer - 1, 0)].xyz;
+  vec3 n = normalize(world_normal);
+  vec3 to_origin = normalize(origin - world_position);
+  vec4 clip = m * vec4(world_position, 1.0);
+  float footprint = 2.0 * abs(clip.w) / (length(vec3(m[0][0], m[1][0], m[2][0])) * float(shadow_map_width));
+  float slope_bias = shadow_slope_bias(dot(n, to_origin), footprint, shadow_bias);
+  vec3 lookup = shadow_normal_offset(world_position, n, to_origin, footprint, shadow_bias) + to_origin * slope_bias;
+  return lightwave_map_coordinate(m * vec4(lookup, 1.0));
+}
 
-// 1 = lit; the depth bias is in the raster state.
+// 1 = lit; a further depth bias is in the raster state.
 float shadow_lookup(vec3 coordinate, int layer) { return texture(shadow_maps, vec4(coordinate.xy, float(layer), coordinate.z)); }
 
 void main() {

@@ -61,6 +61,9 @@ void set_uniforms(const program& target, const std::string& name, const rsm_unpr
 void set_uniforms(const program& target, const std::string& name, const shadow_density_settings<float>& settings) {
   target.set(name + ".kernel_size", settings.kernel_size);
   target.set(name + ".depth_bias", settings.depth_bias);
+  target.set(name + ".normal_offset", settings.normal_offset);
+  target.set(name + ".slope_scale", settings.slope_scale);
+  target.set(name + ".max_slope", settings.max_slope);
 }
 
 void set_uniforms(const program& target, const std::string& name, const bilateral_settings<float>& settings) {

@@ -52,6 +52,16 @@ texture_pixels decode_texture(std::string_view bytes, const std::string& name, c
 
 texture_pixels decode_png_texture(std::string_view bytes, const std::string& name, const texture_limits& limits) {
   if (!starts_with_bytes(bytes, png_signature, sizeof png_signature)) throw error(name + ": not a PNG image (no PNG signature)");
+  // The size IHDR claims (it must be the first chunk), checked here so that the message says it;
+  // libspng's own image limits below are the same.
+  if (bytes.size() >= 24 && bytes.substr(12, 4) == "IHDR") {
+    const auto big_endian = [&](std::size_t at) {
+      std::uint64_t value = 0;
+      for (std::size_t i = 0; i < 4; ++i) value = (value << 8) | static_cast<unsigned char>(bytes[at + i]);
+      return value;
+    };
+    check_claimed_size(big_endian(16), big_endian(20), name, "PNG", limits);
+  }
   const std::unique_ptr<spng_ctx, void (*)(spng_ctx*)> context(spng_ctx_new(0), spng_ctx_free);
   if (!context) throw error(name + ": libspng could not create a decoder");
   const auto check = [&](int code, const char* step) {

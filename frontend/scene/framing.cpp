@@ -175,6 +175,34 @@ float free_distance(const mesh_ray_caster& rays, const glm::vec3& origin, const 
   return found.found ? found.distance : otherwise;
 }
 
+// Whether the mesh has a floor of its own at the bottom of its bounds: of a grid of rays cast
+// straight down over the middle half of its footprint, nearly all meet an upward-facing surface
+// at the lowest height (an added floor there would coincide with it and flicker).
+bool has_own_floor(const mesh_ray_caster& rays, const bounding_box& box) {
+  const glm::vec3 extent = box.maximum - box.minimum;
+  const float tolerance = 1e-3f * std::max({extent.x, extent.y, extent.z, 1e-6f});
+  int on_floor = 0;
+  constexpr int side = 8;
+  for (int i = 0; i < side; ++i)
+    for (int j = 0; j < side; ++j) {
+      const glm::vec3 origin(box.minimum.x + extent.x * (0.25f + 0.5f * (static_cast<float>(i) + 0.5f) / side), box.maximum.y + tolerance,
+                             box.minimum.z + extent.z * (0.25f + 0.5f * (static_cast<float>(j) + 0.5f) / side));
+      // The lowest upward-facing surface below the point: step through what lies above it.
+      glm::vec3 from = origin;
+      for (int layer = 0; layer < 64; ++layer) {
+        const mesh_ray_caster::hit found = rays.intersect(from, glm::vec3(0.0f, -1.0f, 0.0f), from.y - box.minimum.y + 2.0f * tolerance);
+        if (!found.found) break;
+        from.y -= found.distance;
+        if (from.y <= box.minimum.y + tolerance) {
+          on_floor += found.normal.y > 0.0f ? 1 : 0;
+          break;
+        }
+        from.y -= tolerance;
+      }
+    }
+  return on_floor >= (side * side * 9) / 10;
+}
+
 spot_light<float> aimed_spot(const glm::vec3& position, const glm::vec3& target, float intensity, float inner_degrees, float outer_degrees) {
   spot_light<float> light;
   light.position = position;
@@ -274,12 +302,15 @@ scene frame_mesh(std::string name, mesh geometry, framing_needs needs) {
       s.view.target = c;
       s.view.vertical_fov_degrees = fov;
     }
-    if (needs.light) {
-      // A floor under the mesh gives its light somewhere to bounce.
-      const float floor_y = box.minimum.y;
+    const float floor_y = box.minimum.y;
+    // A floor under the mesh gives its light somewhere to bounce, unless it has its own.
+    const bool own_floor = has_own_floor(rays, box);
+    if (needs.light && !own_floor) {
       const float floor_extent = 3.0f * radius;
       add_quad(geometry, {c.x - floor_extent, floor_y, c.z + floor_extent}, {c.x + floor_extent, floor_y, c.z + floor_extent},
                {c.x + floor_extent, floor_y, c.z - floor_extent}, {c.x - floor_extent, floor_y, c.z - floor_extent}, {0, 1, 0}, floor_albedo);
+    }
+    if (needs.light) {
       // From above, 70 degrees around from the camera, 55 degrees up, at 2.8 radii.
       const float light_azimuth = azimuth - glm::radians(70.0f), light_elevation = glm::radians(55.0f);
       const glm::vec3 light_from(std::sin(light_azimuth) * std::cos(light_elevation), std::sin(light_elevation),
@@ -292,7 +323,7 @@ scene frame_mesh(std::string name, mesh geometry, framing_needs needs) {
     }
     how = "an object or an open scene (" + percent(at_centre.facing_fraction) + " of the rays from its centre meet a surface facing it): " +
           std::string(needs.camera ? "a raised three-quarter view" : "") + (needs.camera && needs.light ? ", " : "") +
-          (needs.light ? "a spot light from above and a floor" : "");
+          (needs.light ? (own_floor ? "a spot light from above (the scene has its own floor)" : "a spot light from above and a floor") : "");
   }
   s.geometry = std::move(geometry);
   if (needs.camera || needs.light) {

@@ -4,22 +4,16 @@
 #include <array>
 #include <cmath>
 
+#include "frontend/image/image.hpp"
+
 namespace vplkit {
 
 namespace {
 
-float srgb_to_linear_exact(float value) { return value <= 0.04045f ? value / 12.92f : std::pow((value + 0.055f) / 1.055f, 2.4f); }
-
-std::uint8_t linear_to_srgb8_code(float value) {
-  value = std::clamp(value, 0.0f, 1.0f);
-  const float encoded = value <= 0.0031308f ? 12.92f * value : 1.055f * std::pow(value, 1.0f / 2.4f) - 0.055f;
-  return static_cast<std::uint8_t>(std::lround(255.0f * encoded));
-}
-
 const std::array<float, 256>& srgb_table() {
   static const std::array<float, 256> table = [] {
     std::array<float, 256> values{};
-    for (int code = 0; code < 256; ++code) values[static_cast<std::size_t>(code)] = srgb_to_linear_exact(static_cast<float>(code) / 255.0f);
+    for (int code = 0; code < 256; ++code) values[static_cast<std::size_t>(code)] = srgb_to_linear(static_cast<float>(code) / 255.0f);
     return values;
   }();
   return table;
@@ -91,7 +85,7 @@ texture make_texture(std::string name, texture_level level0) {
           for (int dx = 0; dx < step_x; ++dx) sum += texel(above, x * step_x + dx, y * step_y + dy);
         const glm::vec4 mean = sum / static_cast<float>(step_x * step_y);
         std::uint8_t* p = &next.rgba8[(static_cast<std::size_t>(y) * static_cast<std::size_t>(next.width) + static_cast<std::size_t>(x)) * 4];
-        for (int c = 0; c < 3; ++c) p[c] = linear_to_srgb8_code(mean[c]);
+        for (int c = 0; c < 3; ++c) p[c] = linear_to_srgb8(mean[c]);
         p[3] = static_cast<std::uint8_t>(std::lround(std::clamp(mean.a, 0.0f, 1.0f) * 255.0f));
       }
     out.levels.push_back(std::move(next));

@@ -389,6 +389,12 @@ void lightwave_pipeline::draw() {
   main_program_.set("indirect_maps", static_cast<int>(casters_.size()));
   main_program_.set("integrated_steps", settings_.integrated_steps);
   main_program_.set("faked_multiplier", settings_.faked_multiplier);
+  // The normal offset and slope-scaled bias of include/vplkit/shadow.hpp in every map; the
+  // constant part stays the raster state's polygon offset.
+  shadow_density_settings<float> bias;
+  bias.depth_bias = 0.0f;
+  set_uniforms(main_program_, "shadow_bias", bias);
+  main_program_.set("shadow_map_width", shadow_size_.x);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, vpl_texture_.get());
   glActiveTexture(GL_TEXTURE1);

@@ -192,6 +192,7 @@ void rsm_pipeline::set_pose_uniforms() {
   gbuffer_program_.set("camera_view", constants_.camera_view);
   gbuffer_program_.set("light_view", light.view);
   gbuffer_program_.set("light_view_projection", light.view_projection);
+  gbuffer_program_.set("light_projection", light.view_projection * glm::inverse(light.view));
   if (constants_.technique.indirect) {
     set_uniforms(gather_program_, "unprojection", constants_.unprojection);
     gather_program_.set("light_view", light.view);
