@@ -105,7 +105,9 @@ if [ ! -f "$build_dir/CMakeCache.txt" ]; then
 fi
 if command -v ccache >/dev/null 2>&1; then
   cmake_options+=(-DCMAKE_C_COMPILER_LAUNCHER=ccache -DCMAKE_CXX_COMPILER_LAUNCHER=ccache)
-  export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=1
+  # pch_defines, time_macros: what ccache needs to cache the files compiled with the precompiled
+  # CLI11 header (it declines them otherwise).
+  export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=1 CCACHE_SLOPPINESS=pch_defines,time_macros
 fi
 mkdir -p "$build_dir"
 log="$build_dir/setup.log"

@@ -13,7 +13,7 @@
 #include "frontend/image/image_files.hpp"
 #include "frontend/scene/obj_loader.hpp"
 #include "frontend/techniques/rsm/rsm_pipeline.hpp"
-#include "tests/parity/parity_harness.hpp"
+#include <vplkit/parity/doctest.hpp>
 
 namespace fs = std::filesystem;
 using namespace vplkit;

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "frontend/gl/gl_object.hpp"
-#include "frontend/gl/program.hpp"
+#include <vplkit/gl/program.hpp>
 #include "frontend/scene/scene.hpp"
 
 namespace vplkit {
