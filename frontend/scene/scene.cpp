@@ -525,6 +525,13 @@ bool surface_cut_out(const mesh& geometry, std::size_t triangle, glm::vec2 baryc
   return material && material->alpha_mask && surface_albedo_alpha(geometry, triangle, barycentric, lod).a < material->alpha_cutoff;
 }
 
+void set_light_intensity(scene_light& light, float intensity) {
+  if (!(intensity >= 0.0f && std::isfinite(intensity))) throw error("the light intensity must be finite and >= 0, got " + std::to_string(intensity));
+  glm::vec3& power = light.kind == light_kind::spot ? light.spot.intensity : light.directional.irradiance;
+  const float peak = std::max({power.r, power.g, power.b});
+  power = (peak > 0.0f ? power / peak : glm::vec3(1.0f)) * intensity;
+}
+
 void check_camera(const camera& view, const std::string& owner) {
   if (!finite(view.position) || !finite(view.target) || !finite(view.up) || !std::isfinite(view.vertical_fov_degrees) ||
       !(view.near_plane > 0.0f) || !(view.far_plane > view.near_plane) || !std::isfinite(view.far_plane))
@@ -541,11 +548,11 @@ void check_light(const scene_light& light, const std::string& owner) {
   if (light.kind == light_kind::spot) {
     const spot_light<float>& spot = light.spot;
     if (!finite(spot.position) || !finite(spot.direction) || !finite(spot.intensity)) throw error(owner + ": the spot light has a non-finite value");
-    if (const char* problem = validate(spot)) throw error(owner + ": " + problem);
+    if (const setting_problem problem = validate(spot)) throw error(owner + ": " + problem.message());
   } else {
     const directional_light<float>& sun = light.directional;
     if (!finite(sun.direction) || !finite(sun.irradiance)) throw error(owner + ": the directional light has a non-finite value");
-    if (const char* problem = validate(sun)) throw error(owner + ": " + problem);
+    if (const setting_problem problem = validate(sun)) throw error(owner + ": " + problem.message());
   }
 }
 

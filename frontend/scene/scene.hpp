@@ -189,6 +189,11 @@ void add_quad(mesh& target, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, 
 /// degenerate ones at the poles are kept for a uniform count).
 void add_sphere(mesh& target, glm::vec3 centre, float radius, int stacks, int slices, glm::vec3 albedo);
 
+/// Sets the light's intensity (a spot's, W/sr) or irradiance (a sun's, W/m^2): its brightest
+/// channel becomes `intensity`, its colour kept (white for a black light). Throws vplkit::error
+/// for a negative or non-finite value.
+void set_light_intensity(scene_light& light, float intensity);
+
 /// What frame_mesh places: the file had no camera, no light, or neither.
 struct framing_needs {
   bool camera = true;

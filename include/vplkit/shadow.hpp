@@ -40,9 +40,9 @@
 // `float rsm_depth_fetch(ivec2 texel)`.
 #pragma once
 
-#include <limits>
-
 #include <glm/glm.hpp>
+
+#include <vplkit/settings.hpp>
 
 namespace vplkit {
 
@@ -57,14 +57,22 @@ struct shadow_density_settings {
 };
 
 template <typename T>
-const char* validate(const shadow_density_settings<T>& settings) {
-  if (settings.kernel_size < 1 || settings.kernel_size > 32) return "shadow_density_settings::kernel_size must be in [1, 32]";
-  if (!(settings.depth_bias >= T(0) && settings.depth_bias <= std::numeric_limits<T>::max())) return "shadow_density_settings::depth_bias must be finite and >= 0";
-  if (!(settings.normal_offset >= T(0) && settings.normal_offset <= T(64))) return "shadow_density_settings::normal_offset must be in [0, 64] texels";
-  if (!(settings.slope_scale >= T(0) && settings.slope_scale <= T(64))) return "shadow_density_settings::slope_scale must be in [0, 64] texels";
-  if (!(settings.max_slope > T(0) && settings.max_slope <= T(1000))) return "shadow_density_settings::max_slope must be in (0, 1000]";
-  return nullptr;
-}
+struct settings_description<shadow_density_settings<T>> {
+  using S = shadow_density_settings<T>;
+  static constexpr const char* name = "shadow_density_settings";
+  static constexpr bool glsl_twin = true;
+  static constexpr auto fields() {
+    return std::make_tuple(field(&S::kernel_size, "kernel_size", closed_range(1, 32), "RSM texels", "Alg. 4's window: kernel_size^2 RSM texels"),
+                           field(&S::depth_bias, "depth_bias", at_least(0.0), "scene units", "Alg. 4's zBias, against self-shadowing"),
+                           field(&S::normal_offset, "normal_offset", closed_range(0.0, 64.0), "texel footprints",
+                                 "the lookup moved along the normal by this times sin(theta)"),
+                           field(&S::slope_scale, "slope_scale", closed_range(0.0, 64.0), "texel footprints",
+                                 "the slope-scaled bias: this times tan(theta) footprints"),
+                           field(&S::max_slope, "max_slope", open_closed_range(0.0, 1000.0), "tan(theta)",
+                                 "tan(theta) clamped at this in the bias and the receiver-plane gradient"));
+  }
+  static setting_problem rules(const S& settings) { return no_rules(settings); }
+};
 
 /// Scene units one texel of a shadow map covers at a receiver of eye depth `eye_depth` (< 0 in
 /// front of the light), for the map's projection `projection` over `map_size` texels per side.
