@@ -4,6 +4,7 @@
 #include <iostream>
 #include <limits>
 #include <optional>
+#include <set>
 #include <sstream>
 
 #include <vplkit/irradiance.hpp>
@@ -193,7 +194,11 @@ scene load_scene(const common_options& options, const std::string& name) {
   check_scene(loaded);
   // std::cout, not a session's stream: loading happens after the dry run stops, where a command
   // writes to standard output.
-  for (const std::string& note : loaded.notes) std::cout << "note: " << note << "\n";
+  // A scene loaded again (render's frame without visibility, the sweep's configurations) prints
+  // its notes once.
+  static std::set<std::string> printed;
+  for (const std::string& note : loaded.notes)
+    if (printed.insert(note).second) std::cout << "note: " << note << "\n";
   return loaded;
 }
 

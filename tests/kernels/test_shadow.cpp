@@ -82,9 +82,9 @@ TEST_CASE("shadow bias: the slope-scaled bias is depth_bias + slope_scale footpr
   CHECK(shadow_slope_bias(std::cos(0.7), 0.05, settings) == doctest::Approx(0.01 + 2.0 * 0.05 * std::tan(0.7)).epsilon(1e-12));
   CHECK(shadow_slope_bias(std::cos(1.5), 0.05, settings) == doctest::Approx(0.01 + 2.0 * 0.05 * 10.0).epsilon(1e-12));  // tan 1.5 = 14 > 10
   CHECK(shadow_slope_bias(-0.5, 0.05, settings) == doctest::Approx(0.01 + 2.0 * 0.05 * 10.0).epsilon(1e-12));  // facing away
-  CHECK(validate(settings) == nullptr);
+  CHECK_FALSE(validate(settings));
   settings.max_slope = 0.0;
-  CHECK(validate(settings) != nullptr);
+  CHECK(static_cast<bool>(validate(settings)));
 }
 
 TEST_CASE("shadow bias: a plane grazing the light at 80 degrees, its gradient a quarter off, shadows itself without the slope bias, not with it") {
