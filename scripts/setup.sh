@@ -8,7 +8,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 packages=(cmake g++ make pkg-config libglm-dev doctest-dev libglfw3-dev libegl-dev libegl-mesa0 libosmesa6-dev
-          python3-glad xvfb xauth libcli11-dev libstb-dev libbenchmark-dev
+          python3-glad xvfb xauth libcli11-dev libspng-dev libbenchmark-dev
           assimp-testmodels libembree-dev libtinygltf-dev libimgui-dev xdotool gnuplot-nox clang libclang-rt-dev)
 # node and npm fetch the test meshes; a machine may have them from elsewhere than Debian.
 command -v node >/dev/null 2>&1 || packages+=(nodejs)
