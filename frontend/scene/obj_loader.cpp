@@ -1,9 +1,11 @@
 #include "frontend/scene/obj_loader.hpp"
 
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <map>
 #include <optional>
+#include <unordered_map>
 #include <vector>
 
 #include "frontend/core/error.hpp"
@@ -160,6 +162,70 @@ corner parse_corner(std::string_view word, std::size_t positions, std::size_t te
   return {static_cast<std::uint32_t>(resolved[0]), static_cast<std::int32_t>(resolved[2])};
 }
 
+// The distinct albedos of a file, numbered: a triangle stores 4 bytes, not a 12-byte colour.
+class albedo_palette {
+ public:
+  std::uint32_t index_of(const glm::vec3& albedo) {
+    const auto [at, inserted] = numbers_.try_emplace({albedo.r, albedo.g, albedo.b}, static_cast<std::uint32_t>(colours_.size()));
+    if (inserted) colours_.push_back(albedo);
+    return at->second;
+  }
+  const glm::vec3& operator[](std::uint32_t index) const { return colours_[index]; }
+
+ private:
+  std::map<std::array<float, 3>, std::uint32_t> numbers_;
+  std::vector<glm::vec3> colours_;
+};
+
+// What makes two triangle corners the same mesh vertex: the position, where the normal comes
+// from (a `vn` index, or -1 for the smooth normal of the position) and the albedo. (When vertices
+// carry texture coordinates, the corner's `vt` index joins the key.)
+struct vertex_key {
+  std::uint32_t position = 0;
+  std::int32_t normal = -1;
+  std::uint32_t albedo = 0;
+  bool operator==(const vertex_key& other) const { return position == other.position && normal == other.normal && albedo == other.albedo; }
+};
+
+struct vertex_key_hash {
+  std::size_t operator()(const vertex_key& key) const {
+    std::uint64_t h = key.position;
+    h = h * 0x9e3779b97f4a7c15ull ^ static_cast<std::uint32_t>(key.normal);
+    h = h * 0x9e3779b97f4a7c15ull ^ key.albedo;
+    return static_cast<std::size_t>(h ^ (h >> 29));
+  }
+};
+
+// Mesh vertices by key: the first key of each position in flat arrays (the common case, one
+// vertex per position: 12 bytes each), any other key of the position in a hash map.
+class vertex_index {
+ public:
+  explicit vertex_index(std::size_t positions) : first_(positions, none), first_normal_(positions, -1), first_albedo_(positions, 0) {}
+  static constexpr std::uint32_t none = 0xffffffffu;
+  std::uint32_t find(const vertex_key& key) const {
+    const std::uint32_t first = first_[key.position];
+    if (first != none && first_normal_[key.position] == key.normal && first_albedo_[key.position] == key.albedo) return first;
+    if (others_.empty()) return none;
+    const auto found = others_.find(key);
+    return found == others_.end() ? none : found->second;
+  }
+  void insert(const vertex_key& key, std::uint32_t vertex) {
+    if (first_[key.position] == none) {
+      first_[key.position] = vertex;
+      first_normal_[key.position] = key.normal;
+      first_albedo_[key.position] = key.albedo;
+    } else {
+      others_.emplace(key, vertex);
+    }
+  }
+
+ private:
+  std::vector<std::uint32_t> first_;
+  std::vector<std::int32_t> first_normal_;
+  std::vector<std::uint32_t> first_albedo_;
+  std::unordered_map<vertex_key, std::uint32_t, vertex_key_hash> others_;
+};
+
 }  // namespace
 
 mesh parse_obj(std::string_view text, const std::string& name, const material_library_reader& read_library, const obj_limits& limits) {
@@ -169,9 +235,10 @@ mesh parse_obj(std::string_view text, const std::string& name, const material_li
   std::size_t texture_coordinates = 0;
   std::map<std::string, material, std::less<>> materials;
   std::vector<std::string> libraries_read;
-  glm::vec3 albedo = material{}.albedo;
+  albedo_palette palette;
+  std::uint32_t albedo = palette.index_of(material{}.albedo);
   std::vector<corner> corners;         // three per triangle
-  std::vector<glm::vec3> albedos;      // one per triangle
+  std::vector<std::uint32_t> albedos;  // one per triangle, into the palette
   std::vector<corner> polygon;
   while (reader.next(words)) {
     if (words.empty()) continue;
@@ -212,7 +279,7 @@ mesh parse_obj(std::string_view text, const std::string& name, const material_li
         for (const std::string& library : libraries_read) read += (read.empty() ? "" : ", ") + library;
         reader.fail("material " + quoted(words[1]) + " is not in the material libraries read so far (" + (read.empty() ? "none" : read) + ")");
       }
-      albedo = found->second.albedo;
+      albedo = palette.index_of(found->second.albedo);
     }
     // o, g, s, l, p, vp, curves and surfaces: nothing a triangle renderer uses.
   }
@@ -226,7 +293,12 @@ mesh parse_obj(std::string_view text, const std::string& name, const material_li
     const glm::vec3 area_weighted = glm::cross(b - a, c - a);
     for (std::size_t k = 0; k < 3; ++k) smooth_normals[corners[face + k].position] += area_weighted;
   }
+  // The mesh stays indexed: corners with the same position, normal source and albedo share a
+  // vertex, so that memory follows the mesh (about 50 bytes a triangle for a closed surface), not
+  // three copies of every vertex.
   mesh result;
+  vertex_index shared(positions.size());
+  result.indices.reserve(corners.size());
   for (std::size_t face = 0; face < corners.size(); face += 3) {
     glm::vec3 corner_position[3];
     for (std::size_t k = 0; k < 3; ++k) corner_position[k] = positions[corners[face + k].position];
@@ -235,17 +307,35 @@ mesh parse_obj(std::string_view text, const std::string& name, const material_li
     if (!(area > 0.0f) || !std::isfinite(area)) continue;  // degenerate triangle: nothing to shade
     face_normal /= area;
     for (std::size_t k = 0; k < 3; ++k) {
-      const glm::vec3 smooth = smooth_normals[corners[face + k].position];
-      const float smooth_length = glm::length(smooth);
-      // The smooth normal, unless it leans away from the face (a crease folded over itself).
-      glm::vec3 normal = smooth_length > 0.0f && std::isfinite(smooth_length) && glm::dot(smooth, face_normal) > 0.0f ? glm::normalize(smooth) : face_normal;
-      if (corners[face + k].normal >= 0) {
-        const glm::vec3 given = normals[static_cast<std::size_t>(corners[face + k].normal)];
+      const corner& at = corners[face + k];
+      // The file's normal where it gives a usable one; else the smooth normal, unless it leans
+      // away from the face (a crease folded over itself): then the face's own, for this corner only.
+      std::optional<glm::vec3> normal;
+      vertex_key key{at.position, -1, albedos[face / 3]};
+      if (at.normal >= 0) {
+        const glm::vec3 given = normals[static_cast<std::size_t>(at.normal)];
         const float given_length = glm::length(given);
-        if (given_length > 0.0f && std::isfinite(given_length)) normal = glm::normalize(given);
+        if (given_length > 0.0f && std::isfinite(given_length)) {
+          normal = glm::normalize(given);
+          key.normal = at.normal;
+        }
       }
-      result.indices.push_back(static_cast<std::uint32_t>(result.vertices.size()));
-      result.vertices.push_back({corner_position[k], normal, albedos[face / 3]});
+      if (!normal) {
+        const glm::vec3 smooth = smooth_normals[at.position];
+        const float smooth_length = glm::length(smooth);
+        if (smooth_length > 0.0f && std::isfinite(smooth_length) && glm::dot(smooth, face_normal) > 0.0f) normal = glm::normalize(smooth);
+      }
+      const bool shareable = normal.has_value();
+      if (shareable) {
+        if (const std::uint32_t found = shared.find(key); found != vertex_index::none) {
+          result.indices.push_back(found);
+          continue;
+        }
+      }
+      const auto added = static_cast<std::uint32_t>(result.vertices.size());
+      result.vertices.push_back({corner_position[k], shareable ? *normal : face_normal, palette[key.albedo]});
+      result.indices.push_back(added);
+      if (shareable) shared.insert(key, added);
     }
   }
   if (result.indices.empty()) throw error(name + ": no faces with area (every triangle is degenerate)");
