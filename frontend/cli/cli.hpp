@@ -2,6 +2,7 @@
 // fuzzer (tests/fuzz/fuzz_cli_options.cpp) run the same parser and the same checks.
 #pragma once
 
+#include <memory>
 #include <ostream>
 
 namespace vplkit {
@@ -14,5 +15,22 @@ enum class command_line_mode {
 /// Runs `vplkit <argv[1..]>`: 0 on success, 1 for a failure while running (a message on `err`
 /// naming what and where), 2 for a command line that does not parse (CLI11's message).
 int run_command_line(int argc, const char* const* argv, std::ostream& out, std::ostream& err, command_line_mode mode = command_line_mode::run);
+
+/// The same parser built once and run on many command lines: each run starts from the state a new
+/// one has (CLI11's results cleared, every command's state restored), so a run's outcome does not
+/// depend on the ones before it. Building the parser (hundreds of options) costs far more than a
+/// parse: the option fuzzer keeps one.
+class command_line {
+ public:
+  command_line();
+  ~command_line();
+  command_line(const command_line&) = delete;
+  command_line& operator=(const command_line&) = delete;
+  int run(int argc, const char* const* argv, std::ostream& out, std::ostream& err, command_line_mode mode = command_line_mode::run);
+
+ private:
+  struct parser;
+  std::unique_ptr<parser> parser_;
+};
 
 }  // namespace vplkit

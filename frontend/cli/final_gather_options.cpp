@@ -25,8 +25,9 @@ void add_final_gather_options(CLI::App& command, final_gather_options& options, 
   scope.add(command.add_option("--cube-resolution", fg.resolution, "final gathering: M, the small cube map's face resolution (4 or 2)")
                 ->check(CLI::Range(1, 64))->capture_default_str(),
             readers, is_final_gather_technique);
-  scope.add(command.add_option("--face-size", fg.face_size, "final gathering: the cube map's face size before averaging")
-                ->check(CLI::Range(1, 4096))->capture_default_str(),
+  scope.add(command.add_option("--face-size", fg.face_size, "final gathering: the cube map's face size before averaging (its six faces lie side by side "
+                                                            "in one texture: at most " + std::to_string(max_cube_face_size) + ")")
+                ->check(CLI::Range(1, max_cube_face_size))->capture_default_str(),
             readers, is_final_gather_technique);
 }
 

@@ -1,5 +1,7 @@
 #include "frontend/cli/lightwave_options.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <iomanip>
 
 #include "frontend/cli/output.hpp"
@@ -63,6 +65,11 @@ lightwave_settings make_lightwave_settings(const std::string& technique, const c
   lw.irradiance.min_distance = common.min_distance;
   lw.seed = common.seed;
   lw.shadow_variant = options.shadow_variant == "thesis" ? lightwave_shadow_variant::thesis : lightwave_shadow_variant::importance;
+  // A size derived from options names them (validate below would name only the settings).
+  const long shadow_side = std::lround(static_cast<double>(lw.shadow_map_scale) * std::max(lw.width, lw.height));
+  if (shadow_side > max_image_side)
+    throw usage_error("--shadow-map-scale " + format_number(lw.shadow_map_scale) + " with a " + std::to_string(lw.width) + "x" + std::to_string(lw.height) +
+                      " image (--size) makes shadow maps of " + std::to_string(shadow_side) + " texels per side, more than " + std::to_string(max_image_side));
   if (const std::string problem = validate(lw); !problem.empty()) throw usage_error(problem);
   return lw;
 }

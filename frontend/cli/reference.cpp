@@ -118,7 +118,7 @@ command add_reference_command(CLI::App& app) {
   return {reference, [state](const session& io) {
             state->scope.require_read_by(state->method, "method");
             return state->method == "rsm-brute-force" ? run_rsm_brute_force(io, *state) : run_monte_carlo(io, *state);
-          }};
+          }, restorer(state)};
 }
 
 }  // namespace vplkit::cli

@@ -27,7 +27,7 @@ command add_render_command(CLI::App& app) {
             if (is_lightwave_technique(o.technique)) return render_lightwave(io, o.technique, o.common, o.lightwave, state->out);
             if (is_final_gather_technique(o.technique)) return render_final_gather(io, o.technique, o.common, o.final_gather, state->out);
             return render_rsm(io, o.technique, o.common, o.rsm, state->out);
-          }};
+          }, restorer(state)};
 }
 
 }  // namespace vplkit::cli

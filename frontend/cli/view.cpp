@@ -72,7 +72,7 @@ command add_view_command(CLI::App& app) {
             window_context window(size.x, size.y, "vplkit view - " + shown_scene);
             const shader_library shaders(o.common.shaders());
             return run_viewer(window, shaders, std::move(options), s.frames, s.frames > 0 && !s.screenshot.empty(), io.out);
-          }};
+          }, restorer(state)};
 }
 
 }  // namespace vplkit::cli

@@ -209,24 +209,17 @@ class egl_context final : public gl_context {
   std::string kind_;
 };
 
-// The device `request.device` (or $VPLKIT_EGL_DEVICE), else the first hardware device, else the
-// software one, else the surfaceless platform; only the last with `surfaceless_only`.
-std::unique_ptr<gl_context> create_egl_context(int device_index, bool surfaceless_only) {
+// The device `device_index` (from --device or $VPLKIT_EGL_DEVICE, said by `device_source`), else
+// the first hardware device, else the software one, else the surfaceless platform; only the last
+// with `surfaceless_only`.
+std::unique_ptr<gl_context> create_egl_context(int device_index, const std::string& device_source, bool surfaceless_only) {
   const egl_client client;
   const std::vector<egl_device> devices = surfaceless_only ? std::vector<egl_device>{} : client.devices();
-  if (surfaceless_only && device_index >= 0) throw error("no GL context: --device picks an EGL device; egl-surfaceless has none");
-  if (!surfaceless_only && device_index < 0) {
-    if (const char* from_environment = std::getenv("VPLKIT_EGL_DEVICE"); from_environment && *from_environment) {
-      char* end = nullptr;
-      const long value = std::strtol(from_environment, &end, 10);
-      if (*end != '\0' || value < 0 || value > 1024)
-        throw error("VPLKIT_EGL_DEVICE must be a device index (0, 1, ...), got '" + std::string(from_environment) + "'");
-      device_index = static_cast<int>(value);
-    }
-  }
+  if (surfaceless_only && device_index >= 0)
+    throw error("no GL context: " + std::string(device_source.empty() ? "--device" : "VPLKIT_EGL_DEVICE") + " picks an EGL device; egl-surfaceless has none");
   if (device_index >= 0) {
     if (static_cast<std::size_t>(device_index) >= devices.size())
-      throw error("no EGL device " + std::to_string(device_index) + ": this machine has " + std::to_string(devices.size()) +
+      throw error("no EGL device " + std::to_string(device_index) + device_source + ": this machine has " + std::to_string(devices.size()) +
                   " (vplkit info lists them)");
   } else {
     for (std::size_t i = 0; i < devices.size() && device_index < 0; ++i)
@@ -284,14 +277,34 @@ headless_api headless_api_from_name(const std::string& name, const std::string& 
   if (name == "egl") return headless_api::egl;
   if (name == "egl-surfaceless") return headless_api::egl_surfaceless;
   if (name == "osmesa") return headless_api::osmesa;
-  throw error(what + " must be one of auto, egl, egl-surfaceless, osmesa; got '" + name + "'");
+  throw error(what + " must be one of auto, egl, egl-surfaceless, osmesa; got '" + excerpt(name) + "'");
+}
+
+int egl_device_from_environment() {
+  const char* from_environment = std::getenv("VPLKIT_EGL_DEVICE");
+  if (!from_environment || !*from_environment) return -1;
+  const std::string text(from_environment);
+  if (text.size() > 4 || text.find_first_not_of("0123456789") != std::string::npos || std::stoi(text) > 1024)
+    throw error("VPLKIT_EGL_DEVICE must be an EGL device index in [0, 1024] like --device (vplkit info lists them), got '" + excerpt(text) + "'");
+  return std::stoi(text);
+}
+
+headless_api headless_api_from_environment() {
+  const char* from_environment = std::getenv("VPLKIT_CONTEXT");
+  if (!from_environment || !*from_environment) return headless_api::automatic;
+  return headless_api_from_name(excerpt(from_environment), "VPLKIT_CONTEXT");
 }
 
 std::unique_ptr<gl_context> create_headless_context(const headless_request& request) {
   headless_api api = request.api;
-  if (api == headless_api::automatic) {
-    if (const char* from_environment = std::getenv("VPLKIT_CONTEXT"); from_environment && *from_environment)
-      api = headless_api_from_name(from_environment, "VPLKIT_CONTEXT");
+  if (api == headless_api::automatic) api = headless_api_from_environment();
+  // A device from the environment is a device asked for, like --device: no fallback to OSMesa,
+  // and a malformed value is an error, never silently ignored.
+  int device = request.device;
+  std::string device_source;
+  if (device < 0 && api != headless_api::osmesa) {
+    device = egl_device_from_environment();
+    if (device >= 0) device_source = " (VPLKIT_EGL_DEVICE)";
   }
   if (api == headless_api::osmesa) {
 #if VPLKIT_HAVE_OSMESA
@@ -301,12 +314,12 @@ std::unique_ptr<gl_context> create_headless_context(const headless_request& requ
 #endif
   }
   if (api == headless_api::egl || api == headless_api::egl_surfaceless)
-    return create_egl_context(request.device, api == headless_api::egl_surfaceless);
+    return create_egl_context(device, device_source, api == headless_api::egl_surfaceless);
   try {
-    return create_egl_context(request.device, false);
+    return create_egl_context(device, device_source, false);
   } catch (const error& egl_failure) {
 #if VPLKIT_HAVE_OSMESA
-    if (request.device >= 0) throw;  // a device was asked for: OSMesa is not it
+    if (device >= 0) throw;  // a device was asked for: OSMesa is not it
     try {
       return std::make_unique<osmesa_context>();
     } catch (const error& osmesa_failure) {

@@ -66,7 +66,8 @@ std::string validate(const final_gather_settings& settings) {
     return failure.what();
   }
   if (const std::string problem = validate_image_size(settings.width, settings.height); !problem.empty()) return problem;
-  if (settings.face_size < 1 || settings.face_size > 4096) return "cube face size must be in [1, 4096]";
+  if (settings.face_size < 1 || settings.face_size > max_cube_face_size)
+    return "cube face size must be in [1, " + std::to_string(max_cube_face_size) + "] (its six faces lie side by side in one texture)";
   if (settings.resolution < 1 || settings.resolution > 64) return "M (the small cube map's face resolution) must be in [1, 64]";
   if (settings.face_size % settings.resolution != 0)
     return "M = " + std::to_string(settings.resolution) + " does not divide the face size " + std::to_string(settings.face_size) +
