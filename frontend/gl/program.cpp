@@ -76,7 +76,10 @@ class expander {
  public:
   expander(const fs::path& root, const shader_defines& defines) : root_(root), defines_(defines) {}
 
-  expanded_source run(const std::string& text, const std::string& display_name) {
+  /// `top_level_path`: the file `text` came from, if any, so that an include of it is not
+  /// expanded a second time.
+  expanded_source run(const std::string& text, const std::string& display_name, const fs::path& top_level_path = {}) {
+    if (!top_level_path.empty()) included_.insert(fs::weakly_canonical(top_level_path).string());
     expand(text, display_name, /*top_level=*/true, 0);
     return {out_.str(), file_names_};
   }
@@ -156,7 +159,7 @@ expanded_source shader_library::expand_file(const std::string& relative_path, co
   const std::string text =
       read_text_file(root_ / relative_path, " (shader directory " + root_.string() +
                                                  "; set --shader-dir or VPLKIT_SHADER_DIR)");
-  return expander(root_, defines).run(text, relative_path);
+  return expander(root_, defines).run(text, relative_path, root_ / relative_path);
 }
 
 expanded_source shader_library::expand_text(const std::string& text, const std::string& display_name,

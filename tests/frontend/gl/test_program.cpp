@@ -50,6 +50,11 @@ TEST_CASE("#include is expanded once per file, with #line directives back to eac
   const expanded_source source = library.expand_file("main.frag");
   CHECK(source.file_names == std::vector<std::string>{"main.frag", "lib/a.glsl", "lib/b.glsl"});
   CHECK(source.text.find("#version 330 core\n") == 0);
+  // The top-level file counts as included: a file that includes it does not expand it again
+  // (the include fuzzer found main.frag named twice).
+  scratch_shaders cycle({{"main.frag", "#include \"lib/a.glsl\"\nfloat m() { return 1.0; }\n"}, {"lib/a.glsl", "#include \"main.frag\"\nfloat a();\n"}});
+  const expanded_source once = shader_library(cycle.root).expand_file("main.frag");
+  CHECK(once.file_names == std::vector<std::string>{"main.frag", "lib/a.glsl"});
   // b is defined once, although it is included twice.
   const auto first = source.text.find("float b()");
   CHECK(first != std::string::npos);
