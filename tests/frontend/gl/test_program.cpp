@@ -161,8 +161,10 @@ TEST_CASE("driver logs of Mesa, NVIDIA and AMD are mapped to file:line") {
 
 TEST_CASE("every shipped pass program compiles and links") {
   const shader_library& library = parity::test_shaders();
-  for (const auto& [vertex, fragment] : std::vector<std::pair<std::string, std::string>>{
+  for (const std::pair<std::string, std::string>& stages : std::vector<std::pair<std::string, std::string>>{
            {"fullscreen.vert", "present.frag"}, {"fullscreen.vert", "blur_x.frag"}, {"scene.vert", "gbuffer.frag"}}) {
+    const std::string& vertex = stages.first;
+    const std::string& fragment = stages.second;
     CAPTURE(fragment);
     CHECK_NOTHROW(load_program(library, vertex, fragment));
   }
