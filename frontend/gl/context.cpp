@@ -9,8 +9,6 @@
 #define EGL_NO_X11
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
-#define GLFW_INCLUDE_NONE
-#include <GLFW/glfw3.h>
 
 #include <cstdlib>
 #include <cstring>
@@ -33,8 +31,6 @@ std::string describe_current_context() {
   return out.str();
 }
 
-namespace {
-
 void load_gl(GLADloadfunc loader, const std::string& kind) {
   const int version = gladLoadGL(loader);
   if (version == 0) throw error("no GL context: glad could not load GL entry points for the " + kind + " context");
@@ -44,6 +40,8 @@ void load_gl(GLADloadfunc loader, const std::string& kind) {
                 std::to_string(GLAD_VERSION_MINOR(version)) + ", vplkit needs 3.3 core");
   install_debug_output();
 }
+
+namespace {
 
 #if VPLKIT_HAVE_OSMESA
 GLADapiproc osmesa_get_proc(const char* name) {
@@ -219,8 +217,8 @@ std::unique_ptr<gl_context> create_egl_context(int device_index, const std::stri
     throw error("no GL context: " + std::string(device_source.empty() ? "--device" : "VPLKIT_EGL_DEVICE") + " picks an EGL device; egl-surfaceless has none");
   if (device_index >= 0) {
     if (static_cast<std::size_t>(device_index) >= devices.size())
-      throw error("no EGL device " + std::to_string(device_index) + device_source + ": this machine has " + std::to_string(devices.size()) +
-                  " (vplkit info lists them)");
+      throw error("no EGL device " + std::to_string(device_index) + ": this machine has " + std::to_string(devices.size()) +
+                  " (vplkit info lists them)" + device_source);
   } else {
     for (std::size_t i = 0; i < devices.size() && device_index < 0; ++i)
       if (!devices[i].software) device_index = static_cast<int>(i);
@@ -255,12 +253,6 @@ std::unique_ptr<gl_context> create_egl_context(int device_index, const std::stri
     tried = surfaceless_only ? "the EGL library does not offer EGL_MESA_platform_surfaceless"
                              : "the EGL library offers neither EGL_EXT_platform_device nor EGL_MESA_platform_surfaceless";
   throw error("no GL context: " + tried);
-}
-
-std::string glfw_last_error() {
-  const char* description = nullptr;
-  glfwGetError(&description);
-  return description ? description : "no reason given";
 }
 
 }  // namespace
@@ -304,7 +296,7 @@ std::unique_ptr<gl_context> create_headless_context(const headless_request& requ
   std::string device_source;
   if (device < 0 && api != headless_api::osmesa) {
     device = egl_device_from_environment();
-    if (device >= 0) device_source = " (VPLKIT_EGL_DEVICE)";
+    if (device >= 0) device_source = "; VPLKIT_EGL_DEVICE asked for it";
   }
   if (api == headless_api::osmesa) {
 #if VPLKIT_HAVE_OSMESA
@@ -341,45 +333,6 @@ std::vector<std::string> available_headless_contexts() {
                   (client.surfaceless_platform() ? "offered (the fallback; --context egl-surfaceless)" : "not offered"));
   lines.push_back(std::string("osmesa: ") + (osmesa_built_in() ? "built in (--context osmesa)" : "not built in (VPLKIT_WITH_OSMESA=OFF)"));
   return lines;
-}
-
-window_context::window_context(int width, int height, const std::string& title) {
-  if (!glfwInit()) throw error("no GL context: GLFW could not initialise: " + glfw_last_error());
-  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
-  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
-  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-  window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
-  if (!window_) {
-    const std::string reason = glfw_last_error();
-    glfwTerminate();
-    throw error("no GL context: GLFW could not open a " + std::to_string(width) + "x" +
-                std::to_string(height) + " window with GL 3.3 core: " + reason);
-  }
-  make_current();
-}
-
-window_context::~window_context() {
-  glfwDestroyWindow(window_);
-  glfwTerminate();
-}
-
-void window_context::make_current() {
-  glfwMakeContextCurrent(window_);
-  load_gl(glfwGetProcAddress, "GLFW window");
-}
-
-bool window_context::should_close() const { return glfwWindowShouldClose(window_) != 0; }
-
-std::pair<int, int> window_context::framebuffer_size() const {
-  int width = 0, height = 0;
-  glfwGetFramebufferSize(window_, &width, &height);
-  return {width, height};
-}
-
-void window_context::swap_and_poll() {
-  glfwSwapBuffers(window_);
-  glfwPollEvents();
 }
 
 }  // namespace vplkit

@@ -7,6 +7,8 @@ expect_success("info lists the headless contexts and says which it uses"
                "available headless contexts:.*egl surfaceless:.*osmesa:.*using +EGL .*GL_RENDERER.*timing +" "${VPLKIT}" info)
 expect_failure("an EGL device that does not exist" "no EGL device 99: this machine has [0-9]+" ""
                "${VPLKIT}" info --device 99)
+expect_failure("VPLKIT_EGL_DEVICE naming no device is an error, not a fallback" "no EGL device 99: this machine has [0-9]+" "${WORK}/device-99.png"
+               ${CMAKE_COMMAND} -E env VPLKIT_EGL_DEVICE=99 "${VPLKIT}" render --size 8 --out "${WORK}/device-99.png")
 expect_failure("a bad VPLKIT_CONTEXT" "VPLKIT_CONTEXT must be one of auto, egl, egl-surfaceless, osmesa; got 'gles'" "${WORK}/bad-context.png"
                ${CMAKE_COMMAND} -E env VPLKIT_CONTEXT=gles "${VPLKIT}" render --size 8 --out "${WORK}/bad-context.png")
 expect_failure("--device with OSMesa" "--device picks an EGL device" "" "${VPLKIT}" info --context osmesa --device 0)
@@ -45,7 +47,7 @@ foreach(case "VPLKIT_EGL_DEVICE=junk;VPLKIT_EGL_DEVICE must be an EGL device ind
                   RESULT_VARIABLE code ERROR_VARIABLE err OUTPUT_QUIET)
   expect_true("${variable} is refused like its option (exit ${code}: ${err})" code EQUAL 2 AND err MATCHES "${pattern}" AND NOT EXISTS "${WORK}/environment.png")
 endforeach()
-expect_failure("VPLKIT_EGL_DEVICE=99 is a device asked for: no fallback" "no EGL device 99 \\(VPLKIT_EGL_DEVICE\\): this machine has" "${WORK}/environment.png"
+expect_failure("VPLKIT_EGL_DEVICE=99 is a device asked for: no fallback" "no EGL device 99: this machine has [0-9]+ \\(vplkit info lists them\\); VPLKIT_EGL_DEVICE asked for it" "${WORK}/environment.png"
                ${CMAKE_COMMAND} -E env VPLKIT_EGL_DEVICE=99 "${VPLKIT}" render --size 8 --out "${WORK}/environment.png")
 expect_failure("VPLKIT_SHADER_DIR that is not a folder" "shader directory not found: ${WORK}/no-such-folder \\(VPLKIT_SHADER_DIR, which stands for --shader-dir\\)" "${WORK}/environment.png"
                ${CMAKE_COMMAND} -E env VPLKIT_SHADER_DIR=${WORK}/no-such-folder "${VPLKIT}" render --size 8 --out "${WORK}/environment.png")

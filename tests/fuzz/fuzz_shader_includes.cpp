@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "frontend/core/error.hpp"
-#include "frontend/gl/program.hpp"
+#include <vplkit/gl/program.hpp>
 #include "tests/fuzz/fuzz_input.hpp"
 
 namespace fs = std::filesystem;
