@@ -1,5 +1,6 @@
-// The vplkit command line: `info`, `render` (headless, the main job), `view` (a window),
-// `compare`, `reference`, `export-scene` and `shader expand`, one file each (commands.hpp). Every option is range-checked as it
+// The vplkit command line: `info`, `render` (headless, the main job), `sweep`, `compare`,
+// `reference`, `export-scene` and `shader expand`, one file each (commands.hpp), and `view` (a window), which the
+// executable adds (view.cpp, with the viewer library). Every option is range-checked as it
 // is parsed (non-finite numbers included); the checks that need several options, and the
 // scoping of options to the techniques and methods that read them, run before anything is
 // opened or read.
@@ -43,24 +44,26 @@ struct command_line::parser {
   CLI::App app{"vplkit: real-time one-bounce indirect illumination (reflective shadow maps with visibility, Light Wave, robust final gathering)"};
   std::vector<cli::command> commands;
 
-  parser() {
+  explicit parser(const std::vector<command_adder>& more_commands) {
     // At most one subcommand; an unknown word is then reported by name as an unexpected argument
     // (require_subcommand(1) would only say that a subcommand is required).
     app.require_subcommand(0, 1);
     app.set_version_flag("--version", version_string);
-    commands = {cli::add_info_command(app), cli::add_render_command(app), cli::add_view_command(app),
-                cli::add_compare_command(app), cli::add_reference_command(app),
-                cli::add_export_scene_command(app), cli::add_shader_command(app)};
+    commands = {cli::add_info_command(app), cli::add_render_command(app), cli::add_sweep_command(app)};
+    for (const command_adder& add : more_commands) commands.push_back(add(app));
+    for (const auto& add : {cli::add_compare_command, cli::add_reference_command, cli::add_export_scene_command, cli::add_shader_command})
+      commands.push_back(add(app));
   }
 };
 
-command_line::command_line() : parser_(std::make_unique<parser>()) {}
+command_line::command_line(const std::vector<command_adder>& more_commands) : parser_(std::make_unique<parser>(more_commands)) {}
 command_line::~command_line() = default;
 
 int command_line::run(int argc, const char* const* argv, std::ostream& out, std::ostream& err, command_line_mode mode) {
   CLI::App& app = parser_->app;
   app.clear();
   for (const cli::command& command : parser_->commands) command.reset();
+  const std::vector<cli::command>& commands = parser_->commands;
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& parse_error) {
@@ -76,10 +79,12 @@ int command_line::run(int argc, const char* const* argv, std::ostream& out, std:
   try {
     cli::check_environment();
     int status = -1;
-    for (const cli::command& command : parser_->commands)
+    for (const cli::command& command : commands)
       if (command.app->parsed()) status = command.run(io);
     if (status < 0) {
-      err << "vplkit: error: a subcommand is required: info, render, view, compare, reference, export-scene or shader (see vplkit --help)\n";
+      std::string names;
+      for (const cli::command& command : commands) names += (names.empty() ? "" : ", ") + command.app->get_name();
+      err << "vplkit: error: a subcommand is required: " << names << " (see vplkit --help)\n";
       return 2;
     }
     // A GL error that no check point turned into an exception still fails the command.
@@ -101,8 +106,9 @@ int command_line::run(int argc, const char* const* argv, std::ostream& out, std:
   }
 }
 
-int run_command_line(int argc, const char* const* argv, std::ostream& out, std::ostream& err, command_line_mode mode) {
-  return command_line().run(argc, argv, out, err, mode);
+int run_command_line(int argc, const char* const* argv, std::ostream& out, std::ostream& err, command_line_mode mode,
+                     const std::vector<command_adder>& more_commands) {
+  return command_line(more_commands).run(argc, argv, out, err, mode);
 }
 
 }  // namespace vplkit

@@ -2,10 +2,24 @@
 // fuzzer (tests/fuzz/fuzz_cli_options.cpp) run the same parser and the same checks.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <ostream>
+#include <vector>
+
+namespace CLI {
+class App;
+}
 
 namespace vplkit {
+
+namespace cli {
+struct command;
+}
+
+/// A subcommand registered beside the headless ones (the viewer's `view`, which the executable
+/// links and the headless library does not).
+using command_adder = std::function<cli::command(CLI::App&)>;
 
 enum class command_line_mode {
   run,         ///< do what the command says
@@ -14,7 +28,8 @@ enum class command_line_mode {
 
 /// Runs `vplkit <argv[1..]>`: 0 on success, 1 for a failure while running (a message on `err`
 /// naming what and where), 2 for a command line that does not parse (CLI11's message).
-int run_command_line(int argc, const char* const* argv, std::ostream& out, std::ostream& err, command_line_mode mode = command_line_mode::run);
+int run_command_line(int argc, const char* const* argv, std::ostream& out, std::ostream& err, command_line_mode mode = command_line_mode::run,
+                     const std::vector<command_adder>& more_commands = {});
 
 /// The same parser built once and run on many command lines: each run starts from the state a new
 /// one has (CLI11's results cleared, every command's state restored), so a run's outcome does not
@@ -22,7 +37,7 @@ int run_command_line(int argc, const char* const* argv, std::ostream& out, std::
 /// parse: the option fuzzer keeps one.
 class command_line {
  public:
-  command_line();
+  explicit command_line(const std::vector<command_adder>& more_commands = {});
   ~command_line();
   command_line(const command_line&) = delete;
   command_line& operator=(const command_line&) = delete;

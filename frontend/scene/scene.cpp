@@ -509,13 +509,13 @@ void check_light(const scene_light& light, const std::string& owner) {
     if (!finite(spot.position) || !finite(spot.direction) || !finite(spot.intensity)) throw error(owner + ": the spot light has a non-finite value");
     if (glm::any(glm::greaterThan(glm::abs(spot.intensity), glm::vec3(max_light_power))))
       throw error(owner + ": the spot light's intensity is beyond " + power_limit_text() + " (vplkit's outputs must stay finite)");
-    if (const char* problem = validate(spot)) throw error(owner + ": " + problem);
+    if (const setting_problem problem = validate(spot)) throw error(owner + ": " + problem.message());
   } else {
     const directional_light<float>& sun = light.directional;
     if (!finite(sun.direction) || !finite(sun.irradiance)) throw error(owner + ": the directional light has a non-finite value");
     if (glm::any(glm::greaterThan(glm::abs(sun.irradiance), glm::vec3(max_light_power))))
       throw error(owner + ": the directional light's irradiance is beyond " + power_limit_text() + " (vplkit's outputs must stay finite)");
-    if (const char* problem = validate(sun)) throw error(owner + ": " + problem);
+    if (const setting_problem problem = validate(sun)) throw error(owner + ": " + problem.message());
   }
 }
 

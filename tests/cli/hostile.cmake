@@ -170,7 +170,7 @@ expect_success("reference --out with a 244-character name" "wrote .*/${long_name
                "${VPLKIT}" reference --size 8 --samples 1 --out "${H}/${long_name}.pfm")
 expect_failure("render --out whose -visibility-difference.png would have 266 characters" "cannot write .*nnnn-visibility-difference\\.png \\([0-9]+ bytes\\): File name too long"
                "${H}/too-long/*" "${VPLKIT}" render --size 16 --out "${H}/too-long/${long_name}.png")
-expect_failure("--face-size 4096" "--face-size: Value 4096 not in range 1 to 2730" "${H}/out*"
+expect_failure("--face-size 4096" "--face-size: must be a whole number in \\[1, 2730\\] \\(texels\\), got '4096'" "${H}/out*"
                "${VPLKIT}" render --technique finalgather-polygon --face-size 4096 --size 16 --out "${H}/out.png")
 
 # PNG through libspng: an inflate bomb and an index beyond the palette are refused.

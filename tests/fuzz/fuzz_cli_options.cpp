@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "frontend/cli/cli.hpp"
+#include "frontend/cli/commands.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view input(reinterpret_cast<const char*>(data), size);
@@ -25,13 +26,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   std::vector<const char*> argv;
   for (const std::string& argument : arguments) argv.push_back(argument.c_str());
-  static vplkit::command_line parser;
+  static vplkit::command_line parser({vplkit::cli::add_view_command});
   static unsigned runs = 0;
   std::ostringstream out, err;
   const int status = parser.run(static_cast<int>(argv.size()), argv.data(), out, err, vplkit::command_line_mode::check_only);
   if (++runs % 64 == 0) {
     std::ostringstream fresh_out, fresh_err;
-    const int fresh = vplkit::run_command_line(static_cast<int>(argv.size()), argv.data(), fresh_out, fresh_err, vplkit::command_line_mode::check_only);
+    const int fresh = vplkit::run_command_line(static_cast<int>(argv.size()), argv.data(), fresh_out, fresh_err, vplkit::command_line_mode::check_only,
+                                                     {vplkit::cli::add_view_command});
     if (fresh != status || fresh_out.str() != out.str() || fresh_err.str() != err.str()) {
       std::fprintf(stderr, "fuzz_cli_options: a reused parser answered %d, a new one %d:\n%s%s\n--\n%s%s\n", status, fresh, out.str().c_str(),
                    err.str().c_str(), fresh_out.str().c_str(), fresh_err.str().c_str());
