@@ -20,7 +20,7 @@ if ! [[ "$seconds" =~ ^[0-9]+$ ]] || [ "$seconds" -lt 1 ] || [ "$seconds" -gt 86
   exit 2
 fi
 shift || true
-all_targets=(obj pfm png texture compare cli_options gltf)
+all_targets=(obj pfm png texture compare cli_options gltf shader_includes)
 targets=("$@")
 [ ${#targets[@]} -eq 0 ] && targets=("${all_targets[@]}")
 for target in "${targets[@]}"; do
@@ -75,7 +75,15 @@ seed_gltf() {
   local folder=$build/fuzz/corpus/gltf
   while IFS= read -r file; do
     cp "$file" "$folder/assimp-$(echo "$file" | tr '/' '_')"
-  done < <(find /usr/share/assimp/models/glTF2 \( -name '*.gltf' -o -name '*.glb' \) -size -64k 2>/dev/null | head -40)
+  done < <(find /usr/share/assimp/models/glTF2 \( -name '*.gltf' -o -name '*.glb' \) -size -1024k 2>/dev/null | head -60)
+  # Deep seeds near the 1 MiB limit: a chain of 40,000 nodes, extras nested 200,000 deep.
+  local triangle='"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],"accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"}],"bufferViews":[{"buffer":0,"byteLength":36}],"buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}]'
+  awk -v triangle="$triangle" 'BEGIN { printf "{\"asset\":{\"version\":\"2.0\"},%s,\"nodes\":[", triangle
+    for (i = 1; i < 40000; i++) printf "{\"children\":[%d]},", i
+    printf "{\"mesh\":0}],\"scenes\":[{\"nodes\":[0]}],\"scene\":0}" }' > "$folder/chain-40000"
+  awk -v triangle="$triangle" 'BEGIN { printf "{\"asset\":{\"version\":\"2.0\",\"extras\":"
+    for (i = 0; i < 200000; i++) printf "["; for (i = 0; i < 200000; i++) printf "]"
+    printf "},%s,\"nodes\":[{\"mesh\":0}]}", triangle }' > "$folder/extras-200000"
 }
 
 status=0
@@ -89,17 +97,20 @@ for target in "${targets[@]}"; do
   [ "$target" = gltf ] && seed_gltf
   log=$build/fuzz/fuzz-$target.log
   echo "== fuzzing $target for ${seconds} s (corpus $corpus)"
+  options=(-max_len=65536)
+  [ "$target" = gltf ] && options=(-max_len=1048576 -dict=tests/fuzz/gltf.dict)
   set +e
   "$build/tests/fuzz/vplkit_fuzz_$target" "$corpus" -max_total_time="$seconds" -print_final_stats=1 -timeout=10 -rss_limit_mb=2048 \
-    -max_len=65536 -artifact_prefix="$crashes/" >"$log" 2>&1
+    "${options[@]}" -artifact_prefix="$crashes/" >"$log" 2>&1
   result=$?
   set -e
   executions=$(awk '/stat::number_of_executed_units/ { print $2 }' "$log")
+  rate=$(awk '/stat::average_exec_per_sec/ { print $2 }' "$log")
   if [ "$result" -eq 0 ]; then
-    summary+=("$(printf '%-12s %12s executions  no crash' "$target" "${executions:-?}")")
+    summary+=("$(printf '%-16s %12s executions %8s/s  no crash' "$target" "${executions:-?}" "${rate:-?}")")
   else
     status=1
-    summary+=("$(printf '%-12s %12s executions  FAILED (rc %d): see %s, inputs in %s' "$target" "${executions:-?}" "$result" "$log" "$crashes")")
+    summary+=("$(printf '%-16s %12s executions %8s/s  FAILED (rc %d): see %s, inputs in %s' "$target" "${executions:-?}" "${rate:-?}" "$result" "$log" "$crashes")")
     grep -E "ERROR|SUMMARY|fuzz_" "$log" | head -5 >&2 || true
   fi
 done

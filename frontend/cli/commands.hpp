@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include <functional>
+#include <memory>
 
 #include "frontend/cli/options.hpp"
 
@@ -14,7 +15,16 @@ namespace vplkit::cli {
 struct command {
   CLI::App* app = nullptr;                    ///< parsed() tells whether it was chosen
   std::function<int(const session&)> run;     ///< 0 on success; throws on failure
+  std::function<void()> reset;                ///< back to the state right after registration
 };
+
+/// What puts a command's state back to its values right after registration (the end of its
+/// add_*_command): a command_line parsed again starts from the state a new one has, which is what
+/// lets the option fuzzer parse thousands of command lines a second with one CLI11 App.
+template <typename State>
+std::function<void()> restorer(const std::shared_ptr<State>& state) {
+  return [state, initial = *state] { *state = initial; };
+}
 
 command add_info_command(CLI::App& app);
 command add_render_command(CLI::App& app);

@@ -70,7 +70,7 @@ command add_compare_command(CLI::App& app) {
   compare->add_option("--error-image", state->error_image, "write the false-colour error image (.png)");
   compare->add_option("--error-scale", state->error_scale, "luminance difference shown as full red (0: the largest)")
       ->check(number_in(0.0, std::numeric_limits<float>::max(), false, "linear luminance"))->capture_default_str();
-  return {compare, [state](const session& io) { return run_compare(io, *state); }};
+  return {compare, [state](const session& io) { return run_compare(io, *state); }, restorer(state)};
 }
 
 }  // namespace vplkit::cli

@@ -29,7 +29,7 @@ command add_export_scene_command(CLI::App& app) {
   for (const std::string& name : built_in_scene_names()) names += (names.empty() ? "" : ", ") + name;
   command->add_option("scene", state->scene, "built-in scene (" + names + ")")->required()->check(CLI::IsMember(built_in_scene_names()));
   command->add_option("out", state->out, "output .gltf file (the buffer is embedded)")->required();
-  return {command, [state](const session& io) { return run_export_scene(io, *state); }};
+  return {command, [state](const session& io) { return run_export_scene(io, *state); }, restorer(state)};
 }
 
 }  // namespace vplkit::cli

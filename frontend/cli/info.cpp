@@ -39,7 +39,7 @@ command add_info_command(CLI::App& app) {
             io.out << "using       " << context->kind() << "\n" << describe_current_context() << "\ntiming      "
                    << describe(timing_method_for_current_context()) << "\nshaders     " << default_shader_dir().string() << "\n";
             return 0;
-          }};
+          }, restorer(state)};
 }
 
 }  // namespace vplkit::cli

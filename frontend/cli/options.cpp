@@ -1,6 +1,7 @@
 #include "frontend/cli/options.hpp"
 
 #include <cmath>
+#include <cstdlib>
 #include <iostream>
 #include <limits>
 #include <optional>
@@ -11,6 +12,7 @@
 #include <vplkit/gl/program.hpp>
 
 #include "frontend/core/error.hpp"
+#include "frontend/core/parallel.hpp"
 #include "frontend/core/setting.hpp"
 #include "frontend/image/image.hpp"
 #include "frontend/scene/gltf_scene.hpp"
@@ -62,7 +64,27 @@ headless_request common_options::headless() const {
   return request;
 }
 
-fs::path common_options::shaders() const { return shader_dir.empty() ? default_shader_dir() : fs::path(shader_dir); }
+fs::path common_options::shaders() const {
+  // The variable stands for the option and is checked like it, each named in its message.
+  std::error_code ignored;
+  if (!shader_dir.empty()) {
+    if (!fs::is_directory(shader_dir, ignored)) throw error("shader directory not found: " + excerpt_path(shader_dir) + " (--shader-dir)");
+    return shader_dir;
+  }
+  if (const char* from_environment = std::getenv("VPLKIT_SHADER_DIR"); from_environment && *from_environment && !fs::is_directory(from_environment, ignored))
+    throw error("shader directory not found: " + excerpt_path(from_environment) + " (VPLKIT_SHADER_DIR, which stands for --shader-dir)");
+  return default_shader_dir();
+}
+
+void check_environment() {
+  try {
+    (void)headless_api_from_environment();
+    (void)egl_device_from_environment();
+    (void)hardware_threads();
+  } catch (const vplkit::error& failure) {
+    throw usage_error(failure.what());
+  }
+}
 
 common_option_handles add_common_options(CLI::App& command, common_options& options) {
   common_option_handles handles{};

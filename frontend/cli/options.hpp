@@ -88,8 +88,16 @@ struct common_options {
   float exposure_ev = 0.0f;
   bool auto_exposure = false;
   headless_request headless() const;
+  /// --shader-dir, else $VPLKIT_SHADER_DIR, else default_shader_dir(); throws vplkit::error
+  /// naming the option or the variable when it is not a folder.
   std::filesystem::path shaders() const;
 };
+
+/// The environment variables that stand for options (VPLKIT_CONTEXT for --context,
+/// VPLKIT_EGL_DEVICE for --device, VPLKIT_THREADS) checked like them: throws usage_error naming the
+/// variable for a malformed value, before a command runs. (VPLKIT_SHADER_DIR is checked where
+/// shaders are read, like --shader-dir.)
+void check_environment();
 
 /// The options add_common_options registered, for a command that scopes some of them.
 struct common_option_handles {

@@ -1,6 +1,7 @@
 #include "frontend/cli/output.hpp"
 
 #include "frontend/cli/options.hpp"
+#include "frontend/core/error.hpp"
 #include "frontend/image/image_files.hpp"
 
 namespace vplkit::cli {
@@ -20,6 +21,12 @@ fs::path output_set::sibling(const std::string& suffix, const std::string& exten
 }
 
 void output_set::add_png(const fs::path& path, const image& linear, float exposure) {
+  // to_srgb8 would show a NaN as black: a non-finite pixel is refused here as in every writer.
+  try {
+    require_finite_pixels(linear);
+  } catch (const error& failure) {
+    throw error("cannot write " + excerpt_path(path.string()) + ": " + failure.what());
+  }
   add_png(path, linear.width, linear.height, to_srgb8(linear, exposure));
 }
 

@@ -1,7 +1,8 @@
 // The files a command writes: one place for output naming (a default under output/, siblings
 // such as <out>-indirect.png next to the main file), extension checks, and all-or-nothing
-// writing (core/files: every file is encoded and written to a temporary first, then renamed, so a
-// failure leaves no partial set).
+// writing (core/files: every file is encoded and written to a temporary first, then, under a lock
+// on the folder, the previous files are moved aside and the new ones renamed in; a failure puts
+// the previous set back). Every image is checked for finite pixels before it is written.
 #pragma once
 
 #include <filesystem>
@@ -25,11 +26,12 @@ class output_set {
   /// main() with `suffix` added to its stem and the extension replaced: ("-indirect", ".pfm").
   std::filesystem::path sibling(const std::string& suffix, const std::string& extension) const;
 
-  /// An 8-bit sRGB PNG of exposure * `linear`.
+  /// An 8-bit sRGB PNG of exposure * `linear`. Throws vplkit::error naming the path and the first
+  /// non-finite pixel, if any.
   void add_png(const std::filesystem::path& path, const image& linear, float exposure = 1.0f);
   /// An RGBA8 PNG, rows top-down (e.g. false_colour_error).
   void add_png(const std::filesystem::path& path, int width, int height, std::vector<std::uint8_t> rgba8);
-  /// A linear PFM.
+  /// A linear PFM (write() refuses a non-finite pixel, naming it and the path).
   void add_pfm(const std::filesystem::path& path, image linear);
   /// Text as it is (e.g. a glTF scene).
   void add_text(const std::filesystem::path& path, std::string text);

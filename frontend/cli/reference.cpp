@@ -3,6 +3,7 @@
 // - rsm-brute-force: every lit RSM texel gathered at every receiver of the frame's indirect
 //   buffer, with ray-cast or no visibility (the thesis's Fig. 5.1d), for `render --raw-indirect`.
 #include <algorithm>
+#include <iostream>
 
 #include "frontend/cli/commands.hpp"
 #include "frontend/cli/output.hpp"
@@ -25,6 +26,7 @@ struct reference_state {
     return every_receiver;
   }();
   std::string out;
+  double max_seconds = 0.0;
   common_options common;
   given_settings given;  ///< the frame's settings: --size, and for the brute force --format, --min-distance, --rsm-size, --indirect-divisor
   option_scope scope;
@@ -34,6 +36,24 @@ struct reference_state {
 std::unique_ptr<technique_settings> frame_settings(const reference_state& s) { return make_technique_settings(s.given, "rsm-radial"); }
 
 std::string stem_of(const std::string& scene_name) { return fs::path(scene_name).stem().string(); }
+
+// Long work, announced and bounded: the cost before the work starts (rays, and seconds from a
+// calibration), refused when it does not fit --max-seconds (counted from the command's start),
+// and progress on stderr (plain lines every 5 s when it is not a terminal) with the deadline.
+progress_settings announce(const reference_state& s, const reference_cost& cost, double started, int threads) {
+  std::cerr << "vplkit reference: " << cost.what << ": " << (cost.rays > 0.0 ? "at most " + count_text(cost.rays) + " rays" : std::string("no rays"))
+            << ", estimated " << duration_text(cost.seconds) << " on " << threads << " thread" << (threads == 1 ? "" : "s") << "\n";
+  progress_settings progress = progress_on_stderr();
+  if (s.max_seconds > 0.0) {
+    const double elapsed = steady_seconds() - started;
+    if (elapsed + cost.seconds > s.max_seconds)
+      throw error("reference: the estimate (" + duration_text(cost.seconds) + ", after " + duration_text(elapsed) + " of preparation) exceeds --max-seconds " +
+                  format_number(static_cast<float>(s.max_seconds)) + "; nothing is written (fewer --samples, a smaller --size or a larger --receiver-stride)");
+    progress.deadline = started + s.max_seconds;
+    progress.deadline_name = "--max-seconds " + format_number(static_cast<float>(s.max_seconds));
+  }
+  return progress;
+}
 
 // The brute-force RSM gather of the frame `vplkit render` draws with the same scene, size, RSM
 // size, indirect divisor and format, at the receivers of its indirect buffer.
@@ -45,6 +65,7 @@ int run_rsm_brute_force(const session& io, const reference_state& s) {
   output_set files(s.out, "output/" + stem_of(scene_name) + "-rsm-brute-force-" + s.visibility + ".pfm", ".pfm", "--out",
                    "a .png and -receivers.pfm go next to it");
   if (io.dry_run) return 0;
+  const double started = steady_seconds();
   const headless_session gl(s.common);
   const scene source = load_scene(s.common, scene_name);
   rsm_pipeline pipeline(gl.shaders, source, settings);
@@ -55,7 +76,9 @@ int run_rsm_brute_force(const session& io, const reference_state& s) {
   brute_force.exact_visibility = s.visibility == "exact";
   brute_force.receiver_stride = s.options.receiver_stride;
   brute_force.threads = hardware_threads();
-  const image gathered = reference_rsm_gather(rays, buffers, pipeline.constants(), brute_force);
+  const progress_settings progress =
+      announce(s, estimate_rsm_gather(rays, buffers, pipeline.constants(), brute_force), started, brute_force.threads);
+  const image gathered = reference_rsm_gather(rays, buffers, pipeline.constants(), brute_force, progress);
   // The mask: the computed receivers the RSM gather covers.
   const std::vector<std::uint8_t> covered = rsm_covered_receivers(buffers, pipeline.constants(), s.options.receiver_stride);
   image mask(gathered.width, gathered.height);
@@ -80,10 +103,15 @@ int run_monte_carlo(const session& io, const reference_state& s) {
   const std::string scene_name = drawn_scene_name(s.common, *frame);
   output_set files(s.out, "output/" + stem_of(scene_name) + "-reference.pfm", ".pfm", "--out", "a .png and -indirect.pfm go next to it");
   if (io.dry_run) return 0;
+  const double started = steady_seconds();
   const scene source = load_scene(s.common, scene_name);
   const rsm_pipeline_settings& settings = settings_struct<rsm_pipeline_settings, rsm_technique>(*frame);
   const int w = settings.width, h = settings.height;
-  const one_bounce_images images = reference_one_bounce(source, w, h, s.options.samples, s.options.seed, hardware_threads());
+  const int threads = hardware_threads();
+  const ray_scene rays(source.geometry);
+  const progress_settings progress =
+      announce(s, estimate_one_bounce(rays, source, w, h, s.options.samples, s.options.seed, threads), started, threads);
+  const one_bounce_images images = reference_one_bounce(rays, source, w, h, s.options.samples, s.options.seed, threads, progress);
   // PFM and PNG of the final image, PFM of the indirect irradiance: written only after all is done.
   files.add_pfm(files.main(), images.radiance);
   files.add_pfm(files.sibling("-indirect", ".pfm"), images.indirect);
@@ -118,12 +146,16 @@ command add_reference_command(CLI::App& app) {
                        ->check(CLI::IsMember({"exact", "none"}))->capture_default_str(),
                    "--method rsm-brute-force", brute_force);
   add_reference_options(*reference, state->options, state->scope, "--method");
+  reference->add_option("--max-seconds", state->max_seconds,
+                        "refuse when the estimated time (printed before the work starts) exceeds this, and stop, writing nothing, when the "
+                        "run takes longer; counted from the start; 0: no limit")
+      ->check(number_in(0.0, 1e9, false, "seconds"))->capture_default_str();
   reference->add_option("--out", state->out, "output .pfm (monte-carlo: the final image, with -indirect.pfm and a .png next to it; "
                                              "rsm-brute-force: the indirect irradiance, with a .png and -receivers.pfm)");
   return {reference, [state](const session& io) {
             state->scope.require_read_by(state->method, "method");
             return state->method == "rsm-brute-force" ? run_rsm_brute_force(io, *state) : run_monte_carlo(io, *state);
-          }};
+          }, restorer(state)};
 }
 
 }  // namespace vplkit::cli

@@ -153,7 +153,7 @@ command add_render_command(CLI::App& app) {
                      "the same frame), monte-carlo (the final image against the one-bounce path-traced image) or none")
       ->check(CLI::IsMember({"none", "rsm-brute-force", "monte-carlo"}))->capture_default_str();
   add_reference_options(*render, state->quality, state->reference_scope);
-  return {render, [state](const session& io) { return run_render(io, *state); }};
+  return {render, [state](const session& io) { return run_render(io, *state); }, restorer(state)};
 }
 
 }  // namespace vplkit::cli

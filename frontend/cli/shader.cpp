@@ -107,7 +107,7 @@ command add_shader_command(CLI::App& app) {
   expand->add_option("-D,--define", state->defines, "NAME=VALUE: a #define line right after #version (repeat for several)");
   expand->add_option("--depfile", state->depfile, "also write a Makefile rule: OUT depends on FILE and every file it included");
   expand->add_option("--shader-dir", state->shader_dir, "folder with the vplkit shaders (default: $VPLKIT_SHADER_DIR, then the built-in path)");
-  return {shader, [state](const session& io) { return run_expand(io, *state); }};
+  return {shader, [state](const session& io) { return run_expand(io, *state); }, restorer(state)};
 }
 
 }  // namespace vplkit::cli

@@ -313,7 +313,7 @@ command add_sweep_command(CLI::App& app) {
                                        "time and measure a grid of settings of one technique (--vary NAME=v1,v2,...) on one or more scenes against a "
                                        "reference: DIR/sweep.csv, sweep.md and plots; resumable");
   register_sweep_options(*sweep, *state, true);
-  return {sweep, [state, sweep](const session& io) { return run(io, *sweep, *state); }};
+  return {sweep, [state, sweep](const session& io) { return run(io, *sweep, *state); }, restorer(state)};
 }
 
 }  // namespace vplkit::cli

@@ -88,7 +88,7 @@ command add_view_command(CLI::App& app) {
                    "with --frames, saved after the last frame as well");
   view->add_flag("--hide-panel", state->hide_panel, "start with the panel hidden (H shows it)");
   view->add_flag("--dock-panel", state->dock_panel, "put the panel in a column beside the image (the window is that much wider) instead of over it");
-  return {view, [state](const session& io) { return run_view(io, *state); }};
+  return {view, [state](const session& io) { return run_view(io, *state); }, restorer(state)};
 }
 
 }  // namespace vplkit::cli

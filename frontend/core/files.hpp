@@ -1,13 +1,16 @@
 // Reading and writing whole files with the guarantees the CLI promises: a file is read only when
 // it is a regular file within a size limit (so /dev/zero or a 10 GB file is refused by name before
 // anything is allocated), and outputs are written whole or not at all: each to a temporary file
-// next to its target, renamed over it only after every temporary of the set was written.
+// next to its target; then, holding a lock on the output folder, every previous file is moved
+// aside and every new one renamed in; any failure puts the previous files back. Every message
+// names the file and keeps the system's reason (strerror).
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <system_error>
 #include <vector>
 
 namespace vplkit {
@@ -17,20 +20,43 @@ namespace vplkit {
 /// `max_bytes`, or cannot be read.
 std::string read_file(const std::filesystem::path& path, std::uintmax_t max_bytes, const std::string& what);
 
-/// Writes `bytes` to `path` whole or not at all (temporary file + rename). Throws vplkit::error
-/// naming the path.
+/// The same into a byte vector (tinygltf's buffers), without a second copy.
+void read_file_into(const std::filesystem::path& path, std::uintmax_t max_bytes, const std::string& what, std::vector<unsigned char>& out);
+
+/// Writes `bytes` to `path` whole or not at all (write_all_or_nothing with one file).
 void write_bytes_atomically(const std::filesystem::path& path, const std::vector<std::uint8_t>& bytes);
 
-/// One output of a command: its path and the function that encodes its bytes.
+/// One output of a command: its path and the function that encodes its bytes. encode may throw
+/// vplkit::error (e.g. a non-finite pixel); the message then names the path.
 struct output_file {
   std::filesystem::path path;
   std::function<std::vector<std::uint8_t>()> encode;
 };
 
-/// Writes every file or none: all are encoded and written to temporaries first; only then are
-/// the temporaries renamed over their targets, and if a rename fails the targets already renamed
-/// and the remaining temporaries are removed. Two outputs with the same path are an error.
-/// Throws vplkit::error naming the file that failed and why.
-void write_all_or_nothing(const std::vector<output_file>& files);
+/// How write_all_or_nothing installs a set.
+struct write_options {
+  /// How long to wait while another process holds the lock of an output folder (its install
+  /// phase takes milliseconds; a holder that long is stuck). Then the write fails, naming it.
+  double lock_wait_seconds = 60.0;
+  /// The file system's rename(2), as an error code; tests replace it to make a rename fail.
+  std::function<std::error_code(const std::filesystem::path& from, const std::filesystem::path& to)> rename;
+};
+
+/// Writes every file or none, and keeps the previous set when it fails:
+///  1. every file is encoded and written to a new temporary next to its target (O_EXCL; the
+///     name is "." + at most 64 bytes of the target's name + ".partial-" + 16 hex digits, so a
+///     legal 255-byte target name still has a legal temporary);
+///  2. a lock file in each target folder (".vplkit-output.lock", flock) is taken, so that two
+///     runs writing to the same folder install their sets one after the other, never mixed;
+///  3. each existing target is moved aside (".<name>.old-<hex>") and its temporary renamed in;
+///  4. on any failure the new files are removed and the previous ones renamed back; on success
+///     the previous ones are deleted. The lock file is removed when released.
+/// Two outputs with the same path are an error. Throws vplkit::error naming the file that failed
+/// and the system's reason (and where a previous file is kept if it could not be put back).
+void write_all_or_nothing(const std::vector<output_file>& files, const write_options& options = {});
+
+/// The temporary name step 1 uses for `target` with `tag` ("partial", "old") and a random suffix:
+/// at most 1 + 64 + 1 + tag + 1 + 16 bytes, in the target's folder.
+std::filesystem::path sibling_temporary_name(const std::filesystem::path& target, const std::string& tag);
 
 }  // namespace vplkit

@@ -207,28 +207,18 @@ class egl_context final : public gl_context {
   std::string kind_;
 };
 
-// $VPLKIT_EGL_DEVICE as a device index, -1 when it is not set.
-int device_from_environment() {
-  const char* from_environment = std::getenv("VPLKIT_EGL_DEVICE");
-  if (!from_environment || !*from_environment) return -1;
-  char* end = nullptr;
-  const long value = std::strtol(from_environment, &end, 10);
-  if (*end != '\0' || value < 0 || value > 1024)
-    throw error("VPLKIT_EGL_DEVICE must be a device index (0, 1, ...), got '" + std::string(from_environment) + "'");
-  return static_cast<int>(value);
-}
-
-// The device `device_index` (the caller resolved $VPLKIT_EGL_DEVICE), else the first hardware
-// device, else the software one, else the surfaceless platform; only the last with
-// `surfaceless_only`.
-std::unique_ptr<gl_context> create_egl_context(int device_index, bool surfaceless_only) {
+// The device `device_index` (from --device or $VPLKIT_EGL_DEVICE, said by `device_source`), else
+// the first hardware device, else the software one, else the surfaceless platform; only the last
+// with `surfaceless_only`.
+std::unique_ptr<gl_context> create_egl_context(int device_index, const std::string& device_source, bool surfaceless_only) {
   const egl_client client;
   const std::vector<egl_device> devices = surfaceless_only ? std::vector<egl_device>{} : client.devices();
-  if (surfaceless_only && device_index >= 0) throw error("no GL context: --device picks an EGL device; egl-surfaceless has none");
+  if (surfaceless_only && device_index >= 0)
+    throw error("no GL context: " + std::string(device_source.empty() ? "--device" : "VPLKIT_EGL_DEVICE") + " picks an EGL device; egl-surfaceless has none");
   if (device_index >= 0) {
     if (static_cast<std::size_t>(device_index) >= devices.size())
       throw error("no EGL device " + std::to_string(device_index) + ": this machine has " + std::to_string(devices.size()) +
-                  " (vplkit info lists them)");
+                  " (vplkit info lists them)" + device_source);
   } else {
     for (std::size_t i = 0; i < devices.size() && device_index < 0; ++i)
       if (!devices[i].software) device_index = static_cast<int>(i);
@@ -279,14 +269,34 @@ headless_api headless_api_from_name(const std::string& name, const std::string& 
   if (name == "egl") return headless_api::egl;
   if (name == "egl-surfaceless") return headless_api::egl_surfaceless;
   if (name == "osmesa") return headless_api::osmesa;
-  throw error(what + " must be one of auto, egl, egl-surfaceless, osmesa; got '" + name + "'");
+  throw error(what + " must be one of auto, egl, egl-surfaceless, osmesa; got '" + excerpt(name) + "'");
+}
+
+int egl_device_from_environment() {
+  const char* from_environment = std::getenv("VPLKIT_EGL_DEVICE");
+  if (!from_environment || !*from_environment) return -1;
+  const std::string text(from_environment);
+  if (text.size() > 4 || text.find_first_not_of("0123456789") != std::string::npos || std::stoi(text) > 1024)
+    throw error("VPLKIT_EGL_DEVICE must be an EGL device index in [0, 1024] like --device (vplkit info lists them), got '" + excerpt(text) + "'");
+  return std::stoi(text);
+}
+
+headless_api headless_api_from_environment() {
+  const char* from_environment = std::getenv("VPLKIT_CONTEXT");
+  if (!from_environment || !*from_environment) return headless_api::automatic;
+  return headless_api_from_name(excerpt(from_environment), "VPLKIT_CONTEXT");
 }
 
 std::unique_ptr<gl_context> create_headless_context(const headless_request& request) {
   headless_api api = request.api;
-  if (api == headless_api::automatic) {
-    if (const char* from_environment = std::getenv("VPLKIT_CONTEXT"); from_environment && *from_environment)
-      api = headless_api_from_name(from_environment, "VPLKIT_CONTEXT");
+  if (api == headless_api::automatic) api = headless_api_from_environment();
+  // A device from the environment is a device asked for, like --device: no fallback to OSMesa,
+  // and a malformed value is an error, never silently ignored.
+  int device = request.device;
+  std::string device_source;
+  if (device < 0 && api != headless_api::osmesa) {
+    device = egl_device_from_environment();
+    if (device >= 0) device_source = "; VPLKIT_EGL_DEVICE asked for it";
   }
   if (api == headless_api::osmesa) {
 #if VPLKIT_HAVE_OSMESA
@@ -295,12 +305,10 @@ std::unique_ptr<gl_context> create_headless_context(const headless_request& requ
     throw error("no GL context: this vplkit was built without OSMesa (VPLKIT_WITH_OSMESA=OFF); use the EGL context");
 #endif
   }
-  if (api == headless_api::egl_surfaceless) return create_egl_context(request.device, true);
-  // A device asked for by --device, else by $VPLKIT_EGL_DEVICE.
-  const int device = request.device >= 0 ? request.device : device_from_environment();
-  if (api == headless_api::egl) return create_egl_context(device, false);
+  if (api == headless_api::egl || api == headless_api::egl_surfaceless)
+    return create_egl_context(device, device_source, api == headless_api::egl_surfaceless);
   try {
-    return create_egl_context(device, false);
+    return create_egl_context(device, device_source, false);
   } catch (const error& egl_failure) {
 #if VPLKIT_HAVE_OSMESA
     if (device >= 0) throw;  // a device was asked for: OSMesa is not it

@@ -56,10 +56,17 @@ struct headless_request {
   int device = -1;
 };
 
+/// $VPLKIT_EGL_DEVICE checked like --device: -1 when unset or empty, else an index in [0, 1024];
+/// throws vplkit::error naming the variable for anything else ("junk", "-1", "7x").
+int egl_device_from_environment();
+/// $VPLKIT_CONTEXT checked like --context: automatic when unset or empty; throws vplkit::error
+/// naming the variable for a name that is not one of headless_api_names().
+headless_api headless_api_from_environment();
+
 /// A headless context with a core 3.3 profile, current on return. Rendering goes to framebuffer
-/// objects. Throws vplkit::error naming what failed (every API tried, and why) when no context
-/// can be made. An EGL device asked for (request.device or $VPLKIT_EGL_DEVICE) that cannot be
-/// used is an error, never replaced by OSMesa.
+/// objects. A device asked for (request.device or $VPLKIT_EGL_DEVICE) is that device or an
+/// error, never another context. Throws vplkit::error naming what failed (every API tried, and
+/// why) when no context can be made.
 std::unique_ptr<gl_context> create_headless_context(const headless_request& request = {});
 
 /// Whether this build has OSMesa (VPLKIT_WITH_OSMESA).

@@ -90,6 +90,9 @@ std::optional<std::string> include_path(std::string_view line) {
   return std::string(path);
 }
 
+// The includes form a tree walked depth first: recursion is fine because its depth is bounded
+// (max_include_depth; a chain of 10,000 includes overflowed the stack), and so is the text it
+// makes (max_expanded_bytes: each file once, but a wide tree of large files adds up).
 class expander {
  public:
   expander(const std::vector<fs::path>& roots, const shader_defines& defines) : roots_(roots), defines_(defines) {}
@@ -100,12 +103,15 @@ class expander {
       files_read_.push_back(*top_file);
       included_.insert(fs::weakly_canonical(*top_file).string());
     }
-    expand(text, display_name, /*top_level=*/true);
+    expand(text, display_name, /*top_level=*/true, 0);
     return {out_.str(), file_names_, files_read_};
   }
 
  private:
-  void expand(const std::string& text, const std::string& display_name, bool top_level) {
+  void expand(const std::string& text, const std::string& display_name, bool top_level, int depth) {
+    expanded_bytes_ += text.size();
+    if (expanded_bytes_ > max_expanded_bytes)
+      throw error(excerpt_path(display_name) + ": the shader with its includes exceeds " + std::to_string(max_expanded_bytes >> 20) + " MiB");
     const int file_number = static_cast<int>(file_names_.size());
     file_names_.push_back(display_name);
     std::istringstream lines(text);
@@ -131,15 +137,18 @@ class expander {
         const std::string& relative = *included;
         // Longer than any path a file system takes (PATH_MAX is 4096 on Linux).
         if (relative.size() > 4096)
-          throw error(display_name + ":" + std::to_string(line_number) + ": the included file name has " + std::to_string(relative.size()) +
+          throw error(excerpt_path(display_name) + ":" + std::to_string(line_number) + ": the included file name has " + std::to_string(relative.size()) +
                       " characters, more than a path can have");
         const std::optional<fs::path> path = find_in(roots_, relative);
         if (!path)
-          throw error(display_name + ":" + std::to_string(line_number) + ": included file \"" +
-                      relative + "\" not found (looked in " + folder_list(roots_) + ")");
+          throw error(excerpt_path(display_name) + ":" + std::to_string(line_number) + ": included file \"" + excerpt_path(relative) +
+                      "\" not found (looked in " + folder_list(roots_) + ")");
         if (included_.insert(fs::weakly_canonical(*path).string()).second) {
+          if (depth + 1 > max_include_depth)
+            throw error(excerpt_path(display_name) + ":" + std::to_string(line_number) + ": including \"" + excerpt_path(relative) +
+                        "\" nests includes more than " + std::to_string(max_include_depth) + " deep");
           files_read_.push_back(*path);
-          expand(read_text_file(*path, ""), relative, /*top_level=*/false);
+          expand(read_text_file(*path, ""), relative, /*top_level=*/false, depth + 1);
         }
         out_ << "#line " << (line_number + 1) << " " << file_number << "\n";
         continue;
@@ -154,6 +163,7 @@ class expander {
   std::vector<std::string> file_names_;
   std::vector<fs::path> files_read_;
   std::set<std::string> included_;
+  std::size_t expanded_bytes_ = 0;
 };
 
 const char* stage_name(shader_stage stage) {

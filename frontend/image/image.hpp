@@ -25,6 +25,18 @@ inline std::string validate_image_size(int width, int height) {
   return {};
 }
 
+/// What an image file may claim before anything is allocated for it: a PNG of a few hundred bytes
+/// can declare gigapixels. The defaults cover every image vplkit renders up to 8192^2.
+struct image_read_limits {
+  int max_side = max_image_side;
+  std::size_t max_pixels = std::size_t{1} << 26;  ///< 64 Mi pixels: 256 MiB as RGBA8, 1 GiB as a float image
+  /// PNG: the most bytes libspng keeps of one ancillary chunk (text, ICC profile, EXIF), and of
+  /// all of them together, decompressed; beyond them the file is refused (a zTXt that inflates to
+  /// 64 MiB is). vplkit uses none of them; an ICC profile is rarely over 1 MiB.
+  std::size_t max_chunk_bytes = std::size_t{4} << 20;
+  std::size_t max_chunk_cache_bytes = std::size_t{16} << 20;
+};
+
 /// Linear RGBA floats, rows bottom-up: texel (x, y) has y = 0 at the bottom, as in GL.
 struct image {
   int width = 0;

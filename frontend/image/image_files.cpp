@@ -1,9 +1,5 @@
 #include "frontend/image/image_files.hpp"
 
-#include <stb/stb_image.h>
-
-#include <stb/stb_image_write.h>
-
 #include <algorithm>
 #include <charconv>
 #include <cstring>
@@ -14,28 +10,22 @@
 
 #include "frontend/core/error.hpp"
 #include "frontend/core/files.hpp"
+#include "frontend/image/png.hpp"
 
 namespace vplkit {
 namespace fs = std::filesystem;
 
-namespace {
+std::vector<std::uint8_t> encode_png(int width, int height, const std::vector<std::uint8_t>& rgba8) { return encode_png_rgba8(width, height, rgba8); }
 
-void append_bytes(void* context, void* data, int size) {
-  auto* out = static_cast<std::vector<std::uint8_t>*>(context);
-  const auto* bytes = static_cast<const std::uint8_t*>(data);
-  out->insert(out->end(), bytes, bytes + size);
-}
-
-}  // namespace
-
-std::vector<std::uint8_t> encode_png(int width, int height, const std::vector<std::uint8_t>& rgba8) {
-  if (width < 1 || height < 1 || rgba8.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 4)
-    throw error("PNG encoding: a " + std::to_string(width) + "x" + std::to_string(height) + " image needs " +
-                std::to_string(static_cast<std::size_t>(std::max(width, 0)) * static_cast<std::size_t>(std::max(height, 0)) * 4) +
-                " bytes of RGBA8, got " + std::to_string(rgba8.size()));
-  std::vector<std::uint8_t> encoded;
-  if (!stbi_write_png_to_func(append_bytes, &encoded, width, height, 4, rgba8.data(), width * 4)) throw error("PNG encoding failed");
-  return encoded;
+void require_finite_pixels(const image& linear) {
+  for (int y = linear.height - 1; y >= 0; --y)
+    for (int x = 0; x < linear.width; ++x) {
+      const glm::vec4& p = linear.at(x, y);
+      for (const float value : {p.r, p.g, p.b})
+        if (!std::isfinite(value))
+          throw error("pixel (" + std::to_string(x) + ", " + std::to_string(linear.height - 1 - y) + ") (from the top left) is " +
+                      (std::isnan(value) ? "NaN" : "infinite") + "; vplkit writes finite images only");
+    }
 }
 
 void write_png(const fs::path& path, int width, int height, const std::vector<std::uint8_t>& rgba8) {
@@ -49,6 +39,7 @@ void write_png(const fs::path& path, int width, int height, const std::vector<st
 }
 
 std::vector<std::uint8_t> encode_pfm(const image& linear) {
+  require_finite_pixels(linear);
   const std::string header = "PF\n" + std::to_string(linear.width) + " " + std::to_string(linear.height) + "\n-1.0\n";
   std::vector<std::uint8_t> bytes;
   bytes.reserve(header.size() + linear.texels.size() * 12);
@@ -145,49 +136,13 @@ image decode_pfm(const std::string& bytes, const std::string& name, const image_
 }
 
 image decode_png(const std::string& bytes, const std::string& name, const image_read_limits& limits) {
-  // stb_image picks its decoder from the content; only the PNG decoder may run.
-  static constexpr unsigned char signature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-  if (bytes.size() < sizeof signature || std::memcmp(bytes.data(), signature, sizeof signature) != 0)
-    throw error(name + ": not a PNG file (no PNG signature)");
-  if (bytes.size() > static_cast<std::size_t>(std::numeric_limits<int>::max())) throw error(name + ": the PNG file is larger than 2 GiB");
-  // The size from the IHDR chunk, which must come first, checked before stb allocates anything.
-  const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
-  if (bytes.size() < 33 || std::memcmp(data + 12, "IHDR", 4) != 0) throw error(name + ": not a readable PNG (no IHDR chunk after the signature)");
-  const auto big_endian = [&](std::size_t at) {
-    return (std::uint32_t{data[at]} << 24) | (std::uint32_t{data[at + 1]} << 16) | (std::uint32_t{data[at + 2]} << 8) | std::uint32_t{data[at + 3]};
-  };
-  const std::uint32_t claimed_width = big_endian(16), claimed_height = big_endian(20);
-  if (claimed_width == 0 || claimed_height == 0 || claimed_width > 0x7fffffffu || claimed_height > 0x7fffffffu)
-    throw error(name + ": not a readable PNG (its header claims " + std::to_string(claimed_width) + "x" + std::to_string(claimed_height) + " pixels)");
-  check_size(static_cast<int>(claimed_width), static_cast<int>(claimed_height), name, limits);
-  // Every chunk's length must fit in the file before stb reads it: stb grows its IDAT buffer to
-  // the claimed length (doubling) before it finds the data missing, so a 60-byte file claiming a
-  // 2 GiB IDAT would allocate 2 GiB. With this walk stb's buffers stay within twice the file.
-  for (std::size_t at = 8;;) {
-    if (bytes.size() - at < 12) throw error(name + ": not a readable PNG (it ends inside the chunk at byte " + std::to_string(at) + ", before IEND)");
-    const std::uint32_t chunk_length = big_endian(at);
-    const std::string type = bytes.substr(at + 4, 4);
-    if (chunk_length > bytes.size() - at - 12)
-      throw error(name + ": not a readable PNG (its chunk at byte " + std::to_string(at) + " claims " + std::to_string(chunk_length) +
-                  " bytes of data; the file has " + std::to_string(bytes.size() - at - 12) + " after its header)");
-    at += 12 + std::size_t{chunk_length};
-    if (type == "IEND") break;
-  }
-  const int length = static_cast<int>(bytes.size());
-  int width = 0, height = 0, channels = 0;
-  stbi_uc* decoded = stbi_load_from_memory(data, length, &width, &height, &channels, 3);
-  if (!decoded) throw error(name + ": not a readable PNG (" + std::string(stbi_failure_reason()) + ")");
-  if (static_cast<std::uint32_t>(width) != claimed_width || static_cast<std::uint32_t>(height) != claimed_height) {
-    stbi_image_free(decoded);
-    throw error(name + ": not a readable PNG (decoded " + std::to_string(width) + "x" + std::to_string(height) + ", the header says " +
-                std::to_string(claimed_width) + "x" + std::to_string(claimed_height) + ")");
-  }
-  const std::unique_ptr<stbi_uc, void (*)(void*)> owned(decoded, stbi_image_free);
-  image linear(width, height);
-  for (int y = 0; y < height; ++y)  // PNG rows are top-down
-    for (int x = 0; x < width; ++x) {
-      const stbi_uc* code = decoded + 3 * linear.index(x, height - 1 - y);
-      linear.at(x, y) = glm::vec4(srgb_to_linear(code[0] / 255.0f), srgb_to_linear(code[1] / 255.0f), srgb_to_linear(code[2] / 255.0f), 1.0f);
+  const rgba8_image decoded = decode_png_rgba8(bytes, name, limits);
+  image linear(decoded.width, decoded.height);
+  const auto to_linear = [&](std::uint8_t code) { return decoded.srgb ? srgb_to_linear(code / 255.0f) : code / 255.0f; };
+  for (int y = 0; y < decoded.height; ++y)  // PNG rows are top-down
+    for (int x = 0; x < decoded.width; ++x) {
+      const std::uint8_t* code = &decoded.pixels[4 * linear.index(x, decoded.height - 1 - y)];
+      linear.at(x, y) = glm::vec4(to_linear(code[0]), to_linear(code[1]), to_linear(code[2]), 1.0f);
     }
   return linear;
 }

@@ -1,12 +1,13 @@
 #include "frontend/image/texture_decode.hpp"
 
-#include <spng.h>
 #include <turbojpeg.h>
 
 #include <limits>
 #include <memory>
+#include <utility>
 
 #include "frontend/core/error.hpp"
+#include "frontend/image/png.hpp"
 
 namespace vplkit {
 
@@ -51,39 +52,17 @@ texture_pixels decode_texture(std::string_view bytes, const std::string& name, c
 }
 
 texture_pixels decode_png_texture(std::string_view bytes, const std::string& name, const texture_limits& limits) {
-  if (!starts_with_bytes(bytes, png_signature, sizeof png_signature)) throw error(name + ": not a PNG image (no PNG signature)");
-  // The size IHDR claims (it must be the first chunk), checked here so that the message says it;
-  // libspng's own image limits below are the same.
-  if (bytes.size() >= 24 && bytes.substr(12, 4) == "IHDR") {
-    const auto big_endian = [&](std::size_t at) {
-      std::uint64_t value = 0;
-      for (std::size_t i = 0; i < 4; ++i) value = (value << 8) | static_cast<unsigned char>(bytes[at + i]);
-      return value;
-    };
-    check_claimed_size(big_endian(16), big_endian(20), name, "PNG", limits);
-  }
-  const std::unique_ptr<spng_ctx, void (*)(spng_ctx*)> context(spng_ctx_new(0), spng_ctx_free);
-  if (!context) throw error(name + ": libspng could not create a decoder");
-  const auto check = [&](int code, const char* step) {
-    if (code != 0) throw error(name + ": PNG " + step + ": " + spng_strerror(code));
-  };
-  const auto side_limit = static_cast<std::uint32_t>(limits.max_side);
-  check(spng_set_image_limits(context.get(), side_limit, side_limit), "limits");
-  // A chunk can be no longer than the file; ancillary chunks (text, ICC profiles) are not used and
-  // get 1 MiB between them.
-  check(spng_set_chunk_limits(context.get(), bytes.size(), std::size_t{1} << 20), "limits");
-  check(spng_set_png_buffer(context.get(), bytes.data(), bytes.size()), "buffer");
-  spng_ihdr header{};
-  check(spng_get_ihdr(context.get(), &header), "header");
-  check_claimed_size(header.width, header.height, name, "PNG", limits);
-  std::size_t size = 0;
-  check(spng_decoded_image_size(context.get(), SPNG_FMT_RGBA8, &size), "size");
+  // vplkit's one PNG decoder (frontend/image/png.hpp): the size, every chunk, the compressed data
+  // against the raw size (inflate bombs) and palette indices are checked there. Its sRGB/linear
+  // flag is not used: a base-colour texture is sRGB by definition (glTF 2.0, 3.9.2).
+  image_read_limits read_limits;
+  read_limits.max_side = limits.max_side;
+  read_limits.max_pixels = limits.max_pixels;
+  rgba8_image decoded = decode_png_rgba8(bytes, name, read_limits);
   texture_pixels out;
-  out.width = static_cast<int>(header.width);
-  out.height = static_cast<int>(header.height);
-  if (size != static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height) * 4) throw error(name + ": PNG: unexpected decoded size");
-  out.rgba8.resize(size);
-  check(spng_decode_image(context.get(), out.rgba8.data(), size, SPNG_FMT_RGBA8, SPNG_DECODE_TRNS), "data");
+  out.width = decoded.width;
+  out.height = decoded.height;
+  out.rgba8 = std::move(decoded.pixels);
   return out;
 }
 

@@ -1,15 +1,11 @@
 // Texture images of users' scenes (glTF base-colour textures, OBJ/MTL map_Kd): PNG through
-// libspng and JPEG through libjpeg-turbo's TurboJPEG API, decoded to 8-bit RGBA exactly as the
-// file stores it (colour still sRGB-encoded, alpha linear, rows top-down, the first row the
-// image's top). The size a file claims is read from its header and checked against
-// texture_limits before a pixel buffer is allocated or the decoder runs; libspng gets the same
-// limits on the image and on every chunk it reads. Errors name the texture (`name`, e.g.
-// "scene.gltf: image 2 'wood.png'") and what is wrong. The format is told by the bytes' signature,
-// never by a file name: a JPEG named .png decodes as JPEG, a GIF is refused.
-//
-// (The display images vplkit writes and reads back, frontend/image/image_files.hpp, are another
-// reader: linear float images, not textures. decode_png_texture is kept apart so that the two
-// PNG paths can share one libspng front end.)
+// vplkit's one PNG decoder (frontend/image/png.hpp, libspng) and JPEG through libjpeg-turbo's
+// TurboJPEG API, decoded to 8-bit RGBA exactly as the file stores it (colour still sRGB-encoded,
+// alpha linear, rows top-down, the first row the image's top). The size a file claims is read
+// from its header and checked against texture_limits before a pixel buffer is allocated or the
+// decoder runs. Errors name the texture (`name`, e.g. "scene.gltf: image 2 'wood.png'") and what
+// is wrong. The format is told by the bytes' signature, never by a file name: a JPEG named .png
+// decodes as JPEG, a GIF is refused.
 #pragma once
 
 #include <cstddef>
@@ -42,9 +38,8 @@ texture_file_format texture_format_of(std::string_view bytes);
 /// for another format, a size over the limits, or a file the decoder refuses.
 texture_pixels decode_texture(std::string_view bytes, const std::string& name, const texture_limits& limits = {});
 
-/// PNG through libspng (any bit depth and colour type; tRNS applied; gAMA and iCCP not applied:
-/// glTF textures are sRGB by definition). The IHDR's size is checked before decoding; libspng's
-/// image limits are the same and its chunk limits bound each chunk and the ancillary cache.
+/// PNG through decode_png_rgba8 (any bit depth and colour type; tRNS applied; gAMA and iCCP not
+/// applied: glTF textures are sRGB by definition), with texture_limits as its size limits.
 texture_pixels decode_png_texture(std::string_view bytes, const std::string& name, const texture_limits& limits = {});
 
 /// JPEG through TurboJPEG (baseline and progressive, greyscale or YCbCr; CMYK is refused). The

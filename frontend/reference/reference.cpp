@@ -3,12 +3,15 @@
 #include <vplkit/shading.hpp>
 
 #include <embree3/rtcore.h>
-#include <unistd.h>
 
-#include <chrono>
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
-#include <iostream>
+#include <numeric>
+#include <optional>
+
+#include <glm/gtc/matrix_transform.hpp>
 
 #include <vplkit/direct_light.hpp>
 #include <vplkit/hash.hpp>
@@ -18,6 +21,7 @@
 
 #include "frontend/core/error.hpp"
 #include "frontend/core/parallel.hpp"
+#include "frontend/scene/camera.hpp"
 #include "frontend/techniques/rsm/rsm_cpu_mirror.hpp"
 
 namespace vplkit {
@@ -57,13 +61,12 @@ ray_scene::ray_scene(const mesh& geometry) : state_(std::make_unique<state>()), 
   if (!state_->device) throw error("Embree: could not create a device (error " + std::to_string(rtcGetDeviceError(nullptr)) + ")");
   state_->scene = rtcNewScene(state_->device);
   RTCGeometry triangles = rtcNewGeometry(state_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* vertices = static_cast<float*>(
-      rtcSetNewGeometryBuffer(triangles, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), geometry.vertices.size()));
-  for (std::size_t i = 0; i < geometry.vertices.size(); ++i)
-    for (int k = 0; k < 3; ++k) vertices[3 * i + static_cast<std::size_t>(k)] = geometry.vertices[i].position[k];
-  auto* indices = static_cast<unsigned*>(
-      rtcSetNewGeometryBuffer(triangles, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), geometry.indices.size() / 3));
-  for (std::size_t i = 0; i < geometry.indices.size(); ++i) indices[i] = geometry.indices[i];
+  // The mesh's own (indexed) arrays, shared rather than copied: positions at the start of each
+  // vertex, whose normal follows, so Embree's 16-byte loads of the last position stay inside it.
+  static_assert(offsetof(vertex, position) == 0 && sizeof(vertex) >= 16 && sizeof(vertex) % 4 == 0);
+  rtcSetSharedGeometryBuffer(triangles, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, geometry.vertices.data(), 0, sizeof(vertex), geometry.vertices.size());
+  rtcSetSharedGeometryBuffer(triangles, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, geometry.indices.data(), 0, 3 * sizeof(std::uint32_t),
+                             geometry.indices.size() / 3);
   if (has_cut_outs(geometry)) {
     rtcSetGeometryUserData(triangles, const_cast<mesh*>(&geometry));
     rtcSetGeometryIntersectFilterFunction(triangles, skip_cut_outs);
@@ -81,7 +84,25 @@ ray_scene::~ray_scene() {
   rtcReleaseDevice(state_->device);
 }
 
+namespace {
+
+bool within(const glm::vec3& v, float limit) {
+  return std::fabs(v.x) <= limit && std::fabs(v.y) <= limit && std::fabs(v.z) <= limit;  // false for NaN
+}
+
+std::string text_of(const glm::vec3& v) {
+  char text[96];
+  std::snprintf(text, sizeof text, "(%g, %g, %g)", static_cast<double>(v.x), static_cast<double>(v.y), static_cast<double>(v.z));
+  return text;
+}
+
+}  // namespace
+
 ray_scene::hit ray_scene::intersect(const glm::vec3& origin, const glm::vec3& direction, float far) const {
+  // What Embree's ray.valid() asserts, with margin: a ray it would abort on is an error here.
+  if (!within(origin, max_ray_coordinate) || !within(direction, max_ray_coordinate) || !(glm::dot(direction, direction) > 0.0f) || !(far >= 1e-4f))
+    throw error("ray tracer: refused a ray from " + text_of(origin) + " along " + text_of(direction) +
+                " (not finite, or beyond " + count_text(static_cast<double>(max_ray_coordinate)) + ")");
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
   RTCRayHit query{};
@@ -114,6 +135,9 @@ ray_scene::hit ray_scene::intersect(const glm::vec3& origin, const glm::vec3& di
 }
 
 bool ray_scene::occluded(const glm::vec3& from, const glm::vec3& to) const {
+  if (!within(from, max_ray_coordinate) || !within(to, max_ray_coordinate))
+    throw error("ray tracer: refused a shadow ray from " + text_of(from) + " to " + text_of(to) + " (not finite, or beyond " +
+                count_text(static_cast<double>(max_ray_coordinate)) + ")");
   const glm::vec3 d = to - from;
   const float length = glm::length(d);
   if (!(length > 0.0f)) return false;
@@ -172,32 +196,6 @@ glm::vec3 one_bounce_irradiance(const ray_scene& bounce_rays, const ray_scene& l
 }
 
 namespace {
-double now_seconds() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-}  // namespace
-
-progress_bar::progress_bar(std::string label, std::size_t total)
-    : label_(std::move(label)), total_(std::max<std::size_t>(total, 1)), terminal_(isatty(2) != 0), start_(now_seconds()) {}
-
-void progress_bar::advance(std::size_t done) {
-  const std::size_t now = done_ += done;
-  if (!terminal_) return;
-  const int percent = static_cast<int>(100 * now / total_);
-  int last = last_percent_.load();
-  if (percent == last || !last_percent_.compare_exchange_strong(last, percent)) return;
-  const double elapsed = now_seconds() - start_;
-  const double eta = now > 0 ? elapsed * static_cast<double>(total_ - now) / static_cast<double>(now) : 0.0;
-  const int filled = percent / 4;
-  std::fprintf(stderr, "\r%s [%-25s] %3d%% ETA %4.0fs", label_.c_str(), std::string(static_cast<std::size_t>(filled), '=').c_str(), percent, eta);
-  std::fflush(stderr);
-}
-
-void progress_bar::finish() {
-  if (terminal_) std::fprintf(stderr, "\r%s done in %.1fs%40s\n", label_.c_str(), now_seconds() - start_, "");
-}
-
-namespace {
 
 image empty_indirect(const rsm_frame_constants& constants) {
   image out;
@@ -216,58 +214,138 @@ bool light_occluded(const ray_scene& rays, const glm::vec3& p, const glm::vec3& 
 
 }  // namespace
 
-image reference_rsm_gather(const ray_scene& rays, const rsm_pass_buffers& buffers, const rsm_frame_constants& constants,
-                                  const rsm_brute_force_options& options) {
-  if (options.receiver_stride < 1) throw error("brute-force RSM gather: receiver_stride must be >= 1");
-  if (!(options.max_radius >= 0.0f)) throw error("brute-force RSM gather: max_radius must be >= 0");
-  image out = empty_indirect(constants);
-  // Every lit RSM texel is a pixel light.
-  // Eq. 3.2 in the light's eye space, like the gather's receivers; the occlusion rays in the world,
-  // each light's world position and normal computed once.
+namespace {
+
+// The brute-force gather's pixel lights and per-receiver work, shared by the run and its estimate.
+class brute_force_gather {
+ public:
+  brute_force_gather(const ray_scene& rays, const rsm_pass_buffers& buffers, const rsm_frame_constants& constants, const rsm_brute_force_options& options)
+      : rays_(rays), buffers_(buffers), constants_(constants), options_(options), to_world_(glm::inverse(constants.light.view)) {
+    if (options.receiver_stride < 1) throw error("brute-force RSM gather: receiver_stride must be >= 1");
+    if (!(options.max_radius >= 0.0f)) throw error("brute-force RSM gather: max_radius must be >= 0");
+    // Every lit RSM texel is a pixel light. Eq. 3.2 in the light's eye space, like the gather's
+    // receivers; the occlusion rays in the world, each light's world position and normal computed once.
+    const std::vector<rsm_texel<float>> rsm = unpack_rsm(buffers, constants);
+    for (int y = 0; y < buffers.rsm.height; ++y)
+      for (int x = 0; x < buffers.rsm.width; ++x) {
+        const rsm_texel<float>& texel = rsm[static_cast<std::size_t>(y) * static_cast<std::size_t>(buffers.rsm.width) + static_cast<std::size_t>(x)];
+        if (texel.position.z < 0.0f && texel.flux != glm::vec3(0.0f))
+          lights_.push_back({texel.position, texel.normal, texel.flux, glm::vec2(x, y) + 0.5f, transform_point(to_world_, texel.position),
+                             transform_direction(to_world_, texel.normal)});
+      }
+    columns_ = (constants.indirect_size.x + options.receiver_stride - 1) / options.receiver_stride;
+    rows_ = (constants.indirect_size.y + options.receiver_stride - 1) / options.receiver_stride;
+  }
+
+  std::size_t light_count() const { return lights_.size(); }
+  /// Receivers computed (every stride-th per axis), numbered row by row.
+  std::uint64_t receiver_count() const { return static_cast<std::uint64_t>(columns_) * static_cast<std::uint64_t>(rows_); }
+  glm::ivec2 texel_of(std::uint64_t receiver) const {
+    return glm::ivec2(static_cast<int>(receiver % static_cast<std::uint64_t>(columns_)), static_cast<int>(receiver / static_cast<std::uint64_t>(columns_))) *
+           options_.receiver_stride;
+  }
+
+  /// [irradiance | visible fraction] at the receiver of `texel`, nothing where there is none.
+  std::optional<glm::vec4> gather(glm::ivec2 texel) const {
+    const std::optional<gather_receiver<float>> receiver = gather_receiver_at(texel, buffers_, constants_);
+    if (!receiver) return std::nullopt;
+    const glm::vec3 p = receiver->position, n = receiver->normal;
+    const glm::vec3 world_p = transform_point(to_world_, p), world_n = transform_direction(to_world_, n);
+    const float radius_squared = options_.max_radius * options_.max_radius;
+    glm::vec3 all(0.0f), seen(0.0f);
+    for (const light_texel& light : lights_) {
+      if (radius_squared > 0.0f) {
+        const glm::vec2 d = light.texel_centre - receiver->rsm_coordinate;
+        if (glm::dot(d, d) > radius_squared) continue;
+      }
+      const glm::vec3 e = pixel_light_irradiance(p, n, light.position, light.normal, light.flux, constants_.gather.irradiance);
+      if (e == glm::vec3(0.0f)) continue;
+      all += e;
+      if (!options_.exact_visibility || !light_occluded(rays_, world_p, world_n, light.world_position, light.world_normal)) seen += e;
+    }
+    const float total = all.x + all.y + all.z;
+    return glm::vec4(seen * 0.318309886183790671538f, total > 0.0f ? (seen.x + seen.y + seen.z) / total : 1.0f);
+  }
+
+ private:
   struct light_texel {
     glm::vec3 position, normal, flux;
     glm::vec2 texel_centre;
     glm::vec3 world_position, world_normal;
   };
-  const glm::mat4 to_world = glm::inverse(constants.light.view);
-  std::vector<light_texel> lights;
-  const std::vector<rsm_texel<float>> rsm = unpack_rsm(buffers, constants);
-  for (int y = 0; y < buffers.rsm.height; ++y)
-    for (int x = 0; x < buffers.rsm.width; ++x) {
-      const rsm_texel<float>& texel = rsm[static_cast<std::size_t>(y) * static_cast<std::size_t>(buffers.rsm.width) + static_cast<std::size_t>(x)];
-      if (texel.position.z < 0.0f && texel.flux != glm::vec3(0.0f))
-        lights.push_back({texel.position, texel.normal, texel.flux, glm::vec2(x, y) + 0.5f, transform_point(to_world, texel.position),
-                          transform_direction(to_world, texel.normal)});
+  const ray_scene& rays_;
+  const rsm_pass_buffers& buffers_;
+  const rsm_frame_constants& constants_;
+  rsm_brute_force_options options_;
+  glm::mat4 to_world_;
+  std::vector<light_texel> lights_;
+  int columns_ = 0, rows_ = 0;
+};
+
+// Items in a scrambled order: k -> k * stride mod count, with a stride coprime with the count
+// near 0.618 count. The finished part is then a sample of the whole image (not its empty top
+// rows first), so the progress and its time left are fair from the start.
+class scrambled_order {
+ public:
+  explicit scrambled_order(std::uint64_t count) : count_(std::max<std::uint64_t>(count, 1)) {
+    stride_ = std::max<std::uint64_t>(1, static_cast<std::uint64_t>(0.6180339887 * static_cast<double>(count_)));
+    while (std::gcd(stride_, count_) != 1) ++stride_;
+  }
+  std::uint64_t operator()(std::uint64_t k) const { return k * stride_ % count_; }  // k, stride < count <= 2^31: no overflow
+
+ private:
+  std::uint64_t count_, stride_ = 1;
+};
+
+// Runs `work(i)` for `count` items spread evenly over [0, total) on `threads` and returns the wall time.
+template <typename Work>
+double time_sample(std::uint64_t total, std::uint64_t count, int threads, const Work& work) {
+  const double start = steady_seconds();
+  parallel_for(static_cast<int>(count), threads, [&](int k) {
+    work(static_cast<std::uint64_t>((static_cast<double>(k) + 0.5) / static_cast<double>(count) * static_cast<double>(total)));
+  });
+  return steady_seconds() - start;
+}
+
+}  // namespace
+
+image reference_rsm_gather(const ray_scene& rays, const rsm_pass_buffers& buffers, const rsm_frame_constants& constants,
+                                  const rsm_brute_force_options& options, const progress_settings& progress_to) {
+  const brute_force_gather gather(rays, buffers, constants, options);
+  image out = empty_indirect(constants);
+  progress_monitor progress(options.exact_visibility ? "brute-force RSM gather with visibility" : "brute-force RSM gather", gather.receiver_count(),
+                            "receivers", progress_to);
+  const int columns = (out.width + options.receiver_stride - 1) / options.receiver_stride;
+  const int rows = (out.height + options.receiver_stride - 1) / options.receiver_stride;
+  const scrambled_order order(static_cast<std::uint64_t>(rows));
+  parallel_for(rows, options.threads, [&](int k) {
+    const auto row = static_cast<int>(order(static_cast<std::uint64_t>(k)));
+    for (int column = 0; column < columns && !progress.stopped(); ++column) {
+      const glm::ivec2 texel = gather.texel_of(static_cast<std::uint64_t>(row) * static_cast<std::uint64_t>(columns) + static_cast<std::uint64_t>(column));
+      if (const std::optional<glm::vec4> value = gather.gather(texel)) out.at(texel) = *value;
+      progress.advance();
     }
-  const int stride = options.receiver_stride;
-  const int rows = (out.height + stride - 1) / stride;
-  progress_bar progress(options.exact_visibility ? "brute-force RSM gather with visibility" : "brute-force RSM gather", static_cast<std::size_t>(rows));
-  const float radius_squared = options.max_radius * options.max_radius;
-  parallel_for(rows, options.threads, [&](int row) {
-    const int y = row * stride;
-    for (int x = 0; x < out.width; x += stride) {
-      const std::optional<gather_receiver<float>> receiver = gather_receiver_at(glm::ivec2(x, y), buffers, constants);
-      if (!receiver) continue;
-      const glm::vec3 p = receiver->position, n = receiver->normal;
-      const glm::vec3 world_p = transform_point(to_world, p), world_n = transform_direction(to_world, n);
-      glm::vec3 all(0.0f), seen(0.0f);
-      for (const light_texel& light : lights) {
-        if (radius_squared > 0.0f) {
-          const glm::vec2 d = light.texel_centre - receiver->rsm_coordinate;
-          if (glm::dot(d, d) > radius_squared) continue;
-        }
-        const glm::vec3 e = pixel_light_irradiance(p, n, light.position, light.normal, light.flux, constants.gather.irradiance);
-        if (e == glm::vec3(0.0f)) continue;
-        all += e;
-        if (!options.exact_visibility || !light_occluded(rays, world_p, world_n, light.world_position, light.world_normal)) seen += e;
-      }
-      const float total = all.x + all.y + all.z;
-      out.at(glm::ivec2(x, y)) = glm::vec4(seen * 0.318309886183790671538f, total > 0.0f ? (seen.x + seen.y + seen.z) / total : 1.0f);
-    }
-    progress.advance();
   });
   progress.finish();
   return out;
+}
+
+reference_cost estimate_rsm_gather(const ray_scene& rays, const rsm_pass_buffers& buffers, const rsm_frame_constants& constants,
+                                   const rsm_brute_force_options& options) {
+  const brute_force_gather gather(rays, buffers, constants, options);
+  reference_cost cost;
+  cost.units = gather.receiver_count();
+  cost.unit = "receivers";
+  const double pairs = static_cast<double>(cost.units) * static_cast<double>(gather.light_count());
+  cost.rays = options.exact_visibility ? pairs : 0.0;
+  cost.what = count_text(static_cast<double>(cost.units)) + " receivers x " + count_text(static_cast<double>(gather.light_count())) + " lit RSM texels" +
+              (options.exact_visibility ? ", a shadow ray per pair with light" : " (no rays: no visibility)");
+  // A receiver costs a shadow ray per lit texel (a 512^2 RSM: up to 262144): a few are enough.
+  const std::uint64_t sample = std::min<std::uint64_t>(cost.units, static_cast<std::uint64_t>(std::max(options.threads, 8)));
+  if (sample == 0) return cost;
+  const double seconds = time_sample(cost.units, sample, options.threads, [&](std::uint64_t receiver) { (void)gather.gather(gather.texel_of(receiver)); });
+  cost.seconds = seconds * static_cast<double>(cost.units) / static_cast<double>(sample);
+  return cost;
 }
 
 namespace {
@@ -335,6 +413,31 @@ std::vector<std::uint8_t> rsm_covered_receivers(const rsm_pass_buffers& buffers,
   return covered;
 }
 
+camera_rays::camera_rays(const camera& view, int width, int height) : width_(width), height_(height) {
+  if (width < 1 || height < 1) throw error("camera rays: the image size " + std::to_string(width) + "x" + std::to_string(height) + " is empty");
+  const glm::dmat4 projection = glm::perspective(glm::radians(static_cast<double>(view.vertical_fov_degrees)),
+                                                 static_cast<double>(width) / static_cast<double>(height), static_cast<double>(view.near_plane),
+                                                 static_cast<double>(view.far_plane));
+  const glm::dmat4 view_matrix = glm::lookAt(glm::dvec3(view.position), glm::dvec3(view.target), glm::dvec3(view.up));
+  inverse_ = glm::inverse(projection * view_matrix);
+  // The rays in between interpolate the corners' near and far points: finite corners, finite rays.
+  for (const glm::ivec2 corner : {glm::ivec2(0, 0), glm::ivec2(width - 1, 0), glm::ivec2(0, height - 1), glm::ivec2(width - 1, height - 1)}) {
+    const ray r = at(corner.x, corner.y);
+    if (!within(r.origin, max_ray_coordinate) || !within(r.direction, 1.5f) || !(glm::dot(r.direction, r.direction) > 0.5f))
+      throw error("camera at " + text_of(view.position) + " (near " + std::to_string(view.near_plane) + ", far " + std::to_string(view.far_plane) +
+                  "): its ray through pixel (" + std::to_string(corner.x) + ", " + std::to_string(corner.y) + ") is not finite");
+  }
+}
+
+camera_rays::ray camera_rays::at(int x, int y_from_top) const {
+  const glm::dvec2 ndc((static_cast<double>(x) + 0.5) / static_cast<double>(width_) * 2.0 - 1.0,
+                       1.0 - (static_cast<double>(y_from_top) + 0.5) / static_cast<double>(height_) * 2.0);
+  const glm::dvec4 near_point = inverse_ * glm::dvec4(ndc, -1.0, 1.0), far_point = inverse_ * glm::dvec4(ndc, 1.0, 1.0);
+  const glm::dvec3 origin = glm::dvec3(near_point) / near_point.w;
+  const glm::dvec3 direction = glm::normalize(glm::dvec3(far_point) / far_point.w - origin);
+  return {glm::vec3(origin), glm::vec3(direction)};
+}
+
 namespace {
 
 // GL's texture level of detail at a camera ray's hit: where the rays through the next pixel to the
@@ -370,49 +473,84 @@ float camera_ray_lod(const mesh& geometry, const ray_scene::hit& hit, const glm:
   return rho > 0.0f && std::isfinite(rho) ? std::log2(rho) : 0.0f;
 }
 
+// One pixel of the Monte Carlo reference: [radiance, indirect irradiance], nothing for a miss.
+struct one_bounce_pixel {
+  glm::vec3 radiance, indirect;
+};
+
+std::optional<one_bounce_pixel> trace_one_bounce_pixel(const ray_scene& rays, const scene& source, const camera_rays& primary, int x, int y, int width,
+                                                       int samples, std::uint32_t seed) {
+  const irradiance_settings<float> irradiance;
+  const camera_rays::ray ray = primary.at(x, y);
+  ray_scene::hit hit = rays.intersect(ray.origin, ray.direction);
+  if (!hit.found) return std::nullopt;
+  if (material_of_triangle(source.geometry, hit.triangle)) {
+    // A textured surface at GL's level of detail: the rays through the next pixel to the right
+    // and the next one down (camera_ray_lod).
+    const camera_rays::ray right = primary.at(x + 1, y), down = primary.at(x, y + 1);
+    const glm::vec3 origins[2] = {right.origin, down.origin}, directions[2] = {right.direction, down.direction};
+    hit.albedo = glm::vec3(surface_albedo_alpha(source.geometry, hit.triangle, hit.barycentric, camera_ray_lod(source.geometry, hit, origins, directions)));
+  }
+  const glm::vec3 n = glm::dot(hit.normal, ray.direction) < 0.0f ? hit.normal : -hit.normal;
+  const std::uint32_t key = static_cast<std::uint32_t>(y * width + x);
+  const glm::vec3 direct = direct_irradiance(rays, source.light, irradiance, hit.position, n);
+  const glm::vec3 bounce = samples > 0 ? one_bounce_irradiance(rays, source.light, irradiance, hit.position, n, samples, seed, key) : glm::vec3(0.0f);
+  return one_bounce_pixel{diffuse_radiance(hit.albedo, direct, 1.0f, bounce), bounce};
+}
+
 }  // namespace
 
-one_bounce_images reference_one_bounce(const scene& source, int width, int height, int samples, std::uint32_t seed, int threads) {
-  const ray_scene rays(source.geometry);
-  const glm::mat4 inverse = glm::inverse(camera_projection_matrix(source.view, static_cast<float>(width) / static_cast<float>(height)) *
-                                         camera_view_matrix(source.view));
-  const irradiance_settings<float> irradiance;
+one_bounce_images reference_one_bounce(const ray_scene& rays, const scene& source, int width, int height, int samples, std::uint32_t seed, int threads,
+                                       const progress_settings& progress_to) {
+  const camera_rays primary(source.view, width, height);
   one_bounce_images out;
   out.radiance = image(width, height, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
   out.indirect = out.radiance;
-  progress_bar progress("one-bounce Monte Carlo reference", static_cast<std::size_t>(height));
+  progress_monitor progress("one-bounce Monte Carlo reference", static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height), "pixels",
+                            progress_to);
   // Rows counted from the top (the estimate's seed key is y * width + x), stored bottom-up.
-  // The ray through the centre of pixel (x, y), y counted from the top.
-  const auto pixel_ray = [&](int x, int y, glm::vec3& origin, glm::vec3& direction) {
-    const glm::vec2 ndc((static_cast<float>(x) + 0.5f) / static_cast<float>(width) * 2.0f - 1.0f,
-                        1.0f - (static_cast<float>(y) + 0.5f) / static_cast<float>(height) * 2.0f);
-    const glm::vec4 near_point = inverse * glm::vec4(ndc, -1.0f, 1.0f), far_point = inverse * glm::vec4(ndc, 1.0f, 1.0f);
-    origin = glm::vec3(near_point) / near_point.w;
-    direction = glm::normalize(glm::vec3(far_point) / far_point.w - origin);
-  };
-  parallel_for(height, threads, [&](int y) {
-    for (int x = 0; x < width; ++x) {
-      glm::vec3 origin, direction;
-      pixel_ray(x, y, origin, direction);
-      ray_scene::hit hit = rays.intersect(origin, direction);
-      if (!hit.found) continue;
-      if (material_of_triangle(source.geometry, hit.triangle)) {
-        glm::vec3 origins[2], directions[2];
-        pixel_ray(x + 1, y, origins[0], directions[0]);
-        pixel_ray(x, y + 1, origins[1], directions[1]);
-        hit.albedo = glm::vec3(surface_albedo_alpha(source.geometry, hit.triangle, hit.barycentric, camera_ray_lod(source.geometry, hit, origins, directions)));
+  const scrambled_order order(static_cast<std::uint64_t>(height));
+  parallel_for(height, threads, [&](int k) {
+    const auto y = static_cast<int>(order(static_cast<std::uint64_t>(k)));
+    for (int x = 0; x < width && !progress.stopped(); ++x) {
+      if (const std::optional<one_bounce_pixel> pixel = trace_one_bounce_pixel(rays, source, primary, x, y, width, samples, seed)) {
+        out.radiance.at(x, height - 1 - y) = glm::vec4(pixel->radiance, 1.0f);
+        out.indirect.at(x, height - 1 - y) = glm::vec4(pixel->indirect, 1.0f);
       }
-      const glm::vec3 n = glm::dot(hit.normal, direction) < 0.0f ? hit.normal : -hit.normal;
-      const std::uint32_t key = static_cast<std::uint32_t>(y * width + x);
-      const glm::vec3 direct = direct_irradiance(rays, source.light, irradiance, hit.position, n);
-      const glm::vec3 bounce = one_bounce_irradiance(rays, source.light, irradiance, hit.position, n, samples, seed, key);
-      out.radiance.at(x, height - 1 - y) = glm::vec4(diffuse_radiance(hit.albedo, direct, 1.0f, bounce), 1.0f);
-      out.indirect.at(x, height - 1 - y) = glm::vec4(bounce, 1.0f);
+      progress.advance();
     }
-    progress.advance();
   });
   progress.finish();
   return out;
+}
+
+one_bounce_images reference_one_bounce(const scene& source, int width, int height, int samples, std::uint32_t seed, int threads) {
+  const ray_scene rays(source.geometry);
+  return reference_one_bounce(rays, source, width, height, samples, seed, threads);
+}
+
+reference_cost estimate_one_bounce(const ray_scene& rays, const scene& source, int width, int height, int samples, std::uint32_t seed, int threads) {
+  const camera_rays primary(source.view, width, height);
+  reference_cost cost;
+  cost.units = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
+  cost.unit = "pixels";
+  cost.rays = static_cast<double>(cost.units) * (2.0 + 2.0 * static_cast<double>(samples));
+  cost.what = count_text(static_cast<double>(cost.units)) + " pixels x (a camera and a shadow ray + " + std::to_string(samples) +
+              " x (a bounce and a shadow ray))";
+  // Two timed runs over the same pixels, without and with some samples: a pixel's cost is
+  // linear in its samples, and the difference isolates the part that is.
+  const std::uint64_t sample = std::min<std::uint64_t>(cost.units, 2048);
+  const int calibration_samples = std::min(samples, 32);
+  const auto run = [&](int with_samples) {
+    return time_sample(cost.units, sample, threads, [&](std::uint64_t pixel) {
+      (void)trace_one_bounce_pixel(rays, source, primary, static_cast<int>(pixel % static_cast<std::uint64_t>(width)),
+                                   static_cast<int>(pixel / static_cast<std::uint64_t>(width)), width, with_samples, seed);
+    });
+  };
+  const double base = run(0), with = run(calibration_samples);
+  const double per_sample = std::max(with - base, 0.0) / static_cast<double>(calibration_samples);
+  cost.seconds = (base + per_sample * static_cast<double>(samples)) * static_cast<double>(cost.units) / static_cast<double>(sample);
+  return cost;
 }
 
 }  // namespace vplkit

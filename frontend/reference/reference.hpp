@@ -2,10 +2,12 @@
 // Fig. 5.1d (every pixel light of the RSM at every G-buffer point, with exact visibility or
 // without), and a one-bounce Monte Carlo reference that does not depend on the RSM (direct light
 // plus one diffuse bounce of direct light, path traced). Deterministic for a seed (per-pixel
-// hashes), multi-threaded, with a progress bar and ETA on a terminal and silence otherwise.
+// hashes), multi-threaded. Both are long work: estimate_* say what a run costs (rays, and seconds
+// from a calibration on this machine) before it starts, and a progress_monitor reports it and
+// stops it at its deadline (frontend/core/progress.hpp). Every ray is checked before it reaches
+// Embree (an Embree assertion aborts the process).
 #pragma once
 
-#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -13,15 +15,16 @@
 
 #include <glm/glm.hpp>
 
+#include "frontend/core/progress.hpp"
 #include "frontend/image/image.hpp"
 #include "frontend/techniques/rsm/rsm_pipeline.hpp"
 #include "frontend/scene/scene.hpp"
 
 namespace vplkit {
 
-/// An Embree scene of a mesh: closest hits and occlusion tests. The mesh must outlive it.
-/// Cut-outs of alpha-tested materials are not hit (a filter function tests each candidate hit's
-/// alpha at texture level 0).
+/// An Embree scene of a mesh: closest hits and occlusion tests. It shares the mesh's vertex and
+/// index arrays (no copy): the mesh must outlive it, unchanged. Cut-outs of alpha-tested
+/// materials are not hit (a filter function tests each candidate hit's alpha at texture level 0).
 class ray_scene {
  public:
   explicit ray_scene(const mesh& geometry);
@@ -38,9 +41,11 @@ class ray_scene {
     std::size_t triangle = 0;
     glm::vec2 barycentric{0.0f};  ///< (u, v): the point is (1 - u - v) a + u b + v c
   };
+  /// The closest hit along the ray. Throws vplkit::error when the ray is not one Embree takes
+  /// (a non-finite or huge origin, a non-finite or zero direction): Embree would abort.
   hit intersect(const glm::vec3& origin, const glm::vec3& direction, float far = 1e30f) const;
   /// Whether anything lies on the segment from `from` to `to` (both ends excluded by a small
-  /// epsilon relative to the segment's length).
+  /// epsilon relative to the segment's length). Throws like intersect for a non-finite end.
   bool occluded(const glm::vec3& from, const glm::vec3& to) const;
 
  private:
@@ -65,20 +70,38 @@ glm::vec3 one_bounce_irradiance(const ray_scene& bounce_rays, const ray_scene& l
                                 const irradiance_settings<float>& irradiance, const glm::vec3& x, const glm::vec3& n, int samples,
                                 std::uint32_t seed, std::uint32_t key);
 
-/// Prints a progress bar with an ETA to stderr when it is a terminal; silent otherwise.
-class progress_bar {
+/// The largest ray origin coordinate, direction component or distance the tracer takes: far
+/// below Embree's own limit (1.8e18, beyond which it asserts), far above max_scene_coordinate.
+inline constexpr float max_ray_coordinate = 1.0e12f;
+
+/// The camera's primary rays, computed in double: the inverse projection of a camera with znear
+/// 1e-6 and zfar 50 (or 0.05 and 1e7) loses every digit in float. Origins on the near plane,
+/// unit directions, the same pixels as the GL pipelines (camera_view_matrix and
+/// camera_projection_matrix in double).
+class camera_rays {
  public:
-  progress_bar(std::string label, std::size_t total);
-  void advance(std::size_t done = 1);
-  void finish();
+  /// Throws vplkit::error naming the camera when a corner ray of the image is not finite.
+  camera_rays(const camera& view, int width, int height);
+  struct ray {
+    glm::vec3 origin;
+    glm::vec3 direction;
+  };
+  /// The ray through the centre of pixel (x, y), y counted from the top row.
+  ray at(int x, int y_from_top) const;
 
  private:
-  std::string label_;
-  std::size_t total_;
-  std::atomic<std::size_t> done_{0};
-  bool terminal_;
-  double start_;
-  std::atomic<int> last_percent_{-1};
+  glm::dmat4 inverse_;
+  int width_, height_;
+};
+
+/// What a reference run costs before it starts: an upper bound of its rays and an estimate of
+/// its wall time on this machine (a calibration run of a sample of its work, same threads).
+struct reference_cost {
+  double rays = 0.0;          ///< at most this many rays
+  double seconds = 0.0;       ///< estimated wall time
+  std::uint64_t units = 0;    ///< the work items progress counts (pixels, receivers)
+  std::string unit;           ///< their name
+  std::string what;           ///< how the rays are counted, for the announcement
 };
 
 /// Options of the brute-force RSM gather (the thesis's Fig. 5.1d).
@@ -100,7 +123,12 @@ struct rsm_brute_force_options {
 /// rsm_covered_receivers). Returns [irradiance | the fraction of the unoccluded irradiance that is
 /// visible (1 without visibility)].
 image reference_rsm_gather(const ray_scene& rays, const rsm_pass_buffers& buffers, const rsm_frame_constants& constants,
-                                  const rsm_brute_force_options& options);
+                                  const rsm_brute_force_options& options, const progress_settings& progress = {});
+
+/// The cost of reference_rsm_gather with these options: receivers x lit RSM texels pairs (a ray
+/// each with exact visibility), timed on up to 64 receivers spread over the buffer.
+reference_cost estimate_rsm_gather(const ray_scene& rays, const rsm_pass_buffers& buffers, const rsm_frame_constants& constants,
+                                   const rsm_brute_force_options& options);
 
 /// The radial pattern's own samples (the same pattern, seed and weights as the frame's gather)
 /// with exact visibility: each sample's pixel light is ray cast instead of tested against the
@@ -122,7 +150,16 @@ struct one_bounce_images {
   image indirect;  ///< E_one_bounce at each pixel's surface
 };
 
-/// The one-bounce Monte Carlo reference of a scene seen by its camera.
+/// The one-bounce Monte Carlo reference of a scene seen by its camera (`rays` of its geometry).
+/// Throws vplkit::error when the progress deadline stops it.
+one_bounce_images reference_one_bounce(const ray_scene& rays, const scene& source, int width, int height, int samples, std::uint32_t seed, int threads,
+                                       const progress_settings& progress = {});
+/// The same with its own ray_scene of the scene's geometry.
 one_bounce_images reference_one_bounce(const scene& source, int width, int height, int samples, std::uint32_t seed, int threads);
+
+/// The cost of reference_one_bounce: at most width x height x (2 + 2 samples) rays (a camera and
+/// a shadow ray per pixel, a bounce and a shadow ray per sample), the time from two calibration
+/// runs on up to 2048 pixels (without and with min(samples, 32) samples), extrapolated linearly.
+reference_cost estimate_one_bounce(const ray_scene& rays, const scene& source, int width, int height, int samples, std::uint32_t seed, int threads);
 
 }  // namespace vplkit

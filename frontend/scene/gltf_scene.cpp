@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <functional>
 #include <limits>
 #include <map>
 #include <optional>
 #include <sstream>
+#include <string_view>
+#include <unordered_map>
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -25,35 +28,71 @@ namespace fs = std::filesystem;
 namespace vplkit {
 namespace {
 
-// tinygltf's file access, bounded: only regular files in the glTF's folder tree, at most
-// max_file_bytes each, nothing written. Without a folder (parse_gltf from memory) nothing is read.
+std::string size_text(std::uintmax_t bytes) {
+  if (bytes >= (std::uintmax_t{1} << 30) && bytes % (std::uintmax_t{1} << 30) == 0) return std::to_string(bytes >> 30) + " GiB";
+  if (bytes >= (std::uintmax_t{1} << 20) && bytes % (std::uintmax_t{1} << 20) == 0) return std::to_string(bytes >> 20) + " MiB";
+  return std::to_string(bytes) + " bytes";
+}
+
+// tinygltf's file access, bounded: only regular files in the glTF's folder tree, named by a
+// relative path without "..", all of them together at most max_bytes; nothing written. Without a
+// folder (parse_gltf from memory) nothing is read. tinygltf has percent-decoded the URI once and
+// joined it to the folder; it then also tries the current folder, which is never ours.
 struct file_access {
-  fs::path base_dir;
-  std::uintmax_t max_bytes;
+  std::string base_dir;            ///< as tinygltf joins it
+  std::uintmax_t max_bytes = 0;    ///< the budget of all external files
+  std::uintmax_t used_bytes = 0;
+  std::string refusal;             ///< why a file was refused: the message, not tinygltf's
 };
+
+std::string folder_prefix(const std::string& base) { return base.empty() || base.back() == '/' ? base : base + "/"; }
 
 bool file_exists(const std::string& path, void* user) {
   const auto* access = static_cast<const file_access*>(user);
   if (access->base_dir.empty()) return true;  // read_whole_file then says why it is refused
-  std::error_code ignored;
-  return fs::is_regular_file(path, ignored);
+  // Only the candidate in the glTF's folder; read_whole_file decides whether it may be read.
+  return path.compare(0, folder_prefix(access->base_dir).size(), folder_prefix(access->base_dir)) == 0;
 }
 
 std::string expand_file_path(const std::string& path, void*) { return path; }
 
-bool read_whole_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
-  const auto* access = static_cast<const file_access*>(user);
-  if (access->base_dir.empty()) {
-    if (err) *err += "external file '" + path + "' refused: the glTF was given from memory";
-    return false;
+// Why a URI (percent-decoded, relative to the glTF's folder) may not be read; empty when it may.
+std::string refused_path(const std::string& relative) {
+  if (relative.empty()) return "it is empty";
+  if (relative.find('\0') != std::string::npos) return "it contains a NUL character";
+  if (relative.front() == '/') return "it is an absolute path";
+  for (std::size_t begin = 0; begin <= relative.size();) {
+    std::size_t end = relative.find('/', begin);
+    if (end == std::string::npos) end = relative.size();
+    if (relative.compare(begin, end - begin, "..") == 0) return "it has a '..' component";
+    begin = end + 1;
   }
+  return {};
+}
+
+bool read_whole_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+  auto* access = static_cast<file_access*>(user);
+  const auto refuse = [&](const std::string& why) {
+    access->refusal = why;
+    if (err) *err += why;
+    return false;
+  };
+  if (access->base_dir.empty()) return refuse("external file '" + excerpt_path(path) + "' refused: the glTF was given from memory");
+  const std::string relative = path.substr(folder_prefix(access->base_dir).size());
+  if (const std::string why = refused_path(relative); !why.empty())
+    return refuse("external file '" + excerpt_path(relative) + "' refused: " + why + " (a glTF reads files in its own folder tree only)");
   try {
-    const std::string bytes = read_file(path, access->max_bytes, "glTF buffer");
-    out->assign(bytes.begin(), bytes.end());
+    std::error_code code;
+    const std::uintmax_t bytes = fs::is_regular_file(path, code) ? fs::file_size(path, code) : 0;
+    if (!code && access->used_bytes + bytes > access->max_bytes)
+      return refuse("external file '" + excerpt_path(relative) + "' (" + std::to_string(bytes) + " bytes) would bring its external data to " +
+                    std::to_string(access->used_bytes + bytes) + " bytes, more than the " + size_text(access->max_bytes) +
+                    " vplkit reads for one glTF (all buffers and images together)");
+    read_file_into(path, access->max_bytes - access->used_bytes, "glTF external file", *out);
+    access->used_bytes += out->size();
     return true;
   } catch (const error& failure) {
-    if (err) *err += failure.what();
-    return false;
+    return refuse(failure.what());
   }
 }
 
@@ -77,7 +116,100 @@ bool keep_image_bytes(tinygltf::Image* image, const int index, std::string*, std
 // The extensions the reader reads; any other one the file uses or requires is named in a note.
 bool extension_read(const std::string& name) { return name == "KHR_lights_punctual" || name == "KHR_texture_transform"; }
 
+// The deepest nesting of arrays and objects in JSON text (strings skipped, escapes too), checked
+// before tinygltf parses it: its conversion to tinygltf::Value recurses once per level, and a
+// 40 KB file nested 20,000 deep overflows the stack.
+void check_json_depth(std::string_view json, const std::string& name, int max_depth) {
+  int depth = 0;
+  bool in_string = false;
+  for (std::size_t at = 0; at < json.size(); ++at) {
+    const char c = json[at];
+    if (in_string) {
+      if (c == '\\') ++at;
+      else if (c == '"') in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > max_depth)
+        throw error(name + ": its JSON nests arrays and objects more than " + std::to_string(max_depth) + " deep (at byte " + std::to_string(at) +
+                    "); vplkit reads at most " + std::to_string(max_depth) + " levels");
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+}
+
+// The JSON chunk of a GLB, when its header and first chunk are well formed (tinygltf reports
+// the rest).
+std::string_view glb_json(const std::string& bytes) {
+  const auto word = [&](std::size_t at) {
+    std::uint32_t value = 0;
+    std::memcpy(&value, bytes.data() + at, 4);
+    return value;  // GLB is little-endian, as is every machine vplkit builds on
+  };
+  if (bytes.size() < 20 || word(16) != 0x4E4F534Au) return {};  // "JSON"
+  const std::uint32_t length = word(12);
+  if (length > bytes.size() - 20) return {};
+  return std::string_view(bytes).substr(20, length);
+}
+
 bool finite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+std::string number_text(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
+// An accessor's elements where they lie in their buffer, checked once (count, offset, stride
+// against the buffer view and the buffer, the component type); reading allocates nothing.
+class accessor_view {
+ public:
+  accessor_view() = default;
+  accessor_view(const unsigned char* base, std::size_t count, std::size_t stride, int component_type, int components)
+      : base_(base), count_(count), stride_(stride), component_type_(component_type), components_(components) {}
+  std::size_t count() const { return count_; }
+  double get(std::size_t element, int component) const {
+    const unsigned char* at = base_ + element * stride_;
+    switch (component_type_) {
+      case TINYGLTF_COMPONENT_TYPE_FLOAT: { float f; std::memcpy(&f, at + 4 * component, 4); return f; }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { std::uint32_t u; std::memcpy(&u, at + 4 * component, 4); return u; }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { std::uint16_t u; std::memcpy(&u, at + 2 * component, 2); return u; }
+      default: return at[component];  // UNSIGNED_BYTE
+    }
+  }
+  glm::dvec3 vec3(std::size_t element) const { return {get(element, 0), get(element, 1), get(element, 2)}; }
+
+ private:
+  const unsigned char* base_ = nullptr;
+  std::size_t count_ = 0, stride_ = 0;
+  int component_type_ = TINYGLTF_COMPONENT_TYPE_FLOAT;
+  int components_ = 1;
+};
+
+// Source vertex -> mesh vertex of one primitive instance: a table when the primitive uses many
+// of its accessor's vertices, a hash map when it uses few of a large one (so that instancing a
+// 3-index primitive of a 10^7-vertex accessor 1000 times costs 3000 entries, not 10^10).
+class vertex_map {
+ public:
+  vertex_map(std::size_t vertex_count, std::size_t corner_count) {
+    if (vertex_count <= 4 * corner_count + 1024) table_.assign(vertex_count, none);
+  }
+  static constexpr std::uint32_t none = 0xffffffffu;
+  std::uint32_t find(std::uint32_t source) const {
+    if (!table_.empty()) return table_[source];
+    const auto found = map_.find(source);
+    return found == map_.end() ? none : found->second;
+  }
+  void insert(std::uint32_t source, std::uint32_t target) {
+    if (!table_.empty()) table_[source] = target;
+    else map_.emplace(source, target);
+  }
+
+ private:
+  std::vector<std::uint32_t> table_;
+  std::unordered_map<std::uint32_t, std::uint32_t> map_;
+};
 
 class reader {
  public:
@@ -89,7 +221,7 @@ class reader {
     visited_.assign(model_.nodes.size(), false);
     material_of_.assign(model_.materials.size(), unread);
     texture_of_.assign(model_.images.size(), unread);
-    for (int root : roots()) visit(root, glm::dmat4(1.0));
+    walk(roots());
     if (geometry_.indices.empty()) fail("no triangles in its scene (only TRIANGLES primitives are read; points, lines, strips and fans are not)");
     if (!library_.materials.empty()) geometry_.materials = std::make_shared<const material_library>(std::move(library_));
     framing_needs needs;
@@ -160,7 +292,7 @@ class reader {
     std::vector<bool> is_child(model_.nodes.size(), false);
     for (const tinygltf::Node& node : model_.nodes)
       for (int child : node.children) {
-        check_node(child, "node '" + node.name + "'");
+        check_node(child, "node '" + excerpt(node.name) + "'");
         is_child[static_cast<std::size_t>(child)] = true;
       }
     std::vector<int> out;
@@ -198,25 +330,38 @@ class reader {
     return m;
   }
 
-  void visit(int index, const glm::dmat4& parent) {
-    if (index < 0 || index >= static_cast<int>(model_.nodes.size())) fail("node " + std::to_string(index) + " does not exist");
-    if (visited_[static_cast<std::size_t>(index)]) fail("node " + std::to_string(index) + " is reached twice (the node graph must be a tree)");
-    visited_[static_cast<std::size_t>(index)] = true;
-    const tinygltf::Node& node = model_.nodes[static_cast<std::size_t>(index)];
-    const glm::dmat4 world = parent * local_transform(node, index);
-    for (int k = 0; k < 4; ++k)
-      if (!finite(glm::dvec3(world[k])) || !std::isfinite(world[k][3])) fail("node " + std::to_string(index) + ": its world transform is not finite");
-    if (node.mesh >= 0) add_mesh(node.mesh, world);
-    if (node.camera >= 0 && !camera_) read_camera(node.camera, world);
-    if (!light_) {
-      const auto found = node.extensions.find("KHR_lights_punctual");
-      if (found != node.extensions.end() && found->second.Has("light")) read_light(found->second.Get("light").GetNumberAsInt(), world);
+  // Depth first, children in their order (the first camera and light met are the same as a
+  // recursive walk's), with an explicit stack: a chain of 20,000 nodes is as easy as a flat list.
+  void walk(const std::vector<int>& roots) {
+    struct pending {
+      int index;
+      glm::dmat4 parent;
+    };
+    std::vector<pending> stack;
+    for (auto root = roots.rbegin(); root != roots.rend(); ++root) stack.push_back({*root, glm::dmat4(1.0)});
+    while (!stack.empty()) {
+      const pending next = stack.back();
+      stack.pop_back();
+      const int index = next.index;
+      if (index < 0 || index >= static_cast<int>(model_.nodes.size())) fail("node " + std::to_string(index) + " does not exist");
+      if (visited_[static_cast<std::size_t>(index)]) fail("node " + std::to_string(index) + " is reached twice (the node graph must be a tree)");
+      visited_[static_cast<std::size_t>(index)] = true;
+      const tinygltf::Node& node = model_.nodes[static_cast<std::size_t>(index)];
+      const glm::dmat4 world = next.parent * local_transform(node, index);
+      for (int k = 0; k < 4; ++k)
+        if (!finite(glm::dvec3(world[k])) || !std::isfinite(world[k][3])) fail("node " + std::to_string(index) + ": its world transform is not finite");
+      if (node.mesh >= 0) add_mesh(node.mesh, world);
+      if (node.camera >= 0 && !camera_) read_camera(node.camera, world);
+      if (!light_) {
+        const auto found = node.extensions.find("KHR_lights_punctual");
+        if (found != node.extensions.end() && found->second.Has("light")) read_light(found->second.Get("light").GetNumberAsInt(), world);
+      }
+      for (auto child = node.children.rbegin(); child != node.children.rend(); ++child) stack.push_back({*child, world});
     }
-    for (int child : node.children) visit(child, world);
   }
 
-  // The accessor's elements as doubles, `components` per element, after checking every byte it reads.
-  std::vector<double> read_accessor(int index, int components, const std::string& what) const {
+  // The accessor's elements, `components` per element, after checking every byte it reads.
+  accessor_view view_accessor(int index, int components, const std::string& what) const {
     if (index < 0 || index >= static_cast<int>(model_.accessors.size())) fail(what + ": accessor " + std::to_string(index) + " does not exist");
     const tinygltf::Accessor& accessor = model_.accessors[static_cast<std::size_t>(index)];
     const std::string where = what + " (accessor " + std::to_string(index) + ")";
@@ -225,6 +370,9 @@ class reader {
       fail(where + ": expected " + std::to_string(components) + " components per element");
     const int component_bytes = tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(accessor.componentType));
     if (component_bytes <= 0) fail(where + ": unknown component type " + std::to_string(accessor.componentType));
+    if (accessor.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && accessor.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT &&
+        accessor.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT && accessor.componentType != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE)
+      fail(where + ": component type " + std::to_string(accessor.componentType) + " is not read here");
     if (accessor.bufferView < 0 || accessor.bufferView >= static_cast<int>(model_.bufferViews.size()))
       fail(where + ": buffer view " + std::to_string(accessor.bufferView) + " does not exist");
     const tinygltf::BufferView& view = model_.bufferViews[static_cast<std::size_t>(accessor.bufferView)];
@@ -233,29 +381,14 @@ class reader {
     const std::uint64_t element_bytes = static_cast<std::uint64_t>(component_bytes) * static_cast<std::uint64_t>(components);
     const std::uint64_t stride = view.byteStride > 0 ? static_cast<std::uint64_t>(view.byteStride) : element_bytes;
     const std::uint64_t count = accessor.count;
-    if (count > (std::uint64_t{1} << 32)) fail(where + ": " + std::to_string(count) + " elements is too many");
     if (stride < element_bytes) fail(where + ": its stride is shorter than an element");
     const std::uint64_t view_begin = view.byteOffset, view_length = view.byteLength;
     if (view_begin > data.size() || view_length > data.size() - view_begin) fail(where + ": its buffer view lies outside buffer " + std::to_string(view.buffer));
     const std::uint64_t first = accessor.byteOffset;
     if (count > 0 && (first > view_length || (count - 1) > (view_length - first) / stride || (count - 1) * stride + element_bytes > view_length - first))
       fail(where + ": " + std::to_string(count) + " elements do not fit in its buffer view");
-    std::vector<double> out(static_cast<std::size_t>(count) * static_cast<std::size_t>(components));
-    const unsigned char* base = data.data() + view_begin + first;
-    for (std::uint64_t i = 0; i < count; ++i)
-      for (int c = 0; c < components; ++c) {
-        const unsigned char* at = base + i * stride + static_cast<std::uint64_t>(c * component_bytes);
-        double value = 0.0;
-        switch (accessor.componentType) {
-          case TINYGLTF_COMPONENT_TYPE_FLOAT: { float f; std::memcpy(&f, at, 4); value = f; break; }
-          case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { std::uint32_t u; std::memcpy(&u, at, 4); value = u; break; }
-          case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { std::uint16_t u; std::memcpy(&u, at, 2); value = u; break; }
-          case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: value = *at; break;
-          default: fail(where + ": component type " + std::to_string(accessor.componentType) + " is not read here");
-        }
-        out[static_cast<std::size_t>(i) * static_cast<std::size_t>(components) + static_cast<std::size_t>(c)] = value;
-      }
-    return out;
+    return accessor_view(data.data() + view_begin + first, static_cast<std::size_t>(count), static_cast<std::size_t>(stride), accessor.componentType,
+                         components);
   }
 
   glm::vec3 albedo_of(int material) const {
@@ -422,26 +555,37 @@ class reader {
     return {cached, library_.materials.back().texture >= 0 ? texcoord_set : -1};
   }
 
-  // TEXCOORD_<set> of a primitive as float pairs (normalized unsigned bytes and shorts scaled to
-  // [0, 1], as the spec allows), or empty when the primitive has none.
-  std::vector<double> texture_coordinates(const tinygltf::Primitive& primitive, int set, std::size_t vertex_count, const std::string& what) const {
+  // TEXCOORD_<set> of a primitive where it lies in its buffer (normalized unsigned bytes and shorts
+  // scaled to [0, 1], as the spec allows), or an empty view when the primitive has none.
+  struct texcoord_view {
+    accessor_view values;
+    double scale = 1.0;
+    std::string where;
+    bool empty() const { return values.count() == 0; }
+  };
+  texcoord_view texture_coordinates(const tinygltf::Primitive& primitive, int set, std::size_t vertex_count, const std::string& what) const {
     const auto found = primitive.attributes.find("TEXCOORD_" + std::to_string(set));
     if (found == primitive.attributes.end()) return {};
-    const std::string where = what + " TEXCOORD_" + std::to_string(set);
-    double scale = 1.0;
+    texcoord_view out;
+    out.where = what + " TEXCOORD_" + std::to_string(set);
     if (found->second >= 0 && found->second < static_cast<int>(model_.accessors.size())) {
       const tinygltf::Accessor& accessor = model_.accessors[static_cast<std::size_t>(found->second)];
-      if (accessor.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && accessor.normalized) scale = 1.0 / 255.0;
-      else if (accessor.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT && accessor.normalized) scale = 1.0 / 65535.0;
-      else if (accessor.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT) fail(where + ": must be float, or normalized unsigned bytes or shorts");
+      if (accessor.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && accessor.normalized) out.scale = 1.0 / 255.0;
+      else if (accessor.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT && accessor.normalized) out.scale = 1.0 / 65535.0;
+      else if (accessor.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT) fail(out.where + ": must be float, or normalized unsigned bytes or shorts");
     }
-    std::vector<double> values = read_accessor(found->second, 2, where);
-    if (values.size() != 2 * vertex_count) fail(where + " and POSITION differ in count");
-    for (double& value : values) {
-      value *= scale;
-      if (!std::isfinite(value) || std::fabs(value) > 1e6) fail(where + ": a coordinate is not finite or beyond 1e6");
-    }
-    return values;
+    out.values = view_accessor(found->second, 2, out.where);
+    if (out.values.count() != vertex_count) fail(out.where + " and POSITION differ in count");
+    return out;
+  }
+
+  // Vertex i's texture coordinate, checked as it is read.
+  glm::vec2 texture_coordinate(const texcoord_view& texcoords, std::uint32_t i) const {
+    if (texcoords.empty()) return glm::vec2(0.0f);
+    const glm::dvec2 uv(texcoords.values.get(i, 0) * texcoords.scale, texcoords.values.get(i, 1) * texcoords.scale);
+    if (!std::isfinite(uv.x) || !std::isfinite(uv.y) || std::fabs(uv.x) > 1e6 || std::fabs(uv.y) > 1e6)
+      fail(texcoords.where + ": a coordinate is not finite or beyond 1e6");
+    return glm::vec2(uv);
   }
 
   void add_mesh(int index, const glm::dmat4& world) {
@@ -458,34 +602,41 @@ class reader {
       if (model_.accessors.size() > static_cast<std::size_t>(position->second) && position->second >= 0 &&
           model_.accessors[static_cast<std::size_t>(position->second)].componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
         fail(what + ": POSITION must be float (quantized positions are not read)");
-      const std::vector<double> positions = read_accessor(position->second, 3, what + " POSITION");
-      const std::size_t vertex_count = positions.size() / 3;
-      std::vector<double> normals;
+      const accessor_view positions = view_accessor(position->second, 3, what + " POSITION");
+      const std::size_t vertex_count = positions.count();
+      accessor_view normals;
+      bool has_normals = false;
       if (const auto normal = primitive.attributes.find("NORMAL"); normal != primitive.attributes.end()) {
         if (normal->second >= 0 && normal->second < static_cast<int>(model_.accessors.size()) &&
             model_.accessors[static_cast<std::size_t>(normal->second)].componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
           fail(what + ": NORMAL must be float (quantized normals are not read)");
-        normals = read_accessor(normal->second, 3, what + " NORMAL");
-        if (normals.size() != positions.size()) fail(what + ": NORMAL and POSITION differ in count");
+        normals = view_accessor(normal->second, 3, what + " NORMAL");
+        if (normals.count() != vertex_count) fail(what + ": NORMAL and POSITION differ in count");
+        has_normals = true;
       }
-      std::vector<std::uint32_t> corners;
+      accessor_view indices;
       if (primitive.indices >= 0) {
         if (primitive.indices < static_cast<int>(model_.accessors.size()) &&
             model_.accessors[static_cast<std::size_t>(primitive.indices)].componentType == TINYGLTF_COMPONENT_TYPE_FLOAT)
           fail(what + ": indices must be unsigned integers, not floats");
-        for (double v : read_accessor(primitive.indices, 1, what + " indices")) {
-          if (v >= static_cast<double>(vertex_count)) fail(what + ": index " + std::to_string(static_cast<std::uint64_t>(v)) + " is beyond its " + std::to_string(vertex_count) + " vertices");
-          corners.push_back(static_cast<std::uint32_t>(v));
-        }
-      } else {
-        for (std::size_t i = 0; i < vertex_count; ++i) corners.push_back(static_cast<std::uint32_t>(i));
+        indices = view_accessor(primitive.indices, 1, what + " indices");
       }
-      if (corners.size() % 3 != 0) fail(what + ": " + std::to_string(corners.size()) + " corners is not a whole number of triangles");
-      if (geometry_.triangle_count() + corners.size() / 3 > limits_.max_triangles)
+      const std::size_t corner_count = primitive.indices >= 0 ? indices.count() : vertex_count;
+      // Sizes first: nothing is allocated for a primitive the limits refuse.
+      if (corner_count % 3 != 0) fail(what + ": " + std::to_string(corner_count) + " corners is not a whole number of triangles");
+      if (geometry_.triangle_count() + corner_count / 3 > limits_.max_triangles)
         fail("more than " + std::to_string(limits_.max_triangles) + " triangles");
+      if (vertex_count > std::size_t{0xfffffffe}) fail(what + ": " + std::to_string(vertex_count) + " vertices is too many");
+      const auto corner = [&](std::size_t k) -> std::uint32_t {
+        if (primitive.indices < 0) return static_cast<std::uint32_t>(k);
+        const double v = indices.get(k, 0);
+        if (v >= static_cast<double>(vertex_count))
+          fail(what + ": index " + std::to_string(static_cast<std::uint64_t>(v)) + " is beyond its " + std::to_string(vertex_count) + " vertices");
+        return static_cast<std::uint32_t>(v);
+      };
       const glm::vec3 albedo = albedo_of(primitive.material);
       const material_use use = material_for(primitive.material);
-      std::vector<double> texcoords;
+      texcoord_view texcoords;
       if (use.texcoord_set >= 0) {
         texcoords = texture_coordinates(primitive, use.texcoord_set, vertex_count, what);
         if (texcoords.empty())
@@ -495,29 +646,44 @@ class reader {
       if (!primitive.targets.empty()) note("morph targets", "meshes are drawn undeformed");
       const std::size_t first_index = geometry_.indices.size();
       const auto world_position = [&](std::uint32_t i) {
-        const glm::dvec3 p = glm::dvec3(world * glm::dvec4(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2], 1.0));
+        const glm::dvec3 p = glm::dvec3(world * glm::dvec4(positions.vec3(i), 1.0));
         if (!finite(p) || glm::any(glm::greaterThan(glm::abs(p), glm::dvec3(max_mesh_coordinate))))
           fail(what + ": vertex " + std::to_string(i) + " is not finite or beyond " + std::to_string(max_mesh_coordinate) + " in the world");
         return p;
       };
-      // Each triangle gets its own three vertices: flat normals need them, and a vertex of a
-      // smooth mesh is simply repeated.
-      for (std::size_t t = 0; t + 2 < corners.size(); t += 3) {
-        std::uint32_t a = corners[t], b = corners[t + 1], c = corners[t + 2];
+      // The vertex's own normal in the world, or nothing when it has none or a degenerate one.
+      const auto world_normal = [&](std::uint32_t i) -> std::optional<glm::dvec3> {
+        if (!has_normals) return std::nullopt;
+        const glm::dvec3 turned = normal_matrix * normals.vec3(i);
+        const double length = glm::length(turned);
+        if (std::isfinite(length) && length > 1e-12) return turned / length;
+        return std::nullopt;
+      };
+      // A vertex with its own normal is shared by every triangle that uses it (the mesh stays
+      // indexed); without one it takes its triangle's flat normal, as the glTF spec asks, and
+      // so needs a copy per triangle.
+      vertex_map shared(has_normals ? vertex_count : 0, corner_count);
+      geometry_.indices.reserve(geometry_.indices.size() + corner_count);
+      for (std::size_t t = 0; t + 2 < corner_count; t += 3) {
+        std::uint32_t a = corner(t), b = corner(t + 1), c = corner(t + 2);
         if (mirrored) std::swap(b, c);
         const glm::dvec3 pa = world_position(a), pb = world_position(b), pc = world_position(c);
         const glm::dvec3 face = glm::cross(pb - pa, pc - pa);
         const double face_length = glm::length(face);
+        const glm::dvec3 flat = face_length > 0.0 ? face / face_length : glm::dvec3(0, 1, 0);
         for (const auto& [i, p] : {std::pair{a, pa}, std::pair{b, pb}, std::pair{c, pc}}) {
-          glm::dvec3 n = face_length > 0.0 ? face / face_length : glm::dvec3(0, 1, 0);
-          if (!normals.empty()) {
-            const glm::dvec3 turned = normal_matrix * glm::dvec3(normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]);
-            const double length = glm::length(turned);
-            if (std::isfinite(length) && length > 1e-12) n = turned / length;
+          const std::optional<glm::dvec3> own = world_normal(i);
+          if (own) {
+            if (const std::uint32_t found = shared.find(i); found != vertex_map::none) {
+              geometry_.indices.push_back(found);
+              continue;
+            }
           }
-          const glm::vec2 uv = texcoords.empty() ? glm::vec2(0.0f) : glm::vec2(static_cast<float>(texcoords[2 * i]), static_cast<float>(texcoords[2 * i + 1]));
-          geometry_.vertices.push_back({glm::vec3(p), glm::vec3(n), albedo, uv});
-          geometry_.indices.push_back(static_cast<std::uint32_t>(geometry_.vertices.size() - 1));
+          if (geometry_.vertices.size() >= std::size_t{0xffffffffu}) fail("more than 2^32 vertices");
+          const auto added = static_cast<std::uint32_t>(geometry_.vertices.size());
+          geometry_.vertices.push_back({glm::vec3(p), glm::vec3(own ? *own : flat), albedo, texture_coordinate(texcoords, i)});
+          geometry_.indices.push_back(added);
+          if (own) shared.insert(i, added);
         }
       }
       // A range for the primitive's triangles when its material is more than a factor (one range
@@ -576,7 +742,8 @@ class reader {
       colour = glm::dvec3(source.color[0], source.color[1], source.color[2]);
     }
     const glm::dvec3 power = colour * source.intensity;
-    if (!finite(power) || glm::any(glm::lessThan(power, glm::dvec3(0.0)))) fail(where + ": intensity x color must be finite and >= 0");
+    if (!finite(power) || glm::any(glm::lessThan(power, glm::dvec3(0.0))) || glm::any(glm::greaterThan(power, glm::dvec3(max_light_power))))
+      fail(where + ": intensity x color must be in [0, " + number_text(max_light_power) + "] (intensity " + number_text(source.intensity) + ")");
     const glm::dvec3 direction = axis(world, {0, 0, -1});
     if (!finite(direction)) fail(where + ": its node's transform is degenerate");
     scene_light light;
@@ -620,37 +787,48 @@ class reader {
 
 scene parse_gltf(const std::string& bytes, bool binary, const std::string& name, const fs::path& base_dir, const gltf_limits& limits) {
   if (bytes.size() > std::numeric_limits<unsigned int>::max()) throw error(name + ": larger than 4 GiB");
-  file_access access{base_dir, limits.max_file_bytes};
+  check_json_depth(binary ? glb_json(bytes) : std::string_view(bytes), name, limits.max_json_depth);
+  file_access access;
+  access.base_dir = base_dir.empty() ? std::string() : base_dir.string();
+  access.max_bytes = limits.max_external_bytes;
   tinygltf::TinyGLTF loader;
   loader.SetFsCallbacks({&file_exists, &expand_file_path, &read_whole_file, &write_whole_file, &access});
   image_bytes images;
   loader.SetImageLoader(&keep_image_bytes, &images);
   tinygltf::Model model;
   std::string err, warn;
-  const std::string base = base_dir.empty() ? std::string() : base_dir.string();
   bool loaded = false;
   try {
     loaded = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
-                                                  static_cast<unsigned int>(bytes.size()), base)
-                    : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), static_cast<unsigned int>(bytes.size()), base);
+                                                  static_cast<unsigned int>(bytes.size()), access.base_dir)
+                    : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), static_cast<unsigned int>(bytes.size()), access.base_dir);
   } catch (const std::exception& failure) {
     // tinygltf indexes an empty decoded data URI with at(0).
     err += failure.what();
   }
+  if (!access.refusal.empty()) {
+    // A refused external file: our reason, not tinygltf's wrapping of it. (An image tinygltf
+    // could not read is only a warning to it, and a refused one must still fail the load.)
+    throw error(name + ": " + access.refusal);
+  }
   if (!loaded) {
-    while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
-    throw error(name + ": not a readable glTF 2.0 file (" + (err.empty() ? std::string("no reason given") : err) + ")");
+    // tinygltf's messages echo the input (a 16 MiB data URI, a long path): each line cut short.
+    std::string reason;
+    std::istringstream lines(err);
+    for (std::string line; std::getline(lines, line);)
+      if (!line.empty()) reason += (reason.empty() ? "" : "; ") + excerpt(line);
+    throw error(name + ": not a readable glTF 2.0 file (" + (reason.empty() ? std::string("no reason given") : excerpt(reason, 4 * max_echoed_characters)) + ")");
   }
   return reader(model, name, limits, images).read();
 }
 
 scene load_gltf(const fs::path& path, const gltf_limits& limits) {
   const std::string extension = path.extension().string();
-  if (extension != ".gltf" && extension != ".glb") throw error(path.string() + ": a glTF file ends in .gltf or .glb");
+  if (extension != ".gltf" && extension != ".glb") throw error(excerpt_path(path.string()) + ": a glTF file ends in .gltf or .glb");
   const std::string bytes = read_file(path, limits.max_file_bytes, "glTF file");
   fs::path folder = path.parent_path();
   if (folder.empty()) folder = ".";
-  return parse_gltf(bytes, extension == ".glb", path.string(), folder, limits);
+  return parse_gltf(bytes, extension == ".glb", excerpt_path(path.string()), folder, limits);
 }
 
 std::string gltf_text(const scene& source) {

@@ -35,6 +35,13 @@
 // number for being finite; a bad file throws vplkit::error naming the file and the problem. Images
 // are decoded only when a base colour texture uses them, each within gltf_limits::textures and all
 // together within max_texture_pixels.
+// Nothing recurses on the input's depth: the JSON's nesting is measured (skipping strings) before
+// tinygltf parses it (its conversion recurses per level), and the node tree is walked with an
+// explicit stack. External files (buffers, images) are read only from the glTF's folder tree:
+// the URI, percent-decoded once (by tinygltf), must be a relative path without a ".." component,
+// and all of them together count against one budget. Accessors are read in place (nothing is
+// widened or copied), their sizes checked before anything is allocated, and a primitive with
+// normals keeps its vertices shared (indexed) in the mesh.
 #pragma once
 
 #include <cstdint>
@@ -48,13 +55,16 @@ namespace vplkit {
 
 /// What a glTF file may make vplkit read and allocate.
 struct gltf_limits {
-  std::uintmax_t max_file_bytes = std::uintmax_t{1} << 30;    ///< the .gltf/.glb and each external buffer
+  std::uintmax_t max_file_bytes = std::uintmax_t{1} << 30;      ///< the .gltf/.glb file
+  std::uintmax_t max_external_bytes = std::uintmax_t{1} << 30;  ///< every external buffer and image together
   std::size_t max_triangles = std::size_t{1} << 24;
   texture_limits textures;                                     ///< each base colour texture's image
   std::uint64_t max_texture_pixels = std::uint64_t{1} << 28;   ///< all textures together (1 GiB of RGBA8)
+  /// Arrays and objects nested in the JSON (glTF's own schema nests 7 deep; extras take the rest).
+  int max_json_depth = 64;
 };
 
-/// Loads a .gltf or .glb file (external buffers and images are read from its folder).
+/// Loads a .gltf or .glb file (external buffers and images are read from its folder tree).
 scene load_gltf(const std::filesystem::path& path, const gltf_limits& limits = {});
 
 /// The same from bytes in memory: `binary` for GLB; external buffers are looked up in

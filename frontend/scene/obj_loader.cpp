@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 #include <optional>
+#include <unordered_map>
 #include <vector>
 
 #include "frontend/core/error.hpp"
@@ -210,6 +211,57 @@ corner parse_corner(std::string_view word, std::size_t positions, std::size_t te
   return {static_cast<std::uint32_t>(resolved[0]), static_cast<std::int32_t>(resolved[1]), static_cast<std::int32_t>(resolved[2])};
 }
 
+// What makes two triangle corners the same mesh vertex: the position, where the normal comes
+// from (a `vn` index, or -1 for the smooth normal of the position), the material (the albedo and
+// the texture: an index into the materials faces use) and the `vt` index (-1 for none).
+struct vertex_key {
+  std::uint32_t position = 0;
+  std::int32_t normal = -1;
+  std::uint32_t material = 0;
+  std::int32_t texture_coordinate = -1;
+  bool operator==(const vertex_key& other) const {
+    return position == other.position && normal == other.normal && material == other.material && texture_coordinate == other.texture_coordinate;
+  }
+};
+
+struct vertex_key_hash {
+  std::size_t operator()(const vertex_key& key) const {
+    std::uint64_t h = key.position;
+    h = h * 0x9e3779b97f4a7c15ull ^ static_cast<std::uint32_t>(key.normal);
+    h = h * 0x9e3779b97f4a7c15ull ^ key.material;
+    h = h * 0x9e3779b97f4a7c15ull ^ static_cast<std::uint32_t>(key.texture_coordinate);
+    return static_cast<std::size_t>(h ^ (h >> 29));
+  }
+};
+
+// Mesh vertices by key: the first key of each position in a flat array (the common case, one
+// vertex per position), any other key of the position in a hash map.
+class vertex_index {
+ public:
+  explicit vertex_index(std::size_t positions) : first_(positions) {}
+  static constexpr std::uint32_t none = 0xffffffffu;
+  std::uint32_t find(const vertex_key& key) const {
+    const entry& first = first_[key.position];
+    if (first.vertex != none && first.key == key) return first.vertex;
+    if (others_.empty()) return none;
+    const auto found = others_.find(key);
+    return found == others_.end() ? none : found->second;
+  }
+  void insert(const vertex_key& key, std::uint32_t vertex) {
+    entry& first = first_[key.position];
+    if (first.vertex == none) first = {key, vertex};
+    else others_.emplace(key, vertex);
+  }
+
+ private:
+  struct entry {
+    vertex_key key;
+    std::uint32_t vertex = none;
+  };
+  std::vector<entry> first_;
+  std::unordered_map<vertex_key, std::uint32_t, vertex_key_hash> others_;
+};
+
 }  // namespace
 
 mesh parse_obj(std::string_view text, const std::string& name, const material_library_reader& read_library, const obj_limits& limits,
@@ -322,7 +374,12 @@ mesh parse_obj(std::string_view text, const std::string& name, const material_li
     library.materials.push_back(std::move(made));
   }
 
+  // The mesh stays indexed: corners with the same position, normal source, material and texture
+  // coordinate share a vertex, so that memory follows the mesh (about 50 bytes a triangle for a
+  // closed surface), not three copies of every vertex.
   mesh result;
+  vertex_index shared(positions.size());
+  result.indices.reserve(corners.size());
   for (std::size_t face = 0; face < corners.size(); face += 3) {
     const material& face_material = used[triangle_material[face / 3]];
     glm::vec3 corner_position[3];
@@ -332,18 +389,37 @@ mesh parse_obj(std::string_view text, const std::string& name, const material_li
     if (!(area > 0.0f) || !std::isfinite(area)) continue;  // degenerate triangle: nothing to shade
     face_normal /= area;
     for (std::size_t k = 0; k < 3; ++k) {
-      const glm::vec3 smooth = smooth_normals[corners[face + k].position];
-      const float smooth_length = glm::length(smooth);
-      // The smooth normal, unless it leans away from the face (a crease folded over itself).
-      glm::vec3 normal = smooth_length > 0.0f && std::isfinite(smooth_length) && glm::dot(smooth, face_normal) > 0.0f ? glm::normalize(smooth) : face_normal;
-      if (corners[face + k].normal >= 0) {
-        const glm::vec3 given = normals[static_cast<std::size_t>(corners[face + k].normal)];
+      const corner& at = corners[face + k];
+      // The file's normal where it gives a usable one; else the smooth normal, unless it leans
+      // away from the face (a crease folded over itself): then the face's own, for this corner only.
+      std::optional<glm::vec3> normal;
+      vertex_key key{at.position, -1, triangle_material[face / 3], at.texture_coordinate};
+      if (at.normal >= 0) {
+        const glm::vec3 given = normals[static_cast<std::size_t>(at.normal)];
         const float given_length = glm::length(given);
-        if (given_length > 0.0f && std::isfinite(given_length)) normal = glm::normalize(given);
+        if (given_length > 0.0f && std::isfinite(given_length)) {
+          normal = glm::normalize(given);
+          key.normal = at.normal;
+        }
       }
-      const std::int32_t uv = corners[face + k].texture_coordinate;
-      result.indices.push_back(static_cast<std::uint32_t>(result.vertices.size()));
-      result.vertices.push_back({corner_position[k], normal, face_material.albedo, uv >= 0 ? texture_coordinates[static_cast<std::size_t>(uv)] : glm::vec2(0.0f)});
+      if (!normal) {
+        const glm::vec3 smooth = smooth_normals[at.position];
+        const float smooth_length = glm::length(smooth);
+        if (smooth_length > 0.0f && std::isfinite(smooth_length) && glm::dot(smooth, face_normal) > 0.0f) normal = glm::normalize(smooth);
+      }
+      const bool shareable = normal.has_value();
+      if (shareable) {
+        if (const std::uint32_t found = shared.find(key); found != vertex_index::none) {
+          result.indices.push_back(found);
+          continue;
+        }
+      }
+      const std::int32_t uv = at.texture_coordinate;
+      const auto added = static_cast<std::uint32_t>(result.vertices.size());
+      result.vertices.push_back({corner_position[k], shareable ? *normal : face_normal, face_material.albedo,
+                                 uv >= 0 ? texture_coordinates[static_cast<std::size_t>(uv)] : glm::vec2(0.0f)});
+      result.indices.push_back(added);
+      if (shareable) shared.insert(key, added);
     }
     // A textured face (every corner with a vt) joins its material's range; one without vt is plain.
     const int surface = surface_of[triangle_material[face / 3]];

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <tuple>
 #include <limits>
 
@@ -425,7 +426,7 @@ scene built_in_scene(const std::string& name) {
   if (name == "teapots") return make_teapot_scene(10);
   std::string known;
   for (const std::string& candidate : built_in_scene_names()) known += (known.empty() ? "" : ", ") + candidate;
-  throw error("unknown scene '" + name + "' (built-in scenes: " + known + ", or a path to an .obj file)");
+  throw error("unknown scene '" + excerpt(name) + "' (built-in scenes: " + known + ", or a path to an .obj, .gltf or .glb file)");
 }
 
 }  // namespace vplkit
@@ -437,7 +438,16 @@ namespace {
 bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 std::string text_of(const glm::vec3& v) {
-  return "(" + std::to_string(v.x) + ", " + std::to_string(v.y) + ", " + std::to_string(v.z) + ")";
+  // Built with += rather than "(" + string: GCC 12 gives a false -Wrestrict on the latter (bug 105329).
+  std::string text = "(";
+  text += std::to_string(v.x) + ", " + std::to_string(v.y) + ", " + std::to_string(v.z) + ")";
+  return text;
+}
+
+std::string power_limit_text() {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", static_cast<double>(max_light_power));
+  return text;
 }
 
 }  // namespace
@@ -548,10 +558,14 @@ void check_light(const scene_light& light, const std::string& owner) {
   if (light.kind == light_kind::spot) {
     const spot_light<float>& spot = light.spot;
     if (!finite(spot.position) || !finite(spot.direction) || !finite(spot.intensity)) throw error(owner + ": the spot light has a non-finite value");
+    if (glm::any(glm::greaterThan(glm::abs(spot.intensity), glm::vec3(max_light_power))))
+      throw error(owner + ": the spot light's intensity is beyond " + power_limit_text() + " (vplkit's outputs must stay finite)");
     if (const setting_problem problem = validate(spot)) throw error(owner + ": " + problem.message());
   } else {
     const directional_light<float>& sun = light.directional;
     if (!finite(sun.direction) || !finite(sun.irradiance)) throw error(owner + ": the directional light has a non-finite value");
+    if (glm::any(glm::greaterThan(glm::abs(sun.irradiance), glm::vec3(max_light_power))))
+      throw error(owner + ": the directional light's irradiance is beyond " + power_limit_text() + " (vplkit's outputs must stay finite)");
     if (const setting_problem problem = validate(sun)) throw error(owner + ": " + problem.message());
   }
 }

@@ -66,6 +66,13 @@ inline constexpr float max_scene_coordinate = 1.0e7f;
 /// puts a floor and a light up to 3 bounding radii from the mesh's centre.
 inline constexpr float max_mesh_coordinate = max_scene_coordinate / 10.0f;
 
+/// The largest light intensity (a spot's W/sr) or irradiance (a sun's W/m^2) per channel. The
+/// Monte Carlo reference's radiance is at most about 10^4 times it (the 0.01 distance clamp), and
+/// a pixel's sum over 2^20 samples stays below 10^31, far from FLT_MAX: its outputs stay finite.
+/// (A frame_mesh light of a mesh at max_mesh_coordinate is 2 x 10^13.) Render targets in
+/// rgba16f overflow much earlier (65504); the writers refuse a non-finite pixel.
+inline constexpr float max_light_power = 1.0e20f;
+
 struct camera {
   glm::vec3 position{0.0f, 1.0f, 3.8f};
   glm::vec3 target{0.0f, 1.0f, 0.0f};
@@ -107,8 +114,9 @@ void check_materials(const mesh& geometry, const std::string& name);
 /// planes, a field of view outside (0, 180) degrees, its target at its position or its up vector
 /// along its view direction.
 void check_camera(const camera& view, const std::string& owner);
-/// Throws vplkit::error starting with `owner` when the light has a non-finite value or fails its
-/// kernel's validate (a zero direction, cone angles out of order, ...).
+/// Throws vplkit::error starting with `owner` when the light has a non-finite value, a power
+/// beyond max_light_power, or fails its kernel's validate (a zero direction, cone angles out of
+/// order, ...).
 void check_light(const scene_light& light, const std::string& owner);
 
 /// Throws vplkit::error naming the scene and the first bad value: check_mesh's, or a non-finite

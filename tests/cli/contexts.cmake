@@ -35,4 +35,25 @@ endif()
 expect_failure("no GL context (window without a display)" "no GL context: GLFW" ""
                ${CMAKE_COMMAND} -E env --unset=DISPLAY --unset=WAYLAND_DISPLAY "${VPLKIT}" info --context window)
 
+# The environment variables that stand for options are checked like them (issue 26): a malformed
+# one is a usage error (exit 2) naming the variable, never ignored for another context.
+foreach(case "VPLKIT_EGL_DEVICE=junk;VPLKIT_EGL_DEVICE must be an EGL device index in \\[0, 1024\\] like --device .*got 'junk'"
+             "VPLKIT_EGL_DEVICE=-1;VPLKIT_EGL_DEVICE must be an EGL device index"
+             "VPLKIT_CONTEXT=junk;VPLKIT_CONTEXT must be one of auto, egl, egl-surfaceless, osmesa; got 'junk'"
+             "VPLKIT_THREADS=junk;VPLKIT_THREADS must be a whole number in \\[1, 1024\\]; got 'junk'")
+  list(GET case 0 variable)
+  list(GET case 1 pattern)
+  execute_process(COMMAND ${CMAKE_COMMAND} -E env ${variable} "${VPLKIT}" render --size 8 --out "${WORK}/environment.png"
+                  RESULT_VARIABLE code ERROR_VARIABLE err OUTPUT_QUIET)
+  expect_true("${variable} is refused like its option (exit ${code}: ${err})" code EQUAL 2 AND err MATCHES "${pattern}" AND NOT EXISTS "${WORK}/environment.png")
+endforeach()
+expect_failure("VPLKIT_EGL_DEVICE=99 is a device asked for: no fallback" "no EGL device 99: this machine has [0-9]+ \\(vplkit info lists them\\); VPLKIT_EGL_DEVICE asked for it" "${WORK}/environment.png"
+               ${CMAKE_COMMAND} -E env VPLKIT_EGL_DEVICE=99 "${VPLKIT}" render --size 8 --out "${WORK}/environment.png")
+expect_failure("VPLKIT_SHADER_DIR that is not a folder" "shader directory not found: ${WORK}/no-such-folder \\(VPLKIT_SHADER_DIR, which stands for --shader-dir\\)" "${WORK}/environment.png"
+               ${CMAKE_COMMAND} -E env VPLKIT_SHADER_DIR=${WORK}/no-such-folder "${VPLKIT}" render --size 8 --out "${WORK}/environment.png")
+expect_failure("--shader-dir that is not a folder" "shader directory not found: ${WORK}/no-such-folder \\(--shader-dir\\)" "${WORK}/environment.png"
+               "${VPLKIT}" render --shader-dir "${WORK}/no-such-folder" --size 8 --out "${WORK}/environment.png")
+expect_success("VPLKIT_EGL_DEVICE=0 renders on device 0" "technique rsm-alg6"
+               ${CMAKE_COMMAND} -E env VPLKIT_EGL_DEVICE=0 "${VPLKIT}" render --size 8 --out "${WORK}/environment.png")
+
 cli_report()

@@ -77,4 +77,109 @@ expect_failure("compare: a PNG claiming 65535^2" "claims-65535-squared\\.png: th
 expect_success("compare: pixels of +-3e38 give finite metrics and an error image" "\\| RMSE \\| [0-9.]+e\\+38 \\|.*\\| PSNR \\(dB\\) \\| -?[0-9.]+ \\|.*wrote .*/extreme-error\\.png"
                "${VPLKIT}" compare "${H}/inputs/extreme-pixels.pfm" "${H}/inputs/one-pixel.pfm" --error-image "${H}/extreme-error.png")
 
+# Issue 26. Depth: a 20,000-node chain loads (no recursion on it); JSON nested 20,000 deep and
+# an include chain deeper than 32 are refused by their depth.
+set(chain_nodes "")
+foreach(i RANGE 1 19999)
+  string(APPEND chain_nodes "{\"children\":[${i}]},")
+endforeach()
+set(triangle_uri "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA")
+# A triangle glTF: its nodes (the scene's roots: the first, or the first three when `more` is
+# given), the asset's extras, its buffer's URI, and what else the top level has.
+function(triangle_gltf path nodes extras uri more)
+  set(roots "0")
+  if(NOT more STREQUAL "")
+    set(roots "0,1,2")
+  endif()
+  file(WRITE "${path}" "{\"asset\":{\"version\":\"2.0\",\"extras\":${extras}},\"scene\":0,\"scenes\":[{\"nodes\":[${roots}]}],\"nodes\":${nodes},"
+       "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]}],\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,"
+       "\"type\":\"VEC3\",\"min\":[0,0,0],\"max\":[1,1,0]}],\"bufferViews\":[{\"buffer\":0,\"byteLength\":36}],\"buffers\":[{\"byteLength\":36,"
+       "\"uri\":\"${uri}\"}]${more}}")
+endfunction()
+triangle_gltf("${H}/chain.gltf" "[${chain_nodes}{\"mesh\":0}]" "0" "${triangle_uri}" "")
+expect_success("glTF: a chain of 20,000 nodes renders" "wrote .*/chain\\.png" "${VPLKIT}" render --scene "${H}/chain.gltf" --size 16 --out "${H}/chain.png")
+string(REPEAT "[" 20000 open_brackets)
+string(REPEAT "]" 20000 close_brackets)
+triangle_gltf("${H}/deep-extras.gltf" "[{\"mesh\":0}]" "${open_brackets}${close_brackets}" "${triangle_uri}" "")
+expect_failure("glTF: extras nested 20,000 arrays deep" "deep-extras\\.gltf: its JSON nests arrays and objects more than 64 deep" "${H}/out*"
+               "${VPLKIT}" render --scene "${H}/deep-extras.gltf" --size 16 --out "${H}/out.png")
+file(COPY "${SHADERS}/" DESTINATION "${H}/include-chain")
+file(APPEND "${H}/include-chain/lib/direct_light.glsl" "\n#include \"lib/chain0.glsl\"\n")
+foreach(i RANGE 0 99)
+  math(EXPR next "${i} + 1")
+  file(WRITE "${H}/include-chain/lib/chain${i}.glsl" "#include \"lib/chain${next}.glsl\"\n")
+endforeach()
+file(WRITE "${H}/include-chain/lib/chain100.glsl" "// the end\n")
+expect_failure("a chain of 100 shader includes" "lib/chain[0-9]+\\.glsl:1: including \"lib/chain[0-9]+\\.glsl\" nests includes more than 32 deep" "${H}/out*"
+               "${VPLKIT}" render --shader-dir "${H}/include-chain" --size 16 --out "${H}/out.png")
+
+# Extremes: camera planes whose float inverse projection fails; a light whose reference overflows.
+set(lit "\"extensionsUsed\":[\"KHR_lights_punctual\"],\"extensions\":{\"KHR_lights_punctual\":{\"lights\":[{\"type\":\"spot\",\"intensity\":INTENSITY,\"spot\":{\"innerConeAngle\":0.3,\"outerConeAngle\":0.6}}]}},\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":0.8,\"znear\":ZNEAR,\"zfar\":ZFAR}}]")
+set(lit_nodes "[{\"mesh\":0},{\"camera\":0,\"translation\":[0.3,0.3,2]},{\"extensions\":{\"KHR_lights_punctual\":{\"light\":0}},\"translation\":[0.3,0.3,0.3]}]")
+foreach(planes "0.05;1e7" "1e-6;50")
+  list(GET planes 0 znear)
+  list(GET planes 1 zfar)
+  string(REPLACE "INTENSITY" "10" more "${lit}")
+  string(REPLACE "ZNEAR" "${znear}" more "${more}")
+  string(REPLACE "ZFAR" "${zfar}" more "${more}")
+  triangle_gltf("${H}/camera-${znear}.gltf" "${lit_nodes}" "0" "${triangle_uri}" ",${more}")
+  expect_success("reference: a camera with znear ${znear} and zfar ${zfar}" "wrote .*/camera-${znear}\\.pfm"
+                 "${VPLKIT}" reference --scene "${H}/camera-${znear}.gltf" --size 32 --samples 2 --out "${H}/camera-${znear}.pfm")
+  expect_success("compare reads the reference of znear ${znear}" "\\| RMSE \\| 0 \\|" "${VPLKIT}" compare "${H}/camera-${znear}.pfm" "${H}/camera-${znear}.pfm")
+endforeach()
+string(REPLACE "INTENSITY" "3.4e38" more "${lit}")
+string(REPLACE "ZNEAR" "0.05" more "${more}")
+string(REPLACE "ZFAR" "50" more "${more}")
+triangle_gltf("${H}/spot-3.4e38.gltf" "${lit_nodes}" "0" "${triangle_uri}" ",${more}")
+expect_failure("reference: a spot of intensity 3.4e38" "spot-3\\.4e38\\.gltf: light 0: intensity x color must be in \\[0, 1e\\+20\\]" "${H}/spot*.pfm"
+               "${VPLKIT}" reference --scene "${H}/spot-3.4e38.gltf" --size 16 --samples 1 --out "${H}/spot.pfm")
+
+# External files: only the glTF's folder tree, percent-decoded once; an echoed input is cut short.
+file(MAKE_DIRECTORY "${H}/elsewhere/outside" "${H}/elsewhere/scene")
+file(WRITE "${H}/elsewhere/outside/x.bin" "123456789012345678901234567890123456")
+file(WRITE "${H}/elsewhere/scene/in.bin" "123456789012345678901234567890123456")
+foreach(case "dotdot;../outside/x.bin" "percent;%2e%2e/outside/x.bin" "percent-upper;%2E%2E/outside/x.bin")
+  list(GET case 0 name)
+  list(GET case 1 uri)
+  triangle_gltf("${H}/elsewhere/scene/${name}.gltf" "[{\"mesh\":0}]" "0" "${uri}" "")
+  expect_failure("glTF: buffer ${uri}" "external file '\\.\\./outside/x\\.bin' refused: it has a '\\.\\.' component" "${H}/out*"
+                 "${VPLKIT}" render --scene "${H}/elsewhere/scene/${name}.gltf" --size 16 --out "${H}/out.png")
+endforeach()
+triangle_gltf("${H}/elsewhere/scene/inside.gltf" "[{\"mesh\":0}]" "0" "in%2Ebin" "")
+expect_success("glTF: buffer in%2Ebin (in.bin, in its folder)" "wrote .*/inside\\.png" "${VPLKIT}" render --scene "${H}/elsewhere/scene/inside.gltf" --size 16 --out "${H}/inside.png")
+string(REPEAT "A" 16777216 sixteen_mebibytes)
+triangle_gltf("${H}/data-uri.gltf" "[{\"mesh\":0}]" "0" "data:application/octet-stream;base64,${sixteen_mebibytes}!" "")
+set(sixteen_mebibytes "")
+execute_process(COMMAND "${VPLKIT}" render --scene "${H}/data-uri.gltf" --size 16 --out "${H}/out.png" RESULT_VARIABLE code ERROR_VARIABLE err OUTPUT_VARIABLE out)
+string(LENGTH "${err}" err_length)
+expect_true("glTF: a broken 16 MiB data URI is not echoed whole (exit ${code}, ${err_length} characters)"
+            code EQUAL 1 AND err_length LESS 1200 AND err MATCHES "data-uri\\.gltf: not a readable glTF 2\\.0 file")
+
+foreach(option --technique --scene)
+  execute_process(COMMAND "${VPLKIT}" render ${option} "${long_number}" --size 16 --out "${H}/out.png" RESULT_VARIABLE code ERROR_VARIABLE err OUTPUT_QUIET)
+  string(LENGTH "${err}" err_length)
+  expect_true("render ${option} of 100000 characters: cut in the message (exit ${code}, ${err_length} characters)"
+              (code EQUAL 1 OR code EQUAL 2) AND err_length LESS 1000 AND err MATCHES "11111\\.\\.\\. \\(100000 bytes\\)")
+endforeach()
+
+# Outputs: a legal 244-character name (its -indirect.pfm has 253); a sibling name too long for
+# the file system is refused with the system's reason, nothing written; a size derived from an
+# option names it.
+string(REPEAT "n" 240 long_name)
+expect_success("reference --out with a 244-character name" "wrote .*/${long_name}\\.pfm.*wrote .*/${long_name}-indirect\\.pfm"
+               "${VPLKIT}" reference --size 8 --samples 1 --out "${H}/${long_name}.pfm")
+expect_failure("render --out whose -visibility-difference.png would have 266 characters" "cannot write .*nnnn-visibility-difference\\.png \\([0-9]+ bytes\\): File name too long"
+               "${H}/too-long/*" "${VPLKIT}" render --size 16 --out "${H}/too-long/${long_name}.png")
+expect_failure("--face-size 4096" "--face-size: must be a whole number in \\[1, 2730\\] \\(texels\\), got '4096'" "${H}/out*"
+               "${VPLKIT}" render --technique finalgather-polygon --face-size 4096 --size 16 --out "${H}/out.png")
+
+# PNG through libspng: an inflate bomb and an index beyond the palette are refused.
+file(COPY "${FUZZ_INPUTS}/png/inflate-bomb-1x1" "${FUZZ_INPUTS}/png/palette-index-beyond" DESTINATION "${H}/png")
+file(RENAME "${H}/png/inflate-bomb-1x1" "${H}/png/bomb.png")
+file(RENAME "${H}/png/palette-index-beyond" "${H}/png/palette.png")
+expect_failure("compare: an inflate bomb" "bomb\\.png: not a readable PNG \\(its compressed image data is [0-9]+ bytes, more than a 1x1 image can need" ""
+               "${VPLKIT}" compare "${H}/png/bomb.png" "${H}/png/bomb.png")
+expect_failure("compare: a palette index beyond the palette" "palette\\.png: not a readable PNG \\(pixel \\(1, 0\\) uses palette entry 5, but the palette has 2\\)" ""
+               "${VPLKIT}" compare "${H}/png/palette.png" "${H}/png/palette.png")
+
 cli_report()

@@ -14,7 +14,7 @@ expect_failure("Light Wave more maps than VPLs" "more accurate shadow maps \\(20
                "${VPLKIT}" render --technique lightwave-accurate --ray-angle 90 --vpls-per-ray 1 --size 32 --out "${WORK}/lw3.png")
 expect_failure("Light Wave negative steps" "--integrated-steps.*must be a whole number in \\[0, 64\\]" "${WORK}/lw4.png"
                "${VPLKIT}" render --technique lightwave-integrated --integrated-steps -1 --size 32 --out "${WORK}/lw4.png")
-expect_failure("Light Wave shadow maps beyond GL_MAX_TEXTURE_SIZE" "GL_MAX_TEXTURE_SIZE" "${WORK}/lw5.png"
+expect_failure("Light Wave shadow maps beyond 16384: named by the options" "shadow-map-scale 14 with a 1280x720 image \\(size\\) makes shadow maps of 17920 texels per side, more than 16384" "${WORK}/lw5.png"
                "${VPLKIT}" render --technique lightwave-accurate --shadow-map-scale 14 --size 1280x720 --out "${WORK}/lw5.png")
 expect_failure("Light Wave shadow map scale out of range" "--shadow-map-scale.*must be a number in \\(0, 16\\]" "${WORK}/lw6.png"
                "${VPLKIT}" render --technique lightwave-accurate --shadow-map-scale 100 --size 320x180 --out "${WORK}/lw6.png")

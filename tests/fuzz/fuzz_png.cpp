@@ -1,6 +1,8 @@
-// Fuzz target: the PNG decoder (frontend/image/image_files.hpp, decode_image over stb_image, which is
-// only reached for input with the PNG signature). Malformed input must end in vplkit::error; an
-// image that decodes must have pixels in [0, 1] (sRGB bytes made linear).
+// Fuzz target: the PNG decoder (frontend/image/image_files.hpp, decode_image over decode_png_rgba8 and
+// libspng, which is only reached for input with the PNG signature). Malformed input must end in vplkit::error; an
+// image that decodes must have pixels in [0, 1] (sRGB bytes made linear), and its RGBA8 decoding
+// must have the size it claims and be the same twice (an out-of-palette read of memory the file
+// never gave would differ).
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -8,6 +10,7 @@
 
 #include "frontend/core/error.hpp"
 #include "frontend/image/image_files.hpp"
+#include "frontend/image/png.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string bytes(reinterpret_cast<const char*>(data), size);
@@ -26,6 +29,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         std::fprintf(stderr, "fuzz_png: a decoded pixel is outside [0, 1]\n");
         std::abort();
       }
+    const vplkit::rgba8_image first = vplkit::decode_png_rgba8(bytes, "fuzz.png", limits), second = vplkit::decode_png_rgba8(bytes, "fuzz.png", limits);
+    if (first.pixels.size() != static_cast<std::size_t>(decoded.width) * static_cast<std::size_t>(decoded.height) * 4 || first.pixels != second.pixels ||
+        first.srgb != second.srgb) {
+      std::fprintf(stderr, "fuzz_png: the RGBA8 decoding has the wrong size or differs between two runs\n");
+      std::abort();
+    }
   } catch (const vplkit::error&) {
   }
   return 0;

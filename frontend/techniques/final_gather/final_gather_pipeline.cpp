@@ -82,8 +82,8 @@ const std::vector<setting<final_gather_setup, final_gather_technique>>& final_ga
       entry::number("cube-resolution", [](auto& s) -> auto& { return s.pipeline.resolution; }, closed_range(1, 64), "texels",
                     "M, the small cube map's face resolution (the paper: 4 or 2)")
           .feeds("cube_downsample.frag: resolution; final_gather_shade.frag: resolution"),
-      entry::number("face-size", [](auto& s) -> auto& { return s.pipeline.face_size; }, closed_range(1, 4096), "texels",
-                    "the cube map's face size before averaging (the paper: 256)")
+      entry::number("face-size", [](auto& s) -> auto& { return s.pipeline.face_size; }, closed_range(1, max_cube_face_size), "texels",
+                    "the cube map's face size before averaging (the paper: 256; its six faces lie side by side in one texture)")
           .feeds("cube_downsample.frag: face_size"),
       entry::number("environment-resolution", [](auto& s) -> auto& { return s.pipeline.environment_resolution; }, closed_range(1, 256), "texels",
                     "K, the face resolution of the baseline's irradiance environment map")

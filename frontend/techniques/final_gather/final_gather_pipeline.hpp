@@ -56,6 +56,9 @@ struct final_gather_scene {
 /// vplkit::error when the object file fails to load.
 final_gather_scene make_final_gather_scene(const std::string& object, glm::vec3 position, float size);
 
+/// The largest cube face: the six faces lie side by side in one texture, at most max_image_side wide.
+inline constexpr int max_cube_face_size = max_image_side / 6;
+
 struct final_gather_settings {
   std::string technique = "finalgather-polygon";
   int width = 512;               ///< the paper: 700 x 700

@@ -134,6 +134,15 @@ std::string validate(const lightwave_settings& settings) {
   if (const std::string problem = check_settings(lightwave_settings_table(), settings); !problem.empty()) return problem;
   for (const setting_problem& problem : {validate_lightwave_layout(settings.angle_deg, settings.per_ray), validate(settings.shading), validate(settings.irradiance)})
     if (problem) return problem.message();
+  // A size derived from settings names them (the texture would fail with a size alone).
+  const long shadow_side = std::lround(static_cast<double>(settings.shadow_map_scale) * std::max(settings.width, settings.height));
+  if (shadow_side > max_image_side) {
+    std::ostringstream scale;
+    scale << settings.shadow_map_scale;
+    return "shadow-map-scale " + scale.str() + " with a " + std::to_string(settings.width) + "x" +
+           std::to_string(settings.height) + " image (size) makes shadow maps of " + std::to_string(shadow_side) + " texels per side, more than " +
+           std::to_string(max_image_side);
+  }
   const int vpls = lightwave_vpl_count(settings.angle_deg, settings.per_ray);
   // The vertex stage loops over every VPL, and llvmpipe ends a loop after 65535 iterations.
   if (vpls > 65535) return "at most 65535 VPLs (the per-vertex loop; llvmpipe stops loops there), got " + std::to_string(vpls);

@@ -7,6 +7,7 @@
 // the parity runs), so it names no GL header: the GL names are plain unsigned and int here.
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
 #include <string>
 #include <utility>
@@ -17,6 +18,11 @@
 #include <vplkit/gl/uniform_declarations.hpp>
 
 namespace vplkit {
+
+/// The deepest chain of #include a shader may make (vplkit's own nest 3 deep).
+inline constexpr int max_include_depth = 32;
+/// The most text a shader with all its includes may expand to (each file is read once).
+inline constexpr std::size_t max_expanded_bytes = std::size_t{16} << 20;
 
 /// One shader stage's source after #include expansion.
 struct expanded_source {
@@ -52,7 +58,8 @@ class shader_library {
   /// every folder looked in when none has it.
   std::filesystem::path locate(const std::string& relative_path) const;
   /// Expands a file found in the folders (e.g. "direct.frag"). Throws vplkit::error naming a
-  /// missing or unreadable file, and the including file:line for a missing include.
+  /// missing or unreadable file, and the including file:line for a missing include, an include
+  /// nested more than max_include_depth deep, or an expansion beyond max_expanded_bytes.
   expanded_source expand_file(const std::string& relative_path, const shader_defines& defines = {}) const;
   /// Expands in-memory text (generated shaders), shown in messages as `display_name`.
   expanded_source expand_text(const std::string& text, const std::string& display_name,

@@ -51,6 +51,11 @@ TEST_CASE("#include is expanded once per file, with #line directives back to eac
   const expanded_source source = library.expand_file("main.frag");
   CHECK(source.file_names == std::vector<std::string>{"main.frag", "lib/a.glsl", "lib/b.glsl"});
   CHECK(source.text.find("#version 330 core\n") == 0);
+  // The top-level file counts as included: a file that includes it does not expand it again
+  // (the include fuzzer found main.frag named twice).
+  scratch_shaders cycle({{"main.frag", "#include \"lib/a.glsl\"\nfloat m() { return 1.0; }\n"}, {"lib/a.glsl", "#include \"main.frag\"\nfloat a();\n"}});
+  const expanded_source once = shader_library(cycle.root).expand_file("main.frag");
+  CHECK(once.file_names == std::vector<std::string>{"main.frag", "lib/a.glsl"});
   // b is defined once, although it is included twice.
   const auto first = source.text.find("float b()");
   CHECK(first != std::string::npos);
@@ -68,6 +73,32 @@ TEST_CASE("a missing shader file, folder or include is named in the error") {
   CHECK(message_of([&] { shader_library(files.root / "absent"); }).find("shader directory not found") == 0);
   scratch_shaders nested(scratch_shaders::file_list{{"main.frag", "#version 330 core\n#include \"lib/v.glsl\"\n"}, {"lib/v.glsl", "#version 330 core\n"}});
   CHECK(message_of([&] { shader_library(nested.root).expand_file("main.frag"); }).find("lib/v.glsl:1: #version must be") == 0);
+}
+
+TEST_CASE("include chains are bounded: 32 deep expands, 10,000 deep is refused at depth 33, the expanded text has a limit") {
+  const auto chain = [](int length) {
+    scratch_shaders::file_list files{{"main.frag", "#version 330 core\n#include \"lib/c0.glsl\"\nvoid main() {}\n"}};
+    for (int i = 0; i < length; ++i)
+      files.push_back({"lib/c" + std::to_string(i) + ".glsl",
+                       i + 1 < length ? "#include \"lib/c" + std::to_string(i + 1) + ".glsl\"\n" : std::string("float deepest() { return 1.0; }\n")});
+    return files;
+  };
+  const scratch_shaders fits(chain(max_include_depth));
+  const expanded_source source = shader_library(fits.root).expand_file("main.frag");
+  CHECK(source.file_names.size() == static_cast<std::size_t>(max_include_depth) + 1);
+  CHECK(source.text.find("float deepest()") != std::string::npos);
+  // 10,000 distinct files in a chain overflowed the stack; now the 33rd level is refused.
+  const scratch_shaders deep(chain(10000));
+  CHECK(message_of([&] { shader_library(deep.root).expand_file("main.frag"); }) ==
+        "lib/c31.glsl:1: including \"lib/c32.glsl\" nests includes more than 32 deep");
+  // A wide tree of large files: the sum is bounded, each file is once.
+  scratch_shaders::file_list wide{{"main.frag", "#version 330 core\n"}};
+  for (int i = 0; i < 5; ++i) {
+    wide.front().second += "#include \"lib/w" + std::to_string(i) + ".glsl\"\n";
+    wide.push_back({"lib/w" + std::to_string(i) + ".glsl", "// " + std::string(std::size_t{4} << 20, 'x') + "\n"});
+  }
+  const scratch_shaders large(wide);
+  CHECK(message_of([&] { shader_library(large.root).expand_file("main.frag"); }).find("exceeds 16 MiB") != std::string::npos);
 }
 
 TEST_CASE("folders added to a library are searched in order, before its base folder") {

@@ -77,7 +77,7 @@ TEST_CASE("PFM round trip, PNG reading, false colour, and errors naming the file
   CHECK_THROWS_WITH_AS(read_image_file(folder / "short.pfm"), doctest::Contains("ends before its 4x4 pixels"), vplkit::error);
   std::ofstream(folder / "text.png") << "not a png";
   CHECK_THROWS_WITH_AS(read_image_file(folder / "text.png"), doctest::Contains("text.png: not a PNG file (no PNG signature)"), vplkit::error);
-  // A PNG signature with a broken body reaches stb's PNG decoder, and only that one.
+  // A PNG signature with a broken body reaches the PNG decoder (libspng), and only that one.
   std::ofstream(folder / "broken.png", std::ios::binary) << "\x89PNG\r\n\x1a\nbroken";
   CHECK_THROWS_WITH_AS(read_image_file(folder / "broken.png"), doctest::Contains("broken.png: not a readable PNG"), vplkit::error);
   CHECK_THROWS_WITH_AS(read_image_file(folder / "a.jpg"), doctest::Contains("unsupported image format '.jpg'"), vplkit::error);
@@ -136,13 +136,13 @@ TEST_CASE("write_png writes a PNG, and on failure leaves no file behind") {
   fs::remove_all(folder);
 }
 
-TEST_CASE("PNG decoding: every chunk's length is checked against the file before stb allocates") {
+TEST_CASE("PNG decoding: every chunk's length is checked against the file before the decoder allocates") {
   const std::vector<std::uint8_t> encoded = encode_png(3, 2, std::vector<std::uint8_t>(3 * 2 * 4, 200));
   const std::string png(encoded.begin(), encoded.end());
   CHECK(decode_image(png, image_file_format::png, "ok.png").width == 3);
   CHECK(decode_image(png + "trailing bytes", image_file_format::png, "ok.png").width == 3);  // after IEND: ignored
-  // The first chunk after IHDR (at byte 33) claiming 2^31 - 1 bytes: stb would grow its IDAT
-  // buffer to that length before finding the data missing.
+  // The first chunk after IHDR (at byte 33) claiming 2^31 - 1 bytes: stb_image grew its IDAT
+  // buffer to that length before finding the data missing; no decoder is given the chance.
   std::string hostile = png;
   for (int i = 0; i < 4; ++i) hostile[33 + static_cast<std::size_t>(i)] = static_cast<char>(i == 0 ? 0x7f : 0xff);
   CHECK_THROWS_WITH_AS(decode_image(hostile, image_file_format::png, "t.png"),

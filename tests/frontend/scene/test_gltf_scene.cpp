@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <string>
 
 #include "frontend/core/error.hpp"
@@ -100,4 +101,147 @@ TEST_CASE("hostile glTF: each problem is named, nothing else is thrown") {
   const fs::path regressions = fs::path(VPLKIT_TEST_SOURCE_DIR) / "fuzz" / "regressions" / "gltf";
   CHECK_THROWS_WITH_AS(load_gltf(regressions / "node-cycle.gltf"), doctest::Contains("reached twice"), vplkit::error);
   CHECK_THROWS_WITH_AS(load_gltf(regressions / "count-beyond-view.gltf"), doctest::Contains("do not fit in its buffer view"), vplkit::error);
+}
+
+namespace {
+
+// A triangle in a glTF whose buffer is `uri` (byteLength 36: three float positions), with
+// `nodes` for the node list and `extras` for the asset's extras.
+std::string triangle_gltf(const std::string& uri, const std::string& nodes = R"([{"mesh": 0}])", const std::string& extras = "0") {
+  return R"({"asset": {"version": "2.0", "extras": )" + extras + R"(}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": )" + nodes +
+         R"(, "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}], "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, )"
+         R"("type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}], "bufferViews": [{"buffer": 0, "byteLength": 36}], "buffers": [{"byteLength": 36, "uri": ")" +
+         uri + R"("}]})";
+}
+
+const std::string triangle_data_uri = "data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA";
+
+struct gltf_folder {
+  fs::path root = fs::temp_directory_path() / ("vplkit-gltf-" + std::to_string(std::random_device{}()));
+  gltf_folder() {
+    fs::create_directories(root / "scene" / "sub");
+    fs::create_directories(root / "outside");
+    const std::string triangle(36, '\0');
+    for (const fs::path& bin : {root / "outside" / "x.bin", root / "scene" / "in.bin", root / "scene" / "sub" / "deep.bin"}) std::ofstream(bin, std::ios::binary) << triangle;
+  }
+  ~gltf_folder() {
+    std::error_code ignored;
+    fs::remove_all(root, ignored);
+  }
+  fs::path write(const std::string& name, const std::string& text) const {
+    std::ofstream(root / "scene" / name) << text;
+    return root / "scene" / name;
+  }
+};
+
+std::string load_error(const fs::path& path, const gltf_limits& limits = {}) {
+  try {
+    load_gltf(path, limits);
+  } catch (const vplkit::error& failure) {
+    return failure.what();
+  }
+  return "(no error)";
+}
+
+}  // namespace
+
+TEST_CASE("no recursion on the input's depth: a 20,000-node chain loads, JSON nested 20,000 deep is refused by its depth") {
+  std::string chain = "[";
+  for (int i = 0; i < 19999; ++i) chain += R"({"children": [)" + std::to_string(i + 1) + "]},";
+  chain += R"({"mesh": 0, "translation": [1, 2, 3]}])";
+  const scene deep = parse_gltf(triangle_gltf(triangle_data_uri, chain), false, "chain.gltf", {});
+  CHECK(deep.geometry.triangle_count() == 3);  // the triangle and frame_mesh's floor
+  CHECK(deep.geometry.vertices[0].position == glm::vec3(1, 2, 3));  // through all 20,000 transforms
+  // A node reached twice is still named, however deep.
+  CHECK_THROWS_WITH_AS(parse_gltf(triangle_gltf(triangle_data_uri, R"([{"children": [1]}, {"children": [2]}, {"children": [1], "mesh": 0}])"), false, "cycle.gltf", {}),
+                       doctest::Contains("node 1 is reached twice"), vplkit::error);
+  const std::string nested = std::string(20000, '[') + std::string(20000, ']');
+  CHECK_THROWS_WITH_AS(parse_gltf(triangle_gltf(triangle_data_uri, R"([{"mesh": 0}])", nested), false, "deep.gltf", {}),
+                       doctest::Contains("deep.gltf: its JSON nests arrays and objects more than 64 deep"), vplkit::error);
+  // Brackets inside strings (escaped quotes too) are text, not nesting.
+  const std::string in_string = R"(["\"[[[[)" + std::string(100, '[') + R"("])";
+  CHECK(parse_gltf(triangle_gltf(triangle_data_uri, R"([{"mesh": 0}])", in_string), false, "text.gltf", {}).geometry.triangle_count() == 3);
+  // 60 levels of extras (62 with the asset object and the root): within the limit.
+  const std::string sixty = std::string(60, '[') + std::string(60, ']');
+  CHECK(parse_gltf(triangle_gltf(triangle_data_uri, R"([{"mesh": 0}])", sixty), false, "sixty.gltf", {}).geometry.triangle_count() == 3);
+  // GLB: the JSON chunk is measured too.
+  std::string json = triangle_gltf(triangle_data_uri, R"([{"mesh": 0}])", nested);
+  while (json.size() % 4 != 0) json += ' ';
+  std::string glb = "glTF";
+  const auto put = [&](std::uint32_t v) { glb.append(reinterpret_cast<const char*>(&v), 4); };
+  put(2);
+  put(static_cast<std::uint32_t>(20 + json.size()));
+  put(static_cast<std::uint32_t>(json.size()));
+  put(0x4E4F534Au);
+  glb += json;
+  CHECK_THROWS_WITH_AS(parse_gltf(glb, true, "deep.glb", {}), doctest::Contains("deep.glb: its JSON nests"), vplkit::error);
+}
+
+TEST_CASE("external files: only in the glTF's folder tree, percent-decoded once, one budget for all of them") {
+  const gltf_folder folder;
+  CHECK(load_gltf(folder.write("inside.gltf", triangle_gltf("in.bin"))).geometry.triangle_count() == 3);
+  CHECK(load_gltf(folder.write("sub.gltf", triangle_gltf("sub/deep.bin"))).geometry.triangle_count() == 3);
+  CHECK(load_gltf(folder.write("encoded.gltf", triangle_gltf("in%2Ebin"))).geometry.triangle_count() == 3);  // %2E is '.'
+  CHECK(load_error(folder.write("dotdot.gltf", triangle_gltf("../outside/x.bin"))).find("external file '../outside/x.bin' refused: it has a '..' component") !=
+        std::string::npos);
+  CHECK(load_error(folder.write("percent.gltf", triangle_gltf("%2e%2e/outside/x.bin"))).find("'../outside/x.bin' refused: it has a '..' component") !=
+        std::string::npos);
+  CHECK(load_error(folder.write("middle.gltf", triangle_gltf("sub/../../outside/x.bin"))).find("has a '..' component") != std::string::npos);
+  CHECK(load_error(folder.write("absolute.gltf", triangle_gltf((folder.root / "outside" / "x.bin").string()))).find("it is an absolute path") !=
+        std::string::npos);
+  // Decoded once: %252e is "%2e" on disk, not "." (and there is no such file).
+  CHECK(load_error(folder.write("twice.gltf", triangle_gltf("%252e%252e/outside/x.bin"))).find("%2e%2e/outside/x.bin: no such glTF external file") != std::string::npos);
+  // The current folder is never a fallback (tinygltf tries it after the glTF's): a name found
+  // only there is looked for in the glTF's folder alone.
+  if (fs::exists("CTestTestfile.cmake"))  // ctest runs the tests in their build folder
+    CHECK(load_error(folder.write("cwd.gltf", triangle_gltf("CTestTestfile.cmake"))).find("scene/CTestTestfile.cmake: no such glTF external file") !=
+          std::string::npos);
+  // One budget: each of four 36-byte buffers fits 100 bytes, all of them do not.
+  std::string four = triangle_gltf("in.bin");
+  const std::string one_buffer = R"({"byteLength": 36, "uri": "in.bin"})";
+  four.replace(four.find(one_buffer), one_buffer.size(), one_buffer + "," + one_buffer + "," + one_buffer + "," + one_buffer);
+  gltf_limits budget;
+  budget.max_external_bytes = 100;
+  CHECK(load_error(folder.write("four.gltf", four), budget).find("external file 'in.bin' (36 bytes) would bring its external data to 108 bytes, more than the 100 bytes") !=
+        std::string::npos);
+  budget.max_external_bytes = 144;
+  CHECK(load_gltf(folder.root / "scene" / "four.gltf", budget).geometry.triangle_count() == 3);
+  // A 16 MiB data URI that does not decode is not echoed whole.
+  const std::string huge = load_error(folder.write("huge.gltf", triangle_gltf("data:application/octet-stream;base64," + std::string(std::size_t{16} << 20, 'A') + "!")));
+  CHECK(huge.find("not a readable glTF 2.0 file") != std::string::npos);
+  CHECK(huge.size() < 1200);
+}
+
+TEST_CASE("sizes are checked before anything is read or widened; meshes with normals stay indexed") {
+  // 3000 one-byte indices with a limit of 999 triangles: refused by the count, before reading.
+  const std::string positions = "AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA";  // 36 bytes
+  std::string indices_base64;
+  for (int i = 0; i < 1000; ++i) indices_base64 += "AAEC";  // bytes 0, 1, 2
+  const std::string many = R"({"asset": {"version": "2.0"}, "nodes": [{"mesh": 0}], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"}, {"bufferView": 1, "componentType": 5121, "count": 3000, "type": "SCALAR"}],
+    "bufferViews": [{"buffer": 0, "byteLength": 36}, {"buffer": 1, "byteLength": 3000}],
+    "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64,)" + positions + R"("},
+                {"byteLength": 3000, "uri": "data:application/octet-stream;base64,)" + indices_base64 + R"("}]})";
+  gltf_limits limits;
+  limits.max_triangles = 999;
+  CHECK_THROWS_WITH_AS(parse_gltf(many, false, "many.gltf", {}, limits), "many.gltf: more than 999 triangles", vplkit::error);
+  limits.max_triangles = 1000;
+  const scene loaded = parse_gltf(many, false, "many.gltf", {}, limits);
+  CHECK(loaded.geometry.triangle_count() == 1002);  // with frame_mesh's floor
+  CHECK(loaded.geometry.vertices.size() == 3000 + 4);  // no NORMAL: flat normals, three vertices a triangle
+  // With NORMAL, a vertex is shared by every triangle that uses it: 3 vertices for 1000 triangles.
+  std::string with_normals = many;
+  with_normals.replace(with_normals.find(R"({"POSITION": 0})"), 15, R"({"POSITION": 0, "NORMAL": 2})");
+  with_normals.replace(with_normals.find(R"("type": "SCALAR"}])"), 18, R"("type": "SCALAR"}, {"bufferView": 2, "componentType": 5126, "count": 3, "type": "VEC3"}])");
+  with_normals.replace(with_normals.find(R"({"buffer": 1, "byteLength": 3000}])"), 34, R"({"buffer": 1, "byteLength": 3000}, {"buffer": 2, "byteLength": 36}])");
+  with_normals.replace(with_normals.rfind("]}"), 2, R"(, {"byteLength": 36, "uri": "data:application/octet-stream;base64,AAAAAAAAAAAAAIA/AAAAAAAAAAAAAIA/AAAAAAAAAAAAAIA/"}]})");
+  const scene shared = parse_gltf(with_normals, false, "shared.gltf", {}, limits);
+  CHECK(shared.geometry.triangle_count() == 1002);
+  CHECK(shared.geometry.vertices.size() == 3 + 4);
+  for (std::size_t i = 0; i < 3000; ++i) {
+    CHECK(shared.geometry.indices[i] == i % 3);
+    if (i >= 3) break;
+  }
+  CHECK(shared.geometry.vertices[0].normal == glm::vec3(0, 0, 1));
+  check_scene(shared);
 }

@@ -150,3 +150,37 @@ TEST_CASE("OBJ limits are checked before the memory is spent, naming the file") 
   const fs::path uses_folder = folder.write("uses-folder.obj", "mtllib folder.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
   CHECK(load_error(uses_folder).find("folder.mtl: not a regular file (expected an MTL file)") != std::string::npos);
 }
+
+TEST_CASE("a loaded OBJ stays indexed: corners with the same position, normal and albedo share a vertex") {
+  // An n x n grid of quads without normals: one vertex per position, six indices per quad.
+  const int n = 20;
+  std::string text;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) text += "v " + std::to_string(i) + " 0 " + std::to_string(-j) + "\n";
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const int a = j * (n + 1) + i + 1, b = a + 1, c = a + n + 1, d = c + 1;
+      text += "f " + std::to_string(a) + " " + std::to_string(b) + " " + std::to_string(d) + " " + std::to_string(c) + "\n";
+    }
+  const mesh grid = parse_obj(text, "grid.obj", [](const std::string&) -> std::string { throw vplkit::error("no library"); });
+  CHECK(grid.triangle_count() == 2 * n * n);
+  CHECK(grid.vertices.size() == (n + 1) * (n + 1));
+  for (const vertex& v : grid.vertices) CHECK(v.normal == glm::vec3(0, 1, 0));  // a flat grid's smooth normal
+  // A second material splits the vertices it shares with the first; given normals split by index.
+  const std::string two = "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 0 -1\nv 0 0 -1\nvn 0 1 0\nvn 0 1 0\nusemtl a\nf 1//1 2//1 3//1\nusemtl b\nf 1//1 3//1 4//2\n";
+  const mesh split = parse_obj(two, "two.obj", [](const std::string&) { return std::string("newmtl a\nKd 1 0 0\nnewmtl b\nKd 0 1 0\n"); });
+  CHECK(split.triangle_count() == 2);
+  CHECK(split.vertices.size() == 6);  // 3 + 3: the second triangle shares no (position, normal, albedo)
+  const mesh same = parse_obj("v 0 0 0\nv 1 0 0\nv 1 0 -1\nv 0 0 -1\nvn 0 1 0\nf 1//1 2//1 3//1\nf 1//1 3//1 4//1\n", "same.obj",
+                              [](const std::string&) -> std::string { throw vplkit::error("no library"); });
+  CHECK(same.vertices.size() == 4);
+  // A crease folded over itself (the same triangle both ways round): the smooth normals cancel,
+  // so every corner takes its face's normal and a vertex of its own.
+  const mesh folded = parse_obj("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 3 2\n", "fold.obj",
+                                [](const std::string&) -> std::string { throw vplkit::error("no library"); });
+  REQUIRE(folded.vertices.size() == 6);
+  for (std::size_t k = 0; k < 3; ++k) {
+    CHECK(folded.vertices[folded.indices[k]].normal == glm::vec3(0, 0, 1));
+    CHECK(folded.vertices[folded.indices[3 + k]].normal == glm::vec3(0, 0, -1));
+  }
+}

@@ -1,0 +1,208 @@
+// Whole-file reads and all-or-nothing writes (frontend/core/files.hpp): a failed rename at any
+// step leaves the previous set in place, temporaries have bounded names, the output lock keeps
+// two writers from mixing their sets, and every message keeps the system's reason.
+#include <doctest/doctest.h>
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "frontend/core/error.hpp"
+#include "frontend/core/files.hpp"
+
+namespace fs = std::filesystem;
+using namespace vplkit;
+
+namespace {
+
+struct scratch_folder {
+  fs::path path = fs::temp_directory_path() / ("vplkit-files-" + std::to_string(std::random_device{}()));
+  scratch_folder() { fs::create_directories(path); }
+  ~scratch_folder() {
+    std::error_code ignored;
+    fs::remove_all(path, ignored);
+  }
+};
+
+std::string contents(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+output_file text_file(const fs::path& path, const std::string& text) {
+  return {path, [text] { return std::vector<std::uint8_t>(text.begin(), text.end()); }};
+}
+
+// Every name in the folder, sorted.
+std::vector<std::string> names_in(const fs::path& folder) {
+  std::vector<std::string> names;
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder)) names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+}  // namespace
+
+TEST_CASE("a failed rename at any step of the install leaves the previous set whole, and nothing else") {
+  const scratch_folder folder;
+  const fs::path a = folder.path / "a.png", b = folder.path / "a-indirect.pfm", c = folder.path / "a-indirect.png";
+  write_all_or_nothing({text_file(a, "old a"), text_file(b, "old b"), text_file(c, "old c")});
+  // Three targets: each moved aside, then its new file renamed in: 6 renames; fail each in turn.
+  for (int failing = 0; failing < 6; ++failing) {
+    CAPTURE(failing);
+    write_options options;
+    int count = 0;
+    options.rename = [&](const fs::path& from, const fs::path& to) -> std::error_code {
+      if (count++ == failing) return std::make_error_code(std::errc::device_or_resource_busy);
+      std::error_code code;
+      fs::rename(from, to, code);
+      return code;
+    };
+    CHECK_THROWS_WITH_AS(write_all_or_nothing({text_file(a, "new a"), text_file(b, "new b"), text_file(c, "new c")}, options),
+                         doctest::Contains("busy"), vplkit::error);
+    CHECK(contents(a) == "old a");
+    CHECK(contents(b) == "old b");
+    CHECK(contents(c) == "old c");
+    CHECK(names_in(folder.path) == std::vector<std::string>{"a-indirect.pfm", "a-indirect.png", "a.png"});  // no temporary, no lock
+  }
+  // A set whose second file is new: a failure removes the first new file and keeps no second.
+  const fs::path d = folder.path / "d.png";
+  write_options failing_second;
+  int count = 0;
+  failing_second.rename = [&](const fs::path& from, const fs::path& to) -> std::error_code {
+    if (++count == 3) return std::make_error_code(std::errc::operation_not_permitted);
+    std::error_code code;
+    fs::rename(from, to, code);
+    return code;
+  };
+  const std::string expected = "cannot write " + d.string() + ": Operation not permitted";
+  CHECK_THROWS_WITH_AS(write_all_or_nothing({text_file(a, "new a"), text_file(d, "new d")}, failing_second), doctest::Contains(expected.c_str()),
+                       vplkit::error);
+  CHECK(contents(a) == "old a");
+  CHECK(!fs::exists(d));
+  // Without failures the new set replaces the old one whole.
+  write_all_or_nothing({text_file(a, "new a"), text_file(b, "new b"), text_file(c, "new c")});
+  CHECK(contents(a) == "new a");
+  CHECK(contents(c) == "new c");
+  CHECK(names_in(folder.path) == std::vector<std::string>{"a-indirect.pfm", "a-indirect.png", "a.png"});
+}
+
+TEST_CASE("a previous file that cannot be put back is named with where it is kept") {
+  const scratch_folder folder;
+  const fs::path a = folder.path / "a.png", b = folder.path / "b.png";
+  write_all_or_nothing({text_file(a, "old a"), text_file(b, "old b")});
+  write_options options;
+  int count = 0;
+  // 1: a aside, 2: new a in, 3: b aside fails; then putting a back (4) fails too.
+  options.rename = [&](const fs::path& from, const fs::path& to) -> std::error_code {
+    ++count;
+    if (count == 3 || count == 4) return std::make_error_code(std::errc::device_or_resource_busy);
+    std::error_code code;
+    fs::rename(from, to, code);
+    return code;
+  };
+  try {
+    write_all_or_nothing({text_file(a, "new a"), text_file(b, "new b")}, options);
+    FAIL("the write should have failed");
+  } catch (const vplkit::error& failure) {
+    const std::string message = failure.what();
+    CHECK(message.find("cannot move the previous file aside") != std::string::npos);
+    CHECK(message.find("could not be put back") != std::string::npos);
+    const std::size_t kept = message.find("is kept as ");
+    REQUIRE(kept != std::string::npos);
+    CHECK(contents(message.substr(kept + 11)) == "old a");  // the old a, intact where the message says
+  }
+  CHECK(contents(b) == "old b");
+}
+
+TEST_CASE("temporary names stay short: a legal 255-byte output name is written") {
+  const scratch_folder folder;
+  const std::string name = std::string(251, 'n') + ".png";  // 255 bytes, the most a Linux file name has
+  const fs::path target = folder.path / name;
+  write_bytes_atomically(target, {1, 2, 3});
+  CHECK(fs::file_size(target) == 3);
+  const fs::path temporary = sibling_temporary_name(target, "partial");
+  CHECK(temporary.parent_path() == target.parent_path());
+  CHECK(temporary.filename().string().size() <= 1 + 64 + 1 + 7 + 1 + 16);
+  // A name one byte too long is refused with the system's reason, not "cannot create a file".
+  CHECK_THROWS_WITH_AS(write_bytes_atomically(folder.path / (std::string(256, 'n')), {1}), doctest::Contains("File name too long"), vplkit::error);
+  CHECK(names_in(folder.path) == std::vector<std::string>{name});
+}
+
+TEST_CASE("every write message keeps the system's reason") {
+  const scratch_folder folder;
+  write_bytes_atomically(folder.path / "a-file", {1});
+  CHECK_THROWS_WITH_AS(write_bytes_atomically(folder.path / "a-file" / "x.png", {1}), doctest::Contains("cannot create folder"), vplkit::error);
+  fs::create_directories(folder.path / "x.png");
+  CHECK_THROWS_WITH_AS(write_bytes_atomically(folder.path / "x.png", {1}), doctest::Contains("a folder of that name is in the way"), vplkit::error);
+  // An encoder's error names the file and writes nothing.
+  const output_file refusing{folder.path / "y.pfm", []() -> std::vector<std::uint8_t> { throw vplkit::error("pixel (0, 0) is NaN"); }};
+  CHECK_THROWS_WITH_AS(write_all_or_nothing({text_file(folder.path / "z.png", "z"), refusing}), doctest::Contains("y.pfm: pixel (0, 0) is NaN"),
+                       vplkit::error);
+  CHECK(!fs::exists(folder.path / "z.png"));
+  CHECK_THROWS_WITH_AS(read_file(folder.path / "missing.obj", 100, "OBJ file"), doctest::Contains("no such OBJ file"), vplkit::error);
+  CHECK_THROWS_WITH_AS(read_file("/dev/zero", 100, "OBJ file"), doctest::Contains("not a regular file"), vplkit::error);
+  std::vector<unsigned char> bytes;
+  read_file_into(folder.path / "a-file", 100, "buffer", bytes);
+  CHECK(bytes == std::vector<unsigned char>{1});
+  CHECK_THROWS_WITH_AS(read_file_into(folder.path / "a-file", 0, "buffer", bytes), doctest::Contains("more than the 0 bytes"), vplkit::error);
+}
+
+TEST_CASE("the output lock: writers to one folder install one after the other, a stuck holder is named") {
+  const scratch_folder folder;
+  const fs::path a = folder.path / "a.png", b = folder.path / "a-indirect.pfm";
+  // Two writers, each writing its own pair many times: the pair on disk is always one writer's.
+  std::atomic<bool> mixed{false};
+  std::atomic<int> failures{0};
+  const auto writer = [&](const std::string& tag) {
+    for (int k = 0; k < 200; ++k) {
+      try {
+        write_all_or_nothing({text_file(a, tag), text_file(b, tag)});
+      } catch (const vplkit::error&) {
+        ++failures;
+      }
+    }
+  };
+  std::thread first(writer, "first"), second(writer, "second");
+  // Meanwhile a reader takes the lock the writers' way (flock, then the file must still be the
+  // one at the path; released by unlink and close) and checks the pair between two installs.
+  const fs::path lock_path = folder.path / ".vplkit-output.lock";
+  for (int k = 0; k < 200; ++k) {
+    int lock = -1;
+    for (;;) {
+      lock = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+      REQUIRE(lock >= 0);
+      REQUIRE(::flock(lock, LOCK_EX) == 0);
+      struct stat opened {}, at_path {};
+      if (::fstat(lock, &opened) == 0 && ::stat(lock_path.c_str(), &at_path) == 0 && opened.st_ino == at_path.st_ino) break;
+      ::close(lock);
+    }
+    if (fs::exists(a) && fs::exists(b) && contents(a) != contents(b)) mixed = true;
+    ::unlink(lock_path.c_str());
+    ::close(lock);
+  }
+  first.join();
+  second.join();
+  CHECK(!mixed);
+  CHECK(failures == 0);
+  CHECK(contents(a) == contents(b));
+  // A holder that does not let go: the write waits, then fails naming the lock.
+  const int held = ::open((folder.path / ".vplkit-output.lock").c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+  REQUIRE(::flock(held, LOCK_EX) == 0);
+  write_options impatient;
+  impatient.lock_wait_seconds = 0.2;
+  CHECK_THROWS_WITH_AS(write_all_or_nothing({text_file(a, "third")}, impatient), doctest::Contains("has held its output lock"), vplkit::error);
+  ::close(held);
+  CHECK(contents(a) != "third");
+  CHECK(names_in(folder.path) == std::vector<std::string>{".vplkit-output.lock", "a-indirect.pfm", "a.png"});  // no temporary left
+}
