@@ -2,10 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <iomanip>
 #include <sstream>
 
 #include "frontend/core/error.hpp"
+#include "frontend/core/files.hpp"
+#include "frontend/image/image_files.hpp"
 #include "frontend/techniques/rsm/rsm_cpu_mirror.hpp"
 
 namespace vplkit {
@@ -34,8 +37,16 @@ void accumulate(relative_error& sum, const relative_error& value, int seeds) {
 
 }  // namespace
 
+std::string cache_key(const std::string& text) {
+  std::uint64_t hash = 14695981039346656037ull;
+  for (const char c : text) hash = (hash ^ static_cast<unsigned char>(c)) * 1099511628211ull;
+  std::ostringstream out;
+  out << std::hex << std::setw(16) << std::setfill('0') << hash;
+  return out.str();
+}
+
 frame_reference make_frame_reference(const shader_library& shaders, const scene& source, const rsm_pipeline_settings& settings, int stride,
-                                     int threads) {
+                                     int threads, const std::string& cache) {
   frame_reference reference;
   reference.source = std::make_unique<scene>(source);
   reference.rays = std::make_unique<ray_scene>(reference.source->geometry);
@@ -46,15 +57,25 @@ frame_reference make_frame_reference(const shader_library& shaders, const scene&
   reference.buffers = pipeline.read_buffers();
   reference.constants = pipeline.constants();
   reference.stride = stride;
-  rsm_brute_force_options options;
-  options.receiver_stride = stride;
-  options.threads = threads;
-  const image unoccluded = reference_rsm_gather(*reference.rays, reference.buffers, reference.constants, options);
-  options.exact_visibility = true;
-  const image exact = reference_rsm_gather(*reference.rays, reference.buffers, reference.constants, options);
-  reference.unoccluded = unoccluded;
-  reference.exact = exact;
+  const std::string unoccluded_file = cache + "-unoccluded.pfm", exact_file = cache + "-exact.pfm";
+  if (!cache.empty() && std::filesystem::exists(unoccluded_file) && std::filesystem::exists(exact_file)) {
+    reference.unoccluded = read_image_file(unoccluded_file);
+    reference.exact = read_image_file(exact_file);
+    if (reference.unoccluded.width != reference.constants.indirect_size.x || reference.unoccluded.height != reference.constants.indirect_size.y ||
+        reference.exact.width != reference.unoccluded.width || reference.exact.height != reference.unoccluded.height)
+      throw error(cache + ": the cached brute force does not match the frame's indirect buffer; remove it");
+  } else {
+    rsm_brute_force_options options;
+    options.receiver_stride = stride;
+    options.threads = threads;
+    reference.unoccluded = reference_rsm_gather(*reference.rays, reference.buffers, reference.constants, options);
+    options.exact_visibility = true;
+    reference.exact = reference_rsm_gather(*reference.rays, reference.buffers, reference.constants, options);
+    if (!cache.empty())
+      write_all_or_nothing({{unoccluded_file, [&] { return encode_pfm(reference.unoccluded); }}, {exact_file, [&] { return encode_pfm(reference.exact); }}});
+  }
   reference.receivers = blank(reference);
+  reference.covered = blank(reference);
   reference.leak = blank(reference);
   const std::vector<std::uint8_t> covered = rsm_covered_receivers(reference.buffers, reference.constants, stride);
   double all = 0.0, behind = 0.0, seen = 0.0, leak_all = 0.0, leak_seen = 0.0;
@@ -64,15 +85,16 @@ frame_reference make_frame_reference(const shader_library& shaders, const scene&
       const std::size_t i = reference.unoccluded.index(x, y);
       const glm::vec3 u(reference.unoccluded.texels[i]), e(reference.exact.texels[i]);
       const double u_sum = u.x + u.y + u.z, e_sum = e.x + e.y + e.z;
-      if (!covered[static_cast<std::size_t>(y) * static_cast<std::size_t>(reference.unoccluded.width) + static_cast<std::size_t>(x)]) {
-        ++reference.uncovered_count;
-        behind += u_sum;
-        continue;
-      }
       reference.receivers.texels[i] = glm::vec4(1.0f);
       ++reference.receiver_count;
       all += u_sum;
       seen += e_sum;
+      if (covered[static_cast<std::size_t>(y) * static_cast<std::size_t>(reference.unoccluded.width) + static_cast<std::size_t>(x)]) {
+        reference.covered.texels[i] = glm::vec4(1.0f);
+        ++reference.covered_count;
+      } else {
+        behind += u_sum;
+      }
       if (u_sum > 0.0 && e_sum <= 0.8 * u_sum) {
         reference.leak.texels[i] = glm::vec4(1.0f);
         ++reference.leak_count;
@@ -80,7 +102,7 @@ frame_reference make_frame_reference(const shader_library& shaders, const scene&
         leak_seen += e_sum;
       }
     }
-  reference.uncovered_share = all + behind > 0.0 ? behind / (all + behind) : 0.0;
+  reference.uncovered_share = all > 0.0 ? behind / all : 0.0;
   reference.occluded_share = all > 0.0 ? 1.0 - seen / all : 0.0;
   reference.leak_occluded_share = leak_all > 0.0 ? 1.0 - leak_seen / leak_all : 0.0;
   return reference;
@@ -100,6 +122,7 @@ technique_errors measure_technique(const shader_library& shaders, const scene& s
   technique_errors errors;
   errors.mean_raw = blank(reference);
   errors.filtered_mean = blank(reference);
+  errors.filtered_image = image(reference.constants.image_size.x, reference.constants.image_size.y);
   std::vector<image> raws;
   for (int seed = 1; seed <= seeds; ++seed) {
     rsm_pipeline_settings seeded = settings;
@@ -113,6 +136,8 @@ technique_errors measure_technique(const shader_library& shaders, const scene& s
     const image filtered = filtered_at_receivers(frame, reference);
     accumulate(errors.raw_vs_unoccluded, relative_error_of(raw, reference.unoccluded, &reference.receivers), seeds);
     accumulate(errors.raw_vs_exact, relative_error_of(raw, reference.exact, &reference.receivers), seeds);
+    accumulate(errors.raw_covered_vs_unoccluded, relative_error_of(raw, reference.unoccluded, &reference.covered), seeds);
+    accumulate(errors.raw_covered_vs_exact, relative_error_of(raw, reference.exact, &reference.covered), seeds);
     accumulate(errors.raw_leak, relative_error_of(raw, reference.exact, &reference.leak), seeds);
     accumulate(errors.filtered_vs_exact, relative_error_of(filtered, reference.exact, &reference.receivers), seeds);
     accumulate(errors.filtered_leak, relative_error_of(filtered, reference.exact, &reference.leak), seeds);
@@ -120,6 +145,7 @@ technique_errors measure_technique(const shader_library& shaders, const scene& s
       errors.mean_raw.texels[i] += raw.texels[i] / static_cast<float>(seeds);
       errors.filtered_mean.texels[i] += filtered.texels[i] / static_cast<float>(seeds);
     }
+    for (std::size_t i = 0; i < frame.indirect.texels.size(); ++i) errors.filtered_image.texels[i] += frame.indirect.texels[i] / static_cast<float>(seeds);
     raws.push_back(raw);
   }
   if (seeds > 1) {
@@ -171,8 +197,8 @@ std::string fixed(double value, int digits) {
 std::string percent(double fraction) { return fixed(100.0 * fraction, 1); }
 
 std::string describe(const frame_reference& reference) {
-  return std::to_string(reference.receiver_count) + " receivers counted (" + std::to_string(reference.uncovered_count) +
-         " more behind the light or outside its frustum, not counted: they hold " + percent(reference.uncovered_share) +
+  return std::to_string(reference.receiver_count) + " receivers counted, " + std::to_string(reference.receiver_count - reference.covered_count) +
+         " of them behind the light or outside its frustum, where the pattern cannot reach (they hold " + percent(reference.uncovered_share) +
          " % of the unoccluded light), " + std::to_string(reference.leak_count) + " in the leak region. Exact visibility removes " +
          percent(reference.occluded_share) + " % of the light over the receivers, " + percent(reference.leak_occluded_share) +
          " % in the leak region.";

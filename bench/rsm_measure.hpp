@@ -17,7 +17,8 @@
 namespace vplkit {
 
 /// The ground truth of one frame: the brute force with and without exact visibility at every
-/// stride-th receiver, and the masks the metrics use.
+/// stride-th receiver, every receiver with a surface (the light's first bounce reaches it whether
+/// the RSM's projection covers it or not), and the masks the metrics use.
 struct frame_reference {
   std::unique_ptr<scene> source;       ///< kept alive for `rays`
   std::unique_ptr<ray_scene> rays;
@@ -26,18 +27,24 @@ struct frame_reference {
   int stride = 1;
   image unoccluded;              ///< brute force, every lit texel, no visibility
   image exact;                   ///< brute force with ray-cast visibility
-  image receivers;               ///< mask: covered (in front of the light, inside its frustum) and on the stride grid
+  image receivers;               ///< mask: every receiver with a surface on the stride grid (what the metrics count)
+  image covered;                 ///< mask: the receivers the pattern covers (in front of the light, projection inside the RSM)
   image leak;                    ///< mask: receivers where exact visibility removes >= 20 %
-  std::size_t receiver_count = 0, leak_count = 0, uncovered_count = 0;
+  std::size_t receiver_count = 0, covered_count = 0, leak_count = 0;
   double uncovered_share = 0.0;        ///< of the unoccluded light, on receivers not covered
   double occluded_share = 0.0;         ///< of the unoccluded light that exact visibility removes (receivers)
   double leak_occluded_share = 0.0;    ///< the same over the leak region
 };
 
 /// Renders `source` once with `settings` (only the frame's size, RSM size and format matter) and
-/// computes the references. Exact visibility costs receivers x lit texels rays.
+/// computes the references. Exact visibility costs receivers x lit texels rays. With a non-empty
+/// `cache` (a path prefix), the two brute-force images are read from <cache>-unoccluded.pfm and
+/// <cache>-exact.pfm when both exist, and written there after they are computed.
 frame_reference make_frame_reference(const shader_library& shaders, const scene& source, const rsm_pipeline_settings& settings, int stride,
-                                     int threads);
+                                     int threads, const std::string& cache = {});
+
+/// A short hexadecimal key (FNV-1a, 64 bits) of `text`, for cache file names.
+std::string cache_key(const std::string& text);
 
 /// One markdown sentence on a reference: the receivers counted and not covered, the leak region,
 /// and how much light exact visibility removes.
@@ -51,12 +58,15 @@ std::string percent(double fraction);
 /// projection (no visibility), on the reference's receivers.
 image brute_force_within(const frame_reference& reference, float radius, int threads);
 
-/// A technique's errors against the references, each the mean over the seeds.
+/// A technique's errors against the references, each the mean over the seeds, over every receiver
+/// (the reference's `receivers`) unless named `covered`.
 struct technique_errors {
   relative_error raw_vs_unoccluded, raw_vs_exact, raw_leak, filtered_vs_exact, filtered_leak;
+  relative_error raw_covered_vs_unoccluded, raw_covered_vs_exact;  ///< over the covered receivers only
   double raw_noise = 0.0;  ///< relative RMSE of one seed against the mean of the seeds (unbiased for the seed count)
   image mean_raw;    ///< the raw gather averaged over the seeds
   image filtered_mean;  ///< the filtered indirect light at the receivers, averaged over the seeds
+  image filtered_image;  ///< the filtered indirect irradiance of the whole image (what the user sees), averaged over the seeds
 };
 
 /// Renders `settings` (whose size and RSM size must be the reference's) with seeds 1..seeds.

@@ -19,6 +19,7 @@ command add_render_command(CLI::App& app) {
   auto state = std::make_shared<render_state>();
   CLI::App* render = app.add_subcommand("render", "render a scene headless to PNG images (and the linear indirect light as PFM)");
   add_technique_options(*render, state->options, true);
+  add_rsm_sequence_options(*render, state->options.rsm, state->options.scope);
   render->add_option("--out", state->out, "final image path (.png; folders are created) [output/<scene or object>-<technique>.png]; the other "
                                           "images go next to it");
   return {render, [state](const session& io) {

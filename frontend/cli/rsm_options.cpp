@@ -1,8 +1,10 @@
 #include "frontend/cli/rsm_options.hpp"
 
+#include <algorithm>
 #include <iomanip>
 
 #include "frontend/cli/output.hpp"
+#include "frontend/core/error.hpp"
 #include "frontend/core/named_table.hpp"
 #include "frontend/gl/context.hpp"
 
@@ -38,7 +40,7 @@ void add_rsm_frame_options(CLI::App& command, rsm_options& options, option_scope
 
 void add_rsm_gather_options(CLI::App& command, rsm_options& options, option_scope& scope, bool with_raw_indirect) {
   const std::string gatherers = "the RSM techniques that gather indirect light (rsm-*)";
-  const std::string radial_ones = "the radial-pattern techniques (rsm-radial, rsm-alg2, rsm-alg3, rsm-alg6)";
+  const std::string radial_ones = "the radial-pattern techniques (rsm-radial, rsm-alg2, rsm-alg3, rsm-alg6, rsm-alg6-ray)";
   const rsm_gather_preset<float> defaults = default_rsm_gather_preset<float>();
   const rsm_gather_preset<float> thesis = thesis_rsm_gather_preset<float>();
   scope.add(command
@@ -59,9 +61,20 @@ void add_rsm_gather_options(CLI::App& command, rsm_options& options, option_scop
                 ->check(positive_number("RSM texels")),
             gatherers, gathers);
   scope.add(command.add_option("--slots", options.slots, "micro linear buffer slots [preset]")->check(CLI::Range(1, 16)),
-            "the techniques with the micro linear buffer (rsm-alg2, rsm-alg3, rsm-alg6)", with_visibility);
+            "the techniques with the micro linear buffer (rsm-alg2, rsm-alg3, rsm-alg6, rsm-alg6-ray)", with_visibility);
+  const auto original = [](const std::string& name) { return name == "rsm-original"; };
   scope.add(command.add_option("--disk-samples", options.disk_samples, "original RSM: samples")->check(CLI::Range(1, 65536))->capture_default_str(),
-            "rsm-original", [](const std::string& name) { return name == "rsm-original"; });
+            "rsm-original", original);
+  scope.add(command.add_option("--disk-weights", options.disk_weights,
+                               "original RSM: unbiased (xi, the inverse of the samples' density) or printed (the original's xi^2, biased low; "
+                               "docs/errata.md RSMV-9)")
+                ->check(CLI::IsMember({"unbiased", "printed"}))->capture_default_str(),
+            "rsm-original", original);
+  scope.add(command.add_option("--coverage-blocks", options.coverage_blocks,
+                               "coarse pixel lights per RSM side that light the receivers the pattern cannot reach (behind the light, "
+                               "outside its frustum; docs/errata.md RSMV-10); 0: none, as in the thesis")
+                ->check(CLI::Range(0, rsm_coverage_max_blocks))->capture_default_str(),
+            gatherers, gathers);
   scope.add(command.add_option("--post-filter", options.filter, "bilateral post filter of the indirect light: full 2D kernel or separable")
                 ->check(CLI::IsMember({"full", "separable"}))->capture_default_str(),
             gatherers, gathers);
@@ -70,6 +83,20 @@ void add_rsm_gather_options(CLI::App& command, rsm_options& options, option_scop
                                "also write <out>-raw-indirect.pfm: the unfiltered gather at the indirect buffer's receivers (compare it with "
                                "vplkit reference --method rsm-brute-force)"),
               gatherers, gathers);
+}
+
+void add_rsm_sequence_options(CLI::App& command, rsm_options& options, option_scope& scope) {
+  scope.add(command.add_option("--poses", options.poses,
+                               "render a sequence in one pipeline: a file with one frame per line, each line --camera x,y,z,tx,ty,tz and/or "
+                               "--light x,y,z,tx,ty,tz ('#' comments; a pose a line leaves out stays); writes <out>-0001.png, "
+                               "<out>-0001-indirect.pfm, ... for every frame, or nothing"),
+            "the RSM techniques (direct, rsm-*)", is_rsm_technique);
+  scope.add(command.add_option("--temporal-blend", options.temporal_blend,
+                               "--poses: temporal accumulation, the weight of each new frame's gather against the history (reprojected, "
+                               "clamped to the new frame's neighbourhood; the pattern turns every frame); 1: none (docs/errata.md RSMV-11) [" +
+                                   format_number(rsm_pipeline_settings().temporal.blend) + "]")
+                ->check(number_in(0.0, 1.0, true, "a weight")),
+            "the RSM techniques that gather indirect light (rsm-*) with --poses", gathers);
 }
 
 rsm_pipeline_settings make_rsm_settings(const std::string& technique, const common_options& common, const rsm_options& options) {
@@ -90,16 +117,75 @@ rsm_pipeline_settings make_rsm_settings(const std::string& technique, const comm
   if (options.radius) s.radius = *options.radius;
   if (options.max_radius_texels) s.radius = *options.max_radius_texels / static_cast<float>(s.rsm_size);
   s.disk.samples = options.disk_samples;
+  s.disk.printed_weights = options.disk_weights == "printed";
+  s.coverage_blocks = options.coverage_blocks;
+  if (options.temporal_blend) {
+    if (options.poses.empty()) throw usage_error("--temporal-blend is read with --poses (a sequence), not for one frame");
+    s.temporal.blend = *options.temporal_blend;
+  }
   s.radial.seed = s.disk.seed = common.seed;
   if (const std::string problem = validate(s); !problem.empty()) throw usage_error(problem);
   return s;
 }
+
+namespace {
+
+// "-0001" for frame 1 of a sequence of `count` frames (at least 4 digits, more for longer ones).
+std::string frame_suffix(std::size_t frame, std::size_t count) {
+  std::string number = std::to_string(frame);
+  const std::size_t digits = std::max<std::size_t>(4, std::to_string(count).size());
+  return "-" + std::string(digits - std::min(digits, number.size()), '0') + number;
+}
+
+// The frames of --poses, rendered in one pipeline; nothing is written unless every frame renders.
+int render_rsm_sequence(const session& io, const rsm_technique& technique, const rsm_pipeline_settings& settings, const common_options& common,
+                        const rsm_options& options, output_set& files) {
+  const std::vector<pose_frame> frames = read_pose_file(options.poses, false);
+  // Every frame's files are kept in memory until the end (all or nothing): bound them.
+  const double bytes_per_frame = static_cast<double>(settings.width) * settings.height * (options.raw_indirect ? 19.0 : 15.0);
+  if (bytes_per_frame * static_cast<double>(frames.size()) > 4.0 * 1024 * 1024 * 1024)
+    throw error(options.poses + ": " + std::to_string(frames.size()) + " frames of " + std::to_string(settings.width) + "x" +
+                      std::to_string(settings.height) + " would hold more than 4 GiB until they are written; split the pose file");
+  const headless_session gl(common);
+  const scene source = load_scene(common, common.scene);
+  rsm_pipeline pipeline(gl.shaders, source, settings);
+  pipeline.render();  // the shader compilers' lazy work, as for one frame
+  camera view = source.view;
+  scene_light light = source.light;
+  double total_ms = 0.0;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const pose_frame& frame = frames[i];
+    const std::string where = options.poses + ":" + std::to_string(frame.line);
+    if (frame.camera) {
+      apply_pose(*frame.camera, view, where + ": --camera");
+      pipeline.set_camera(view);
+    }
+    if (frame.light) {
+      apply_pose(*frame.light, light, where + ": --light");
+      pipeline.set_light(light);
+    }
+    const rsm_frame rendered = pipeline.render_next();
+    for (const pass_time& pass : rendered.pass_times) total_ms += pass.milliseconds;
+    const std::string suffix = frame_suffix(i + 1, frames.size());
+    files.add_png(files.sibling(suffix, ".png"), rendered.radiance);
+    files.add_pfm(files.sibling(suffix + "-indirect", ".pfm"), rendered.indirect);
+    if (options.raw_indirect) files.add_pfm(files.sibling(suffix + "-raw-indirect", ".pfm"), pipeline.read_buffers().indirect);
+  }
+  io.out << "scene " << source.name << " (" << source.geometry.triangle_count() << " triangles), technique " << technique.name << ", "
+         << settings.width << "x" << settings.height << ", RSM " << settings.rsm_size << "^2, " << frames.size() << " frames from " << options.poses
+         << ", " << std::fixed << std::setprecision(1) << total_ms / static_cast<double>(frames.size()) << " ms per frame (passes)\n";
+  files.write(io.out);
+  return 0;
+}
+
+}  // namespace
 
 int render_rsm(const session& io, const std::string& technique_name, const common_options& common, const rsm_options& options, const std::string& out) {
   const rsm_technique& technique = find_rsm_technique(technique_name);
   const rsm_pipeline_settings settings = make_rsm_settings(technique_name, common, options);
   output_set files(out, "output/" + std::filesystem::path(common.scene).stem().string() + "-" + technique.name + ".png", ".png", "--out");
   if (io.dry_run) return 0;
+  if (!options.poses.empty()) return render_rsm_sequence(io, technique, settings, common, options, files);
 
   const headless_session gl(common);
   const scene source = load_scene(common, common.scene);

@@ -2,6 +2,12 @@
 
 namespace vplkit {
 
+void set_uniforms(const program& target, const std::string& name, const temporal_settings<float>& settings) {
+  target.set(name + ".blend", settings.blend);
+  target.set(name + ".clamp_width", settings.clamp_width);
+  target.set(name + ".depth_tolerance", settings.depth_tolerance);
+}
+
 void set_uniforms(const program& target, const std::string& name, const irradiance_settings<float>& settings) {
   target.set(name + ".min_distance", settings.min_distance);
 }
@@ -36,12 +42,14 @@ void set_uniforms(const program& target, const std::string& name, const radial_p
   target.set(name + ".angle_jitter", constants.angle_jitter);
   target.set(name + ".scale_jitter", constants.scale_jitter);
   target.set(name + ".seed", static_cast<unsigned>(constants.seed));
+  target.set(name + ".max_radius", constants.max_radius);
 }
 
 void set_uniforms(const program& target, const std::string& name, const disk_pattern_settings<float>& settings) {
   target.set(name + ".samples", settings.samples);
   target.set(name + ".max_radius", settings.max_radius);
   target.set(name + ".seed", static_cast<unsigned>(settings.seed));
+  target.set(name + ".printed_weights", settings.printed_weights ? 1 : 0);
 }
 
 void set_uniforms(const program& target, const std::string& name, const rsm_gather_settings<float>& settings) {
@@ -50,6 +58,8 @@ void set_uniforms(const program& target, const std::string& name, const rsm_gath
   set_uniforms(target, name + ".disk", settings.disk);
   set_uniforms(target, name + ".slots", settings.slots);
   target.set(name + ".rsm_size", settings.rsm_size);
+  target.set(name + ".coverage_blocks", settings.coverage_blocks);
+  target.set(name + ".perspective", settings.perspective);
 }
 
 void set_uniforms(const program& target, const std::string& name, const rsm_unprojection<float>& light) {

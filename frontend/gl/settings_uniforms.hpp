@@ -10,6 +10,7 @@
 #include <vplkit/lightwave.hpp>
 #include <vplkit/micro_linear_buffer.hpp>
 #include <vplkit/rsm_gather.hpp>
+#include <vplkit/temporal_accumulation.hpp>
 #include <vplkit/rsm_packing.hpp>
 #include <vplkit/rsm_pattern.hpp>
 #include <vplkit/shadow.hpp>
@@ -28,6 +29,7 @@ void set_uniforms(const program& target, const std::string& name, const rsm_gath
 void set_uniforms(const program& target, const std::string& name, const rsm_unprojection<float>& light);
 void set_uniforms(const program& target, const std::string& name, const shadow_density_settings<float>& settings);
 void set_uniforms(const program& target, const std::string& name, const bilateral_settings<float>& settings);
+void set_uniforms(const program& target, const std::string& name, const temporal_settings<float>& settings);
 void set_uniforms(const program& target, const std::string& name, const lightwave_shading_settings<float>& settings);
 
 }  // namespace vplkit

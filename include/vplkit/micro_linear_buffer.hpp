@@ -19,6 +19,14 @@
 // (multiply, add, sqrt, compare) instead of two different atan approximations.
 // Points straight above (dz > 0, dxy = 0) fall in the top slot, straight below in the bottom one.
 //
+// elevation_bucket_about measures the elevation above the plane perpendicular to a unit vector
+// `up` instead of the light's xy plane: dz becomes <d, up> and |dxy| the length of d less that
+// component. With up = (0, 0, 1) it is elevation_bucket. The gather's Alg. 6 variant
+// (rsm_visibility::alg6_ray, docs/errata.md RSMV-12) takes the direction from the receiver towards
+// a perspective light as `up`: a path of the radial pattern lies in a plane through the light and
+// the receiver, and in that plane this elevation orders the directions from the receiver the way
+// the thesis's elevation does for an orthographic light, where every such plane is vertical.
+//
 // Storage, chosen so that the whole buffer lives in registers: indexing a local array by a
 // run-time index makes llvmpipe (and many GPU compilers) keep the array in memory, which cost
 // 2.8x the gather without visibility instead of 1.17x (bench/rsm_sweep, 512^2, Cornell box).
@@ -89,6 +97,17 @@ int elevation_bucket(const glm::vec<3, T, Q>& x_eye, const glm::vec<3, T, Q>& xp
   const T dy = xp_eye.y - x_eye.y;
   const T dz = xp_eye.z - x_eye.z;
   return elevation_slot(dz, std::sqrt(dx * dx + dy * dy), slots);
+}
+
+/// Slot index in [0, slots.count) of the elevation of xp_eye seen from x_eye above the plane
+/// perpendicular to the unit vector `up` (light eye space).
+template <typename T, glm::qualifier Q>
+int elevation_bucket_about(const glm::vec<3, T, Q>& x_eye, const glm::vec<3, T, Q>& xp_eye, const glm::vec<3, T, Q>& up,
+                           const elevation_slots<T>& slots) {
+  const glm::vec<3, T, Q> d = xp_eye - x_eye;
+  const T vertical = d.x * up.x + d.y * up.y + d.z * up.z;
+  const glm::vec<3, T, Q> across = d - vertical * up;
+  return elevation_slot(vertical, std::sqrt(across.x * across.x + across.y * across.y + across.z * across.z), slots);
 }
 
 /// Convenience form of the public contract elevation_bucket(x_eye, xp_eye, slots) with an int

@@ -34,6 +34,13 @@ int elevation_bucket(vec3 x_eye, vec3 xp_eye, elevation_slots slots) {
   return elevation_slot(dz, sqrt(dx * dx + dy * dy), slots);
 }
 
+int elevation_bucket_about(vec3 x_eye, vec3 xp_eye, vec3 up, elevation_slots slots) {
+  vec3 d = xp_eye - x_eye;
+  float vertical = d.x * up.x + d.y * up.y + d.z * up.z;
+  vec3 across = d - vertical * up;
+  return elevation_slot(vertical, sqrt(across.x * across.x + across.y * across.y + across.z * across.z), slots);
+}
+
 struct micro_linear_buffer {
   uint occluded;
   uvec4 claims;

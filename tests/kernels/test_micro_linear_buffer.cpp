@@ -89,6 +89,36 @@ TEST_CASE("elevation_bucket is invariant under rotation about z, translation and
   }
 }
 
+TEST_CASE("elevation_bucket_about: about +z it is elevation_bucket to the bit; about any axis, the elevation above that axis's plane") {
+  std::mt19937 random(6);
+  std::uniform_real_distribution<float> uniform(-2.0f, 2.0f);
+  std::normal_distribution<double> normal;
+  for (int i = 0; i < 20000; ++i) {
+    const int slots = 1 + i % micro_linear_buffer_max_slots;
+    const elevation_slots<float> table = make_elevation_slots<float>(slots);
+    const glm::vec3 x(uniform(random), uniform(random), uniform(random)), xp(uniform(random), uniform(random), uniform(random));
+    REQUIRE(elevation_bucket_about(x, xp, glm::vec3(0, 0, 1), table) == elevation_bucket(x, xp, table));
+  }
+  // About a unit axis u: the slot of the angle between d and u's plane, by atan, away from the
+  // boundaries; rotating d and u together changes nothing.
+  for (int i = 0; i < 5000; ++i) {
+    const int slots = 1 + i % micro_linear_buffer_max_slots;
+    const elevation_slots<double> table = make_elevation_slots<double>(slots);
+    const glm::dvec3 up = glm::normalize(glm::dvec3(normal(random), normal(random), normal(random)));
+    const glm::dvec3 d(normal(random), normal(random), normal(random));
+    const double phi = std::asin(glm::clamp(glm::dot(d, up) / glm::length(d), -1.0, 1.0));
+    const double position = (phi + pi / 2) / pi * slots;
+    if (std::fabs(position - std::round(position)) < 1e-6) continue;
+    const int expected = std::min(slots - 1, static_cast<int>(std::floor(position)));
+    const glm::dvec3 x(normal(random), normal(random), normal(random));
+    REQUIRE(elevation_bucket_about(x, x + d, up, table) == expected);
+    // The frame that takes `up` to +z takes the bucket to elevation_bucket's.
+    const glm::dvec3 a = glm::normalize(glm::cross(up, std::fabs(up.x) < 0.9 ? glm::dvec3(1, 0, 0) : glm::dvec3(0, 1, 0)));
+    const glm::dvec3 b = glm::cross(up, a);
+    REQUIRE(elevation_bucket(glm::dvec3(0.0), glm::dvec3(glm::dot(d, a), glm::dot(d, b), glm::dot(d, up)), table) == expected);
+  }
+}
+
 TEST_CASE("make_elevation_slots: ascending, antisymmetric tangents; slot count validated") {
   for (int slots = 1; slots <= micro_linear_buffer_max_slots; ++slots) {
     const elevation_slots<float> table = make_elevation_slots<float>(slots);
