@@ -7,7 +7,7 @@
 // Ground truth, like with like:
 // - RSM techniques ([RSMV]): their indirect irradiance against the brute-force gather of every
 //   RSM texel with exact visibility on the same RSM and G-buffer (bench/rsm_measure.hpp), raw and
-//   filtered, over the covered receivers, mean of --seeds pattern seeds; the leak region is where
+//   filtered, over every receiver (covered by the pattern or not), mean of --seeds pattern seeds; the leak region is where
 //   exact visibility removes >= 20 % of the light. A second table compares final images with the
 //   one-bounce Monte Carlo reference.
 // - Light Wave ([LW]): final images against the one-bounce Monte Carlo reference.
@@ -85,8 +85,8 @@ void write_strip(const fs::path& path, const image& render, const image& referen
   write_png(path, big_w, big_h, strip);
 }
 
-// The receivers a frame_reference counts (every stride-th texel of the indirect buffer that the
-// gather covers; 0 elsewhere) as a small image, for the strips.
+// The receivers a frame_reference counts (every stride-th texel of the indirect buffer with a
+// surface; 0 elsewhere) as a small image, for the strips.
 image counted_receivers(const image& full, const frame_reference& reference) {
   const int stride = reference.stride;
   image out((full.width + stride - 1) / stride, (full.height + stride - 1) / stride);
@@ -136,8 +136,8 @@ int main(int argc, char** argv) {
     md << "\n## RSM gather against the brute force ([RSMV], Fig. 5.1d)\n\n"
        << "The indirect irradiance of each technique against the brute-force gather of every lit RSM texel with exact (ray-cast) visibility, on "
           "the same RSM and G-buffer: a " << rsm_frame_size << "^2 frame (indirect " << (rsm_frame_size + 1) / 2 << "^2), RSM " << rsm_frame_size
-       << "^2, at every " << stride << "th receiver of the indirect buffer per axis that the gather covers (in front of the light, inside its "
-          "frustum), mean of " << seeds << " pattern seeds. Relative RMSE and bias are divided by the reference's mean over the pixels counted. "
+       << "^2, at every " << stride << "th receiver of the indirect buffer per axis that has a surface (covered by the pattern or not: the "
+          "coverage's coarse lights light the others), mean of " << seeds << " pattern seeds. Relative RMSE and bias are divided by the reference's mean over the pixels counted. "
           "Leak region: receivers where exact visibility removes >= 20 % of the unoccluded brute force. Raw: the gather's output; filtered: after "
           "the bilateral post filter, at the same receivers. ms: wall clock around glFinish of one whole frame at " << rsm_frame_size
        << "^2, median of " << repeat << ", interleaved. All techniques use the default settings (radius " << default_rsm_gather_preset<float>().radius_fraction
@@ -217,8 +217,8 @@ int main(int argc, char** argv) {
 
     // ---- RSM techniques, final images against the one-bounce Monte Carlo reference ----
     md << "\n## RSM final images against the one-bounce Monte Carlo reference\n\nDirect plus indirect light, " << size << "x" << size
-       << " images, against the path-traced one-bounce image (" << samples << " bounce rays per pixel, Embree). Receivers the RSM does not cover "
-          "(behind the light) get no indirect light from any RSM technique.\n";
+       << " images, against the path-traced one-bounce image (" << samples << " bounce rays per pixel, Embree). Receivers the pattern does not cover "
+          "(behind the light) get the coverage's coarse lights.\n";
     for (const std::string scene_name : {"cornell-box", "indirect-shadow"}) {
       const scene source = built_in_scene(scene_name);
       std::cerr << scene_name << ": Monte Carlo reference\n";

@@ -76,6 +76,7 @@ frame_reference make_frame_reference(const shader_library& shaders, const scene&
   }
   reference.receivers = blank(reference);
   reference.covered = blank(reference);
+  reference.uncovered = blank(reference);
   reference.leak = blank(reference);
   const std::vector<std::uint8_t> covered = rsm_covered_receivers(reference.buffers, reference.constants, stride);
   double all = 0.0, behind = 0.0, seen = 0.0, leak_all = 0.0, leak_seen = 0.0;
@@ -93,6 +94,7 @@ frame_reference make_frame_reference(const shader_library& shaders, const scene&
         reference.covered.texels[i] = glm::vec4(1.0f);
         ++reference.covered_count;
       } else {
+        reference.uncovered.texels[i] = glm::vec4(1.0f);
         behind += u_sum;
       }
       if (u_sum > 0.0 && e_sum <= 0.8 * u_sum) {
@@ -138,6 +140,8 @@ technique_errors measure_technique(const shader_library& shaders, const scene& s
     accumulate(errors.raw_vs_exact, relative_error_of(raw, reference.exact, &reference.receivers), seeds);
     accumulate(errors.raw_covered_vs_unoccluded, relative_error_of(raw, reference.unoccluded, &reference.covered), seeds);
     accumulate(errors.raw_covered_vs_exact, relative_error_of(raw, reference.exact, &reference.covered), seeds);
+    accumulate(errors.raw_uncovered_vs_unoccluded, relative_error_of(raw, reference.unoccluded, &reference.uncovered), seeds);
+    accumulate(errors.raw_uncovered_vs_exact, relative_error_of(raw, reference.exact, &reference.uncovered), seeds);
     accumulate(errors.raw_leak, relative_error_of(raw, reference.exact, &reference.leak), seeds);
     accumulate(errors.filtered_vs_exact, relative_error_of(filtered, reference.exact, &reference.receivers), seeds);
     accumulate(errors.filtered_leak, relative_error_of(filtered, reference.exact, &reference.leak), seeds);

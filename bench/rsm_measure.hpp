@@ -29,6 +29,7 @@ struct frame_reference {
   image exact;                   ///< brute force with ray-cast visibility
   image receivers;               ///< mask: every receiver with a surface on the stride grid (what the metrics count)
   image covered;                 ///< mask: the receivers the pattern covers (in front of the light, projection inside the RSM)
+  image uncovered;               ///< mask: the others, behind the light or projecting off the map
   image leak;                    ///< mask: receivers where exact visibility removes >= 20 %
   std::size_t receiver_count = 0, covered_count = 0, leak_count = 0;
   double uncovered_share = 0.0;        ///< of the unoccluded light, on receivers not covered
@@ -63,6 +64,7 @@ image brute_force_within(const frame_reference& reference, float radius, int thr
 struct technique_errors {
   relative_error raw_vs_unoccluded, raw_vs_exact, raw_leak, filtered_vs_exact, filtered_leak;
   relative_error raw_covered_vs_unoccluded, raw_covered_vs_exact;  ///< over the covered receivers only
+  relative_error raw_uncovered_vs_unoccluded, raw_uncovered_vs_exact;  ///< over the others (behind the light, off the map)
   double raw_noise = 0.0;  ///< relative RMSE of one seed against the mean of the seeds (unbiased for the seed count)
   image mean_raw;    ///< the raw gather averaged over the seeds
   image filtered_mean;  ///< the filtered indirect light at the receivers, averaged over the seeds

@@ -4,8 +4,8 @@
 //   build/bench/vplkit_rsm_study [--scenes cornell-box,indirect-shadow,occluder,occluder-white,atrium]
 //       [--size 512] [--rsm-size 512] [--stride 4] [--seeds 4] [--quick] [--out output/study]
 // What is compared: the indirect irradiance of the gather (raw, and after the bilateral filter)
-// against the brute force on the same RSM and G-buffer, over the covered receivers (in front of
-// the light) on a grid of every `stride`-th texel of the indirect buffer per axis; each number is
+// against the brute force on the same RSM and G-buffer, over every receiver with a surface
+// (covered by the pattern or not) on a grid of every `stride`-th texel of the indirect buffer per axis; each number is
 // the mean over `seeds` pattern seeds. The leak region: receivers where exact visibility removes
 // >= 20 % of the unoccluded brute force. Time: wall clock around glFinish of one whole frame
 // (median of --repeat, configurations interleaved), at --size on --timing-scene.
@@ -112,7 +112,7 @@ int main(int argc, char** argv) {
            "filtered_rmse_vs_exact,filtered_leak_bias,filtered_leak_rmse,ms\n";
     std::ostringstream md;
     md << "# RSM gather study\n\n" << size << "x" << size << " image, indirect " << (size + 1) / 2 << "^2, RSM " << rsm_size << "^2. Metrics: the "
-       << "indirect irradiance against the brute force of the same frame, over covered receivers on every " << stride
+       << "indirect irradiance against the brute force of the same frame, over every receiver on every " << stride
        << "th indirect texel per axis, mean of " << seeds << " seeds; relative to the reference mean. Time: wall clock around glFinish, one frame, "
        << "median of " << repeat << ", on " << timing_scene << ":\n\n```\n" << describe_current_context() << "\n```\n";
 

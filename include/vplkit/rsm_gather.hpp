@@ -57,8 +57,10 @@ struct rsm_texel {
 enum class rsm_pattern { radial = 0, disk = 1 };                 ///< GLSL: VPLKIT_RSM_PATTERN 0 / 1
 /// The visibility of the samples: none, the thesis's Alg. 2, 3 and 6 as printed, or alg6_ray:
 /// Alg. 6 with the elevation measured about the receiver's own light ray (elevation_bucket_about,
-/// `up` towards the light) and without the samples that lie in or behind the receiver's tangent
-/// plane, which light nothing and hide nothing (docs/errata.md, RSMV-12). GLSL: VPLKIT_VISIBILITY.
+/// `up` towards the light), without the samples that lie in or behind the receiver's tangent plane
+/// (they light nothing and hide nothing), and with Alg. 3's same-slot rule only between samples
+/// that cannot hide one another (micro_linear_buffer_alg6_ray; docs/errata.md, RSMV-12). GLSL:
+/// VPLKIT_VISIBILITY.
 enum class rsm_visibility { none = 0, alg2 = 2, alg3 = 3, alg6 = 6, alg6_ray = 7 };
 
 /// "none", "alg2", "alg3", "alg6", "alg6-ray".
@@ -73,13 +75,7 @@ inline const char* visibility_name(rsm_visibility visibility) {
   return "unknown";
 }
 
-/// alg6_ray leaves out of the micro linear buffer a sample whose offset d from the receiver has
-/// <n, d> <= tangent_slope |d| + min_distance: in the receiver's tangent plane (within about a
-/// degree, and the distance clamp of Eq. 3.2: the precision of the G-buffer's and the RSM's
-/// positions) or behind it. Such a sample is the receiver's own surface or lies below its horizon:
-/// it lights the receiver at most 2 % of what it would face-on, and it cannot hide anything in
-/// front of the tangent plane. GLSL: the same literal.
-inline constexpr double alg6_ray_tangent_slope = 0.02;
+
 
 /// Everything the gather needs besides the receiver and the RSM. GLSL twin: the uniforms of
 /// shaders/gather.frag, filled by set_uniforms.
@@ -218,12 +214,9 @@ struct micro_linear_buffer_visibility {
       (void)receiver, (void)light;
       return T(1);
     } else if constexpr (Visibility == rsm_visibility::alg6_ray) {
-      const glm::vec<3, T> d = light.position - receiver.position;
-      const T facing = receiver.normal.x * d.x + receiver.normal.y * d.y + receiver.normal.z * d.z;
-      const T length = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
-      if (!(facing > T(alg6_ray_tangent_slope) * length + min_distance)) return T(1);  // in or behind the tangent plane: no claim
+      if (!alg6_ray_in_front(receiver.position, receiver.normal, light.position, min_distance)) return T(1);  // no claim
       const int index = elevation_bucket_about(receiver.position, light.position, up, slots);
-      return glm::clamp(micro_linear_buffer_alg6(buffer, index), T(0), T(1));
+      return glm::clamp(micro_linear_buffer_alg6_ray(buffer, index, receiver.position, light.position, light.normal), T(0), T(1));
     } else {
       const int index = elevation_bucket(receiver.position, light.position, slots);
       if constexpr (Visibility == rsm_visibility::alg2) return micro_linear_buffer_alg2(buffer, index);

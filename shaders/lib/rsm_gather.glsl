@@ -79,11 +79,10 @@ void rsm_gather_accumulate(gather_receiver receiver, pattern_sample s, rsm_gathe
   if (!(light.position.z < 0.0)) return;
   float visibility = 1.0;
 #if VPLKIT_VISIBILITY == 7
-  vec3 d = light.position - receiver.position;
-  float facing = receiver.normal.x * d.x + receiver.normal.y * d.y + receiver.normal.z * d.z;
-  float d_length = sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
-  if (facing > 0.02 * d_length + settings.irradiance.min_distance)
-    visibility = clamp(micro_linear_buffer_alg6(buffer, elevation_bucket_about(receiver.position, light.position, up, settings.slots)), 0.0, 1.0);
+  if (alg6_ray_in_front(receiver.position, receiver.normal, light.position, settings.irradiance.min_distance))
+    visibility = clamp(micro_linear_buffer_alg6_ray(buffer, elevation_bucket_about(receiver.position, light.position, up, settings.slots),
+                                                    receiver.position, light.position, light.normal),
+                       0.0, 1.0);
 #elif VPLKIT_VISIBILITY != 0
   int index = elevation_bucket(receiver.position, light.position, settings.slots);
 #if VPLKIT_VISIBILITY == 2

@@ -368,7 +368,9 @@ TEST_CASE("at the default settings, Alg. 6 removes most of the light a block hid
   scene.block_height = 0.6;
   const synthetic_rsm open_floor;
   rsm_gather_settings<double> settings = default_rsm_gather_settings<double>(glm::ivec2(rsm_size));
-  double hidden = 0.0, hidden_kept = 0.0, seen = 0.0, seen_kept = 0.0;
+  rsm_gather_settings<double> ortho = settings;  // the synthetic light is orthographic
+  ortho.perspective = 0;
+  double hidden = 0.0, hidden_kept = 0.0, seen = 0.0, seen_kept = 0.0, ray_hidden_kept = 0.0, ray_seen_kept = 0.0;
   for (int i = 0; i < 32; ++i) {
     const gather_receiver<double> receiver =
         receiver_at({0.0, 0.05, 0.01 * i - 0.16}, glm::uvec2(static_cast<unsigned>(i), 4u), glm::dvec3(1, 0, 0));
@@ -384,12 +386,17 @@ TEST_CASE("at the default settings, Alg. 6 removes most of the light a block hid
     };
     hidden += gather_rsm<rsm_pattern::radial, rsm_visibility::none>(receiver, only(true), settings).x;
     hidden_kept += gather_rsm<rsm_pattern::radial, rsm_visibility::alg6>(receiver, only(true), settings).x;
+    ray_hidden_kept += gather_rsm<rsm_pattern::radial, rsm_visibility::alg6_ray>(receiver, only(true), ortho).x;
     seen += gather_rsm<rsm_pattern::radial, rsm_visibility::none>(receiver, only(false), settings).x;
     seen_kept += gather_rsm<rsm_pattern::radial, rsm_visibility::alg6>(receiver, only(false), settings).x;
+    ray_seen_kept += gather_rsm<rsm_pattern::radial, rsm_visibility::alg6_ray>(receiver, only(false), ortho).x;
   }
-  MESSAGE("defaults: Alg. 6 keeps " << hidden_kept / hidden << " of the hidden light and " << seen_kept / seen << " of the seen light");
+  MESSAGE("defaults: Alg. 6 keeps " << hidden_kept / hidden << " of the hidden light and " << seen_kept / seen << " of the seen light; alg6_ray "
+                                    << ray_hidden_kept / hidden << " and " << ray_seen_kept / seen);
   REQUIRE(hidden > 0.0);
   REQUIRE(seen > 0.0);
   CHECK(hidden_kept / hidden < 0.2);
   CHECK(seen_kept / seen > 0.9);
+  CHECK(ray_hidden_kept / hidden < 0.2);
+  CHECK(ray_seen_kept / seen > 0.9);
 }

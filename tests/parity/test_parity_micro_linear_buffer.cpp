@@ -91,6 +91,55 @@ TEST_CASE("parity: elevation_bucket_about makes the same decision on both sides,
   require_parity(compare_exact("elevation_bucket_about", gpu.uints[0], cpu, inputs, 0.0, 1));
 }
 
+TEST_CASE("parity: alg6_ray's verdicts on random three-sample paths, and alg6_ray_in_front") {
+  // Each texel: a receiver (fin0) and three samples, position | slot (fin1..3) and normal (fin4..6),
+  // on a few shared planes so that predecessors pass their verdicts on, or not, both ways.
+  std::mt19937 random(13);
+  std::uniform_int_distribution<int> slot(0, 4), plane(0, 2);
+  kernel_inputs inputs;
+  inputs.width = inputs.height = grid;
+  inputs.floats.assign(7, std::vector<glm::vec4>(inputs.size()));
+  const glm::vec3 normals[3] = {{0, 0, 1}, glm::normalize(glm::vec3(1, 0, 1)), {-1, 0, 0}};
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    inputs.floats[0][i] = random_point(random, 2.0f);
+    for (int k = 0; k < 3; ++k) {
+      const glm::vec3 n = normals[plane(random)] * (random() % 4 == 0 ? -1.0f : 1.0f);
+      glm::vec3 p(random_point(random, 2.0f));
+      p -= glm::dot(p, n) * n;  // on the plane through the origin
+      inputs.floats[static_cast<std::size_t>(1 + k)][i] = glm::vec4(p, static_cast<float>(slot(random)));
+      inputs.floats[static_cast<std::size_t>(4 + k)][i] = glm::vec4(n, 0.0f);
+    }
+  }
+  kernel_source source;
+  source.name = "micro_linear_buffer_alg6_ray";
+  source.includes = {"lib/micro_linear_buffer.glsl"};
+  source.body = R"(
+    micro_linear_buffer b;
+    micro_linear_buffer_reset(b, 5);
+    float v0 = micro_linear_buffer_alg6_ray(b, int(fin1.w), fin0.xyz, fin1.xyz, fin4.xyz);
+    float v1 = micro_linear_buffer_alg6_ray(b, int(fin2.w), fin0.xyz, fin2.xyz, fin5.xyz);
+    float v2 = micro_linear_buffer_alg6_ray(b, int(fin3.w), fin0.xyz, fin3.xyz, fin6.xyz);
+    fout0 = vec4(v0, v1, v2, alg6_ray_in_front(fin0.xyz, fin4.xyz, fin2.xyz, 0.01) ? 1.0 : 0.0);)";
+  source.float_outputs = 1;
+  const kernel_outputs gpu = run_fragment(source, inputs);
+  std::vector<glm::vec4> cpu(inputs.size());
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    micro_linear_buffer<float> b;
+    micro_linear_buffer_reset(b, 5);
+    glm::vec4 out(0.0f);
+    for (int k = 0; k < 3; ++k) {
+      const glm::vec4 sample = inputs.floats[static_cast<std::size_t>(1 + k)][i];
+      out[k] = micro_linear_buffer_alg6_ray(b, static_cast<int>(sample.w), glm::vec3(inputs.floats[0][i]), glm::vec3(sample),
+                                            glm::vec3(inputs.floats[static_cast<std::size_t>(4 + k)][i]));
+    }
+    out.w = alg6_ray_in_front(glm::vec3(inputs.floats[0][i]), glm::vec3(inputs.floats[4][i]), glm::vec3(inputs.floats[2][i]), 0.01f) ? 1.0f : 0.0f;
+    cpu[i] = out;
+  }
+  // Verdicts are small integers decided by comparisons of dot products that llvmpipe may fuse: a
+  // decision within an ulp of its threshold could flip; none did on this grid, and none is allowed.
+  require_parity(compare("micro_linear_buffer_alg6_ray", gpu.floats[0], cpu, inputs, {0.0f, 0.0f, 0, 0.0, "integer verdicts"}, 4));
+}
+
 TEST_CASE("parity: micro_linear_buffer Alg. 2, 3 and 6 verdicts on random slot sequences") {
   // Each texel holds a path of 10 slot indices (4 bits each, packed into two words) and a slot
   // count; the outputs are the verdict bit masks of the three algorithms, and the sum of the
