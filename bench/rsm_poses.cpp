@@ -67,13 +67,14 @@ scene_light tilted(const scene_light& light, float degrees) {
 
 // The exact brute force at every receiver of the frame the pipeline drew last, through the same
 // post filter (the CPU mirror of the blur passes): the filtered indirect irradiance it would show.
-image filtered_brute_force(const rsm_pipeline& pipeline, const ray_scene& rays, int threads) {
+image filtered_brute_force(const rsm_pipeline& pipeline, const ray_scene& rays, int threads, image* raw = nullptr) {
   const rsm_pass_buffers buffers = pipeline.read_buffers();
   rsm_frame_constants constants = pipeline.constants();
   rsm_brute_force_options options;
   options.exact_visibility = true;
   options.threads = threads;
   image indirect = reference_rsm_gather(rays, buffers, constants, options);
+  if (raw) *raw = indirect;  // before the filter's depth goes into .w
   for (int y = 0; y < indirect.height; ++y)  // the filter reads the camera depth from .w, as in the indirect buffer
     for (int x = 0; x < indirect.width; ++x) indirect.at(x, y).w = buffers.gbuffer[0].at(gbuffer_texel_of(glm::ivec2(x, y), constants)).w;
   const image input = constants.filter == post_filter::separable ? cpu_blur_x_pass(indirect, buffers, constants, threads) : indirect;
@@ -216,13 +217,7 @@ int main(int argc, char** argv) {
             }
             pipeline.set_light(light_of(k));
             pipeline.render();
-            reference_filtered[i] = filtered_brute_force(pipeline, rays, threads);
-            if (k < measured_end) {
-              rsm_brute_force_options exact;
-              exact.exact_visibility = true;
-              exact.threads = threads;
-              reference_raw[i] = reference_rsm_gather(rays, pipeline.read_buffers(), pipeline.constants(), exact);
-            }
+            reference_filtered[i] = filtered_brute_force(pipeline, rays, threads, &reference_raw[i]);
           }
         }
         for (const std::string& technique : sequence_techniques) {
