@@ -1,6 +1,6 @@
 // CPU/GPU parity of include/vplkit/temporal_accumulation.hpp against
 // shaders/lib/temporal_accumulation.glsl: the clamped blend from random neighbourhoods and
-// histories, and the depth test, texel by texel (tests/parity/parity_harness.hpp). The whole pass
+// histories, and the depth test, texel by texel (vplkit/parity/parity.hpp). The whole pass
 // (reprojection included) is compared with its CPU mirror in test_rsm_pipeline.cpp.
 #include <doctest/doctest.h>
 
@@ -8,9 +8,8 @@
 
 #include <vplkit/temporal_accumulation.hpp>
 
-#include "frontend/gl/settings_uniforms.hpp"
-#include "tests/parity/parity_harness.hpp"
-#include "tests/parity/parity_inputs.hpp"
+#include <vplkit/gl/settings_uniforms.hpp>
+#include <vplkit/parity/doctest.hpp>
 
 using namespace vplkit;
 using namespace vplkit::parity;
@@ -18,9 +17,7 @@ using namespace vplkit::parity;
 TEST_CASE("parity: temporal_resolve and temporal_history_matches on random neighbourhoods") {
   std::mt19937 random(17);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-  kernel_inputs inputs;
-  inputs.width = inputs.height = grid;
-  inputs.floats.assign(5, std::vector<glm::vec4>(inputs.size()));
+  kernel_inputs inputs = grid_of(64, 64, 5);
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     for (int k = 0; k < 3; ++k)  // three neighbours, the current value, the history (| expected depth, stored depth)
       inputs.floats[static_cast<std::size_t>(k)][i] = glm::vec4(unit(random), unit(random), unit(random), 0.0f) * 3.0f;
