@@ -137,7 +137,10 @@ technique_errors measure_technique(const shader_library& shaders, const scene& s
     const image raw = indirect.texels.empty() ? blank(reference) : indirect;
     const image filtered = filtered_at_receivers(frame, reference);
     accumulate(errors.raw_vs_unoccluded, relative_error_of(raw, reference.unoccluded, &reference.receivers), seeds);
-    accumulate(errors.raw_vs_exact, relative_error_of(raw, reference.exact, &reference.receivers), seeds);
+    const relative_error vs_exact = relative_error_of(raw, reference.exact, &reference.receivers);
+    accumulate(errors.raw_vs_exact, vs_exact, seeds);
+    errors.raw_bias_min = seed == 1 ? vs_exact.bias : std::min(errors.raw_bias_min, vs_exact.bias);
+    errors.raw_bias_max = seed == 1 ? vs_exact.bias : std::max(errors.raw_bias_max, vs_exact.bias);
     accumulate(errors.raw_covered_vs_unoccluded, relative_error_of(raw, reference.unoccluded, &reference.covered), seeds);
     accumulate(errors.raw_covered_vs_exact, relative_error_of(raw, reference.exact, &reference.covered), seeds);
     accumulate(errors.raw_uncovered_vs_unoccluded, relative_error_of(raw, reference.unoccluded, &reference.uncovered), seeds);

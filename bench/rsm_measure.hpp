@@ -66,6 +66,7 @@ struct technique_errors {
   relative_error raw_vs_unoccluded, raw_vs_exact, raw_leak, filtered_vs_exact, filtered_leak;
   relative_error raw_covered_vs_unoccluded, raw_covered_vs_exact;  ///< over the covered receivers only
   relative_error raw_uncovered_vs_unoccluded, raw_uncovered_vs_exact;  ///< over the others (behind the light, off the map)
+  double raw_bias_min = 0.0, raw_bias_max = 0.0;  ///< raw_vs_exact's bias: the lowest and the highest of the seeds
   double raw_noise = 0.0;  ///< relative RMSE of one seed against the mean of the seeds (unbiased for the seed count)
   image mean_raw;    ///< the raw gather averaged over the seeds
   image filtered_mean;  ///< the filtered indirect light at the receivers, averaged over the seeds
