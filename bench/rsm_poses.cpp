@@ -6,7 +6,7 @@
 // (bench/poses/, written by vplkit_study_set). For each frame:
 // - the brute-force gather of every lit RSM texel with and without exact visibility at every
 //   stride-th receiver of the indirect buffer that has a surface, covered by the pattern or not
-//   (bench/rsm_measure.hpp; cached under --cache, the slow part);
+//   (frontend/reference/rsm_measure.hpp; cached under --cache, the slow part);
 // - the one-bounce Monte Carlo reference of the image (cached);
 // - each technique at the defaults, seeds 1..--seeds, raw and filtered.
 // Targets (issue 23), per frame: Alg. 6's relative RMSE against exact visibility below the radial
@@ -24,7 +24,10 @@
 #include <map>
 #include <sstream>
 
-#include "bench/rsm_measure.hpp"
+#include <iomanip>
+#include <memory>
+
+#include "frontend/reference/rsm_measure.hpp"
 #include "frontend/cli/options.hpp"
 #include "frontend/core/error.hpp"
 #include "frontend/core/files.hpp"
@@ -40,6 +43,70 @@ namespace fs = std::filesystem;
 using namespace vplkit;
 
 namespace {
+
+std::string fixed(double value, int digits) {
+  std::ostringstream out;
+  out << std::fixed << std::setprecision(digits) << value;
+  return out.str();
+}
+
+std::string percent(double fraction) { return fixed(100.0 * fraction, 1); }
+
+// The median wall-clock ms of a whole frame for each configuration, the configurations interleaved
+// (A B A B ...), each after a warm-up frame (the shader compilers' lazy work).
+std::vector<double> interleaved_frame_ms(const shader_library& shaders, const scene& source, const std::vector<rsm_pipeline_settings>& configurations,
+                                         int repeat) {
+  std::vector<std::unique_ptr<rsm_pipeline>> pipelines;
+  for (const rsm_pipeline_settings& settings : configurations) {
+    pipelines.push_back(std::make_unique<rsm_pipeline>(shaders, source, settings));
+    pipelines.back()->draw_wall_clock_ms();
+  }
+  std::vector<std::vector<double>> times(configurations.size());
+  for (int i = 0; i < repeat; ++i)
+    for (std::size_t c = 0; c < pipelines.size(); ++c) times[c].push_back(pipelines[c]->draw_wall_clock_ms());
+  std::vector<double> medians;
+  for (std::vector<double>& values : times) {
+    std::sort(values.begin(), values.end());
+    medians.push_back(values[values.size() / 2]);
+  }
+  return medians;
+}
+
+// A technique's errors on one frame, each the mean over seeds 1..n (measure_frame per seed).
+struct technique_errors {
+  relative_error raw_vs_unoccluded, raw_vs_exact, raw_leak, raw_covered_vs_exact, raw_uncovered_vs_unoccluded;
+  double raw_bias_min = 0.0, raw_bias_max = 0.0;  ///< raw_vs_exact's bias: the lowest and the highest of the seeds
+  image filtered_image;  ///< the filtered indirect irradiance of the whole image (what the user sees), mean of the seeds
+};
+
+void accumulate(relative_error& sum, const relative_error& value, int seeds) {
+  sum.rmse += value.rmse / seeds;
+  sum.bias += value.bias / seeds;
+  sum.pixels = value.pixels;
+}
+
+technique_errors measure_technique(const shader_library& shaders, const scene& source, const rsm_pipeline_settings& settings,
+                                   const frame_reference& reference, int seeds) {
+  technique_errors errors;
+  for (int seed = 1; seed <= seeds; ++seed) {
+    rsm_pipeline_settings seeded = settings;
+    seeded.radial.seed = static_cast<std::uint32_t>(seed);
+    seeded.disk.seed = static_cast<std::uint32_t>(seed);
+    rsm_pipeline pipeline(shaders, source, seeded);
+    const rsm_frame frame = pipeline.render();
+    const frame_errors e = measure_frame(pipeline, reference);
+    accumulate(errors.raw_vs_unoccluded, e.raw_vs_unoccluded, seeds);
+    accumulate(errors.raw_vs_exact, e.raw_vs_exact, seeds);
+    accumulate(errors.raw_leak, e.raw_leak, seeds);
+    accumulate(errors.raw_covered_vs_exact, e.raw_covered_vs_exact, seeds);
+    accumulate(errors.raw_uncovered_vs_unoccluded, e.raw_uncovered_vs_unoccluded, seeds);
+    errors.raw_bias_min = seed == 1 ? e.raw_vs_exact.bias : std::min(errors.raw_bias_min, e.raw_vs_exact.bias);
+    errors.raw_bias_max = seed == 1 ? e.raw_vs_exact.bias : std::max(errors.raw_bias_max, e.raw_vs_exact.bias);
+    if (seed == 1) errors.filtered_image = image(frame.indirect.width, frame.indirect.height);
+    for (std::size_t i = 0; i < frame.indirect.texels.size(); ++i) errors.filtered_image.texels[i] += frame.indirect.texels[i] / static_cast<float>(seeds);
+  }
+  return errors;
+}
 
 struct technique_row {
   std::string label, technique;

@@ -17,6 +17,8 @@
 
 #include <glm/glm.hpp>
 
+#include <vplkit/settings.hpp>
+
 namespace vplkit {
 
 /// Settings of the temporal accumulation. GLSL twin: struct temporal_settings.
@@ -27,14 +29,21 @@ struct temporal_settings {
   T depth_tolerance = T(0.02); ///< relative camera-depth difference at which a reprojected history is still accepted
 };
 
-/// Returns nullptr when the settings are usable, else a message naming the bad field.
+/// Its description (vplkit/settings.hpp): validate() and the uniform upload come from it.
 template <typename T>
-const char* validate(const temporal_settings<T>& settings) {
-  if (!(settings.blend > T(0) && settings.blend <= T(1))) return "temporal_settings::blend must be in (0, 1]";
-  if (!(settings.clamp_width >= T(0) && settings.clamp_width <= T(16))) return "temporal_settings::clamp_width must be in [0, 16]";
-  if (!(settings.depth_tolerance >= T(0) && settings.depth_tolerance <= T(1))) return "temporal_settings::depth_tolerance must be in [0, 1]";
-  return nullptr;
-}
+struct settings_description<temporal_settings<T>> {
+  using S = temporal_settings<T>;
+  static constexpr const char* name = "temporal_settings";
+  static constexpr bool glsl_twin = true;
+  static constexpr auto fields() {
+    return std::make_tuple(field(&S::blend, "blend", open_closed_range(0, 1), "", "weight of each new frame's gather against the history; 1: none"),
+                           field(&S::clamp_width, "clamp_width", closed_range(0, 16), "standard deviations",
+                                 "the history box: the 3 x 3 neighbourhood's mean +- this"),
+                           field(&S::depth_tolerance, "depth_tolerance", closed_range(0, 1), "of the depth",
+                                 "relative camera-depth difference at which a reprojected history is still accepted"));
+  }
+  static setting_problem rules(const S& settings) { return no_rules(settings); }
+};
 
 /// The sums over a neighbourhood of receivers: count, per-channel sum and sum of squares.
 template <typename T>

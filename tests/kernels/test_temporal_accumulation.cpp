@@ -78,9 +78,9 @@ TEST_CASE("temporal_history_matches: the stored depth within the tolerance of th
 }
 
 TEST_CASE("temporal_settings are validated with the field's name") {
-  CHECK(validate(temporal_settings<float>{}) == nullptr);
-  CHECK(validate(temporal_settings<float>{1.0f, 0.0f, 0.0f}) == nullptr);
-  CHECK(std::string(validate(temporal_settings<float>{0.0f, 1.0f, 0.02f})).find("blend") != std::string::npos);
-  CHECK(std::string(validate(temporal_settings<float>{0.5f, -1.0f, 0.02f})).find("clamp_width") != std::string::npos);
-  CHECK(std::string(validate(temporal_settings<float>{0.5f, 1.0f, 2.0f})).find("depth_tolerance") != std::string::npos);
+  CHECK_FALSE(validate(temporal_settings<float>{}));
+  CHECK_FALSE(validate(temporal_settings<float>{1.0f, 0.0f, 0.0f}));
+  CHECK(std::string(validate(temporal_settings<float>{0.0f, 1.0f, 0.02f}).message()).find("blend") != std::string::npos);
+  CHECK(std::string(validate(temporal_settings<float>{0.5f, -1.0f, 0.02f}).message()).find("clamp_width") != std::string::npos);
+  CHECK(std::string(validate(temporal_settings<float>{0.5f, 1.0f, 2.0f}).message()).find("depth_tolerance") != std::string::npos);
 }
