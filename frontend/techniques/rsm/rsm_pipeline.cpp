@@ -126,7 +126,7 @@ const std::vector<setting<rsm_pipeline_settings, rsm_technique>>& rsm_settings_t
       entry::choice("disk-weights", [](auto& s) -> auto& { return s.disk.printed_weights; }, {{"unbiased", false}, {"printed", true}},
                     "original RSM: unbiased (xi, the inverse of the samples' density) or printed (the original's xi^2, biased low; "
                     "docs/errata.md RSMV-9)")
-          .read_by(disk, "rsm-original")
+          .read_by(disk, "the original RSM's disk")
           .feeds("gather.frag: settings.disk.printed_weights"),
       entry::number("coverage-blocks", [](auto& s) -> auto& { return s.coverage_blocks; },
                     describe_field(&rsm_gather_settings<float>::coverage_blocks))
