@@ -9,6 +9,7 @@
 layout(location = 0) in vec3 position;
 layout(location = 1) in vec3 normal;
 layout(location = 2) in vec3 albedo;
+layout(location = 5) in vec2 texcoord;
 
 uniform mat4 view_projection;
 uniform vec3 eye;
@@ -20,6 +21,7 @@ out vec3 world_position;
 out vec3 world_normal;
 out vec3 surface_albedo;
 out vec3 vertex_indirect;
+out vec2 surface_texcoord;
 
 lightwave_vpl lightwave_fetch_vpl(int index) {
   vec4 position_attenuation = texelFetch(vpl_texture, ivec2(0, index), 0);
@@ -36,5 +38,6 @@ void main() {
   world_position = position;
   world_normal = n;
   surface_albedo = albedo;
+  surface_texcoord = texcoord;
   gl_Position = view_projection * vec4(position, 1.0);
 }

@@ -416,7 +416,7 @@ void lightwave_pipeline::rebuild() {
       throw error("Light Wave shadow map framebuffer is incomplete");
     glClear(GL_DEPTH_BUFFER_BIT);
     depth_program_.set("view_projection", shadow_matrices_[layer]);
-    mesh_.draw();
+    mesh_.draw(depth_program_);
   }
   glDisable(GL_POLYGON_OFFSET_FILL);
 
@@ -482,12 +482,17 @@ void lightwave_pipeline::draw_main_pass() {
   main_program_.set("indirect_maps", static_cast<int>(casters_.size()));
   main_program_.set("integrated_steps", settings_.integrated_steps);
   main_program_.set("faked_multiplier", settings_.faked_multiplier);
+  // The normal offset and slope-scaled bias of include/vplkit/shadow.hpp in every map; the
+  // constant part stays the raster state's polygon offset.
+  shadow_density_settings<float> bias;
+  bias.depth_bias = 0.0f;
+  set_uniforms(main_program_, "shadow_bias", bias);
+  main_program_.set("shadow_map_width", shadow_size_.x);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, vpl_texture_.get());
   glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_2D_ARRAY, shadow_maps_.get());
-  main_program_.use();
-  mesh_.draw();
+  mesh_.draw(main_program_);
   timer_.end();
   check_gl("rendering scene " + scene_.name + " with " + technique_.name);
   view_valid_ = true;

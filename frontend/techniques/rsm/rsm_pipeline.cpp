@@ -361,6 +361,7 @@ void rsm_pipeline::set_pose_uniforms() {
   gbuffer_program_.set("light_view", light.view);
   gbuffer_program_.set("light_view_projection", light.view_projection);
   if (with_coverage(constants_)) set_uniforms(coarse_program_, "unprojection", constants_.unprojection);
+  gbuffer_program_.set("light_projection", light.view_projection * glm::inverse(light.view));
   if (constants_.technique.indirect) {
     set_uniforms(gather_program_, "unprojection", constants_.unprojection);
     gather_program_.set("light_view", light.view);
@@ -457,8 +458,7 @@ void rsm_pipeline::draw_passes(bool with_rsm, bool accumulate) {
     const GLuint empty_texel[4] = {0, 0, 0, 0};  // glClear's float colour is undefined for an integer target
     glClearBufferuiv(GL_COLOR, 0, empty_texel);
     glClear(GL_DEPTH_BUFFER_BIT);
-    rsm_program_.use();
-    mesh_.draw();
+    mesh_.draw(rsm_program_);
     timer_.end();
     if (with_coverage(constants_)) {
       timer_.begin("coverage lights");
@@ -480,8 +480,7 @@ void rsm_pipeline::draw_passes(bool with_rsm, bool accumulate) {
   gbuffer_target_.bind();
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   rsm_target_.colour(0).bind(0);
-  gbuffer_program_.use();
-  mesh_.draw();
+  mesh_.draw(gbuffer_program_);
   timer_.end();
 
   glDisable(GL_DEPTH_TEST);
