@@ -10,7 +10,13 @@
 // `vplkit render`). Similarity: Alg. 1 (lightwave_similarity) on 8-bit
 // sRGB images, a smaller render stretched to the default size first, as the thesis does for
 // Table 5.7, next to the thesis's own numbers (Tables 5.5-5.9) and the RMSE of the 8-bit images.
-//   build/bench/vplkit_lightwave_sweep [--width 320] [--height 180] [--repeat 3] [--quick] [--out output/bench]
+// Every image uses the thesis's VPLs (--vpl-energy thesis), whose tables these are; --energy flux
+// sweeps vplkit's default instead.
+// --seeds N adds the seed table: Table 5.8's and 5.9's rows against the default configuration of
+// the same seed, for seeds --first-seed .. --first-seed + N - 1, with their mean and spread
+// (largest - smallest); the accurate shadows' VPLs are the only thing a seed draws.
+//   build/bench/vplkit_lightwave_sweep [--width 320] [--height 180] [--repeat 3] [--quick] [--energy thesis]
+//       [--seeds 0] [--first-seed 1] [--seed-table-only] [--out output/bench]
 // The thesis's 1280 x 720 is the default of `vplkit render`; llvmpipe needs the sweep smaller:
 // --width/--height scale every resolution of the tables by the same factor.
 #include <CLI/CLI.hpp>
@@ -79,17 +85,88 @@ std::string fixed(double value, int digits) {
   return out.str();
 }
 
+// The seed table: Table 5.8's rows (maps) and Table 5.9's (no maps, direct light, faked indirect)
+// against the default of each seed, by Alg. 1 on 8-bit sRGB images of the boxes.
+std::string seed_table(const shader_library& shaders, const scene& boxes, const lightwave_settings& defaults, std::uint32_t first_seed, int seeds) {
+  const auto image_of = [&](const lightwave_settings& settings) {
+    lightwave_pipeline pipeline(shaders, boxes, settings);
+    return to_srgb8(pipeline.render().radiance);
+  };
+  struct seed_row {
+    std::string label;
+    lightwave_settings settings;
+    bool seeded;
+    std::vector<double> similarity;
+  };
+  std::vector<seed_row> rows;
+  for (int maps : {15, 10, 5, 1}) {
+    lightwave_settings s = defaults;
+    s.accurate_maps = maps;
+    rows.push_back({std::to_string(maps) + " maps", s, true, {}});
+  }
+  lightwave_settings s = defaults;
+  s.technique = "lightwave-unshadowed";
+  rows.push_back({"0 maps (lightwave-unshadowed)", s, false, {}});
+  s.technique = "lightwave-direct";
+  rows.push_back({"direct lighting only", s, false, {}});
+  for (float m : {1.1f, 1.3f, 1.5f}) {
+    s.technique = "lightwave-faked";
+    s.faked_multiplier = m;
+    rows.push_back({"faked indirect " + fixed(m, 1) + "x", s, false, {}});
+  }
+  std::map<std::size_t, std::vector<std::uint8_t>> unseeded;
+  for (int k = 0; k < seeds; ++k) {
+    const std::uint32_t seed = first_seed + static_cast<std::uint32_t>(k);
+    lightwave_settings reference_settings = defaults;
+    reference_settings.seed = seed;
+    const std::vector<std::uint8_t> reference = image_of(reference_settings);
+    for (std::size_t r = 0; r < rows.size(); ++r) {
+      lightwave_settings settings = rows[r].settings;
+      settings.seed = seed;
+      if (!rows[r].seeded && !unseeded.count(r)) unseeded[r] = image_of(settings);
+      const std::vector<std::uint8_t> image = rows[r].seeded ? image_of(settings) : unseeded[r];
+      rows[r].similarity.push_back(similarity_rgb(reference, image));
+      std::cerr << "  seed " << seed << ": " << rows[r].label << " " << fixed(rows[r].similarity.back(), 3) << "% similar\n";
+    }
+  }
+  std::ostringstream md;
+  md << "\n## Seeds: Tables 5.8 and 5.9 against the default of each seed\n\nBoxes, " << defaults.width << "x" << defaults.height << ", --vpl-energy "
+     << (defaults.energy == lightwave_energy::thesis ? "thesis" : "flux") << ", % similar (Alg. 1, 8-bit sRGB, every pixel) to the default (accurate, "
+     << defaults.accurate_maps << " maps) rendered with the same seed; seeds " << first_seed << "-" << first_seed + static_cast<std::uint32_t>(seeds) - 1
+     << ". Spread: largest - smallest.\n\n| configuration |";
+  for (int k = 0; k < seeds; ++k) md << " seed " << first_seed + static_cast<std::uint32_t>(k) << " |";
+  md << " mean | spread |\n|---|";
+  for (int k = 0; k < seeds + 2; ++k) md << "---:|";
+  md << "\n";
+  for (const seed_row& row : rows) {
+    md << "| " << row.label << " |";
+    double sum = 0.0;
+    for (double value : row.similarity) {
+      md << " " << fixed(value, 3) << " |";
+      sum += value;
+    }
+    const auto [low, high] = std::minmax_element(row.similarity.begin(), row.similarity.end());
+    md << " " << fixed(sum / static_cast<double>(row.similarity.size()), 3) << " | " << fixed(*high - *low, 3) << " |\n";
+  }
+  return md.str();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"Light Wave sweep ([LW], Tables 5.1-5.15)"};
-  int width = 320, height = 180, repeat = 3;
-  bool quick = false;
-  std::string out = "output/bench";
+  int width = 320, height = 180, repeat = 3, seeds = 0;
+  std::uint32_t first_seed = 1;
+  bool quick = false, seed_table_only = false;
+  std::string out = "output/bench", energy = "thesis";
   app.add_option("--width", width, "default width (the thesis: 1280)")->check(CLI::Range(16, 4096))->capture_default_str();
   app.add_option("--height", height, "default height (the thesis: 720)")->check(CLI::Range(16, 4096))->capture_default_str();
   app.add_option("--repeat", repeat, "timed frames per configuration (median)")->check(CLI::Range(1, 50))->capture_default_str();
   app.add_flag("--quick", quick, "skip the teapot scenes and the integrated-shadow tables");
+  app.add_option("--energy", energy, "--vpl-energy of every image (the thesis's tables: thesis)")->check(CLI::IsMember({"thesis", "flux"}))->capture_default_str();
+  app.add_option("--seeds", seeds, "seeds of the seed table (0: none)")->check(CLI::Range(0, 64))->capture_default_str();
+  app.add_option("--first-seed", first_seed, "the seed table's first seed")->capture_default_str();
+  app.add_flag("--seed-table-only", seed_table_only, "only the seed table (with --seeds)");
   app.add_option("--out", out, "folder for lightwave_sweep.csv and lightwave_sweep.md")->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 
@@ -102,6 +179,15 @@ int main(int argc, char** argv) {
     lightwave_settings defaults;
     defaults.width = width;
     defaults.height = height;
+    defaults.energy = energy == "flux" ? lightwave_energy::flux : lightwave_energy::thesis;
+    std::ostringstream seed_md;
+    if (seeds > 0) seed_md << seed_table(shaders, scenes.at("boxes"), defaults, first_seed, seeds);
+    if (seed_table_only) {
+      fs::create_directories(out);
+      std::ofstream(fs::path(out) / "lightwave_seeds.md") << seed_md.str();
+      std::cout << seed_md.str() << "\nwrote " << fs::absolute(fs::path(out) / "lightwave_seeds.md").string() << "\n";
+      return 0;
+    }
     std::vector<std::uint8_t> reference;
     std::vector<result> results;
 
@@ -222,8 +308,9 @@ int main(int argc, char** argv) {
     }
 
     std::ostringstream md;
-    md << "# Light Wave sweep\n\nDefault " << width << "x" << height << " (the thesis: 1280x720, scaled for llvmpipe), shadow maps "
-       << defaults.shadow_map_scale << "x the screen, median wall clock of " << repeat << " frames with nothing moving (read-back included) on:\n\n```\n"
+    md << "# Light Wave sweep\n\nDefault " << width << "x" << height << " (the thesis: 1280x720, scaled for llvmpipe), --vpl-energy " << energy
+       << ", shadow maps " << defaults.shadow_map_scale << "x the screen, median wall clock of " << repeat
+       << " frames with nothing moving (read-back included) on:\n\n```\n"
        << describe_current_context() << "\n```\n\n| table | configuration | triangles | frame ms | FPS | rebuild ms | % similar | the thesis's % similar | RMSE vs default (8-bit) | rank (Eq. 5.3) |\n"
           "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
     std::ofstream csv_file;
@@ -251,6 +338,7 @@ int main(int argc, char** argv) {
     for (std::size_t i = 0; i < ranked.size(); ++i)
       md << "| " << i + 1 << " | " << ranked[i]->table << ": " << ranked[i]->label << " | " << fixed(ranked[i]->fps(), 1) << " | "
          << fixed(ranked[i]->similarity, 3) << " | " << fixed(lightwave_rank(ranked[i]->fps() - base.fps(), ranked[i]->similarity), 2) << " |\n";
+    md << seed_md.str();
     fs::create_directories(out);
     std::ofstream(fs::path(out) / "lightwave_sweep.csv") << csv.str();
     std::ofstream(fs::path(out) / "lightwave_sweep.md") << md.str();

@@ -4,9 +4,13 @@
 // VPLKIT_LIGHTWAVE_MODE: 0 direct only, 1 faked indirect (Eq. 5.2), 2 indirect without shadows,
 // 3 accurate indirect shadows (the VPL shadow maps), 4 integrated indirect shadows (lookups
 // stepped between every pair of maps, lib/lightwave.glsl).
-// VPLKIT_LIGHTWAVE_SHADOW_VARIANT (accurate shadows): 0 importance, each lookup weighted by its
-// VPL's diffuse weight here over the probability it was drawn with, lookups outside a map not
-// voting; 1 thesis, the plain mean with outside counting as lit. See lightwave_settings.
+// VPLKIT_LIGHTWAVE_SHADOW_VARIANT (accurate shadows): 0 importance: each map stands for a group
+// of VPLs and shadows the share of this fragment's indirect light that its group, taken as one
+// light, brings here; where the map does not cover the fragment (behind its camera, outside its
+// frustum or depth range) or its VPL does not light it, that share stays lit, and towards the
+// map's border its lookup fades to lit (lightwave_map_fade, over 5 % of the map). 1 thesis: the plain
+// mean of the lookups, outside a map counting as lit. See lightwave_settings.
+// VPLKIT_LIGHTWAVE_ENERGY: 0 the thesis's VPL weights (Eq. 4.5), 1 the flux VPLs' irradiance.
 // Shadow maps: layer 0 of the depth array is the spot light's, layers 1 .. maps the VPLs'.
 // Output 1 is the indirect shadow factor (red), output 2 the indirect radiance added to the
 // direct light (after the factor), for tests, reports and the viewer.
@@ -22,8 +26,10 @@ uniform spot_light light;
 uniform irradiance_settings irradiance;
 uniform sampler2DArrayShadow shadow_maps;
 uniform mat4 shadow_matrix[VPLKIT_MAX_SHADOW_MAPS + 1];
-uniform vec4 caster_position_attenuation[VPLKIT_MAX_SHADOW_MAPS];  // map i + 1's VPL
-uniform vec4 caster_normal_weight[VPLKIT_MAX_SHADOW_MAPS];         // its normal | 1 / probability
+uniform vec4 caster_position[VPLKIT_MAX_SHADOW_MAPS];         // map i + 1's VPL: position | attenuation (thesis) or radius (flux)
+uniform vec4 caster_normal[VPLKIT_MAX_SHADOW_MAPS];           // its normal | -
+uniform vec4 group_position_radius[VPLKIT_MAX_SHADOW_MAPS];   // its group as one light (importance)
+uniform vec4 group_normal_power[VPLKIT_MAX_SHADOW_MAPS];
 uniform int indirect_maps;
 uniform int integrated_steps;
 uniform float faked_multiplier;
@@ -41,6 +47,27 @@ vec4 map_coordinate(int layer) { return lightwave_map_coordinate(shadow_matrix[l
 
 // 1 = lit; the depth bias is in the raster state.
 float shadow_lookup(vec3 coordinate, int layer) { return texture(shadow_maps, vec4(coordinate.xy, float(layer), coordinate.z)); }
+
+// The light of caster i's group, as one light, at (x, n), and whether caster i's own VPL lights it.
+#if VPLKIT_LIGHTWAVE_ENERGY == 1
+float group_light(int i, vec3 x, vec3 n) {
+  vec4 a = group_position_radius[i], b = group_normal_power[i];
+  return lightwave_bounce_weight(x, n, lightwave_flux_vpl(a.xyz, b.xyz, vec3(b.w), a.w), irradiance.min_distance);
+}
+bool caster_lights(int i, vec3 x, vec3 n) {
+  vec4 a = caster_position[i];
+  return lightwave_bounce_weight(x, n, lightwave_flux_vpl(a.xyz, caster_normal[i].xyz, vec3(1.0), a.w), irradiance.min_distance) > 0.0;
+}
+#else
+float group_light(int i, vec3 x, vec3 n) {
+  vec4 a = group_position_radius[i], b = group_normal_power[i];
+  return lightwave_vpl_weight(x, n, lightwave_vpl(a.xyz, b.xyz, 0.0)) * b.w;
+}
+bool caster_lights(int i, vec3 x, vec3 n) {
+  vec4 a = caster_position[i];
+  return lightwave_vpl_weight(x, n, lightwave_vpl(a.xyz, caster_normal[i].xyz, a.w)) > 0.0;
+}
+#endif
 
 void main() {
   vec3 n = normalize(world_normal);
@@ -60,18 +87,16 @@ void main() {
   colour = vec4(direct * shadow + indirect, 1.0);
 #elif VPLKIT_LIGHTWAVE_MODE == 3
 #if VPLKIT_LIGHTWAVE_SHADOW_VARIANT == 0
-  float lit = 0.0, weight = 0.0;
+  float lit = 0.0, total = 0.0;
   for (int i = 1; i <= indirect_maps; ++i) {
+    float share = group_light(i - 1, world_position, n);
+    if (!(share > 0.0)) continue;
+    total += share;
     vec4 coordinate = map_coordinate(i);
-    vec4 caster = caster_position_attenuation[i - 1];
-    lightwave_vpl vpl = lightwave_vpl(caster.xyz, caster_normal_weight[i - 1].xyz, caster.w);
-    float w = coordinate.w * lightwave_vpl_weight(world_position, n, vpl) * caster_normal_weight[i - 1].w;
-    if (w > 0.0) {
-      lit += w * shadow_lookup(coordinate.xyz, i);
-      weight += w;
-    }
+    float counts = caster_lights(i - 1, world_position, n) ? lightwave_map_fade(coordinate, 0.05) : 0.0;
+    lit += counts > 0.0 ? share * mix(1.0, shadow_lookup(coordinate.xyz, i), counts) : share;
   }
-  factor = weight > 0.0 ? lit / weight : 1.0;
+  factor = total > 0.0 ? lit / total : 1.0;
 #else  // thesis variant
   float lit = 0.0;
   for (int i = 1; i <= indirect_maps; ++i) {

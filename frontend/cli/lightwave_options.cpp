@@ -29,7 +29,13 @@ void add_lightwave_options(CLI::App& command, lightwave_options& options, option
             all, is_lightwave_technique);
   scope.add(command.add_option("--vpls-per-ray", lw.per_ray, "Light Wave: VPLs per ray (stacked hemispheres)")->check(CLI::Range(1, 32))->capture_default_str(),
             all, is_lightwave_technique);
-  scope.add(command.add_option("--vpl-max-distance", lw.max_distance, "Light Wave: distance the hemispheres approach (0: from the scene's size)")
+  scope.add(command.add_option("--vpl-energy", options.energy,
+                               "Light Wave: flux (each VPL reflects the flux its patch of the spot's cone brings to the surface its ray meets, "
+                               "with a diffuse bounce's falloff) or thesis (Eq. 4.5: VPLs on hemispheres in space, no flux, no falloff; Tables 5.x)")
+                ->check(CLI::IsMember({"flux", "thesis"}))->capture_default_str(),
+            "lightwave-unshadowed, lightwave-accurate and lightwave-integrated",
+            one_of({lightwave_mode::unshadowed, lightwave_mode::accurate, lightwave_mode::integrated}));
+  scope.add(command.add_option("--vpl-max-distance", lw.max_distance, "Light Wave, --vpl-energy thesis: distance the hemispheres approach (0: from the scene's size)")
                 ->check(number_in(0.0, max_scene_coordinate, false, "scene units"))->capture_default_str(),
             all, is_lightwave_technique);
   scope.add(command.add_option("--shadow-maps", lw.accurate_maps, "Light Wave: VPL shadow maps of the accurate shadows (0: none)")
@@ -63,6 +69,7 @@ lightwave_settings make_lightwave_settings(const std::string& technique, const c
   lw.irradiance.min_distance = common.min_distance;
   lw.seed = common.seed;
   lw.shadow_variant = options.shadow_variant == "thesis" ? lightwave_shadow_variant::thesis : lightwave_shadow_variant::importance;
+  lw.energy = options.energy == "thesis" ? lightwave_energy::thesis : lightwave_energy::flux;
   if (const std::string problem = validate(lw); !problem.empty()) throw usage_error(problem);
   return lw;
 }
@@ -91,7 +98,8 @@ int render_lightwave(const session& io, const std::string& technique, const comm
   const double mebibytes = static_cast<double>(pipeline.shadow_map_bytes()) / (1024.0 * 1024.0);
   io.out << "scene " << source.name << " (" << source.geometry.triangle_count() << " triangles), technique " << settings.technique << ", "
          << settings.width << "x" << settings.height << ", " << pipeline.vpl_count() << " VPLs (" << settings.angle_deg << " degrees, " << settings.per_ray
-         << " per ray)\nshadow maps: " << std::fixed << std::setprecision(2) << mebibytes << " MB (Eq. 5.4/5.5)\n"
+         << " per ray" << (settings.energy == lightwave_energy::flux ? ", flux energy: " + std::to_string(pipeline.lit_vpl_count()) + " carry light" : std::string())
+         << ")\nshadow maps: " << std::fixed << std::setprecision(2) << mebibytes << " MB (Eq. 5.4/5.5)\n"
          << "a frame after the light moved (VPLs and shadow maps rebuilt):\n"
          << format_pass_table(first.pass_times) << "next frames (nothing moved):\n"
          << format_pass_table(frame.pass_times);

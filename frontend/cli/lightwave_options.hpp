@@ -13,6 +13,7 @@ namespace vplkit::cli {
 struct lightwave_options {
   lightwave_settings settings;             ///< the fields the options below set
   std::string shadow_variant = "importance";
+  std::string energy = "flux";
 };
 
 /// Whether `technique` is one of the Light Wave family.
@@ -21,7 +22,7 @@ bool is_lightwave_technique(const std::string& technique);
 /// The scene the Light Wave techniques render: --scene, else boxes.
 std::string lightwave_scene_name(const common_options& common);
 
-/// --ray-angle, --vpls-per-ray, --vpl-max-distance, --shadow-maps, --shadow-variant,
+/// --ray-angle, --vpls-per-ray, --vpl-energy, --vpl-max-distance, --shadow-maps, --shadow-variant,
 /// --integrated-steps, --shadow-map-scale, --faked-multiplier.
 void add_lightwave_options(CLI::App& command, lightwave_options& options, option_scope& scope);
 

@@ -236,6 +236,9 @@ class lightwave_view final : public pipeline_view<lightwave_pipeline> {
     if (mode != lightwave_mode::direct && mode != lightwave_mode::faked) {
       changed |= edit_int("ray angle (degrees)", edited.angle_deg, 1, 45);
       changed |= edit_int("VPLs per ray", edited.per_ray, 1, 16);
+      static constexpr lightwave_energy energies[] = {lightwave_energy::flux, lightwave_energy::thesis};
+      static constexpr const char* energy_labels[] = {"flux", "thesis"};
+      changed |= edit_choice("VPL energy", edited.energy, energies, energy_labels);
     }
     if (mode == lightwave_mode::faked) changed |= edit_float("faked multiplier m", edited.faked_multiplier, 1.0f, 2.0f);
     if (mode == lightwave_mode::accurate) {
