@@ -7,13 +7,18 @@
 // VPLKIT_LIGHTWAVE_SHADOW_VARIANT (accurate shadows): 0 importance: each map stands for a group
 // of VPLs and shadows the share of this fragment's indirect light that its group, taken as one
 // light, brings here; where the map does not cover the fragment (behind its camera, outside its
-// frustum or depth range) or its VPL does not light it, that share stays lit, and towards the
-// map's border its lookup fades to lit (lightwave_map_fade, over 5 % of the map). 1 thesis: the plain
+// frustum or depth range) or its VPL does not light it, that share stays lit; with the flux
+// energy the lookup counts by lightwave_group_confidence (the smaller the group looks, the more
+// one VPL's view stands for it; the thesis energy, which has no ground truth to weigh that
+// against, takes each lookup at face value); it fades to lit towards the map's border
+// (lightwave_map_fade, over 5 % of the map). 1 thesis: the plain
 // mean of the lookups, outside a map counting as lit. See lightwave_settings.
 // VPLKIT_LIGHTWAVE_ENERGY: 0 the thesis's VPL weights (Eq. 4.5), 1 the flux VPLs' irradiance.
 // Shadow maps: layer 0 of the depth array is the spot light's, layers 1 .. maps the VPLs'.
 // Output 1 is the indirect shadow factor (red), output 2 the indirect radiance added to the
 // direct light (after the factor), for tests, reports and the viewer.
+// VPLKIT_LIGHTWAVE_INDIRECT_BUFFER (the flux energy with indirect shadows): the indirect light
+// comes from the screen buffer lightwave_indirect.frag filled at this pixel, not from the vertices.
 #include "lib/direct_light.glsl"
 #include "lib/lightwave.glsl"
 
@@ -38,6 +43,9 @@ in vec3 world_position;
 in vec3 world_normal;
 in vec3 surface_albedo;
 in vec3 vertex_indirect;
+#if VPLKIT_LIGHTWAVE_INDIRECT_BUFFER
+uniform sampler2D indirect_buffer;
+#endif
 layout(location = 0) out vec4 colour;
 layout(location = 1) out vec4 indirect_shadow;
 layout(location = 2) out vec4 indirect_out;
@@ -54,10 +62,7 @@ float group_light(int i, vec3 x, vec3 n) {
   vec4 a = group_position_radius[i], b = group_normal_power[i];
   return lightwave_bounce_weight(x, n, lightwave_flux_vpl(a.xyz, b.xyz, vec3(b.w), a.w), irradiance.min_distance);
 }
-bool caster_lights(int i, vec3 x, vec3 n) {
-  vec4 a = caster_position[i];
-  return lightwave_bounce_weight(x, n, lightwave_flux_vpl(a.xyz, caster_normal[i].xyz, vec3(1.0), a.w), irradiance.min_distance) > 0.0;
-}
+bool caster_lights(int i, vec3 x, vec3 n) { return lightwave_flux_vpl_faces(x, n, caster_position[i].xyz, caster_normal[i].xyz); }
 #else
 float group_light(int i, vec3 x, vec3 n) {
   vec4 a = group_position_radius[i], b = group_normal_power[i];
@@ -71,6 +76,9 @@ bool caster_lights(int i, vec3 x, vec3 n) {
 
 void main() {
   vec3 n = normalize(world_normal);
+#if VPLKIT_LIGHTWAVE_INDIRECT_BUFFER
+  vec3 vertex_indirect = texelFetch(indirect_buffer, ivec2(gl_FragCoord.xy), 0).rgb;
+#endif
   vec3 direct = surface_albedo * 0.318309886183790671538 * spot_light_irradiance(world_position, n, light, irradiance);
   // Outside the light's frustum there is no direct light to shadow.
   vec4 light_coordinate = map_coordinate(0);
@@ -93,7 +101,12 @@ void main() {
     if (!(share > 0.0)) continue;
     total += share;
     vec4 coordinate = map_coordinate(i);
-    float counts = caster_lights(i - 1, world_position, n) ? lightwave_map_fade(coordinate, 0.05) : 0.0;
+#if VPLKIT_LIGHTWAVE_ENERGY == 1
+    float trust = lightwave_group_confidence(world_position, group_position_radius[i - 1].xyz, group_position_radius[i - 1].w);
+#else
+    float trust = 1.0;  // the thesis's VPLs: each lookup at face value, as its tables measure them
+#endif
+    float counts = caster_lights(i - 1, world_position, n) ? trust * lightwave_map_fade(coordinate, 0.05) : 0.0;
     lit += counts > 0.0 ? share * mix(1.0, shadow_lookup(coordinate.xyz, i), counts) : share;
   }
   factor = total > 0.0 ? lit / total : 1.0;

@@ -70,6 +70,9 @@ lightwave_settings make_lightwave_settings(const std::string& technique, const c
   lw.seed = common.seed;
   lw.shadow_variant = options.shadow_variant == "thesis" ? lightwave_shadow_variant::thesis : lightwave_shadow_variant::importance;
   lw.energy = options.energy == "thesis" ? lightwave_energy::thesis : lightwave_energy::flux;
+  if (lw.energy == lightwave_energy::flux && lw.max_distance != 0.0f)
+    throw usage_error("--vpl-max-distance places the thesis's hemispheres and is read with --vpl-energy thesis; the flux energy puts its VPLs "
+                      "where its rays meet the scene");
   if (const std::string problem = validate(lw); !problem.empty()) throw usage_error(problem);
   return lw;
 }

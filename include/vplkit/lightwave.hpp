@@ -222,6 +222,15 @@ glm::vec<3, T> lightwave_bounce_irradiance(const glm::vec<3, T>& x, const glm::v
   return pixel_light_irradiance(x, n, vpl.position, vpl.normal, vpl.flux, clamp) * inv_pi<T>;
 }
 
+/// Whether a flux VPL at (position, normal) lights (x, n) at all: x in front of its surface and
+/// facing it, the two factors of Eq. 3.2 that can vanish (lightwave_bounce_irradiance > 0 for a
+/// VPL of positive flux).
+template <typename T>
+bool lightwave_flux_vpl_faces(const glm::vec<3, T>& x, const glm::vec<3, T>& n, const glm::vec<3, T>& position, const glm::vec<3, T>& normal) {
+  const glm::vec<3, T> light_to_receiver = x - position;
+  return glm::dot(normal, light_to_receiver) > T(0) && -glm::dot(n, light_to_receiver) > T(0);
+}
+
 /// A flux VPL's weight at (x, n) for the indirect shadows: the sum of the channels of its irradiance.
 template <typename T>
 T lightwave_bounce_weight(const glm::vec<3, T>& x, const glm::vec<3, T>& n, const lightwave_flux_vpl<T>& vpl, T min_distance) {
@@ -309,6 +318,17 @@ T lightwave_map_fade(const glm::vec<4, T>& coordinate, T margin) {
   const T border = glm::min(glm::min(coordinate.x, T(1) - coordinate.x), glm::min(coordinate.y, T(1) - coordinate.y));
   const T t = glm::clamp(border / margin, T(0), T(1));
   return coordinate.w * (t * t * (T(3) - T(2) * t));
+}
+
+/// How far the accurate shadows trust one map for a group of VPLs at x: the map is rendered from
+/// one point of the group, whose visibility stands for the whole group's only while the group
+/// looks small. 1 / (1 + theta^2), theta = 2 radius / |x - position| the group's angular
+/// diameter (small-angle, radians): 1 for a group seen as a point, 1/2 at theta = 1.
+template <typename T>
+T lightwave_group_confidence(const glm::vec<3, T>& x, const glm::vec<3, T>& group_position, T group_radius) {
+  const glm::vec<3, T> offset = group_position - x;
+  const T diameter = T(2) * group_radius;
+  return T(1) / (T(1) + diameter * diameter / glm::max(glm::dot(offset, offset), T(1e-12)));
 }
 
 /// Eq. 4.5 summed over `count` VPLs from `fetch(int index) -> lightwave_vpl<T>`, divided by count.

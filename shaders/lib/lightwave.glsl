@@ -111,6 +111,11 @@ vec3 lightwave_bounce_irradiance(vec3 x, vec3 n, lightwave_flux_vpl vpl, float m
   return pixel_light_irradiance(x, n, vpl.position, vpl.normal, vpl.flux, clamp_settings) * 0.318309886183790671538;
 }
 
+bool lightwave_flux_vpl_faces(vec3 x, vec3 n, vec3 position, vec3 normal) {
+  vec3 light_to_receiver = x - position;
+  return dot(normal, light_to_receiver) > 0.0 && -dot(n, light_to_receiver) > 0.0;
+}
+
 float lightwave_bounce_weight(vec3 x, vec3 n, lightwave_flux_vpl vpl, float min_distance) {
   vec3 e = lightwave_bounce_irradiance(x, n, vpl, min_distance);
   return e.x + e.y + e.z;
@@ -170,6 +175,12 @@ float lightwave_map_fade(vec4 coordinate, float margin) {
   float border = min(min(coordinate.x, 1.0 - coordinate.x), min(coordinate.y, 1.0 - coordinate.y));
   float t = clamp(border / margin, 0.0, 1.0);
   return coordinate.w * (t * t * (3.0 - 2.0 * t));
+}
+
+float lightwave_group_confidence(vec3 x, vec3 group_position, float group_radius) {
+  vec3 offset = group_position - x;
+  float diameter = 2.0 * group_radius;
+  return 1.0 / (1.0 + diameter * diameter / max(dot(offset, offset), 1e-12));
 }
 
 #ifdef VPLKIT_LIGHTWAVE_FETCH

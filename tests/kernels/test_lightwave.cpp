@@ -350,3 +350,33 @@ TEST_CASE("lightwave_map_fade: 0 outside a map and on its border, 1 from the mar
     previous = fade;
   }
 }
+
+TEST_CASE("lightwave_group_confidence: 1 for a group seen as a point, 1/2 where its angular diameter is one radian, falling with its size") {
+  const glm::dvec3 x(0.0), group(0, 0, 4);
+  CHECK(lightwave_group_confidence(x, group, 0.0) == 1.0);
+  CHECK(lightwave_group_confidence(x, group, 2.0) == doctest::Approx(0.5));  // diameter 4 at distance 4
+  CHECK(lightwave_group_confidence(x, group, 0.2) == doctest::Approx(1.0 / (1.0 + 0.01)));
+  CHECK(lightwave_group_confidence(x, group, 1.0) > lightwave_group_confidence(x, group, 3.0));
+  CHECK(lightwave_group_confidence(x, glm::dvec3(0, 0, 8), 2.0) > lightwave_group_confidence(x, group, 2.0));  // farther: smaller
+  CHECK(lightwave_group_confidence(group, group, 1.0) >= 0.0);  // at its centre: finite, about 0
+  CHECK(lightwave_group_confidence(group, group, 1.0) < 1e-9);
+}
+
+TEST_CASE("lightwave_flux_vpl_faces: exactly where a flux VPL's light is positive") {
+  std::uint32_t state = 12345u;
+  const auto next = [&] {
+    state = state * 1664525u + 1013904223u;
+    return static_cast<double>(state >> 8) / 16777216.0 * 2.0 - 1.0;
+  };
+  int lit = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const glm::dvec3 x(next(), next(), next()), p(next(), next(), next());
+    const glm::dvec3 n = glm::normalize(glm::dvec3(next(), next(), next())), normal = glm::normalize(glm::dvec3(next(), next(), next()));
+    const lightwave_flux_vpl<double> vpl{p, normal, glm::dvec3(0.3, 0.2, 0.1), 0.05};
+    const bool faces = lightwave_flux_vpl_faces(x, n, p, normal);
+    REQUIRE(faces == (lightwave_bounce_weight(x, n, vpl, 0.01) > 0.0));
+    lit += faces;
+  }
+  CHECK(lit > 2000);  // a quarter of random pairs face each other
+  CHECK(lit < 8000);
+}

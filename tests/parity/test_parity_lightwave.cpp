@@ -235,7 +235,7 @@ TEST_CASE("parity: lightwave_cone_sample for all 6485 samples of the flux layout
   }
 }
 
-TEST_CASE("parity: lightwave_ray_flux, lightwave_patch_radius, lightwave_bounce_irradiance and lightwave_bounce_weight") {
+TEST_CASE("parity: lightwave_ray_flux, lightwave_patch_radius, lightwave_bounce_irradiance, lightwave_bounce_weight, lightwave_flux_vpl_faces and lightwave_group_confidence") {
   kernel_inputs inputs;
   inputs.width = 64;
   inputs.height = 64;
@@ -266,10 +266,11 @@ TEST_CASE("parity: lightwave_ray_flux, lightwave_patch_radius, lightwave_bounce_
                 "vec3 flux = lightwave_ray_flux(light, direction, fin0.w, vec3(0.5, 0.7, 0.9), fin3.xyz);\n"
                 "lightwave_flux_vpl vpl = lightwave_flux_vpl(fin2.xyz, fin3.xyz, vec3(1.0, 0.5, 0.25), fin2.w);\n"
                 "fout0 = vec4(flux, lightwave_patch_radius(fin0.w, fin1.w, fin3.w));\n"
-                "fout1 = vec4(lightwave_bounce_irradiance(fin0.xyz, fin1.xyz, vpl, 0.01), lightwave_bounce_weight(fin0.xyz, fin1.xyz, vpl, 0.01));";
-  source.float_outputs = 2;
+                "fout1 = vec4(lightwave_bounce_irradiance(fin0.xyz, fin1.xyz, vpl, 0.01), lightwave_bounce_weight(fin0.xyz, fin1.xyz, vpl, 0.01));\n"
+                "fout2 = vec4(lightwave_group_confidence(fin0.xyz, fin2.xyz, fin2.w), lightwave_flux_vpl_faces(fin0.xyz, fin1.xyz, fin2.xyz, fin3.xyz) ? 1.0 : 0.0, 0.0, 0.0);";
+  source.float_outputs = 3;
   const kernel_outputs gpu = run_fragment(source, inputs, [&](const program& p) { set_uniforms(p, "light", light); });
-  std::vector<glm::vec4> first(inputs.size()), second(inputs.size());
+  std::vector<glm::vec4> first(inputs.size()), second(inputs.size()), third(inputs.size());
   std::size_t lit = 0, clamped = 0;
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     const glm::vec4 a = inputs.floats[0][i], b = inputs.floats[1][i], c = inputs.floats[2][i], d = inputs.floats[3][i];
@@ -277,6 +278,8 @@ TEST_CASE("parity: lightwave_ray_flux, lightwave_patch_radius, lightwave_bounce_
     const lightwave_flux_vpl<float> vpl{glm::vec3(c), glm::vec3(d), glm::vec3(1.0f, 0.5f, 0.25f), c.w};
     first[i] = glm::vec4(lightwave_ray_flux(light, direction, a.w, glm::vec3(0.5f, 0.7f, 0.9f), glm::vec3(d)), lightwave_patch_radius(a.w, b.w, d.w));
     second[i] = glm::vec4(lightwave_bounce_irradiance(glm::vec3(a), glm::vec3(b), vpl, 0.01f), lightwave_bounce_weight(glm::vec3(a), glm::vec3(b), vpl, 0.01f));
+    third[i] = glm::vec4(lightwave_group_confidence(glm::vec3(a), glm::vec3(c), c.w),
+                         lightwave_flux_vpl_faces(glm::vec3(a), glm::vec3(b), glm::vec3(c), glm::vec3(d)) ? 1.0f : 0.0f, 0.0f, 0.0f);
     lit += second[i].w > 0.0f;
     clamped += glm::length(glm::vec3(a) - glm::vec3(c)) < c.w && second[i].w > 0.0f;
   }
@@ -287,6 +290,8 @@ TEST_CASE("parity: lightwave_ray_flux, lightwave_patch_radius, lightwave_bounce_
   // receiver divides twice by 1e-4) and the 1/pi multiply: 5e-6 relative, 1e-7 absolute near 0.
   require_parity(compare("lightwave_ray_flux, lightwave_patch_radius", gpu.floats[0], first, inputs, {1e-7f, 0.0f, 8, 0.0, "normalize, divide, sqrt"}));
   require_parity(compare("lightwave_bounce_irradiance, lightwave_bounce_weight", gpu.floats[1], second, inputs, {1e-7f, 5e-6f, 8, 0.0, "two divides"}));
+  // The confidence: two divides; whether the VPL faces the receiver: a decision, exact.
+  require_parity(compare("lightwave_group_confidence, lightwave_flux_vpl_faces", gpu.floats[2], third, inputs, {1e-7f, 0.0f, 4, 0.0, "two divides"}));
 }
 
 TEST_CASE("parity: the flux VPLs' light summed per vertex (lightwave_vertex_bounce), in the vertex stage through transform feedback") {

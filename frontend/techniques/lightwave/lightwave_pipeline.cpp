@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -62,7 +63,7 @@ std::string validate(const lightwave_settings& settings) {
   if (settings.energy != lightwave_energy::thesis && settings.energy != lightwave_energy::flux) return "VPL energy must be flux or thesis";
   if (!(settings.max_distance >= 0.0f && settings.max_distance <= max_scene_coordinate)) return "Light Wave max distance must be in [0, 1e7] (0: from the scene's size)";
   if (settings.energy == lightwave_energy::flux && settings.max_distance != 0.0f)
-    return "the VPL max distance places the thesis's hemispheres (--vpl-energy thesis); the flux energy puts its VPLs on the surfaces";
+    return "Light Wave max distance places the thesis's hemispheres (thesis energy); the flux energy puts its VPLs on the surfaces and needs 0";
   if (settings.accurate_maps < 0 || settings.accurate_maps > lightwave_max_shadow_maps)
     return "accurate shadow maps must be in [0, " + std::to_string(lightwave_max_shadow_maps) + "]";
   if (settings.shadow_variant != lightwave_shadow_variant::importance && settings.shadow_variant != lightwave_shadow_variant::thesis)
@@ -112,7 +113,7 @@ std::vector<int> lightwave_shadow_vpls(lightwave_mode mode, const lightwave_sett
 namespace {
 
 // One group of lightwave_cluster_casters: its members (indices into the VPLs) and its map's VPL.
-lightwave_shadow_caster make_group(const std::vector<lightwave_cluster_vpl>& vpls, const std::vector<int>& members, double u) {
+lightwave_shadow_caster make_group(const std::vector<lightwave_cluster_vpl>& vpls, const std::vector<int>& members, float normal_scale) {
   lightwave_shadow_caster group;
   double importance = 0.0, power = 0.0;
   glm::dvec3 position(0.0), normal(0.0);
@@ -134,25 +135,30 @@ lightwave_shadow_caster make_group(const std::vector<lightwave_cluster_vpl>& vpl
   group.normal = glm::length(normal) > 0.0 ? glm::vec3(glm::normalize(normal)) : vpls[static_cast<std::size_t>(members.front())].normal;
   group.radius = static_cast<float>(power > 0.0 ? std::sqrt(spread / power) : 0.0);
   group.power = static_cast<float>(power);
-  group.members = static_cast<int>(members.size());
-  // The map's VPL: drawn in proportion to importance at u of the group's cumulative importance.
-  const double target = u * importance;
-  double cumulative = 0.0;
-  group.vpl = members.back();
+  group.members = members;
+  // The map's VPL: the member nearest the group's importance-weighted centre (position, and the
+  // normal scaled to scene units), the one point whose view stands best for the group's.
+  glm::dvec3 centre(0.0), facing(0.0);
   for (int i : members) {
-    cumulative += vpls[static_cast<std::size_t>(i)].importance;
-    if (cumulative > target) {
-      group.vpl = i;
-      break;
-    }
+    const lightwave_cluster_vpl& vpl = vpls[static_cast<std::size_t>(i)];
+    centre += static_cast<double>(vpl.importance) * glm::dvec3(vpl.position);
+    facing += static_cast<double>(vpl.importance) * glm::dvec3(vpl.normal);
+  }
+  centre /= importance;
+  facing /= importance;
+  double nearest = std::numeric_limits<double>::max();
+  for (int i : members) {
+    const lightwave_cluster_vpl& vpl = vpls[static_cast<std::size_t>(i)];
+    const glm::dvec3 d = glm::dvec3(vpl.position) - centre, e = (glm::dvec3(vpl.normal) - facing) * static_cast<double>(normal_scale);
+    const double distance = glm::dot(d, d) + glm::dot(e, e);
+    if (distance < nearest) nearest = distance, group.vpl = i;
   }
   return group;
 }
 
 }  // namespace
 
-std::vector<lightwave_shadow_caster> lightwave_cluster_casters(const std::vector<lightwave_cluster_vpl>& vpls, int count, float normal_scale,
-                                                               std::uint32_t seed) {
+std::vector<lightwave_shadow_caster> lightwave_cluster_casters(const std::vector<lightwave_cluster_vpl>& vpls, int count, float normal_scale) {
   std::vector<int> order;
   for (std::size_t i = 0; i < vpls.size(); ++i)
     if (vpls[i].importance > 0.0f) order.push_back(static_cast<int>(i));
@@ -167,8 +173,7 @@ std::vector<lightwave_shadow_caster> lightwave_cluster_casters(const std::vector
   const auto split = [&](const auto& self, std::size_t begin, std::size_t end, int k) -> void {
     if (k <= 1 || end - begin <= 1) {
       const std::vector<int> members(order.begin() + static_cast<std::ptrdiff_t>(begin), order.begin() + static_cast<std::ptrdiff_t>(end));
-      const std::uint32_t index = static_cast<std::uint32_t>(groups.size());
-      groups.push_back(make_group(vpls, members, static_cast<double>(uniform_float_from_bits(hash_combine(seed ^ 0x2545f491u, index)))));
+      groups.push_back(make_group(vpls, members, normal_scale));
       return;
     }
     int widest = 0;
@@ -334,7 +339,12 @@ lightwave_pipeline::lightwave_pipeline(const shader_library& shaders, const scen
   if (source.light.kind != light_kind::spot) throw error("Light Wave needs a spot light; scene " + source.name + " has a directional one");
   if (const char* problem = validate(source.light.spot)) throw error("scene " + source.name + ": " + problem);
   const std::string energy = std::to_string(static_cast<int>(settings_.energy));
+  // The flux energy's indirect light with indirect shadows: from a screen buffer the receivers
+  // fill (indirect_target_), so that the shadows' heavy fragment stage runs on the scene's own
+  // triangles; without shadows the receivers are drawn directly, one pass.
+  const bool indirect_buffer = settings_.energy == lightwave_energy::flux && technique_.mode >= lightwave_mode::accurate;
   const shader_defines defines = {{"VPLKIT_LIGHTWAVE_MODE", std::to_string(static_cast<int>(technique_.mode))},
+                                  {"VPLKIT_LIGHTWAVE_INDIRECT_BUFFER", indirect_buffer ? "1" : "0"},
                                   {"VPLKIT_LIGHTWAVE_SHADOW_VARIANT", std::to_string(static_cast<int>(settings_.shadow_variant))},
                                   {"VPLKIT_LIGHTWAVE_ENERGY", energy},
                                   {"VPLKIT_LIGHTWAVE_INDIRECT", technique_.mode >= lightwave_mode::unshadowed ? "1" : "0"},
@@ -363,6 +373,10 @@ lightwave_pipeline::lightwave_pipeline(const shader_library& shaders, const scen
     glBindBuffer(GL_ARRAY_BUFFER, 0);
     receiver_buffers_->attach_vec3_attribute(3, indirect_buffer_.get());
     receiver_buffers_->attach_vec3_attribute(4, sample_buffer_.get());
+    if (indirect_buffer) {
+      indirect_program_ = load_program(shaders, "lightwave.vert", "lightwave_indirect.frag", defines);
+      indirect_target_.emplace(settings_.width, settings_.height, std::vector<texel_format>{texel_format::rgba32f}, true);
+    }
   }
 
   // The shadow maps: layer 0 for the light, then one per chosen VPL.
@@ -570,7 +584,7 @@ void lightwave_pipeline::build_shadow_maps() {
       for (const lightwave_receiver_point& point : points) importance_sum += view.weight(i, point);
       candidates[i] = {view.position(i), view.normal(i), static_cast<float>(importance_sum), view.power(i), view.radius(i)};
     }
-    casters_ = lightwave_cluster_casters(candidates, settings_.accurate_maps, 0.25f * radius, settings_.seed);
+    casters_ = lightwave_cluster_casters(candidates, settings_.accurate_maps, 0.25f * radius);
     std::vector<float> weights(points.size());
     for (const lightwave_shadow_caster& caster : casters_) {
       const auto i = static_cast<std::size_t>(caster.vpl);
@@ -615,7 +629,9 @@ void lightwave_pipeline::build_shadow_maps() {
   glDisable(GL_POLYGON_OFFSET_FILL);
 
   const program& p = main_program_;
-  for (std::size_t i = 0; i < shadow_matrices_.size(); ++i) p.set("shadow_matrix[" + std::to_string(i) + "]", shadow_matrices_[i]);
+  for (std::size_t i = 0; i < shadow_matrices_.size(); ++i) {
+    p.set("shadow_matrix[" + std::to_string(i) + "]", shadow_matrices_[i]);
+  }
   // Each caster's VPL (whether it lights a fragment decides whether its map votes there) and,
   // with importance, its group as one light (the share of the fragment's light the map stands for).
   for (std::size_t i = 0; i < casters_.size(); ++i) {
@@ -659,9 +675,22 @@ void lightwave_pipeline::draw() {
     timer_.end();
   }
   timer_.begin("main pass");
-  target_.bind();
   glEnable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
+  if (indirect_target_) {
+    // Flux energy with indirect shadows: the receivers' indirect light into the screen buffer the
+    // main pass reads.
+    indirect_target_->bind();
+    glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    set_vertex_uniforms(indirect_program_);
+    indirect_program_.use();
+    receiver_buffers_->draw();
+    main_program_.set("indirect_buffer", 2);
+    glActiveTexture(GL_TEXTURE2);
+    glBindTexture(GL_TEXTURE_2D, indirect_target_->colour(0).id());
+  }
+  target_.bind();
   glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   const GLfloat unshadowed[4] = {1.0f, 0.0f, 0.0f, 1.0f};  // the factor where no surface is
@@ -678,8 +707,8 @@ void lightwave_pipeline::draw() {
   glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_2D_ARRAY, shadow_maps_.get());
   main_program_.use();
-  // The flux energy draws the receivers, whose vertices carry the indirect light.
-  if (receiver_buffers_) receiver_buffers_->draw();
+  // The flux energy without indirect shadows draws the receivers, whose vertices carry the light.
+  if (receiver_buffers_ && !indirect_target_) receiver_buffers_->draw();
   else mesh_.draw();
   timer_.end();
   check_gl("rendering scene " + scene_.name + " with " + technique_.name);

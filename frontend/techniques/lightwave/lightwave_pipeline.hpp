@@ -72,9 +72,10 @@ struct lightwave_settings {
   /// lookups behind a map's camera):
   /// - importance (the default): the VPLs that light the visible scene split into as many
   ///   compact groups of equal light as there are maps (lightwave_cluster_casters), one map per
-  ///   group from a VPL drawn in it, aimed at what that VPL lights; each map shadows the share of
-  ///   a fragment's indirect light its group brings there, and nothing where it does not cover
-  ///   the fragment;
+  ///   group from its medoid VPL, aimed at what that VPL lights; each map shadows the share of a
+  ///   fragment's indirect light its group brings there, trusted the less the larger the group
+  ///   looks from the fragment (lightwave_group_confidence), fading to lit towards the map's
+  ///   border and nothing where it does not cover the fragment; no seed;
   /// - thesis: VPLs drawn uniformly, each map looking along its VPL's normal with
   ///   vpl_field_of_view, the plain mean of the lookups, outside a map counting as lit.
   lightwave_shadow_variant shadow_variant = lightwave_shadow_variant::importance;
@@ -92,7 +93,7 @@ struct lightwave_settings {
   /// diffuse bounce does not depend on the camera, and the main pass reads it as a vertex attribute.
   float receiver_spacing = 1.0f / 8.0f;
   int receiver_triangles = 32768;
-  std::uint32_t seed = 1;         ///< draws the VPLs of the accurate shadow maps (one per group with importance)
+  std::uint32_t seed = 1;         ///< draws the VPLs of the accurate shadow maps of the thesis variant
   lightwave_shading_settings<float> shading;  ///< thesis energy (Eq. 4.5's specular term)
   irradiance_settings<float> irradiance;      ///< the direct light's and the flux VPLs' distance clamp
   texel_format format = texel_format::rgba16f;
@@ -144,7 +145,7 @@ struct lightwave_shadow_caster {
   glm::vec3 normal{0.0f, 1.0f, 0.0f};
   float radius = 0.0f;
   float power = 0.0f;
-  int members = 0;
+  std::vector<int> members;  ///< the group's VPLs (indices into the pipeline's VPLs)
 };
 
 /// What lightwave_cluster_casters needs of a VPL.
@@ -159,10 +160,10 @@ struct lightwave_cluster_vpl {
 /// Splits the VPLs of importance > 0 into `count` groups (fewer when fewer VPLs light anything),
 /// each compact and of about equal importance: a k-d split at the importance median along the
 /// widest extent of position and normal (the normal scaled by `normal_scale`, scene units),
-/// recursively. Each group's map is rendered from one VPL drawn in proportion to importance with
-/// one uniform per group from `seed` (stratified: every seed draws one VPL from every group).
-std::vector<lightwave_shadow_caster> lightwave_cluster_casters(const std::vector<lightwave_cluster_vpl>& vpls, int count, float normal_scale,
-                                                               std::uint32_t seed);
+/// recursively. Each group's map is rendered from its medoid: the member nearest the group's
+/// importance-weighted mean position and normal, the one point whose view stands best for the
+/// group's. Deterministic: no seed, so the shadows do not depend on one.
+std::vector<lightwave_shadow_caster> lightwave_cluster_casters(const std::vector<lightwave_cluster_vpl>& vpls, int count, float normal_scale);
 
 /// The view-projection of a shadow map from `eye` that holds the points of weight > 0: looking at
 /// their weighted mean direction, with the field of view of the farthest of them plus a margin
@@ -220,7 +221,7 @@ class lightwave_pipeline {
   /// thesis energy at the scene's vertices, the flux energy at the receivers' (the buffer the main
   /// pass reads). The parity test compares it with the CPU sum.
   std::vector<glm::vec3> capture_vertex_indirect();
-  /// The mesh the main pass draws: the scene's, or the flux energy's receivers.
+  /// The mesh whose vertices carry the indirect light: the scene's, or the flux energy's receivers.
   const mesh& drawn_mesh() const { return receiver_buffers_ ? receivers_ : scene_.geometry; }
   /// Flux energy: where each receiver vertex's indirect light is evaluated (lightwave_receiver_samples).
   const std::vector<glm::vec3>& receiver_samples() const { return receiver_samples_; }
@@ -273,6 +274,8 @@ class lightwave_pipeline {
   program surface_program_;  ///< flux energy: what the light sees
   program main_program_;
   program capture_program_;
+  program indirect_program_;                    ///< flux energy: the receivers' indirect light into indirect_target_
+  std::optional<framebuffer> indirect_target_;
   gl_texture vpl_texture_;
   gl_texture shadow_maps_;
   gl_framebuffer shadow_framebuffer_;

@@ -105,14 +105,16 @@ TEST_CASE("Light Wave modes, both energies: finite images; shadows only remove i
     std::size_t darker_accurate = 0, darker_integrated = 0;
     for (std::size_t i = 0; i < unshadowed.texels.size(); ++i) {
       for (int c = 0; c < 3; ++c) {
-        REQUIRE(images["lightwave-accurate"].texels[i][c] <= unshadowed.texels[i][c]);
-        REQUIRE(images["lightwave-integrated"].texels[i][c] <= unshadowed.texels[i][c]);
+        // (The flux energy draws the receivers without shadows and the scene's own triangles with
+        // them: the direct light may differ in the last bit.)
+        REQUIRE(images["lightwave-accurate"].texels[i][c] <= unshadowed.texels[i][c] * (1.0f + 1e-5f) + 1e-7f);
+        REQUIRE(images["lightwave-integrated"].texels[i][c] <= unshadowed.texels[i][c] * (1.0f + 1e-5f) + 1e-7f);
         // The flux energy draws the receivers, the direct light the scene's own triangles: their
         // fragments' positions, and so the direct light, may differ in the last bit.
         REQUIRE(images["lightwave-direct"].texels[i][c] <= images["lightwave-accurate"].texels[i][c] * (1.0f + 1e-5f) + 1e-7f);
       }
-      darker_accurate += images["lightwave-accurate"].texels[i].r < unshadowed.texels[i].r;
-      darker_integrated += images["lightwave-integrated"].texels[i].r < unshadowed.texels[i].r;
+      darker_accurate += images["lightwave-accurate"].texels[i].r < unshadowed.texels[i].r * 0.999f;
+      darker_integrated += images["lightwave-integrated"].texels[i].r < unshadowed.texels[i].r * 0.999f;
     }
     CHECK(darker_accurate > 0);  // indirect shadows exist
     CHECK(darker_integrated > 0);
@@ -356,11 +358,12 @@ TEST_CASE("integrated indirect shadows over an empty plane: no darkening anywher
   CHECK(lowest >= 0.99f);
 }
 
-TEST_CASE("the number of indirect shadow maps matters: 0, 1, 5, 10 and 20 maps give five different images") {
+TEST_CASE("the number of indirect shadow maps matters: 0, 1, 5, 10 and 20 maps give five different images (thesis energy, Table 5.8)") {
   const scene boxes = make_boxes_scene();
   std::map<int, std::vector<std::uint8_t>> images;
   for (int maps : {0, 1, 5, 10, 20}) {
     lightwave_settings settings = small("lightwave-accurate");
+    settings.energy = lightwave_energy::thesis;  // the thesis's table; the boxes barely occlude a flux bounce
     settings.width = 256;
     settings.height = 144;
     settings.accurate_maps = maps;
@@ -392,6 +395,30 @@ TEST_CASE("the number of indirect shadow maps matters: 0, 1, 5, 10 and 20 maps g
       MESSAGE(a << " against " << b << " maps: RMSE on 8-bit images " << rmse(images[a], images[b]));
       CHECK(rmse(images[a], images[b]) > 1e-3);
     }
+}
+
+TEST_CASE("flux energy: accurate shadows with no map give the unshadowed image (the indirect light read from the screen buffer equals the receivers drawn)") {
+  const scene boxes = make_boxes_scene();
+  lightwave_settings settings = small("lightwave-accurate");
+  settings.width = 256;
+  settings.height = 144;
+  settings.accurate_maps = 0;
+  lightwave_pipeline accurate(test_shaders(), boxes, settings);
+  const lightwave_frame buffered = accurate.render();
+  settings.technique = "lightwave-unshadowed";
+  lightwave_pipeline unshadowed(test_shaders(), boxes, settings);
+  const lightwave_frame direct = unshadowed.render();
+  REQUIRE(buffered.radiance.texels.size() == direct.radiance.texels.size());
+  double largest = 0.0, total = 0.0;
+  for (std::size_t i = 0; i < direct.radiance.texels.size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      largest = std::max(largest, std::fabs(static_cast<double>(buffered.radiance.texels[i][c]) - static_cast<double>(direct.radiance.texels[i][c])));
+      total += static_cast<double>(direct.radiance.texels[i][c]);
+    }
+  MESSAGE("largest difference " << largest << ", mean radiance " << total / (3.0 * static_cast<double>(direct.radiance.texels.size())));
+  // The same interpolated vertex light; the two passes' fragment positions may differ in the last bits.
+  CHECK(largest <= 1e-3 * total / (3.0 * static_cast<double>(direct.radiance.texels.size())));
+  CHECK(total > 0.0);
 }
 
 // ---- The flux energy: light that follows the spot and the albedos, wherever the spot points ----
@@ -529,28 +556,30 @@ TEST_CASE("flux energy, accurate shadows: a panel shadows the wall behind it fro
   CHECK(beside > behind + 0.15);
 }
 
-TEST_CASE("accurate shadows, importance: the groups do not depend on the seed; every seed draws one VPL from every group") {
+TEST_CASE("accurate shadows, importance: the image does not depend on the seed, in either energy") {
   const scene boxes = make_boxes_scene();
   for (lightwave_energy energy : {lightwave_energy::flux, lightwave_energy::thesis}) {
-    std::vector<std::vector<lightwave_shadow_caster>> draws;
+    std::vector<std::vector<std::uint8_t>> images;
     for (std::uint32_t seed : {0u, 1u, 2u}) {
       lightwave_settings settings = small("lightwave-accurate");
       settings.energy = energy;
       settings.seed = seed;
       lightwave_pipeline pipeline(test_shaders(), boxes, settings);
-      pipeline.render();
-      draws.push_back(pipeline.shadow_casters());
+      images.push_back(to_srgb8(pipeline.render().radiance));
+      REQUIRE(pipeline.shadow_casters().size() == 20u);
     }
-    REQUIRE(draws[0].size() == 20u);
-    int moved = 0;
-    for (std::size_t g = 0; g < draws[0].size(); ++g) {
-      CHECK(draws[1][g].position == draws[0][g].position);  // the same group, as one light
-      CHECK(draws[2][g].power == draws[0][g].power);
-      CHECK(draws[1][g].members == draws[0][g].members);
-      moved += draws[1][g].vpl != draws[0][g].vpl;
-    }
-    CHECK(moved > 0);  // the seed draws other VPLs in the same groups
+    CHECK(images[1] == images[0]);
+    CHECK(images[2] == images[0]);
   }
+  // The thesis's variant draws its VPLs with the seed.
+  lightwave_settings thesis = small("lightwave-accurate");
+  thesis.shadow_variant = lightwave_shadow_variant::thesis;
+  lightwave_pipeline first(test_shaders(), boxes, thesis);
+  thesis.seed = 2;
+  lightwave_pipeline second(test_shaders(), boxes, thesis);
+  first.render();
+  second.render();
+  CHECK(first.shadow_casters().front().vpl != second.shadow_casters().front().vpl);
 }
 
 TEST_CASE("subdivide_long_edges: no edge over the bound, the area and the faces' attributes kept, no T-junction, the source's order") {
@@ -629,7 +658,7 @@ TEST_CASE("lightwave_receivers and their samples: subdivided to the bound or the
   CHECK(interior > 20u);
 }
 
-TEST_CASE("lightwave_cluster_casters: groups of about equal importance that partition the VPLs, compact, one VPL drawn in each") {
+TEST_CASE("lightwave_cluster_casters: groups of about equal importance that partition the VPLs, compact, each map's VPL its group's medoid") {
   // VPLs on a floor and a wall, importance falling off from a corner.
   std::vector<lightwave_cluster_vpl> vpls;
   for (int i = 0; i < 40; ++i)
@@ -643,32 +672,40 @@ TEST_CASE("lightwave_cluster_casters: groups of about equal importance that part
       v.radius = 0.05f;
       vpls.push_back(v);
     }
-  double total = 0.0, largest = 0.0;
+  double total = 0.0;
   for (const lightwave_cluster_vpl& v : vpls) total += v.importance;
-  const std::vector<lightwave_shadow_caster> groups = lightwave_cluster_casters(vpls, 20, 1.0f, 7u);
+  const std::vector<lightwave_shadow_caster> groups = lightwave_cluster_casters(vpls, 20, 1.0f);
   REQUIRE(groups.size() == 20u);
-  int members = 0;
-  for (const lightwave_shadow_caster& g : groups) {
-    members += g.members;
-    CHECK(vpls[static_cast<std::size_t>(g.vpl)].importance > 0.0f);
-    CHECK(glm::length(vpls[static_cast<std::size_t>(g.vpl)].position - g.position) <= 3.0f * g.radius + 1e-4f);  // drawn inside its group
-    CHECK(g.radius < 1.2f);  // compact: the whole set spans 4 x 4
-    CHECK(g.power == doctest::Approx(static_cast<float>(g.members)));
-    largest = std::max(largest, static_cast<double>(g.power));
-  }
-  int positive = 0;
-  for (const lightwave_cluster_vpl& v : vpls) positive += v.importance > 0.0f;
-  CHECK(members == positive);  // every VPL that lights something is in one group, no other
-  // The seed draws other VPLs from the same groups.
-  const std::vector<lightwave_shadow_caster> again = lightwave_cluster_casters(vpls, 20, 1.0f, 8u);
-  REQUIRE(again.size() == groups.size());
-  int moved = 0;
+  std::vector<int> group_of(vpls.size(), -1);
   for (std::size_t g = 0; g < groups.size(); ++g) {
-    CHECK(again[g].position == groups[g].position);
-    moved += again[g].vpl != groups[g].vpl;
+    const lightwave_shadow_caster& group = groups[g];
+    double importance = 0.0;
+    glm::dvec3 centre(0.0), facing(0.0);
+    for (int i : group.members) {
+      const lightwave_cluster_vpl& v = vpls[static_cast<std::size_t>(i)];
+      REQUIRE(v.importance > 0.0f);
+      REQUIRE(group_of[static_cast<std::size_t>(i)] == -1);  // in one group only
+      group_of[static_cast<std::size_t>(i)] = static_cast<int>(g);
+      importance += v.importance;
+      centre += static_cast<double>(v.importance) * glm::dvec3(v.position);
+      facing += static_cast<double>(v.importance) * glm::dvec3(v.normal);
+    }
+    // About equal importance: the k-d split halves at the median, within a VPL's importance.
+    CHECK(importance == doctest::Approx(total / 20.0).epsilon(0.15));
+    CHECK(group.radius < 1.2f);  // compact: the whole set spans 4 x 4
+    CHECK(group.power == doctest::Approx(static_cast<float>(group.members.size())));
+    // The map's VPL is the group's medoid: no member lies nearer its importance-weighted mean
+    // position and normal (the normal scaled by 1, the normal_scale given).
+    centre /= importance;
+    facing /= importance;
+    const auto distance = [&](int i) {
+      const lightwave_cluster_vpl& v = vpls[static_cast<std::size_t>(i)];
+      return glm::dot(glm::dvec3(v.position) - centre, glm::dvec3(v.position) - centre) + glm::dot(glm::dvec3(v.normal) - facing, glm::dvec3(v.normal) - facing);
+    };
+    for (int i : group.members) CHECK(distance(group.vpl) <= distance(i));
   }
-  CHECK(moved > 5);
+  for (std::size_t i = 0; i < vpls.size(); ++i) CHECK((group_of[i] >= 0) == (vpls[i].importance > 0.0f));  // every VPL that lights something
   // Fewer VPLs than groups asked: one group each; none: no group.
-  CHECK(lightwave_cluster_casters(std::vector<lightwave_cluster_vpl>(vpls.begin(), vpls.begin() + 3), 20, 1.0f, 1u).size() == 2u);  // one has no importance
-  CHECK(lightwave_cluster_casters({}, 20, 1.0f, 1u).empty());
+  CHECK(lightwave_cluster_casters(std::vector<lightwave_cluster_vpl>(vpls.begin(), vpls.begin() + 3), 20, 1.0f).size() == 2u);  // one has no importance
+  CHECK(lightwave_cluster_casters({}, 20, 1.0f).empty());
 }
