@@ -286,8 +286,8 @@ int main(int argc, char** argv) {
       }
       md << "\nAgainst the physical one-bounce image, lightwave-accurate is " << (rmse_of["lightwave-accurate"] < rmse_of["lightwave-unshadowed"] ? "nearer" : "not nearer")
          << " than lightwave-unshadowed (RMSE " << fixed(rmse_of["lightwave-accurate"], 4) << " against " << fixed(rmse_of["lightwave-unshadowed"], 4)
-         << "). Light Wave's indirect light has no flux and no distance falloff (Eq. 4.5), so its level is not the physical one: the comparison says "
-            "more about that than about the shadows.\n";
+         << "). With the default --vpl-energy flux each VPL carries the flux its patch of the spot's cone brings, so the level is the physical "
+            "one and the accurate shadows have no seed; bench/lightwave_study (docs/lightwave-shadows.md) measures them over scenes and seeds.\n";
       md << "\n![" << scene_name << " lightwave-accurate | reference | error](" << scene_name << "-lightwave-accurate.png)\n";
     }
 

@@ -322,12 +322,15 @@ T lightwave_map_fade(const glm::vec<4, T>& coordinate, T margin) {
 
 /// How far the accurate shadows trust one map for a group of VPLs at x: the map is rendered from
 /// one point of the group, whose visibility stands for the whole group's only while the group
-/// looks small. 1 / (1 + theta^2), theta = 2 radius / |x - position| the group's angular
-/// diameter (small-angle, radians): 1 for a group seen as a point, 1/2 at theta = 1.
+/// looks small. 1 / (1 + theta^2), theta = 4 radius / |x - position| the group's angular
+/// diameter (small-angle, radians), `group_radius` being its RMS radius (a disc's extent is about
+/// twice its RMS radius): 1 for a group seen as a point, 1/2 at theta = 1. (With the diameter
+/// taken as 2 RMS radii, one map for all of a room's VPLs still shadowed a corner it lights the
+/// more: further from the one-bounce reference than no map, docs/lightwave-shadows.md.)
 template <typename T>
 T lightwave_group_confidence(const glm::vec<3, T>& x, const glm::vec<3, T>& group_position, T group_radius) {
   const glm::vec<3, T> offset = group_position - x;
-  const T diameter = T(2) * group_radius;
+  const T diameter = T(4) * group_radius;
   return T(1) / (T(1) + diameter * diameter / glm::max(glm::dot(offset, offset), T(1e-12)));
 }
 

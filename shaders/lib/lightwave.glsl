@@ -179,7 +179,7 @@ float lightwave_map_fade(vec4 coordinate, float margin) {
 
 float lightwave_group_confidence(vec3 x, vec3 group_position, float group_radius) {
   vec3 offset = group_position - x;
-  float diameter = 2.0 * group_radius;
+  float diameter = 4.0 * group_radius;
   return 1.0 / (1.0 + diameter * diameter / max(dot(offset, offset), 1e-12));
 }
 

@@ -351,11 +351,11 @@ TEST_CASE("lightwave_map_fade: 0 outside a map and on its border, 1 from the mar
   }
 }
 
-TEST_CASE("lightwave_group_confidence: 1 for a group seen as a point, 1/2 where its angular diameter is one radian, falling with its size") {
+TEST_CASE("lightwave_group_confidence: 1 for a group seen as a point, 1/2 where its angular diameter (4 RMS radii) is one radian, falling with its size") {
   const glm::dvec3 x(0.0), group(0, 0, 4);
   CHECK(lightwave_group_confidence(x, group, 0.0) == 1.0);
-  CHECK(lightwave_group_confidence(x, group, 2.0) == doctest::Approx(0.5));  // diameter 4 at distance 4
-  CHECK(lightwave_group_confidence(x, group, 0.2) == doctest::Approx(1.0 / (1.0 + 0.01)));
+  CHECK(lightwave_group_confidence(x, group, 1.0) == doctest::Approx(0.5));  // diameter 4 at distance 4
+  CHECK(lightwave_group_confidence(x, group, 0.2) == doctest::Approx(1.0 / (1.0 + 0.04)));
   CHECK(lightwave_group_confidence(x, group, 1.0) > lightwave_group_confidence(x, group, 3.0));
   CHECK(lightwave_group_confidence(x, glm::dvec3(0, 0, 8), 2.0) > lightwave_group_confidence(x, group, 2.0));  // farther: smaller
   CHECK(lightwave_group_confidence(group, group, 1.0) >= 0.0);  // at its centre: finite, about 0
