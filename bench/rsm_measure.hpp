@@ -9,8 +9,9 @@
 #include <string>
 #include <vector>
 
+#include <vplkit/gl/program.hpp>
+
 #include "frontend/image/metrics.hpp"
-#include "frontend/gl/program.hpp"
 #include "frontend/reference/reference.hpp"
 #include "frontend/techniques/rsm/rsm_pipeline.hpp"
 

@@ -4,11 +4,13 @@
 # line's option checks and the glTF reader (tests/fuzz/; tinygltf itself is Debian's build, not
 # instrumented: crashes in it are caught, its coverage does not guide the fuzzer).
 #   scripts/fuzz.sh [seconds] [target...]   each target for `seconds` (default 60); all by default
-# Builds build-fuzz/ (CC=clang CXX=clang++, VPLKIT_FUZZ=ON). The working corpora live in
-# build-fuzz/corpus/<target>, seeded from tests/fuzz/corpus, the regression inputs, Debian's assimp
-# test models and the npm meshes. A crash leaves its input in build-fuzz/crashes/<target>/ and
-# makes the script exit 1; copy the input to tests/fuzz/regressions/<target>/ with the fix, and
-# the normal test suite replays it from then on.
+# The fuzz targets build in the sanitizer build, build-sanitize/ (scripts/setup.sh --sanitize:
+# clang, address and undefined-behaviour sanitizers, libFuzzer coverage), the tree whose tests
+# the sanitizer pass runs. The working corpora live in build-sanitize/fuzz/corpus/<target>,
+# seeded from tests/fuzz/corpus, the regression inputs, Debian's assimp test models and the npm
+# meshes. A crash leaves its input in build-sanitize/fuzz/crashes/<target>/ and makes the script
+# exit 1; copy the input to tests/fuzz/regressions/<target>/ with the fix, and the normal test
+# suite replays it from then on.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -27,23 +29,15 @@ for target in "${targets[@]}"; do
     exit 2
   fi
 done
-for tool in clang clang++; do
-  if ! command -v "$tool" >/dev/null 2>&1; then
-    echo "fuzz.sh: $tool is missing; scripts/setup.sh installs it (Debian packages clang and libclang-rt-dev)" >&2
-    exit 1
-  fi
-done
-
-jobs=$(nproc 2>/dev/null || echo 2)
-CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVPLKIT_FUZZ=ON -DVPLKIT_BUILD_BENCH=OFF >/dev/null
-# Only the fuzz targets asked for (and what they link): the tests and tools need no clang build.
+# Only the fuzz targets asked for (and what they link); setup.sh installs clang and its runtime.
 fuzz_binaries=()
 for target in "${targets[@]}"; do fuzz_binaries+=(--target "vplkit_fuzz_$target"); done
-cmake --build build-fuzz -j "$jobs" "${fuzz_binaries[@]}" >/dev/null
+scripts/setup.sh --sanitize --no-meshes "${fuzz_binaries[@]}"
+build=build-sanitize
 
 # Seeds. OBJ inputs are the OBJ text, then a NUL byte and the text of its material library.
 seed_obj() {
-  local folder=build-fuzz/corpus/obj models=/usr/share/assimp/models/OBJ
+  local folder=$build/fuzz/corpus/obj models=/usr/share/assimp/models/OBJ
   if [ -d "$models" ]; then
     for obj in "$models"/*.obj; do
       [ "$(stat -c %s "$obj")" -le 65536 ] || continue
@@ -72,13 +66,13 @@ seed_obj() {
   done
 }
 seed_png() {
-  local folder=build-fuzz/corpus/png
+  local folder=$build/fuzz/corpus/png
   while IFS= read -r png; do
     cp "$png" "$folder/assimp-$(echo "$png" | tr '/' '_')"
   done < <(find /usr/share/assimp/models -name '*.png' -size -16k 2>/dev/null | head -20)
 }
 seed_gltf() {
-  local folder=build-fuzz/corpus/gltf
+  local folder=$build/fuzz/corpus/gltf
   while IFS= read -r file; do
     cp "$file" "$folder/assimp-$(echo "$file" | tr '/' '_')"
   done < <(find /usr/share/assimp/models/glTF2 \( -name '*.gltf' -o -name '*.glb' \) -size -64k 2>/dev/null | head -40)
@@ -87,16 +81,16 @@ seed_gltf() {
 status=0
 summary=()
 for target in "${targets[@]}"; do
-  corpus=build-fuzz/corpus/$target crashes=build-fuzz/crashes/$target
+  corpus=$build/fuzz/corpus/$target crashes=$build/fuzz/crashes/$target
   mkdir -p "$corpus" "$crashes"
   cp tests/fuzz/corpus/"$target"/* tests/fuzz/regressions/"$target"/* "$corpus"/ 2>/dev/null || true
   [ "$target" = obj ] && seed_obj
   [ "$target" = png ] && seed_png
   [ "$target" = gltf ] && seed_gltf
-  log=build-fuzz/fuzz-$target.log
+  log=$build/fuzz/fuzz-$target.log
   echo "== fuzzing $target for ${seconds} s (corpus $corpus)"
   set +e
-  build-fuzz/tests/fuzz/vplkit_fuzz_$target "$corpus" -max_total_time="$seconds" -print_final_stats=1 -timeout=10 -rss_limit_mb=2048 \
+  "$build/tests/fuzz/vplkit_fuzz_$target" "$corpus" -max_total_time="$seconds" -print_final_stats=1 -timeout=10 -rss_limit_mb=2048 \
     -max_len=65536 -artifact_prefix="$crashes/" >"$log" 2>&1
   result=$?
   set -e

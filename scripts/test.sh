@@ -1,19 +1,74 @@
 #!/usr/bin/env bash
-# README command 2: set up, build, and run the whole test suite twice: the Release build, then
-# the -fsanitize=address,undefined build; then each fuzz target for 30 s (clang's libFuzzer).
-# Tests run headless (EGL; the parity tests also under OSMesa in the Release build, and the
-# sanitizer build has no OSMesa); the window tests run under xvfb-run.
+# README command 2: set up, build, and run the whole test suite:
+#   1. the Release build (GCC), both tiers of tests (ctest -L fast, then -L slow);
+#   2. the sanitizer build (clang, -fsanitize=address,undefined,float-cast-overflow, with
+#      libFuzzer coverage), its fast tier;
+#   3. each fuzz target for FUZZ_SECONDS (default 20) in that same build (scripts/fuzz.sh).
+# Ends with a table of where the time went.
+#   scripts/test.sh          everything (what CI runs, .ci/run)
+#   scripts/test.sh --fast   the developer's loop: the Release build and its fast tier only
+# Tests run headless (EGL; the parity tests also under OSMesa in the Release build's slow tier;
+# the sanitizer build has no OSMesa); the window tests run under xvfb-run. Parallel tests share
+# the cores: each test process gets cores / jobs threads for llvmpipe and Embree.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+
+fast=no
+case "${1:-}" in
+  "") ;;
+  --fast) fast=yes ;;
+  *) echo "test.sh: unknown option '$1' (known: --fast)" >&2; exit 2 ;;
+esac
+fuzz_seconds=${FUZZ_SECONDS:-20}
+if ! [[ "$fuzz_seconds" =~ ^[0-9]+$ ]] || [ "$fuzz_seconds" -lt 1 ] || [ "$fuzz_seconds" -gt 86400 ]; then
+  echo "test.sh: FUZZ_SECONDS must be a whole number of seconds in [1, 86400], got '$fuzz_seconds'" >&2
+  exit 2
+fi
 jobs=$(nproc 2>/dev/null || echo 2)
+threads_per_test=1
 
-scripts/setup.sh
-echo "== tests: Release build"
-(cd build && ctest --output-on-failure -j "$jobs")
+steps=()
+times=()
+started=$SECONDS
+# timed <label> <command...>: runs the step and records its wall time; a failing step prints the
+# table so far and stops the run with its status.
+timed() {
+  local label=$1 start=$SECONDS status=0
+  shift
+  echo "== $label"
+  "$@" || status=$?
+  steps+=("$label")
+  times+=($((SECONDS - start)))
+  if [ $status -ne 0 ]; then
+    table
+    echo "test.sh: '$label' failed (exit $status)" >&2
+    exit $status
+  fi
+}
+table() {
+  echo
+  echo "| step | seconds |"
+  echo "|---|---:|"
+  for i in "${!steps[@]}"; do printf '| %s | %d |\n' "${steps[$i]}" "${times[$i]}"; done
+  printf '| **total** | **%d** |\n' $((SECONDS - started))
+}
+# tests <build folder> <label> : ctest of one tier, the tests side by side on every core.
+tests() {
+  (cd "$1" && ctest --output-on-failure -j "$jobs" -L "^$2\$")
+}
 
-scripts/setup.sh --sanitize
-echo "== tests: sanitizer build (address, undefined)"
-(cd build-sanitize && ctest --output-on-failure -j "$jobs")
-
-echo "== fuzzing: each target for 30 s"
-scripts/fuzz.sh 30
+# Each test process's threads (LP_NUM_THREADS for llvmpipe, VPLKIT_THREADS for Embree and the
+# CPU references): cores / jobs while ctest runs `jobs` of them at once.
+threads=(-DVPLKIT_TEST_THREADS=$threads_per_test)
+timed "setup: Debian packages, npm meshes" scripts/setup.sh --no-build
+timed "build: Release (GCC), tests and benchmarks" scripts/setup.sh --no-meshes "${threads[@]}"
+timed "tests: Release, fast tier" tests build fast
+if [ "$fast" = yes ]; then
+  table
+  exit 0
+fi
+timed "tests: Release, slow tier" tests build slow
+timed "build: sanitizer (clang, ASan + UBSan + libFuzzer coverage)" scripts/setup.sh --sanitize --no-meshes "${threads[@]}"
+timed "tests: sanitizer, fast tier" tests build-sanitize fast
+timed "fuzzing: each target for ${fuzz_seconds} s" scripts/fuzz.sh "$fuzz_seconds"
+table

@@ -1,5 +1,5 @@
 // The vplkit command line: `info`, `render` (headless, the main job), `view` (a window),
-// `compare`, `reference` and `export-scene`, one file each (commands.hpp). Every option is range-checked as it
+// `compare`, `reference`, `export-scene` and `shader expand`, one file each (commands.hpp). Every option is range-checked as it
 // is parsed (non-finite numbers included); the checks that need several options, and the
 // scoping of options to the techniques and methods that read them, run before anything is
 // opened or read.
@@ -24,7 +24,7 @@ int run_command_line(int argc, const char* const* argv, std::ostream& out, std::
   app.set_version_flag("--version", version_string);
   const std::vector<cli::command> commands = {cli::add_info_command(app), cli::add_render_command(app), cli::add_view_command(app),
                                               cli::add_compare_command(app), cli::add_reference_command(app),
-                                              cli::add_export_scene_command(app)};
+                                              cli::add_export_scene_command(app), cli::add_shader_command(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& parse_error) {
@@ -38,7 +38,7 @@ int run_command_line(int argc, const char* const* argv, std::ostream& out, std::
     for (const cli::command& command : commands)
       if (command.app->parsed()) status = command.run(io);
     if (status < 0) {
-      err << "vplkit: error: a subcommand is required: info, render, view, compare, reference or export-scene (see vplkit --help)\n";
+      err << "vplkit: error: a subcommand is required: info, render, view, compare, reference, export-scene or shader (see vplkit --help)\n";
       return 2;
     }
     // A GL error that no check point turned into an exception still fails the command.

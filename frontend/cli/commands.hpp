@@ -1,5 +1,5 @@
 // The subcommands of vplkit, one file each (info.cpp, render.cpp, view.cpp, compare.cpp,
-// reference.cpp). Each registers only the options it reads on its own CLI11 subcommand and
+// reference.cpp, export_scene.cpp, shader.cpp). Each registers only the options it reads on its own CLI11 subcommand and
 // returns what to run once the command line has parsed.
 #pragma once
 
@@ -22,5 +22,6 @@ command add_view_command(CLI::App& app);
 command add_compare_command(CLI::App& app);
 command add_reference_command(CLI::App& app);
 command add_export_scene_command(CLI::App& app);
+command add_shader_command(CLI::App& app);
 
 }  // namespace vplkit::cli

@@ -1,10 +1,11 @@
 // vplkit info: the GL version and renderer of a context, the library version, the shaders used.
 #include <vplkit/version.hpp>
+#include <vplkit/gl/program.hpp>
 
 #include "frontend/cli/commands.hpp"
 #include "frontend/gl/context.hpp"
 #include "frontend/gl/pass_timer.hpp"
-#include "frontend/gl/program.hpp"
+#include "frontend/window/window_context.hpp"
 
 namespace vplkit::cli {
 

@@ -7,9 +7,9 @@
 #include <sstream>
 
 #include <vplkit/irradiance.hpp>
+#include <vplkit/gl/program.hpp>
 
 #include "frontend/core/error.hpp"
-#include "frontend/gl/program.hpp"
 #include "frontend/image/image.hpp"
 #include "frontend/scene/gltf_scene.hpp"
 #include "frontend/scene/obj_loader.hpp"

@@ -18,8 +18,9 @@
 
 #include <glm/glm.hpp>
 
+#include <vplkit/gl/program.hpp>
+
 #include "frontend/gl/context.hpp"
-#include "frontend/gl/program.hpp"
 #include "frontend/gl/render_target.hpp"
 #include "frontend/scene/pose.hpp"
 #include "frontend/scene/scene.hpp"

@@ -9,8 +9,6 @@
 #define EGL_NO_X11
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
-#define GLFW_INCLUDE_NONE
-#include <GLFW/glfw3.h>
 
 #include <cstdlib>
 #include <cstring>
@@ -33,8 +31,6 @@ std::string describe_current_context() {
   return out.str();
 }
 
-namespace {
-
 void load_gl(GLADloadfunc loader, const std::string& kind) {
   const int version = gladLoadGL(loader);
   if (version == 0) throw error("no GL context: glad could not load GL entry points for the " + kind + " context");
@@ -44,6 +40,8 @@ void load_gl(GLADloadfunc loader, const std::string& kind) {
                 std::to_string(GLAD_VERSION_MINOR(version)) + ", vplkit needs 3.3 core");
   install_debug_output();
 }
+
+namespace {
 
 #if VPLKIT_HAVE_OSMESA
 GLADapiproc osmesa_get_proc(const char* name) {
@@ -209,21 +207,24 @@ class egl_context final : public gl_context {
   std::string kind_;
 };
 
-// The device `request.device` (or $VPLKIT_EGL_DEVICE), else the first hardware device, else the
-// software one, else the surfaceless platform; only the last with `surfaceless_only`.
+// $VPLKIT_EGL_DEVICE as a device index, -1 when it is not set.
+int device_from_environment() {
+  const char* from_environment = std::getenv("VPLKIT_EGL_DEVICE");
+  if (!from_environment || !*from_environment) return -1;
+  char* end = nullptr;
+  const long value = std::strtol(from_environment, &end, 10);
+  if (*end != '\0' || value < 0 || value > 1024)
+    throw error("VPLKIT_EGL_DEVICE must be a device index (0, 1, ...), got '" + std::string(from_environment) + "'");
+  return static_cast<int>(value);
+}
+
+// The device `device_index` (the caller resolved $VPLKIT_EGL_DEVICE), else the first hardware
+// device, else the software one, else the surfaceless platform; only the last with
+// `surfaceless_only`.
 std::unique_ptr<gl_context> create_egl_context(int device_index, bool surfaceless_only) {
   const egl_client client;
   const std::vector<egl_device> devices = surfaceless_only ? std::vector<egl_device>{} : client.devices();
   if (surfaceless_only && device_index >= 0) throw error("no GL context: --device picks an EGL device; egl-surfaceless has none");
-  if (!surfaceless_only && device_index < 0) {
-    if (const char* from_environment = std::getenv("VPLKIT_EGL_DEVICE"); from_environment && *from_environment) {
-      char* end = nullptr;
-      const long value = std::strtol(from_environment, &end, 10);
-      if (*end != '\0' || value < 0 || value > 1024)
-        throw error("VPLKIT_EGL_DEVICE must be a device index (0, 1, ...), got '" + std::string(from_environment) + "'");
-      device_index = static_cast<int>(value);
-    }
-  }
   if (device_index >= 0) {
     if (static_cast<std::size_t>(device_index) >= devices.size())
       throw error("no EGL device " + std::to_string(device_index) + ": this machine has " + std::to_string(devices.size()) +
@@ -264,12 +265,6 @@ std::unique_ptr<gl_context> create_egl_context(int device_index, bool surfaceles
   throw error("no GL context: " + tried);
 }
 
-std::string glfw_last_error() {
-  const char* description = nullptr;
-  glfwGetError(&description);
-  return description ? description : "no reason given";
-}
-
 }  // namespace
 
 bool osmesa_built_in() { return VPLKIT_HAVE_OSMESA != 0; }
@@ -300,13 +295,15 @@ std::unique_ptr<gl_context> create_headless_context(const headless_request& requ
     throw error("no GL context: this vplkit was built without OSMesa (VPLKIT_WITH_OSMESA=OFF); use the EGL context");
 #endif
   }
-  if (api == headless_api::egl || api == headless_api::egl_surfaceless)
-    return create_egl_context(request.device, api == headless_api::egl_surfaceless);
+  if (api == headless_api::egl_surfaceless) return create_egl_context(request.device, true);
+  // A device asked for by --device, else by $VPLKIT_EGL_DEVICE.
+  const int device = request.device >= 0 ? request.device : device_from_environment();
+  if (api == headless_api::egl) return create_egl_context(device, false);
   try {
-    return create_egl_context(request.device, false);
+    return create_egl_context(device, false);
   } catch (const error& egl_failure) {
 #if VPLKIT_HAVE_OSMESA
-    if (request.device >= 0) throw;  // a device was asked for: OSMesa is not it
+    if (device >= 0) throw;  // a device was asked for: OSMesa is not it
     try {
       return std::make_unique<osmesa_context>();
     } catch (const error& osmesa_failure) {
@@ -328,45 +325,6 @@ std::vector<std::string> available_headless_contexts() {
                   (client.surfaceless_platform() ? "offered (the fallback; --context egl-surfaceless)" : "not offered"));
   lines.push_back(std::string("osmesa: ") + (osmesa_built_in() ? "built in (--context osmesa)" : "not built in (VPLKIT_WITH_OSMESA=OFF)"));
   return lines;
-}
-
-window_context::window_context(int width, int height, const std::string& title) {
-  if (!glfwInit()) throw error("no GL context: GLFW could not initialise: " + glfw_last_error());
-  glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
-  glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
-  glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
-  glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-  window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
-  if (!window_) {
-    const std::string reason = glfw_last_error();
-    glfwTerminate();
-    throw error("no GL context: GLFW could not open a " + std::to_string(width) + "x" +
-                std::to_string(height) + " window with GL 3.3 core: " + reason);
-  }
-  make_current();
-}
-
-window_context::~window_context() {
-  glfwDestroyWindow(window_);
-  glfwTerminate();
-}
-
-void window_context::make_current() {
-  glfwMakeContextCurrent(window_);
-  load_gl(glfwGetProcAddress, "GLFW window");
-}
-
-bool window_context::should_close() const { return glfwWindowShouldClose(window_) != 0; }
-
-std::pair<int, int> window_context::framebuffer_size() const {
-  int width = 0, height = 0;
-  glfwGetFramebufferSize(window_, &width, &height);
-  return {width, height};
-}
-
-void window_context::swap_and_poll() {
-  glfwSwapBuffers(window_);
-  glfwPollEvents();
 }
 
 }  // namespace vplkit

@@ -1,4 +1,4 @@
-// GL contexts: headless and a GLFW window.
+// GL contexts: headless here; the GLFW window is frontend/window/window_context.hpp.
 //
 // Headless is EGL by default (render, tests, benchmarks): the device platform first
 // (EGL_EXT_platform_device: a GPU when there is one, or Mesa's software device,
@@ -16,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-struct GLFWwindow;
+#include "frontend/gl/gl.hpp"
 
 namespace vplkit {
 
@@ -28,6 +28,11 @@ class gl_context {
   /// "EGL device 0 (software: EGL_MESA_device_software)", "EGL surfaceless", "OSMesa" or "GLFW window".
   virtual std::string kind() const = 0;
 };
+
+/// Loads the GL entry points of the context just made current through `loader` (its
+/// GetProcAddress) and enables KHR_debug output; throws vplkit::error naming `kind` when the
+/// context offers less than GL 3.3 core. Every context's make_current calls it.
+void load_gl(GLADloadfunc loader, const std::string& kind);
 
 /// GL_VERSION, GL_RENDERER and GL_VENDOR of the current context, one per line.
 std::string describe_current_context();
@@ -53,7 +58,8 @@ struct headless_request {
 
 /// A headless context with a core 3.3 profile, current on return. Rendering goes to framebuffer
 /// objects. Throws vplkit::error naming what failed (every API tried, and why) when no context
-/// can be made.
+/// can be made. An EGL device asked for (request.device or $VPLKIT_EGL_DEVICE) that cannot be
+/// used is an error, never replaced by OSMesa.
 std::unique_ptr<gl_context> create_headless_context(const headless_request& request = {});
 
 /// Whether this build has OSMesa (VPLKIT_WITH_OSMESA).
@@ -62,25 +68,5 @@ bool osmesa_built_in();
 /// The headless contexts this build and machine offer, a line each: every EGL device (index,
 /// software or hardware, its DRM node), the surfaceless platform, OSMesa. For `vplkit info`.
 std::vector<std::string> available_headless_contexts();
-
-/// A window with a core 3.3 context, current on return. Throws vplkit::error with GLFW's reason
-/// (for example no display) when the window cannot be opened.
-class window_context final : public gl_context {
- public:
-  window_context(int width, int height, const std::string& title);
-  ~window_context() override;
-  window_context(const window_context&) = delete;
-  window_context& operator=(const window_context&) = delete;
-  void make_current() override;
-  std::string kind() const override { return "GLFW window"; }
-  GLFWwindow* window() const { return window_; }
-  bool should_close() const;
-  /// Size of the window's default framebuffer in pixels.
-  std::pair<int, int> framebuffer_size() const;
-  void swap_and_poll();
-
- private:
-  GLFWwindow* window_ = nullptr;
-};
 
 }  // namespace vplkit

@@ -27,6 +27,8 @@ class gl_object {
   gl_object(const gl_object&) = delete;
   gl_object& operator=(const gl_object&) = delete;
   GLuint get() const { return name_; }
+  /// Gives up ownership: the caller deletes the name.
+  GLuint release() { return std::exchange(name_, 0); }
 
  private:
   GLuint name_ = 0;

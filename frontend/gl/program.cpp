@@ -1,4 +1,4 @@
-#include "frontend/gl/program.hpp"
+#include <vplkit/gl/program.hpp>
 
 #include <cstdlib>
 #include <fstream>
@@ -6,10 +6,13 @@
 #include <string_view>
 #include <set>
 #include <sstream>
+#include <type_traits>
 
 #include <glm/gtc/type_ptr.hpp>
 
 #include "frontend/gl/debug_output.hpp"
+#include "frontend/gl/gl.hpp"
+#include "frontend/gl/gl_object.hpp"
 #include "frontend/core/error.hpp"
 #include "frontend/core/files.hpp"
 
@@ -23,7 +26,24 @@ fs::path default_shader_dir() {
   return VPLKIT_INSTALLED_SHADER_DIR;
 }
 
+// The public header names GL's integer types by their C++ types.
+static_assert(std::is_same_v<GLuint, unsigned> && std::is_same_v<GLint, int>, "GLuint and GLint are unsigned and int");
+
 namespace {
+
+// The first of `roots` that has `relative`, or nothing.
+std::optional<fs::path> find_in(const std::vector<fs::path>& roots, const std::string& relative) {
+  std::error_code ignored;
+  for (const fs::path& root : roots)
+    if (fs::exists(root / relative, ignored)) return root / relative;
+  return std::nullopt;
+}
+
+std::string folder_list(const std::vector<fs::path>& roots) {
+  std::string list;
+  for (const fs::path& root : roots) list += (list.empty() ? "" : ", ") + root.string();
+  return list;
+}
 
 // A shader's text. The not-found message says where shaders are looked for; read_file does the
 // rest (a regular file, at most 16 MiB: no shader is near that).
@@ -71,11 +91,16 @@ std::optional<std::string> include_path(std::string_view line) {
 
 class expander {
  public:
-  expander(const fs::path& root, const shader_defines& defines) : root_(root), defines_(defines) {}
+  expander(const std::vector<fs::path>& roots, const shader_defines& defines) : roots_(roots), defines_(defines) {}
 
-  expanded_source run(const std::string& text, const std::string& display_name) {
+  /// `top_file`: where `text` was read from, when it was (for files_read).
+  expanded_source run(const std::string& text, const std::string& display_name, const std::optional<fs::path>& top_file = {}) {
+    if (top_file) {
+      files_read_.push_back(*top_file);
+      included_.insert(fs::weakly_canonical(*top_file).string());
+    }
     expand(text, display_name, /*top_level=*/true);
-    return {out_.str(), file_names_};
+    return {out_.str(), file_names_, files_read_};
   }
 
  private:
@@ -107,13 +132,13 @@ class expander {
         if (relative.size() > 4096)
           throw error(display_name + ":" + std::to_string(line_number) + ": the included file name has " + std::to_string(relative.size()) +
                       " characters, more than a path can have");
-        const fs::path path = root_ / relative;
-        if (included_.insert(fs::weakly_canonical(path).string()).second) {
-          std::error_code ignored;
-          if (!fs::exists(path, ignored))
-            throw error(display_name + ":" + std::to_string(line_number) + ": included file \"" +
-                        relative + "\" not found (looked in " + root_.string() + ")");
-          expand(read_text_file(path, ""), relative, /*top_level=*/false);
+        const std::optional<fs::path> path = find_in(roots_, relative);
+        if (!path)
+          throw error(display_name + ":" + std::to_string(line_number) + ": included file \"" +
+                      relative + "\" not found (looked in " + folder_list(roots_) + ")");
+        if (included_.insert(fs::weakly_canonical(*path).string()).second) {
+          files_read_.push_back(*path);
+          expand(read_text_file(*path, ""), relative, /*top_level=*/false);
         }
         out_ << "#line " << (line_number + 1) << " " << file_number << "\n";
         continue;
@@ -122,10 +147,11 @@ class expander {
     }
   }
 
-  fs::path root_;
+  const std::vector<fs::path>& roots_;
   const shader_defines& defines_;
   std::ostringstream out_;
   std::vector<std::string> file_names_;
+  std::vector<fs::path> files_read_;
   std::set<std::string> included_;
 };
 
@@ -135,23 +161,42 @@ const char* stage_name(shader_stage stage) {
 
 }  // namespace
 
-shader_library::shader_library(fs::path root) : root_(std::move(root)) {
+shader_library::shader_library(fs::path base) {
   std::error_code ignored;
-  if (!fs::is_directory(root_, ignored))
-    throw error("shader directory not found: " + root_.string() +
+  if (!fs::is_directory(base, ignored))
+    throw error("shader directory not found: " + base.string() +
                 " (set --shader-dir or VPLKIT_SHADER_DIR to the vplkit shaders/ folder)");
+  roots_.push_back(std::move(base));
+}
+
+void shader_library::add_root(const fs::path& folder) {
+  std::error_code ignored;
+  if (!fs::is_directory(folder, ignored)) throw error("shader folder not found: " + folder.string() + " is not a folder");
+  for (const fs::path& root : roots_)
+    if (fs::equivalent(root, folder, ignored)) return;
+  roots_.insert(roots_.end() - 1, folder);
+}
+
+fs::path shader_library::locate(const std::string& relative_path) const {
+  if (const std::optional<fs::path> found = find_in(roots_, relative_path)) return *found;
+  std::string candidates;
+  for (const fs::path& root : roots_) candidates += (candidates.empty() ? "" : ", ") + (root / relative_path).string();
+  throw error("shader file not found: " + candidates + " (shader " + (roots_.size() == 1 ? "directory " : "folders ") +
+              folder_list(roots_) + "; set --shader-dir or VPLKIT_SHADER_DIR for vplkit's own)");
 }
 
 expanded_source shader_library::expand_file(const std::string& relative_path, const shader_defines& defines) const {
-  const std::string text =
-      read_text_file(root_ / relative_path, " (shader directory " + root_.string() +
-                                                 "; set --shader-dir or VPLKIT_SHADER_DIR)");
-  return expander(root_, defines).run(text, relative_path);
+  const fs::path path = locate(relative_path);
+  return expander(roots_, defines).run(read_text_file(path, ""), relative_path, path);
 }
 
 expanded_source shader_library::expand_text(const std::string& text, const std::string& display_name,
                                             const shader_defines& defines) const {
-  return expander(root_, defines).run(text, display_name);
+  return expander(roots_, defines).run(text, display_name);
+}
+
+expanded_source shader_library::expand_path(const fs::path& path, const shader_defines& defines) const {
+  return expander(roots_, defines).run(read_text_file(path, ""), path.string(), path);
 }
 
 namespace {
@@ -271,7 +316,7 @@ program link_program(const std::string& program_name, const std::vector<stage_so
   check_gl("building program " + program_name);
   uniform_declarations declarations;
   for (const stage_source& stage : stages) declarations.scan(stage.source.text);
-  return program(std::move(linked), program_name, std::move(declarations));
+  return program(linked.release(), program_name, std::move(declarations));
 }
 
 program load_program(const shader_library& library, const std::string& vertex_file,
@@ -282,9 +327,28 @@ program load_program(const shader_library& library, const std::string& vertex_fi
                              {shader_stage::fragment, library.expand_file(fragment_file, defines)}});
 }
 
+program::~program() {
+  if (name_ != 0) glDeleteProgram(name_);
+}
+
+program::program(program&& other) noexcept
+    : name_(std::exchange(other.name_, 0u)), program_name_(std::move(other.program_name_)), declarations_(std::move(other.declarations_)) {}
+
+program& program::operator=(program&& other) noexcept {
+  if (this != &other) {
+    if (name_ != 0) glDeleteProgram(name_);
+    name_ = std::exchange(other.name_, 0u);
+    program_name_ = std::move(other.program_name_);
+    declarations_ = std::move(other.declarations_);
+  }
+  return *this;
+}
+
+void program::use() const { glUseProgram(name_); }
+
 // GL 3.3 has no glProgramUniform (that is 4.1), so a setter binds the program first.
 GLint program::location(const std::string& uniform) const {
-  const GLint found = glGetUniformLocation(name_.get(), uniform.c_str());
+  const GLint found = glGetUniformLocation(name_, uniform.c_str());
   if (found < 0 && !declarations_.declares(uniform))
     throw error("program " + program_name_ + " declares no uniform '" + uniform + "' (its uniforms: " + declarations_.names() + ")");
   return found;

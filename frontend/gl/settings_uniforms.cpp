@@ -1,4 +1,4 @@
-#include "frontend/gl/settings_uniforms.hpp"
+#include <vplkit/gl/settings_uniforms.hpp>
 
 namespace vplkit {
 
@@ -68,6 +68,14 @@ void set_uniforms(const program& target, const std::string& name, const bilatera
   target.set(name + ".spatial_sigma", settings.spatial_sigma);
   target.set(name + ".depth_sigma", settings.depth_sigma);
   target.set(name + ".normal_power", settings.normal_power);
+}
+
+void set_uniforms(const program& target, const std::string& name, const lightwave_layout_settings<float>& settings) {
+  target.set(name + ".light_position", settings.light_position);
+  target.set(name + ".light_direction", settings.light_direction);
+  target.set(name + ".angle_deg", settings.angle_deg);
+  target.set(name + ".per_ray", settings.per_ray);
+  target.set(name + ".max_distance", settings.max_distance);
 }
 
 void set_uniforms(const program& target, const std::string& name, const lightwave_shading_settings<float>& settings) {

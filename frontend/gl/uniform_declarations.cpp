@@ -1,4 +1,4 @@
-#include "frontend/gl/uniform_declarations.hpp"
+#include <vplkit/gl/uniform_declarations.hpp>
 
 #include <cctype>
 #include <vector>

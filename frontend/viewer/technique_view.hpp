@@ -9,8 +9,9 @@
 #include <string>
 #include <vector>
 
+#include <vplkit/gl/program.hpp>
+
 #include "frontend/gl/pass_timer.hpp"
-#include "frontend/gl/program.hpp"
 #include "frontend/gl/render_target.hpp"
 #include "frontend/scene/pose.hpp"
 #include "frontend/techniques/final_gather/final_gather_pipeline.hpp"

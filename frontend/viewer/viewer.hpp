@@ -16,8 +16,9 @@
 #include <string>
 #include <vector>
 
-#include "frontend/gl/context.hpp"
-#include "frontend/gl/program.hpp"
+#include <vplkit/gl/program.hpp>
+
+#include "frontend/window/window_context.hpp"
 #include "frontend/viewer/technique_view.hpp"
 
 namespace vplkit {

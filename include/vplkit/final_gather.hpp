@@ -76,7 +76,9 @@ glm::ivec3 cube_texel_of(const glm::vec<3, T>& direction, int resolution) {
   glm::vec<3, T> major, s_axis, t_axis;
   cube_face_axes(face, major, s_axis, t_axis);
   const T depth = glm::dot(direction, major);
-  const glm::vec<2, T> uv(glm::dot(direction, s_axis) / depth, glm::dot(direction, t_axis) / depth);
+  // depth is the largest |component|: 0 only for the zero vector, whose 0/0 would reach the int
+  // conversion below as NaN (undefined behaviour); it takes the face's centre instead.
+  const glm::vec<2, T> uv = depth > T(0) ? glm::vec<2, T>(glm::dot(direction, s_axis) / depth, glm::dot(direction, t_axis) / depth) : glm::vec<2, T>(T(0));
   const glm::ivec2 texel = glm::clamp(glm::ivec2(glm::floor((uv + T(1)) * T(0.5) * T(resolution))), glm::ivec2(0), glm::ivec2(resolution - 1));
   return {face, texel.x, texel.y};
 }

@@ -40,7 +40,7 @@ ivec3 cube_texel_of(vec3 direction, int resolution) {
   vec3 major, s_axis, t_axis;
   cube_face_axes(face, major, s_axis, t_axis);
   float depth = dot(direction, major);
-  vec2 uv = vec2(dot(direction, s_axis) / depth, dot(direction, t_axis) / depth);
+  vec2 uv = depth > 0.0 ? vec2(dot(direction, s_axis) / depth, dot(direction, t_axis) / depth) : vec2(0.0);
   ivec2 texel = clamp(ivec2(floor((uv + 1.0) * 0.5 * float(resolution))), ivec2(0), ivec2(resolution - 1));
   return ivec3(face, texel.x, texel.y);
 }

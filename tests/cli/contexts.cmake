@@ -7,6 +7,8 @@ expect_success("info lists the headless contexts and says which it uses"
                "available headless contexts:.*egl surfaceless:.*osmesa:.*using +EGL .*GL_RENDERER.*timing +" "${VPLKIT}" info)
 expect_failure("an EGL device that does not exist" "no EGL device 99: this machine has [0-9]+" ""
                "${VPLKIT}" info --device 99)
+expect_failure("VPLKIT_EGL_DEVICE naming no device is an error, not a fallback" "no EGL device 99: this machine has [0-9]+" "${WORK}/device-99.png"
+               ${CMAKE_COMMAND} -E env VPLKIT_EGL_DEVICE=99 "${VPLKIT}" render --size 8 --out "${WORK}/device-99.png")
 expect_failure("a bad VPLKIT_CONTEXT" "VPLKIT_CONTEXT must be one of auto, egl, egl-surfaceless, osmesa; got 'gles'" "${WORK}/bad-context.png"
                ${CMAKE_COMMAND} -E env VPLKIT_CONTEXT=gles "${VPLKIT}" render --size 8 --out "${WORK}/bad-context.png")
 expect_failure("--device with OSMesa" "--device picks an EGL device" "" "${VPLKIT}" info --context osmesa --device 0)

@@ -38,6 +38,10 @@ TEST_CASE("cube-map geometry: texels round-trip, faces are right-handed, corners
           REQUIRE(cube_texel_of(cube_texel_direction<double>(face, i, j, resolution), resolution) == glm::ivec3(face, i, j));
     }
   }
+  // The zero vector has no face: it takes the centre of face +x (ties go to x) instead of a 0/0
+  // converted to int (undefined behaviour; -fsanitize=float-cast-overflow found it).
+  CHECK(cube_texel_of(glm::dvec3(0.0), 4) == glm::ivec3(0, 2, 2));
+  CHECK(cube_texel_of(glm::vec3(0.0f), 7) == glm::ivec3(0, 3, 3));
   // The corners of texel (i, j) are the centre plus and minus half a texel.
   const glm::dvec3 centre = cube_texel_direction<double>(4, 1, 2, 4);
   CHECK(cube_corner_direction<double>(4, 1, 2, 4) + cube_corner_direction<double>(4, 2, 3, 4) == 2.0 * centre);

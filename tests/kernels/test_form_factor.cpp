@@ -29,7 +29,8 @@ glm::dvec3 random_unit(std::mt19937& random) {
 }  // namespace
 
 TEST_CASE("polygon_form_factor equals Howell's B-3 (parallel rectangle) to 1e-9 in double, 2e-6 in float") {
-  for (const auto& [a, b, c] : std::vector<std::array<double, 3>>{{1, 1, 1}, {2, 0.5, 1}, {0.1, 0.3, 2}, {5, 7, 0.2}, {1e-3, 1e-3, 1}}) {
+  for (const std::array<double, 3>& sides : std::vector<std::array<double, 3>>{{1, 1, 1}, {2, 0.5, 1}, {0.1, 0.3, 2}, {5, 7, 0.2}, {1e-3, 1e-3, 1}}) {
+    const double a = sides[0], b = sides[1], c = sides[2];  // not a structured binding: CAPTURE's lambda cannot capture one (clang 14)
     const double exact = parallel_rectangle(a, b, c);
     const glm::dvec3 x(0.0), n(0, 0, 1);
     const double f = polygon_form_factor(x, n, glm::dvec3(0, 0, c), glm::dvec3(a, 0, c), glm::dvec3(a, b, c), glm::dvec3(0, b, c));
@@ -43,7 +44,8 @@ TEST_CASE("polygon_form_factor equals Howell's B-3 (parallel rectangle) to 1e-9 
 }
 
 TEST_CASE("polygon_form_factor equals Howell's B-2 (perpendicular rectangle) to 1e-9 in double, 2e-6 in float") {
-  for (const auto& [a, b, c] : std::vector<std::array<double, 3>>{{1, 1, 1}, {2, 0.5, 1}, {0.3, 3, 0.5}, {4, 4, 0.1}}) {
+  for (const std::array<double, 3>& sides : std::vector<std::array<double, 3>>{{1, 1, 1}, {2, 0.5, 1}, {0.3, 3, 0.5}, {4, 4, 0.1}}) {
+    const double a = sides[0], b = sides[1], c = sides[2];
     const double exact = perpendicular_rectangle(a, b, c);
     // Element at the origin facing +z; the rectangle in the plane y = c, x in [0, a], z in [0, b].
     const double f = polygon_form_factor(glm::dvec3(0.0), glm::dvec3(0, 0, 1), glm::dvec3(0, c, 0), glm::dvec3(a, c, 0), glm::dvec3(a, c, b),

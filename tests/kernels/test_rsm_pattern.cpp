@@ -109,7 +109,9 @@ TEST_CASE("radial pattern integrates a constant over its annulus without bias") 
   radial_pattern_settings<double> settings;
   settings.scale_jitter = 0.0;  // the scale jitter changes the annulus itself
   const double area = pi * (settings.max_radius * settings.max_radius - settings.min_radius * settings.min_radius);
-  const auto [mean, rms] = radial_estimate_error(settings, 4096, [](const glm::dvec2&) { return 1.0; }, area);
+  // Named variables, not a structured binding: CAPTURE's lambda cannot capture one before C++20 (clang 14).
+  const std::pair<double, double> error = radial_estimate_error(settings, 4096, [](const glm::dvec2&) { return 1.0; }, area);
+  const double mean = error.first, rms = error.second;
   CAPTURE(mean);
   CAPTURE(rms);
   CHECK(std::fabs(mean) < 2e-3);  // 4096 receivers: the mean of unbiased estimates
@@ -129,7 +131,8 @@ TEST_CASE("radial pattern integrates a smooth function, and its error falls as t
     const double exact = 2 * pi * sigma * sigma *
                          (std::exp(-settings.min_radius * settings.min_radius / (2 * sigma * sigma)) -
                           std::exp(-settings.max_radius * settings.max_radius / (2 * sigma * sigma)));
-    const auto [mean, rms] = radial_estimate_error(settings, 2048, f, exact);
+    const std::pair<double, double> error = radial_estimate_error(settings, 2048, f, exact);
+    const double mean = error.first, rms = error.second;
     CAPTURE(samples);
     CAPTURE(mean);
     CAPTURE(rms);

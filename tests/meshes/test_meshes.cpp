@@ -9,12 +9,13 @@
 #include <filesystem>
 #include <iostream>
 
+#include <vplkit/parity/parity.hpp>
+
 #include "frontend/gl/debug_output.hpp"
 #include "frontend/techniques/final_gather/final_gather_cpu_mirror.hpp"
 #include "frontend/techniques/lightwave/lightwave_pipeline.hpp"
 #include "frontend/scene/obj_loader.hpp"
 #include "frontend/techniques/rsm/rsm_pipeline.hpp"
-#include "tests/parity/parity_harness.hpp"
 
 namespace fs = std::filesystem;
 using namespace vplkit;

@@ -1,5 +1,5 @@
 // CPU/GPU parity of include/vplkit/direct_light.hpp against shaders/lib/direct_light.glsl: spot_light_irradiance, texel by
-// texel (tests/parity/parity_harness.hpp).
+// texel (vplkit/parity/parity.hpp).
 #include <doctest/doctest.h>
 
 #include <array>
@@ -10,9 +10,8 @@
 
 #include <vplkit/direct_light.hpp>
 
-#include "frontend/gl/settings_uniforms.hpp"
-#include "tests/parity/parity_harness.hpp"
-#include "tests/parity/parity_inputs.hpp"
+#include <vplkit/gl/settings_uniforms.hpp>
+#include <vplkit/parity/doctest.hpp>
 
 using namespace vplkit;
 using namespace vplkit::parity;

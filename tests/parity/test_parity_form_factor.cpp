@@ -6,7 +6,7 @@
 
 #include <vplkit/form_factor.hpp>
 
-#include "tests/parity/parity_harness.hpp"
+#include <vplkit/parity/doctest.hpp>
 
 using namespace vplkit;
 using namespace vplkit::parity;

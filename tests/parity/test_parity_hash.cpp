@@ -1,5 +1,5 @@
 // CPU/GPU parity of include/vplkit/hash.hpp against shaders/lib/hash.glsl: hash_uint32, hash_combine and uniform_float_from_bits, texel by
-// texel (tests/parity/parity_harness.hpp).
+// texel (vplkit/parity/parity.hpp).
 #include <doctest/doctest.h>
 
 #include <array>
@@ -10,23 +10,20 @@
 
 #include <vplkit/hash.hpp>
 
-#include "frontend/gl/settings_uniforms.hpp"
-#include "tests/parity/parity_harness.hpp"
-#include "tests/parity/parity_inputs.hpp"
+#include <vplkit/gl/settings_uniforms.hpp>
+#include <vplkit/parity/doctest.hpp>
 
 using namespace vplkit;
 using namespace vplkit::parity;
 
 TEST_CASE("parity: hash_uint32, hash_combine and uniform_float_from_bits are bit-identical") {
-  std::mt19937 random(7);
-  kernel_inputs inputs;
-  inputs.width = grid;
-  inputs.height = grid;
-  inputs.uints.assign(1, std::vector<glm::uvec4>(inputs.size()));
+  random_inputs random(7);
+  kernel_inputs inputs = grid_of(64, 64, 0, 1);
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     const auto index = static_cast<std::uint32_t>(i);
     // x: consecutive values and the extremes, y/z: random words.
-    inputs.uints[0][i] = glm::uvec4(index == 1 ? 0xffffffffu : index, random(), random(), 0u);
+    const std::uint32_t y = random.bits();
+    inputs.uints[0][i] = glm::uvec4(index == 1 ? 0xffffffffu : index, y, random.bits(), 0u);
   }
   kernel_source source;
   source.name = "hash";

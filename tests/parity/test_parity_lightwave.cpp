@@ -7,22 +7,15 @@
 
 #include <vplkit/lightwave.hpp>
 
+#include <vplkit/gl/settings_uniforms.hpp>
+#include <vplkit/parity/doctest.hpp>
+
 #include "frontend/gl/render_target.hpp"
-#include "frontend/gl/settings_uniforms.hpp"
-#include "tests/parity/parity_harness.hpp"
 
 using namespace vplkit;
 using namespace vplkit::parity;
 
 namespace {
-
-void set_layout(const program& p, const lightwave_layout_settings<float>& s) {
-  p.set("layout_settings.light_position", s.light_position);
-  p.set("layout_settings.light_direction", s.light_direction);
-  p.set("layout_settings.angle_deg", s.angle_deg);
-  p.set("layout_settings.per_ray", s.per_ray);
-  p.set("layout_settings.max_distance", s.max_distance);
-}
 
 lightwave_layout_settings<float> test_layout() {
   lightwave_layout_settings<float> s;
@@ -50,7 +43,7 @@ TEST_CASE("parity: lightwave_layout_vpl for all 6485 VPLs of the thesis's layout
   source.body = "lightwave_vpl vpl = lightwave_layout_vpl(int(uin0.x), layout_settings);\n"
                 "fout0 = vec4(vpl.position, vpl.attenuation);\nfout1 = vec4(vpl.normal, float(lightwave_vpl_count(layout_settings.angle_deg, layout_settings.per_ray)));";
   source.float_outputs = 2;
-  const kernel_outputs gpu = run_fragment(source, inputs, [&](const program& p) { set_layout(p, layout); });
+  const kernel_outputs gpu = run_fragment(source, inputs, [&](const program& p) { set_uniforms(p, "layout_settings", layout); });
   std::vector<glm::vec4> positions(inputs.size()), normals(inputs.size());
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     const lightwave_vpl<float> vpl = lightwave_layout_vpl(static_cast<int>(inputs.uints[0][i].x), layout);

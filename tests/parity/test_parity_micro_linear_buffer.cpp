@@ -1,5 +1,5 @@
 // CPU/GPU parity of include/vplkit/micro_linear_buffer.hpp against shaders/lib/micro_linear_buffer.glsl: elevation_bucket and the verdicts of Alg. 2, 3 and 6, texel by
-// texel (tests/parity/parity_harness.hpp).
+// texel (vplkit/parity/parity.hpp).
 #include <doctest/doctest.h>
 
 #include <array>
@@ -10,29 +10,24 @@
 
 #include <vplkit/micro_linear_buffer.hpp>
 
-#include "frontend/gl/settings_uniforms.hpp"
-#include "tests/parity/parity_harness.hpp"
-#include "tests/parity/parity_inputs.hpp"
+#include <vplkit/gl/settings_uniforms.hpp>
+#include <vplkit/parity/doctest.hpp>
 
 using namespace vplkit;
 using namespace vplkit::parity;
 
 TEST_CASE("parity: elevation_bucket makes the same decision on both sides, boundaries included") {
-  std::mt19937 random(11);
-  kernel_inputs inputs;
-  inputs.width = grid;
-  inputs.height = grid;
-  inputs.floats.assign(2, std::vector<glm::vec4>(inputs.size()));
+  random_inputs random(11);
+  kernel_inputs inputs = grid_of(64, 64, 2);
   const int slots = 5;
   const elevation_slots<float> table = make_elevation_slots<float>(slots);
-  std::uniform_real_distribution<float> uniform(-2.0f, 2.0f);
   for (std::size_t i = 0; i < inputs.size(); ++i) {
-    inputs.floats[0][i] = random_point(random, 2.0f);
-    inputs.floats[1][i] = random_point(random, 2.0f);
+    inputs.floats[0][i] = glm::vec4(random.point(2.0f), 0.0f);
+    inputs.floats[1][i] = glm::vec4(random.point(2.0f), 0.0f);
     if (i % 4 == 0) {
       // Exactly on a boundary: dz = tangent * |dxy| computed in float as the kernel does.
       const glm::vec3 x(inputs.floats[0][i]);
-      const float dx = uniform(random), dy = uniform(random);
+      const float dx = random.uniform(-2.0f, 2.0f), dy = random.uniform(-2.0f, 2.0f);
       const float horizontal = std::sqrt(dx * dx + dy * dy);
       const float tangent = table.boundary_tangent[static_cast<std::size_t>(i / 4) % (slots - 1)];
       inputs.floats[1][i] = glm::vec4(x.x + dx, x.y + dy, x.z + tangent * horizontal, 0.0f);
@@ -58,17 +53,13 @@ TEST_CASE("parity: micro_linear_buffer Alg. 2, 3 and 6 verdicts on random slot s
   // Each texel holds a path of 10 slot indices (4 bits each, packed into two words) and a slot
   // count; the outputs are the verdict bit masks of the three algorithms, and the sum of the
   // unclamped Alg. 6 values (which exercises the decrements).
-  std::mt19937 random(12);
-  kernel_inputs inputs;
-  inputs.width = grid;
-  inputs.height = grid;
-  inputs.uints.assign(1, std::vector<glm::uvec4>(inputs.size()));
+  random_inputs random(12);
+  kernel_inputs inputs = grid_of(64, 64, 0, 1);
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     const unsigned slots = 1u + static_cast<unsigned>(i % micro_linear_buffer_max_slots);
-    std::uniform_int_distribution<unsigned> pick(0, slots - 1);
     glm::uvec4 packed(0u, 0u, slots, 0u);
     for (unsigned sample = 0; sample < 10; ++sample) {
-      const unsigned index = pick(random);
+      const unsigned index = random.uniform_uint(0, slots - 1);
       if (sample < 5) packed.x |= index << (4 * sample);
       else packed.y |= index << (4 * (sample - 5));
     }

@@ -1,5 +1,5 @@
 // CPU/GPU parity of include/vplkit/rsm_pattern.hpp against shaders/lib/rsm_pattern.glsl: the radial and the disk pattern, offsets and weights, texel by
-// texel (tests/parity/parity_harness.hpp).
+// texel (vplkit/parity/parity.hpp).
 #include <doctest/doctest.h>
 
 #include <array>
@@ -11,9 +11,8 @@
 #include <vplkit/rsm_pattern.hpp>
 #include <vplkit/polynomial_math.hpp>
 
-#include "frontend/gl/settings_uniforms.hpp"
-#include "tests/parity/parity_harness.hpp"
-#include "tests/parity/parity_inputs.hpp"
+#include <vplkit/gl/settings_uniforms.hpp>
+#include <vplkit/parity/doctest.hpp>
 
 using namespace vplkit;
 using namespace vplkit::parity;

@@ -1,5 +1,5 @@
 // CPU/GPU parity of include/vplkit/shadow.hpp against shaders/lib/shadow.glsl: shadow_density (Alg. 4), texel by
-// texel (tests/parity/parity_harness.hpp).
+// texel (vplkit/parity/parity.hpp).
 #include <doctest/doctest.h>
 
 #include <array>
@@ -11,9 +11,8 @@
 #include <vplkit/shadow.hpp>
 #include <vplkit/transform.hpp>
 
-#include "frontend/gl/settings_uniforms.hpp"
-#include "tests/parity/parity_harness.hpp"
-#include "tests/parity/parity_inputs.hpp"
+#include <vplkit/gl/settings_uniforms.hpp>
+#include <vplkit/parity/doctest.hpp>
 
 using namespace vplkit;
 using namespace vplkit::parity;

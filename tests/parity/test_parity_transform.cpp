@@ -1,5 +1,5 @@
 // CPU/GPU parity of include/vplkit/transform.hpp against shaders/lib/transform.glsl: transform_point, transform_direction and map_coordinate, texel by
-// texel (tests/parity/parity_harness.hpp).
+// texel (vplkit/parity/parity.hpp).
 #include <doctest/doctest.h>
 
 #include <array>
@@ -10,9 +10,8 @@
 
 #include <vplkit/transform.hpp>
 
-#include "frontend/gl/settings_uniforms.hpp"
-#include "tests/parity/parity_harness.hpp"
-#include "tests/parity/parity_inputs.hpp"
+#include <vplkit/gl/settings_uniforms.hpp>
+#include <vplkit/parity/doctest.hpp>
 
 using namespace vplkit;
 using namespace vplkit::parity;

@@ -9,13 +9,13 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <vplkit/direct_light.hpp>
+#include <vplkit/gl/settings_uniforms.hpp>
 
 #include "frontend/gl/debug_output.hpp"
 #include "frontend/core/error.hpp"
 #include "frontend/core/named_table.hpp"
 #include "frontend/scene/obj_loader.hpp"
 #include "frontend/core/parallel.hpp"
-#include "frontend/gl/settings_uniforms.hpp"
 
 namespace vplkit {
 

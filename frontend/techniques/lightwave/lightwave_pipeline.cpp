@@ -8,12 +8,12 @@
 
 #include <vplkit/hash.hpp>
 #include <vplkit/lightwave.hpp>
+#include <vplkit/gl/settings_uniforms.hpp>
 
 #include "frontend/gl/debug_output.hpp"
 #include "frontend/core/error.hpp"
 #include "frontend/core/named_table.hpp"
 #include "frontend/scene/camera.hpp"
-#include "frontend/gl/settings_uniforms.hpp"
 
 namespace vplkit {
 

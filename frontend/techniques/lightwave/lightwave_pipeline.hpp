@@ -17,10 +17,10 @@
 
 #include <vplkit/irradiance.hpp>
 #include <vplkit/lightwave.hpp>
+#include <vplkit/gl/program.hpp>
 
 #include "frontend/gl/pass_timer.hpp"
-#include "frontend/gl/mesh_buffers.hpp"
-#include "frontend/gl/program.hpp"
+#include "frontend/scene_gl/mesh_buffers.hpp"
 #include "frontend/gl/render_target.hpp"
 #include "frontend/scene/scene.hpp"
 

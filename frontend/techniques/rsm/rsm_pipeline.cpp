@@ -6,10 +6,11 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <vplkit/gl/settings_uniforms.hpp>
+
 #include "frontend/gl/debug_output.hpp"
 #include "frontend/core/error.hpp"
 #include "frontend/core/named_table.hpp"
-#include "frontend/gl/settings_uniforms.hpp"
 
 namespace vplkit {
 

@@ -15,10 +15,10 @@
 #include <vplkit/rsm_gather.hpp>
 #include <vplkit/rsm_packing.hpp>
 #include <vplkit/shadow.hpp>
+#include <vplkit/gl/program.hpp>
 
 #include "frontend/gl/pass_timer.hpp"
-#include "frontend/gl/mesh_buffers.hpp"
-#include "frontend/gl/program.hpp"
+#include "frontend/scene_gl/mesh_buffers.hpp"
 #include "frontend/gl/render_target.hpp"
 #include "frontend/scene/camera.hpp"
 

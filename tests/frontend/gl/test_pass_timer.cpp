@@ -5,10 +5,11 @@
 
 #include <chrono>
 
+#include <vplkit/parity/parity.hpp>
+
 #include "frontend/gl/pass_timer.hpp"
 #include "frontend/scene/scene.hpp"
 #include "frontend/techniques/lightwave/lightwave_pipeline.hpp"
-#include "tests/parity/parity_harness.hpp"
 
 using namespace vplkit;
 

@@ -1,16 +1,17 @@
 // The program loader: #include expansion, file:line in errors, and the failure messages for
-// missing files and bad GLSL (frontend/gl/program.hpp).
+// missing files and bad GLSL (include/vplkit/gl/program.hpp): several folders searched in order too.
 #include <doctest/doctest.h>
 
 #include <filesystem>
 #include <fstream>
 #include <random>
 
+#include <vplkit/gl/program.hpp>
+#include <vplkit/parity/parity.hpp>
+
 #include "frontend/gl/debug_output.hpp"
 #include "frontend/gl/gl.hpp"
 #include "frontend/core/error.hpp"
-#include "frontend/gl/program.hpp"
-#include "tests/parity/parity_harness.hpp"
 
 namespace fs = std::filesystem;
 using namespace vplkit;
@@ -67,6 +68,39 @@ TEST_CASE("a missing shader file, folder or include is named in the error") {
   CHECK(message_of([&] { shader_library(files.root / "absent"); }).find("shader directory not found") == 0);
   scratch_shaders nested(scratch_shaders::file_list{{"main.frag", "#version 330 core\n#include \"lib/v.glsl\"\n"}, {"lib/v.glsl", "#version 330 core\n"}});
   CHECK(message_of([&] { shader_library(nested.root).expand_file("main.frag"); }).find("lib/v.glsl:1: #version must be") == 0);
+}
+
+TEST_CASE("folders added to a library are searched in order, before its base folder") {
+  scratch_shaders base({{"lib/a.glsl", "float a() { return 0.0; }\n"}, {"lib/b.glsl", "float b() { return 0.0; }\n"}});
+  scratch_shaders first({{"lib/a.glsl", "float a() { return 1.0; }\n"}, {"my/top.glsl", "#include \"lib/a.glsl\"\n#include \"lib/b.glsl\"\n"}});
+  scratch_shaders second({{"lib/a.glsl", "float a() { return 2.0; }\n"}, {"lib/b.glsl", "float b() { return 2.0; }\n"}});
+  shader_library library(base.root);
+  library.add_root(first.root);
+  library.add_root(second.root);
+  library.add_root(first.root);  // already searched: no effect
+  CHECK(library.roots() == std::vector<fs::path>{first.root, second.root, base.root});
+  CHECK(library.locate("lib/a.glsl") == first.root / "lib/a.glsl");
+  CHECK(library.locate("lib/b.glsl") == second.root / "lib/b.glsl");
+  const expanded_source source = library.expand_file("my/top.glsl");
+  CHECK(source.text.find("return 1.0") != std::string::npos);
+  CHECK(source.text.find("return 2.0") != std::string::npos);
+  CHECK(source.text.find("return 0.0") == std::string::npos);
+  CHECK(source.files_read == std::vector<fs::path>{first.root / "my/top.glsl", first.root / "lib/a.glsl", second.root / "lib/b.glsl"});
+  // A file anywhere, its includes from the folders.
+  const expanded_source elsewhere = library.expand_path(first.root / "my/top.glsl");
+  CHECK(elsewhere.text == source.text);  // #line directives number the files; names are for messages
+  CHECK(elsewhere.file_names.front() == (first.root / "my/top.glsl").string());
+  CHECK(elsewhere.files_read == source.files_read);
+  // Not found: every folder is named.
+  const std::string missing = message_of([&] { library.locate("lib/c.glsl"); });
+  CHECK(missing.find("shader file not found: " + (first.root / "lib/c.glsl").string() + ", " + (second.root / "lib/c.glsl").string() + ", " +
+                     (base.root / "lib/c.glsl").string()) == 0);
+  scratch_shaders includer(scratch_shaders::file_list{{"main.frag", "#version 330 core\n#include \"lib/c.glsl\"\n"}});
+  library.add_root(includer.root);
+  CHECK(message_of([&] { library.expand_file("main.frag"); }) ==
+        "main.frag:2: included file \"lib/c.glsl\" not found (looked in " + first.root.string() + ", " + second.root.string() + ", " +
+            includer.root.string() + ", " + base.root.string() + ")");
+  CHECK(message_of([&] { library.add_root(base.root / "absent"); }) == "shader folder not found: " + (base.root / "absent").string() + " is not a folder");
 }
 
 TEST_CASE("a GLSL syntax error in an included file is reported at that file's line") {
@@ -130,8 +164,10 @@ TEST_CASE("driver logs of Mesa, NVIDIA and AMD are mapped to file:line") {
 
 TEST_CASE("every shipped pass program compiles and links") {
   const shader_library& library = parity::test_shaders();
-  for (const auto& [vertex, fragment] : std::vector<std::pair<std::string, std::string>>{
+  for (const std::pair<std::string, std::string>& stages : std::vector<std::pair<std::string, std::string>>{
            {"fullscreen.vert", "present.frag"}, {"fullscreen.vert", "blur_x.frag"}, {"scene.vert", "gbuffer.frag"}}) {
+    const std::string& vertex = stages.first;
+    const std::string& fragment = stages.second;
     CAPTURE(fragment);
     CHECK_NOTHROW(load_program(library, vertex, fragment));
   }

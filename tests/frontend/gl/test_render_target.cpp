@@ -6,9 +6,10 @@
 
 #include <glm/gtc/packing.hpp>
 
+#include <vplkit/parity/parity.hpp>
+
 #include "frontend/core/error.hpp"
 #include "frontend/gl/render_target.hpp"
-#include "tests/parity/parity_harness.hpp"
 
 using namespace vplkit;
 

@@ -9,12 +9,13 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <vplkit/parity/parity.hpp>
+
 #include "frontend/core/error.hpp"
 #include "frontend/reference/reference.hpp"
 #include "frontend/techniques/rsm/rsm_cpu_mirror.hpp"
 #include "frontend/techniques/rsm/rsm_pipeline.hpp"
 #include "tests/closed_forms.hpp"
-#include "tests/parity/parity_harness.hpp"
 
 using namespace vplkit;
 

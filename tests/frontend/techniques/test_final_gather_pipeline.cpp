@@ -12,7 +12,7 @@
 #include "frontend/core/error.hpp"
 #include "frontend/reference/final_gather_reference.hpp"
 #include "frontend/techniques/final_gather/final_gather_cpu_mirror.hpp"
-#include "tests/parity/parity_harness.hpp"
+#include "tests/frontend/techniques/pass_parity.hpp"
 
 using namespace vplkit;
 using namespace vplkit::parity;

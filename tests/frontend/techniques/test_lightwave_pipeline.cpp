@@ -9,11 +9,12 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <vplkit/parity/doctest.hpp>
+
 #include "frontend/core/error.hpp"
 #include "frontend/image/image_files.hpp"
 #include "frontend/reference/reference.hpp"
 #include "frontend/techniques/lightwave/lightwave_pipeline.hpp"
-#include "tests/parity/parity_harness.hpp"
 
 using namespace vplkit;
 using namespace vplkit::parity;

@@ -8,7 +8,7 @@
 #include "frontend/core/error.hpp"
 #include "frontend/techniques/rsm/rsm_cpu_mirror.hpp"
 #include "frontend/techniques/rsm/rsm_pipeline.hpp"
-#include "tests/parity/parity_harness.hpp"
+#include "tests/frontend/techniques/pass_parity.hpp"
 
 using namespace vplkit;
 using namespace vplkit::parity;

@@ -11,7 +11,7 @@
 #include <memory>
 
 #include "frontend/core/error.hpp"
-#include "frontend/gl/context.hpp"
+#include "frontend/window/window_context.hpp"
 #include "frontend/gl/debug_output.hpp"
 #include "frontend/image/image.hpp"
 #include "frontend/image/image_files.hpp"

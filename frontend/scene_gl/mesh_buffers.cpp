@@ -1,4 +1,4 @@
-#include "frontend/gl/mesh_buffers.hpp"
+#include "frontend/scene_gl/mesh_buffers.hpp"
 
 #include <cstddef>
 

@@ -1,5 +1,6 @@
 // The one place where each kernel settings struct is copied into its GLSL twin (a uniform struct
-// of the same name and fields). Every program that includes a lib file fills it from here.
+// of the same name and fields). Every program that includes a lib file fills it from here, and so
+// do users' own shaders that take vplkit's settings as uniforms (installed with vplkit::parity).
 #pragma once
 
 #include <string>
@@ -14,7 +15,7 @@
 #include <vplkit/rsm_pattern.hpp>
 #include <vplkit/shadow.hpp>
 
-#include "frontend/gl/program.hpp"
+#include <vplkit/gl/program.hpp>
 
 namespace vplkit {
 
@@ -28,6 +29,7 @@ void set_uniforms(const program& target, const std::string& name, const rsm_gath
 void set_uniforms(const program& target, const std::string& name, const rsm_unprojection<float>& light);
 void set_uniforms(const program& target, const std::string& name, const shadow_density_settings<float>& settings);
 void set_uniforms(const program& target, const std::string& name, const bilateral_settings<float>& settings);
+void set_uniforms(const program& target, const std::string& name, const lightwave_layout_settings<float>& settings);
 void set_uniforms(const program& target, const std::string& name, const lightwave_shading_settings<float>& settings);
 
 }  // namespace vplkit

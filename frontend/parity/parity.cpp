@@ -1,36 +1,100 @@
-#include "tests/parity/parity_harness.hpp"
-
-#include <doctest/doctest.h>
+// vplkit::parity (vplkit/parity/parity.hpp): the runs on the headless context, the shader
+// search path, and the comparison with its report. No test framework: the adapters in
+// include/vplkit/parity/ turn a comparison into an assertion.
+#include <vplkit/parity/parity.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <iomanip>
 #include <memory>
+#include <optional>
 #include <sstream>
 
+#include "frontend/core/error.hpp"
 #include "frontend/gl/context.hpp"
 #include "frontend/gl/debug_output.hpp"
-#include "frontend/core/error.hpp"
 #include "frontend/gl/gl_object.hpp"
 #include "frontend/gl/render_target.hpp"
 
 namespace vplkit::parity {
+namespace fs = std::filesystem;
 
 namespace {
 
-// The test process's headless context ($VPLKIT_CONTEXT picks EGL or OSMesa), made on first use.
+std::string environment_text(const char* name) {
+  const char* value = std::getenv(name);
+  return std::string(name) + (value && *value ? "=" + std::string(value) : " not set");
+}
+
+// The process's headless context, made on first use as the CLI makes it (VPLKIT_CONTEXT,
+// VPLKIT_EGL_DEVICE); a failure is thrown again on the next use, which tries again.
 const gl_context& test_context() {
-  static const std::unique_ptr<gl_context> context = create_headless_context();
+  static const std::unique_ptr<gl_context> context = [] {
+    try {
+      return create_headless_context();
+    } catch (const error& failure) {
+      throw error("vplkit::parity needs a headless GL context and could not make one (" + environment_text("VPLKIT_CONTEXT") + ", " +
+                  environment_text("VPLKIT_EGL_DEVICE") + "): " + failure.what());
+    }
+  }();
   return *context;
+}
+
+// Where vplkit's shaders are when $VPLKIT_SHADER_DIR does not say: recorded by the header
+// (VPLKIT_PARITY_SHADER_DIR of the CMake target) before main.
+std::optional<fs::path>& recorded_vplkit_shader_dir() {
+  static std::optional<fs::path> folder;
+  return folder;
+}
+
+fs::path vplkit_shader_dir() {
+  if (const char* from_environment = std::getenv("VPLKIT_SHADER_DIR"); from_environment && *from_environment) return from_environment;
+  if (recorded_vplkit_shader_dir()) return *recorded_vplkit_shader_dir();
+  throw error("vplkit::parity does not know where vplkit's shaders are: link the CMake target vplkit::parity (it records them), "
+              "or set VPLKIT_SHADER_DIR to vplkit's shaders/ folder");
+}
+
+// The folders added before the library was made, and the library once made.
+struct shader_search {
+  std::vector<fs::path> pending_roots;
+  std::unique_ptr<shader_library> library;
+};
+
+shader_search& search() {
+  static shader_search state;
+  return state;
 }
 
 }  // namespace
 
+namespace detail {
+bool record_vplkit_shader_dir(const char* folder) {
+  recorded_vplkit_shader_dir() = fs::path(folder);
+  return true;
+}
+}  // namespace detail
+
+void add_shader_root(const fs::path& folder) {
+  std::error_code ignored;
+  if (!fs::is_directory(folder, ignored))
+    throw error("vplkit::parity::add_shader_root: " + folder.string() + " is not a folder");
+  shader_search& state = search();
+  if (state.library) state.library->add_root(folder);
+  else state.pending_roots.push_back(folder);
+}
+
 const shader_library& test_shaders() {
   test_context();
-  static const shader_library library(default_shader_dir());
-  return library;
+  shader_search& state = search();
+  if (!state.library) {
+    auto library = std::make_unique<shader_library>(vplkit_shader_dir());
+    for (const fs::path& root : state.pending_roots) library->add_root(root);
+    state.library = std::move(library);
+    state.pending_roots.clear();
+  }
+  return *state.library;
 }
 
 std::string test_context_kind() { return test_context().kind(); }
@@ -44,12 +108,14 @@ std::string include_lines(const kernel_source& source) {
   return text;
 }
 
-void check_inputs(const kernel_inputs& inputs) {
-  if (inputs.width < 1 || inputs.height < 1) throw error("parity: empty input grid");
+void check_inputs(const kernel_source& source, const kernel_inputs& inputs) {
+  const std::string what = "parity " + source.name + ": ";
+  if (inputs.width < 1 || inputs.height < 1) throw error(what + "empty input grid");
   for (const auto& input : inputs.floats)
-    if (input.size() != inputs.size()) throw error("parity: a float input does not have width * height values");
+    if (input.size() != inputs.size()) throw error(what + "a float input does not have width * height values");
   for (const auto& input : inputs.uints)
-    if (input.size() != inputs.size()) throw error("parity: a uint input does not have width * height values");
+    if (input.size() != inputs.size()) throw error(what + "a uint input does not have width * height values");
+  if (source.float_outputs < 0 || source.uint_outputs < 0) throw error(what + "a negative number of outputs");
 }
 
 std::string fragment_source(const kernel_source& source, const kernel_inputs& inputs) {
@@ -91,7 +157,7 @@ std::string vertex_source(const kernel_source& source, const kernel_inputs& inpu
 
 kernel_outputs run_fragment(const kernel_source& source, const kernel_inputs& inputs, const uniform_setter& uniforms) {
   const shader_library& shaders = test_shaders();
-  check_inputs(inputs);
+  check_inputs(source, inputs);
   static const char* const full_screen_triangle =
       "#version 330 core\nvoid main() {\n  vec2 corner = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));\n"
       "  gl_Position = vec4(corner * 4.0 - 1.0, 0.0, 1.0);\n}\n";
@@ -134,7 +200,7 @@ kernel_outputs run_fragment(const kernel_source& source, const kernel_inputs& in
 
 kernel_outputs run_vertex(const kernel_source& source, const kernel_inputs& inputs, const uniform_setter& uniforms) {
   const shader_library& shaders = test_shaders();
-  check_inputs(inputs);
+  check_inputs(source, inputs);
   std::vector<std::string> varyings;
   for (int i = 0; i < source.float_outputs; ++i) varyings.push_back("fout" + std::to_string(i));
   for (int i = 0; i < source.uint_outputs; ++i) varyings.push_back("uout" + std::to_string(i));
@@ -233,6 +299,12 @@ std::string texel_name(const kernel_inputs& inputs, std::size_t index, int chann
          std::to_string(index / static_cast<std::size_t>(inputs.width)) + ")." + channels[channel];
 }
 
+void check_sizes(const std::string& kernel, std::size_t gpu, std::size_t cpu, const kernel_inputs& inputs) {
+  if (gpu != cpu || gpu != inputs.size())
+    throw error("parity compare " + kernel + ": output sizes differ (gpu " + std::to_string(gpu) + ", cpu " + std::to_string(cpu) +
+                " values, a " + std::to_string(inputs.width) + "x" + std::to_string(inputs.height) + " grid)");
+}
+
 std::size_t allowed(std::size_t values, double fraction) {
   return static_cast<std::size_t>(std::floor(fraction * static_cast<double>(values)));
 }
@@ -243,7 +315,12 @@ comparison compare(const std::string& kernel, const std::vector<glm::vec4>& gpu,
                    const kernel_inputs& inputs, const tolerance& bounds, int channels) {
   comparison result;
   result.kernel = kernel;
-  if (gpu.size() != cpu.size() || gpu.size() != inputs.size()) throw error("parity compare: output sizes differ");
+  result.bounds = bounds;
+  check_sizes(kernel, gpu.size(), cpu.size(), inputs);
+  const bool scaled = !bounds.abs_scale.empty();
+  if (scaled && bounds.abs_scale.size() != gpu.size())
+    throw error("parity compare " + kernel + ": the tolerance's abs_scale has " + std::to_string(bounds.abs_scale.size()) +
+                " values for " + std::to_string(gpu.size()) + " texels");
   double worst_score = -1.0;
   std::size_t listed = 0;
   std::ostringstream list;
@@ -257,28 +334,34 @@ comparison compare(const std::string& kernel, const std::vector<glm::vec4>& gpu,
       const double magnitude = std::max(std::fabs(static_cast<double>(g)), std::fabs(static_cast<double>(r)));
       const double rel_error = finite ? (magnitude > 0.0 ? abs_error / magnitude : 0.0) : INFINITY;
       const std::int64_t ulps = finite ? ulp_distance(g, r) : INT64_MAX;
+      const double abs_bound = static_cast<double>(bounds.max_abs) * (scaled ? static_cast<double>(bounds.abs_scale[index][c]) : 1.0);
       if (finite) {
         result.max_abs = std::max(result.max_abs, abs_error);
         result.max_rel = std::max(result.max_rel, rel_error);
         result.max_ulp = std::max(result.max_ulp, ulps);
+        if (abs_bound > 0.0) result.max_abs_over_bound = std::max(result.max_abs_over_bound, abs_error / abs_bound);
       }
-      const bool within = finite && (abs_error <= bounds.max_abs || rel_error <= bounds.max_rel || ulps <= bounds.max_ulp);
+      const bool within = finite && (abs_error <= abs_bound || rel_error <= bounds.max_rel || ulps <= bounds.max_ulp);
       // The worst texel: non-finite first, then by the error measure relative to its bound.
       const double score = !finite ? INFINITY
-                                   : std::min({bounds.max_abs > 0 ? abs_error / bounds.max_abs : abs_error * 1e30,
+                                   : std::min({abs_bound > 0 ? abs_error / abs_bound : abs_error * 1e30,
                                                bounds.max_rel > 0 ? rel_error / bounds.max_rel : rel_error * 1e30,
                                                bounds.max_ulp > 0 ? static_cast<double>(ulps) / static_cast<double>(bounds.max_ulp)
                                                                   : static_cast<double>(ulps) * 1e30});
-      std::ostringstream detail;
-      detail << std::setprecision(9) << texel_name(inputs, index, c) << ": gpu=" << g << " cpu=" << r
-             << " (abs " << abs_error << ", rel " << rel_error << ", ulp " << ulps << ");" << describe_inputs(inputs, index);
+      const auto detail = [&] {
+        std::ostringstream text;
+        text << std::setprecision(9) << texel_name(inputs, index, c) << ": gpu=" << g << " cpu=" << r << " (abs " << abs_error;
+        if (scaled) text << " of " << abs_bound << " allowed";
+        text << ", rel " << rel_error << ", ulp " << ulps << ");" << describe_inputs(inputs, index);
+        return text.str();
+      };
       if (score > worst_score) {
         worst_score = score;
-        result.worst = detail.str();
+        result.worst = detail();
       }
       if (!within) {
         ++result.mismatches;
-        if (listed++ < 8) list << "\n    " << detail.str();
+        if (listed++ < 8) list << "\n    " << detail();
       }
     }
   }
@@ -291,7 +374,8 @@ comparison compare_exact(const std::string& kernel, const std::vector<glm::uvec4
                          const kernel_inputs& inputs, double allowed_mismatch_fraction, int channels) {
   comparison result;
   result.kernel = kernel;
-  if (gpu.size() != cpu.size() || gpu.size() != inputs.size()) throw error("parity compare: output sizes differ");
+  result.bounds = {0.0f, 0.0f, 0, allowed_mismatch_fraction, "integers: exact"};
+  check_sizes(kernel, gpu.size(), cpu.size(), inputs);
   std::size_t listed = 0;
   std::ostringstream list;
   for (std::size_t index = 0; index < gpu.size(); ++index) {
@@ -314,15 +398,14 @@ std::string comparison::summary() const {
   std::ostringstream out;
   out << std::setprecision(3) << "parity " << kernel << ": " << values << " values, " << mismatches
       << " outside tolerance (allowed " << allowed_mismatches << "), max abs " << max_abs << ", max rel " << max_rel
-      << ", max ulp " << max_ulp << "\n  worst " << worst;
+      << ", max ulp " << max_ulp;
+  if (!bounds.abs_scale.empty()) out << ", max abs / its bound " << max_abs_over_bound;
+  out << "\n  worst " << worst;
+  if (!passed())
+    out << "\n  tolerance: abs <= " << bounds.max_abs << (bounds.abs_scale.empty() ? "" : " x the texel's abs_scale") << " or rel <= "
+        << bounds.max_rel << " or ulp <= " << bounds.max_ulp << ", allowed fraction " << bounds.allowed_mismatch_fraction
+        << (bounds.reason.empty() ? "" : " (" + bounds.reason + ")");
   return out.str();
-}
-
-void require_parity(const comparison& result) {
-  MESSAGE(result.summary());
-  INFO("worst: " << result.worst);
-  INFO("mismatches:" << result.mismatch_list);
-  CHECK(result.passed());
 }
 
 }  // namespace vplkit::parity

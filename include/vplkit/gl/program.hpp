@@ -1,7 +1,10 @@
-// GLSL program loading: files from a shader directory, `#include "lib/....glsl"` resolved
-// (each file once, recursively), and compile/link errors reported against the original
+// GLSL program loading: files from one or more shader folders, `#include "lib/....glsl"`
+// resolved (each file once, recursively), and compile/link errors reported against the original
 // file:line, not the expanded source. The expansion emits `#line <line> <file number>` around
 // every include; the driver's log then names (file number, line), which map back to file names.
+//
+// Installed with vplkit::parity (the program a uniform setter receives, the shader library of
+// the parity runs), so it names no GL header: the GL names are plain unsigned and int here.
 #pragma once
 
 #include <filesystem>
@@ -11,9 +14,7 @@
 
 #include <glm/glm.hpp>
 
-#include "frontend/gl/gl.hpp"
-#include "frontend/gl/gl_object.hpp"
-#include "frontend/gl/uniform_declarations.hpp"
+#include <vplkit/gl/uniform_declarations.hpp>
 
 namespace vplkit {
 
@@ -22,6 +23,8 @@ struct expanded_source {
   std::string text;
   /// GLSL source-string number (the second argument of #line) -> file name for messages.
   std::vector<std::string> file_names;
+  /// Every file the expansion read, the top-level file first (for build-system dependencies).
+  std::vector<std::filesystem::path> files_read;
 };
 
 /// The shader directory: --shader-dir when given, else $VPLKIT_SHADER_DIR, else the source
@@ -32,19 +35,34 @@ std::filesystem::path default_shader_dir();
 /// template parameters (e.g. {"VPLKIT_VISIBILITY", "6"}).
 using shader_defines = std::vector<std::pair<std::string, std::string>>;
 
+/// Shader folders searched in order: the folders added with add_root, in the order added, then
+/// the base folder (vplkit's shaders/). A file name (`#include "lib/irradiance.glsl"`, or the
+/// file given to expand_file) is looked up relative to each folder, and the first that has it
+/// wins, so one's own folder can shadow a vplkit file by giving its own copy.
 class shader_library {
  public:
-  explicit shader_library(std::filesystem::path root);
-  const std::filesystem::path& root() const { return root_; }
-  /// Expands a file under root (e.g. "direct.frag"). Throws vplkit::error naming a missing or
-  /// unreadable file, and the including file:line for a missing include.
+  /// Throws vplkit::error when `base` is not a folder.
+  explicit shader_library(std::filesystem::path base);
+  /// Adds a folder searched before the base folder and after the folders added earlier; a folder
+  /// already searched is not added again. Throws vplkit::error when it is not a folder.
+  void add_root(const std::filesystem::path& folder);
+  /// The folders in search order; the base folder is last.
+  const std::vector<std::filesystem::path>& roots() const { return roots_; }
+  /// The file `relative_path` names: in the first folder that has it. Throws vplkit::error naming
+  /// every folder looked in when none has it.
+  std::filesystem::path locate(const std::string& relative_path) const;
+  /// Expands a file found in the folders (e.g. "direct.frag"). Throws vplkit::error naming a
+  /// missing or unreadable file, and the including file:line for a missing include.
   expanded_source expand_file(const std::string& relative_path, const shader_defines& defines = {}) const;
   /// Expands in-memory text (generated shaders), shown in messages as `display_name`.
   expanded_source expand_text(const std::string& text, const std::string& display_name,
                               const shader_defines& defines = {}) const;
+  /// Expands the file at `path` (anywhere; its includes are looked up in the folders), shown in
+  /// messages as `path`.
+  expanded_source expand_path(const std::filesystem::path& path, const shader_defines& defines = {}) const;
 
  private:
-  std::filesystem::path root_;
+  std::vector<std::filesystem::path> roots_;
 };
 
 enum class shader_stage { vertex, fragment };
@@ -56,13 +74,21 @@ enum class shader_stage { vertex, fragment };
 class program {
  public:
   program() = default;
-  program(gl_program name, std::string program_name, uniform_declarations declarations)
-      : name_(std::move(name)), program_name_(std::move(program_name)), declarations_(std::move(declarations)) {}
-  GLuint id() const { return name_.get(); }
-  void use() const { glUseProgram(name_.get()); }
+  /// Takes ownership of the linked GL program `name` (link_program makes them).
+  program(unsigned name, std::string program_name, uniform_declarations declarations)
+      : name_(name), program_name_(std::move(program_name)), declarations_(std::move(declarations)) {}
+  ~program();
+  program(program&& other) noexcept;
+  program& operator=(program&& other) noexcept;
+  program(const program&) = delete;
+  program& operator=(const program&) = delete;
+  /// The GL program name (a GLuint).
+  unsigned id() const { return name_; }
+  /// Binds the program (glUseProgram).
+  void use() const;
   /// The uniform's location, -1 for a declared uniform the linker removed; throws for an
   /// undeclared name.
-  GLint location(const std::string& uniform) const;
+  int location(const std::string& uniform) const;
   void set(const std::string& uniform, int value) const;
   void set(const std::string& uniform, unsigned value) const;
   void set(const std::string& uniform, float value) const;
@@ -73,7 +99,7 @@ class program {
   void set(const std::string& uniform, const glm::mat4& value) const;
 
  private:
-  gl_program name_;
+  unsigned name_ = 0;  // owned: deleted with the program, on the context current then
   std::string program_name_;
   uniform_declarations declarations_;
 };

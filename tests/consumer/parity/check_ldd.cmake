@@ -1,0 +1,16 @@
+# BINARY, linked with vplkit::parity, loads EGL and no window, GUI, scene or test-framework
+# library (ldd lists every shared library it needs, transitively).
+execute_process(COMMAND ldd "${BINARY}" RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+message(STATUS "ldd ${BINARY}:\n${out}")
+if(NOT code EQUAL 0)
+  message(FATAL_ERROR "ldd failed: ${err}")
+endif()
+if(NOT out MATCHES "libEGL\\.so")
+  message(FATAL_ERROR "the test does not load libEGL")
+endif()
+string(TOLOWER "${out}" lower)
+foreach(library glfw imgui tinygltf embree doctest gtest stb x11)
+  if(lower MATCHES "lib${library}[^ ]*\\.so")
+    message(FATAL_ERROR "the test loads lib${library}: vplkit::parity must need no window, GUI, scene or test-framework library")
+  endif()
+endforeach()
