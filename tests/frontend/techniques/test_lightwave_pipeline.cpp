@@ -557,6 +557,45 @@ TEST_CASE("flux energy, accurate shadows: a panel shadows the wall behind it fro
   CHECK(beside > behind + 0.15);
 }
 
+TEST_CASE("flux energy, accurate shadows: 1, 5 and 20 maps are never further from the one-bounce reference than none, the spot overhead or in a corner") {
+  // The issue's failure: one map for all the VPLs of a room lit into a corner shadowed a wall it
+  // does not hide and was further from the reference than no map. Each map count against none,
+  // RMSE of linear radiance over every pixel; the tolerance (1e-4 relative) only absorbs the
+  // reference's noise between two nearly equal images.
+  for (bool corner : {false, true}) {
+    scene s = room_scene(true);
+    if (corner) {
+      s.light.spot.position = {1.8f, 2.3f, 2.7f};
+      s.light.spot.direction = glm::normalize(glm::vec3(-1.8f, 0.3f, -2.7f) - s.light.spot.position);
+    }
+    const int width = 64, height = 36;
+    const one_bounce_images reference = reference_one_bounce(s, width, height, 256, 1u, 2);
+    const auto rmse_of = [&](int maps) {
+      lightwave_settings settings = small(maps == 0 ? "lightwave-unshadowed" : "lightwave-accurate");
+      settings.width = width;
+      settings.height = height;
+      settings.accurate_maps = std::max(maps, 1);
+      lightwave_pipeline pipeline(test_shaders(), s, settings);
+      const image radiance = pipeline.render().radiance;
+      double sum = 0.0;
+      for (std::size_t i = 0; i < radiance.texels.size(); ++i)
+        for (int c = 0; c < 3; ++c) {
+          const double d = static_cast<double>(radiance.texels[i][c]) - static_cast<double>(reference.radiance.texels[i][c]);
+          sum += d * d;
+        }
+      return std::sqrt(sum / (3.0 * static_cast<double>(radiance.texels.size())));
+    };
+    const double none = rmse_of(0);
+    for (int maps : {1, 5, 20}) {
+      const double with_maps = rmse_of(maps);
+      CAPTURE(corner);
+      CAPTURE(maps);
+      MESSAGE((corner ? "corner" : "overhead") << ": " << maps << " maps RMSE " << with_maps << ", none " << none);
+      CHECK(with_maps <= none * (1.0 + 1e-4));
+    }
+  }
+}
+
 TEST_CASE("accurate shadows, importance: the image does not depend on the seed, in either energy") {
   const scene boxes = make_boxes_scene();
   for (lightwave_energy energy : {lightwave_energy::flux, lightwave_energy::thesis}) {
