@@ -1,5 +1,6 @@
-// The vplkit command line: `info`, `render` (headless, the main job), `view` (a window),
-// `compare`, `reference`, `export-scene` and `shader expand`, one file each (commands.hpp). Every option is range-checked as it
+// The vplkit command line: `info`, `render` (headless, the main job), `sweep`, `compare`,
+// `reference`, `export-scene` and `shader expand`, one file each (commands.hpp), and `view` (a window), which the
+// executable adds (view.cpp, with the viewer library). Every option is range-checked as it
 // is parsed (non-finite numbers included); the checks that need several options, and the
 // scoping of options to the techniques and methods that read them, run before anything is
 // opened or read.
@@ -16,15 +17,17 @@
 
 namespace vplkit {
 
-int run_command_line(int argc, const char* const* argv, std::ostream& out, std::ostream& err, command_line_mode mode) {
+int run_command_line(int argc, const char* const* argv, std::ostream& out, std::ostream& err, command_line_mode mode,
+                     const std::vector<command_adder>& more_commands) {
   CLI::App app{"vplkit: real-time one-bounce indirect illumination (reflective shadow maps with visibility, Light Wave, robust final gathering)"};
   // At most one subcommand; an unknown word is then reported by name as an unexpected argument
   // (require_subcommand(1) would only say that a subcommand is required).
   app.require_subcommand(0, 1);
   app.set_version_flag("--version", version_string);
-  const std::vector<cli::command> commands = {cli::add_info_command(app), cli::add_render_command(app), cli::add_view_command(app),
-                                              cli::add_compare_command(app), cli::add_reference_command(app),
-                                              cli::add_export_scene_command(app), cli::add_shader_command(app)};
+  std::vector<cli::command> commands = {cli::add_info_command(app), cli::add_render_command(app), cli::add_sweep_command(app)};
+  for (const command_adder& add : more_commands) commands.push_back(add(app));
+  for (const auto& add : {cli::add_compare_command, cli::add_reference_command, cli::add_export_scene_command, cli::add_shader_command})
+    commands.push_back(add(app));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& parse_error) {
@@ -38,7 +41,9 @@ int run_command_line(int argc, const char* const* argv, std::ostream& out, std::
     for (const cli::command& command : commands)
       if (command.app->parsed()) status = command.run(io);
     if (status < 0) {
-      err << "vplkit: error: a subcommand is required: info, render, view, compare, reference, export-scene or shader (see vplkit --help)\n";
+      std::string names;
+      for (const cli::command& command : commands) names += (names.empty() ? "" : ", ") + command.app->get_name();
+      err << "vplkit: error: a subcommand is required: " << names << " (see vplkit --help)\n";
       return 2;
     }
     // A GL error that no check point turned into an exception still fails the command.

@@ -1,5 +1,5 @@
-// The subcommands of vplkit, one file each (info.cpp, render.cpp, view.cpp, compare.cpp,
-// reference.cpp, export_scene.cpp, shader.cpp). Each registers only the options it reads on its own CLI11 subcommand and
+// The subcommands of vplkit, one file each (info.cpp, render.cpp, sweep.cpp, view.cpp,
+// compare.cpp, reference.cpp, export_scene.cpp, shader.cpp). Each registers only the options it reads on its own CLI11 subcommand and
 // returns what to run once the command line has parsed.
 #pragma once
 
@@ -18,6 +18,8 @@ struct command {
 
 command add_info_command(CLI::App& app);
 command add_render_command(CLI::App& app);
+command add_sweep_command(CLI::App& app);
+/// In the vplkit_view_command library (the viewer's), which the executable links.
 command add_view_command(CLI::App& app);
 command add_compare_command(CLI::App& app);
 command add_reference_command(CLI::App& app);

@@ -1,5 +1,5 @@
 // What every subcommand of the command line shares: the session (where messages go, whether it
-// is a dry run), the checked parsers of sizes, positions and numbers, and option scoping, with
+// is a dry run), a checked number parser, the scene and pose options, and option scoping, with
 // which an option that the chosen technique or method does not read is an error naming it.
 #pragma once
 
@@ -24,6 +24,7 @@
 #include "frontend/gl/render_target.hpp"
 #include "frontend/scene/pose.hpp"
 #include "frontend/scene/scene.hpp"
+#include "frontend/techniques/pipeline.hpp"
 
 namespace vplkit::cli {
 
@@ -46,24 +47,18 @@ std::string shown(std::string_view text);
 /// A float as a message shows it (ostream's default format).
 std::string format_number(float value);
 
-/// "512" or "640x480" into width and height; empty on success, else the reason.
-std::string parse_size(const std::string& text, int& width, int& height);
-
-/// "x,y,z" (spaces allowed around the numbers, each finite within +-limit); empty on success.
-std::string parse_position(const std::string& text, glm::vec3& position, float limit);
-
 /// A number in [low, high] (or (low, high] when low_open); NaN and infinities fail.
 CLI::Validator number_in(double low, double high, bool low_open, const std::string& what);
-/// A finite number > 0.
-CLI::Validator positive_number(const std::string& what);
 
 /// Options that only some choices (techniques of `render`, methods of `reference`) read.
 class option_scope {
  public:
   /// `option` is read only when reads(choice); `readers` says by whom, for the message.
   CLI::Option* add(CLI::Option* option, std::string readers, std::function<bool(const std::string&)> reads);
-  /// Throws usage_error naming the first option given on the command line that `choice` does
-  /// not read: "--ray-angle is read by the lightwave-* techniques, not by technique rsm-alg6".
+  /// The message for the first option given on the command line that `choice` does not read:
+  /// "--ray-angle is read by ..., not by technique rsm-alg6"; "" when there is none.
+  std::string unread_by(const std::string& choice, const std::string& what) const;
+  /// Throws usage_error with unread_by's message.
   void require_read_by(const std::string& choice, const std::string& what) const;
 
  private:
@@ -75,42 +70,28 @@ class option_scope {
   std::vector<scoped> options_;
 };
 
-/// Whether `name` starts with `prefix` (technique families: "rsm-", "lightwave-", ...).
-inline bool starts_with(const std::string& name, std::string_view prefix) { return name.rfind(prefix, 0) == 0; }
-
-/// The options that several technique families read: registered once per command (CLI11 names
-/// an option once), scoped there to the techniques that read them.
+/// What every drawing command reads besides the technique's settings: the scene and the poses,
+/// where the shaders are, and which headless context to open.
 struct common_options {
-  std::string scene = "cornell-box";
-  bool scene_given = false;     ///< the default scene depends on the technique
-  std::uint32_t seed = 0;       ///< of the sampling patterns (RSM) and of the accurate shadows' VPLs (Light Wave)
-  std::string size_text;
-  int width = 512, height = 512;
-  bool size_given = false;
-  std::string format = "rgba16f";
-  float min_distance = 0.01f;
+  std::string scene;
+  bool scene_given = false;     ///< the default scene is the technique family's
   std::string shader_dir;
   std::string context = "auto";  ///< headless context: a name of headless_api_names()
   int device = -1;               ///< EGL device index, -1: automatic
   std::optional<pose> camera_pose;  ///< --camera: instead of the scene's camera
   std::optional<pose> light_pose;   ///< --light: instead of the scene's light
   headless_request headless() const;
-  texel_format texel() const { return format == "rgba32f" ? texel_format::rgba32f : texel_format::rgba16f; }
   std::filesystem::path shaders() const;
 };
 
 /// The options add_common_options registered, for a command that scopes some of them.
 struct common_option_handles {
-  CLI::Option* size;
-  CLI::Option* format;
-  CLI::Option* min_distance;
   CLI::Option* shader_dir;
   CLI::Option* context;
   CLI::Option* device;
 };
-/// --size, --format, --min-distance, --shader-dir, --context and --device (--scene and --seed
-/// are added by the commands that read them). `default_size` is shown in the help.
-common_option_handles add_common_options(CLI::App& command, common_options& options, const std::string& default_size);
+/// --shader-dir, --context and --device.
+common_option_handles add_common_options(CLI::App& command, common_options& options);
 
 /// A headless GL context and the shader library: what every drawing command opens first.
 struct headless_session {
@@ -119,7 +100,7 @@ struct headless_session {
   shader_library shaders;
 };
 
-/// --scene, with `default_scene` shown in the help.
+/// --scene, with `default_scene` shown in the help (several when `several`: the sweep's).
 CLI::Option* add_scene_option(CLI::App& command, common_options& options, const std::string& default_scene);
 
 /// --camera and --light (poses "x,y,z,tx,ty,tz", frontend/scene/pose.hpp), which move the
@@ -129,7 +110,8 @@ void add_pose_options(CLI::App& command, common_options& options);
 /// The camera and light moved to --camera and --light where given. Throws usage_error naming the
 /// option when the scene cannot take the pose (e.g. a camera looking along its up vector).
 void apply_poses(const common_options& options, camera& view, scene_light& light);
-void apply_poses(const common_options& options, camera& view, spot_light<float>& light);
+/// The same for a pipeline that built its own scene (final gathering).
+void apply_poses(const common_options& options, pipeline& target);
 
 /// A built-in scene by name or an .obj, .gltf or .glb file, checked (finite, in range) before it
 /// is used, with --camera and --light applied.

@@ -6,7 +6,7 @@
 
 #include "frontend/cli/commands.hpp"
 #include "frontend/cli/output.hpp"
-#include "frontend/cli/rsm_options.hpp"
+#include "frontend/cli/technique_options.hpp"
 #include "frontend/core/parallel.hpp"
 #include "frontend/reference/reference.hpp"
 
@@ -19,14 +19,19 @@ namespace fs = std::filesystem;
 struct reference_state {
   std::string method = "monte-carlo";
   std::string visibility = "exact";
-  int samples = 64;
-  std::uint32_t seed = 1;
-  int receiver_stride = 1;
+  reference_options options = [] {
+    reference_options every_receiver;
+    every_receiver.receiver_stride = 1;  // the reference command computes every receiver unless told
+    return every_receiver;
+  }();
   std::string out;
   common_options common;
-  rsm_options rsm;
+  given_settings given;  ///< the frame's settings: --size, and for the brute force --format, --min-distance, --rsm-size, --indirect-divisor
   option_scope scope;
 };
+
+// The frame's settings, as `vplkit render` makes them for an RSM technique.
+std::unique_ptr<technique_settings> frame_settings(const reference_state& s) { return make_technique_settings(s.given, "rsm-radial"); }
 
 std::string stem_of(const std::string& scene_name) { return fs::path(scene_name).stem().string(); }
 
@@ -34,23 +39,25 @@ std::string stem_of(const std::string& scene_name) { return fs::path(scene_name)
 // size, indirect divisor and format, at the receivers of its indirect buffer.
 int run_rsm_brute_force(const session& io, const reference_state& s) {
   // The RSM and the G-buffer do not depend on the gather: any radial technique gives them.
-  const rsm_pipeline_settings settings = make_rsm_settings("rsm-radial", s.common, s.rsm);
-  output_set files(s.out, "output/" + stem_of(s.common.scene) + "-rsm-brute-force-" + s.visibility + ".pfm", ".pfm", "--out",
+  const std::unique_ptr<technique_settings> frame = frame_settings(s);
+  const rsm_pipeline_settings& settings = settings_struct<rsm_pipeline_settings, rsm_technique>(*frame);
+  const std::string scene_name = drawn_scene_name(s.common, *frame);
+  output_set files(s.out, "output/" + stem_of(scene_name) + "-rsm-brute-force-" + s.visibility + ".pfm", ".pfm", "--out",
                    "a .png and -receivers.pfm go next to it");
   if (io.dry_run) return 0;
   const headless_session gl(s.common);
-  const scene source = load_scene(s.common, s.common.scene);
+  const scene source = load_scene(s.common, scene_name);
   rsm_pipeline pipeline(gl.shaders, source, settings);
   pipeline.render();
   const rsm_pass_buffers buffers = pipeline.read_buffers();
   const ray_scene rays(source.geometry);
   rsm_brute_force_options brute_force;
   brute_force.exact_visibility = s.visibility == "exact";
-  brute_force.receiver_stride = s.receiver_stride;
+  brute_force.receiver_stride = s.options.receiver_stride;
   brute_force.threads = hardware_threads();
   const image gathered = reference_rsm_gather(rays, buffers, pipeline.constants(), brute_force);
   // The mask: the computed receivers the RSM gather covers.
-  const std::vector<std::uint8_t> covered = rsm_covered_receivers(buffers, pipeline.constants(), s.receiver_stride);
+  const std::vector<std::uint8_t> covered = rsm_covered_receivers(buffers, pipeline.constants(), s.options.receiver_stride);
   image mask(gathered.width, gathered.height);
   for (std::size_t i = 0; i < covered.size(); ++i) mask.texels[i] = glm::vec4(covered[i] ? 1.0f : 0.0f);
   const auto counted = std::count(covered.begin(), covered.end(), std::uint8_t{1});
@@ -60,7 +67,7 @@ int run_rsm_brute_force(const session& io, const reference_state& s) {
   files.add_pfm(receivers, mask);
   io.out << "scene " << source.name << ", brute-force RSM gather with " << (brute_force.exact_visibility ? "exact (ray-cast)" : "no") << " visibility, RSM "
          << settings.rsm_size << "^2, at the " << gathered.width << "x" << gathered.height << " receivers of the indirect buffer of a " << settings.width
-         << "x" << settings.height << " frame (every " << s.receiver_stride << ". per axis), " << counted
+         << "x" << settings.height << " frame (every " << s.options.receiver_stride << ". per axis), " << counted
          << " covered by the RSM gather (in front of the light, inside its frustum)\n"
          << "compare with `vplkit render --raw-indirect` of the same frame: vplkit compare <out>-raw-indirect.pfm " << files.main().string() << " --mask "
          << receivers.string() << "\n";
@@ -69,17 +76,20 @@ int run_rsm_brute_force(const session& io, const reference_state& s) {
 }
 
 int run_monte_carlo(const session& io, const reference_state& s) {
-  output_set files(s.out, "output/" + stem_of(s.common.scene) + "-reference.pfm", ".pfm", "--out", "a .png and -indirect.pfm go next to it");
+  const std::unique_ptr<technique_settings> frame = frame_settings(s);
+  const std::string scene_name = drawn_scene_name(s.common, *frame);
+  output_set files(s.out, "output/" + stem_of(scene_name) + "-reference.pfm", ".pfm", "--out", "a .png and -indirect.pfm go next to it");
   if (io.dry_run) return 0;
-  const scene source = load_scene(s.common, s.common.scene);
-  const int w = s.common.width, h = s.common.height;
-  const one_bounce_images images = reference_one_bounce(source, w, h, s.samples, s.seed, hardware_threads());
+  const scene source = load_scene(s.common, scene_name);
+  const rsm_pipeline_settings& settings = settings_struct<rsm_pipeline_settings, rsm_technique>(*frame);
+  const int w = settings.width, h = settings.height;
+  const one_bounce_images images = reference_one_bounce(source, w, h, s.options.samples, s.options.seed, hardware_threads());
   // PFM and PNG of the final image, PFM of the indirect irradiance: written only after all is done.
   files.add_pfm(files.main(), images.radiance);
   files.add_pfm(files.sibling("-indirect", ".pfm"), images.indirect);
   files.add_png(files.sibling("", ".png"), images.radiance);
-  io.out << "scene " << source.name << ", one-bounce Monte Carlo reference, " << w << "x" << h << ", " << s.samples << " bounce rays per pixel, seed "
-         << s.seed << "\n";
+  io.out << "scene " << source.name << ", one-bounce Monte Carlo reference, " << w << "x" << h << ", " << s.options.samples << " bounce rays per pixel, seed "
+         << s.options.seed << "\n";
   files.write(io.out);
   return 0;
 }
@@ -89,30 +99,23 @@ int run_monte_carlo(const session& io, const reference_state& s) {
 command add_reference_command(CLI::App& app) {
   auto state = std::make_shared<reference_state>();
   CLI::App* reference = app.add_subcommand("reference", "render a ground truth: the one-bounce Monte Carlo reference (Embree) or the brute-force RSM gather");
-  const auto monte_carlo = [](const std::string& method) { return method == "monte-carlo"; };
   const auto brute_force = [](const std::string& method) { return method == "rsm-brute-force"; };
   reference->add_option("--method", state->method,
                         "monte-carlo: one-bounce path tracing of the final image (Embree); rsm-brute-force: every lit RSM texel at every "
                         "receiver of the frame's indirect buffer (the thesis's Fig. 5.1d)")
       ->check(CLI::IsMember({"monte-carlo", "rsm-brute-force"}))->capture_default_str();
   add_scene_option(*reference, state->common, "cornell-box");
-  const common_option_handles frame = add_common_options(*reference, state->common, "512");
   add_pose_options(*reference, state->common);
-  for (CLI::Option* option : {frame.format, frame.min_distance, frame.shader_dir, frame.context, frame.device})
+  const common_option_handles frame = add_common_options(*reference, state->common);
+  for (CLI::Option* option : {frame.shader_dir, frame.context, frame.device}) state->scope.add(option, "--method rsm-brute-force", brute_force);
+  // The frame `vplkit render` draws: its size for both methods, the rest for the brute force.
+  add_setting_options(*reference, state->given, {"size"});
+  for (CLI::Option* option : add_setting_options(*reference, state->given, {"format", "min-distance", "rsm-size", "indirect-divisor"}))
     state->scope.add(option, "--method rsm-brute-force", brute_force);
-  add_rsm_frame_options(*reference, state->rsm, nullptr);
-  for (const char* name : {"--rsm-size", "--indirect-divisor"}) state->scope.add(reference->get_option(name), "--method rsm-brute-force", brute_force);
   state->scope.add(reference->add_option("--visibility", state->visibility, "rsm-brute-force: exact (a ray per pixel light) or none")
                        ->check(CLI::IsMember({"exact", "none"}))->capture_default_str(),
                    "--method rsm-brute-force", brute_force);
-  state->scope.add(reference->add_option("--receiver-stride", state->receiver_stride,
-                                         "rsm-brute-force: compute every N-th receiver per axis (the others are 0 and outside the -receivers.pfm mask)")
-                       ->check(CLI::Range(1, 64))->capture_default_str(),
-                   "--method rsm-brute-force", brute_force);
-  state->scope.add(reference->add_option("--samples", state->samples, "monte-carlo: bounce rays per pixel")->check(CLI::Range(1, 1 << 20))->capture_default_str(),
-                   "--method monte-carlo", monte_carlo);
-  state->scope.add(reference->add_option("--reference-seed", state->seed, "monte-carlo: seed of the estimate")->capture_default_str(),
-                   "--method monte-carlo", monte_carlo);
+  add_reference_options(*reference, state->options, state->scope, "--method");
   reference->add_option("--out", state->out, "output .pfm (monte-carlo: the final image, with -indirect.pfm and a .png next to it; "
                                              "rsm-brute-force: the indirect irradiance, with a .png and -receivers.pfm)");
   return {reference, [state](const session& io) {

@@ -1,8 +1,19 @@
 // vplkit render: one frame of any technique, headless, to images. --technique picks the family
-// (rsm_options, lightwave_options, final_gather_options); each family registers its own options,
-// scoped to the techniques that read them, so that an option the technique ignores is an error.
+// from the registry (frontend/techniques/registry.hpp); every setting is an option scoped to the
+// techniques that read it (technique_options), so an option the technique ignores is an error.
+// --reference measures the frame against ground truth (frontend/reference/quality.hpp) and
+// --stats writes the settings in effect, the pass times and the quality as JSON.
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
+#include <vplkit/version.hpp>
+
 #include "frontend/cli/commands.hpp"
+#include "frontend/cli/output.hpp"
 #include "frontend/cli/technique_options.hpp"
+#include "frontend/core/parallel.hpp"
+#include "frontend/reference/quality.hpp"
 
 namespace vplkit::cli {
 
@@ -11,23 +22,138 @@ namespace {
 struct render_state {
   technique_options options;
   std::string out;
+  bool raw_indirect = false;
+  std::string stats;
+  std::string reference = "none";
+  reference_options quality;
+  option_scope reference_scope;  ///< --receiver-stride, --samples, --reference-seed
 };
+
+std::string json_string(const std::string& text) {
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"' || c == '\\') out += '\\';
+    if (static_cast<unsigned char>(c) >= 0x20) out += c;
+  }
+  return out + "\"";
+}
+
+std::string json_number(double value) { return std::isfinite(value) ? format_real(value) : "null"; }
+
+std::string pass_json(const std::vector<pass_time>& passes) {
+  std::string json = "[";
+  double total = 0.0;
+  for (const pass_time& pass : passes) {
+    json += std::string(json.size() > 1 ? ", " : "") + "{\"pass\": " + json_string(pass.pass) + ", \"ms\": " + json_number(pass.milliseconds) + "}";
+    total += pass.milliseconds;
+  }
+  return json + "], \"frame_ms\": " + json_number(total);
+}
+
+int run_render(const session& io, const render_state& s) {
+  const technique_options& o = s.options;
+  o.scope.require_read_by(o.technique, "technique");
+  s.reference_scope.require_read_by(s.reference, "--reference");
+  const std::unique_ptr<technique_settings> settings = make_technique_settings(o.given, o.technique);
+  const technique_family& family = family_of(o.technique);
+  const reference_kind kind = reference_from_name(s.reference);
+  if (const std::string refusal = reference_refusal(kind, o.technique); !refusal.empty()) throw usage_error("--reference " + s.reference + ": " + refusal);
+  output_set files(s.out, "output/" + std::filesystem::path(drawn_scene_name(o.common, *settings)).stem().string() + "-" + o.technique + ".png", ".png", "--out");
+  if (!s.stats.empty() && std::filesystem::path(s.stats).extension() != ".json") throw usage_error("--stats must name a .json file, got " + shown(s.stats));
+  if (io.dry_run) return 0;
+
+  const headless_session gl(o.common);
+  std::unique_ptr<scene> source;
+  const std::unique_ptr<pipeline> drawn = make_posed_pipeline(gl.shaders, o.common, *settings, source);
+  // The first frame pays for the shader compilers' lazy work (llvmpipe's JIT, a driver's first use
+  // of a program); the tables report warmed-up frames: every pass, then what a camera move redraws.
+  drawn->draw();
+  drawn->collect_pass_times();
+  drawn->draw();
+  const std::vector<pass_time> every_pass = drawn->collect_pass_times();
+  const image radiance = drawn->output().read_image();
+  const image indirect = drawn->indirect_output().read_image();
+
+  // Everything is rendered before anything is written, so a failure leaves no partial set.
+  files.add_png(files.main(), radiance);
+  if (drawn->has_indirect()) {
+    const float exposure = percentile_exposure(indirect);
+    files.add_png(files.sibling("-indirect", ".png"), indirect, exposure);
+    if (const std::string baseline = family.visibility_baseline(o.technique); !baseline.empty()) {
+      // The same frame without visibility: what the approximation removes, amplified 8x relative
+      // to the indirect image's exposure (Fig. 5.1c).
+      std::unique_ptr<technique_settings> without = settings->clone();
+      without->set_technique(baseline);
+      std::unique_ptr<scene> baseline_source;
+      const std::unique_ptr<pipeline> reference = make_posed_pipeline(gl.shaders, o.common, *without, baseline_source);
+      reference->draw();
+      files.add_png(files.sibling("-visibility-difference", ".png"), luminance_difference(reference->indirect_output().read_image(), indirect, 8.0f * exposure));
+    }
+  }
+  // The indirect shadow factor as grey, linear (1 = white = not shadowed).
+  if (const texture_2d* shadow = drawn->indirect_shadow_output()) files.add_png(files.sibling("-indirect-shadow", ".png"), red_as_grey(shadow->read_image()));
+  // The indirect light, linear (0 for direct light only).
+  files.add_pfm(files.sibling("-indirect", ".pfm"), indirect);
+  if (s.raw_indirect) files.add_pfm(files.sibling("-raw-indirect", ".pfm"), *drawn->raw_indirect());
+
+  // What a camera move costs: the camera "moved" onto itself, then only what that invalidated.
+  drawn->set_camera(drawn->current_camera());
+  drawn->draw_changed();
+  const std::vector<pass_time> camera_moved = drawn->collect_pass_times();
+
+  io.out << drawn->describe() << "\nevery pass (the frame the papers time):\n" << format_pass_table(every_pass)
+         << "a frame after the camera moved (what the viewer redraws):\n" << format_pass_table(camera_moved);
+
+  std::string quality_json;
+  if (kind != reference_kind::none) {
+    reference_options options = s.quality;
+    options.kind = kind;
+    options.threads = hardware_threads();
+    scene_references references(gl.shaders, options, source.get());
+    drawn->draw();
+    drawn->collect_pass_times();
+    const frame_quality quality = references.measure(*drawn, *settings);
+    io.out << "quality against " << reference_name(kind) << " (" << quality.receivers << " receivers or pixels):\n| metric | value |\n|---|---:|\n";
+    quality_json = ",\n  \"quality\": {\"reference\": " + json_string(reference_name(kind)) + ", \"receivers\": " + std::to_string(quality.receivers);
+    for (const auto& [name, value] : quality.metrics) {
+      io.out << "| " << name << " | " << std::setprecision(6) << value << " |\n";
+      quality_json += ", " + json_string(name) + ": " + json_number(value);
+    }
+    io.out << references.coverage() << "\n";
+    quality_json += ", \"covers\": " + json_string(references.coverage()) + "}";
+  }
+  if (!s.stats.empty()) {
+    std::ostringstream json;
+    json << "{\n  \"vplkit\": " << json_string(version_string) << ",\n  \"scene\": " << json_string(drawn->scene_name()) << ",\n  \"settings\": "
+         << settings_json(*settings, 2) << ",\n  \"timing\": {\"method\": " << json_string(describe(timing_method_for_current_context()))
+         << ",\n    \"every_pass\": {\"passes\": " << pass_json(every_pass) << "},\n    \"camera_moved\": {\"passes\": " << pass_json(camera_moved)
+         << "}}" << quality_json << "\n}\n";
+    files.add_text(s.stats, json.str());
+  }
+  files.write(io.out);
+  return 0;
+}
 
 }  // namespace
 
 command add_render_command(CLI::App& app) {
   auto state = std::make_shared<render_state>();
   CLI::App* render = app.add_subcommand("render", "render a scene headless to PNG images (and the linear indirect light as PFM)");
-  add_technique_options(*render, state->options, true);
+  add_technique_options(*render, state->options);
   render->add_option("--out", state->out, "final image path (.png; folders are created) [output/<scene or object>-<technique>.png]; the other "
                                           "images go next to it");
-  return {render, [state](const session& io) {
-            const technique_options& o = state->options;
-            o.scope.require_read_by(o.technique, "technique");
-            if (is_lightwave_technique(o.technique)) return render_lightwave(io, o.technique, o.common, o.lightwave, state->out);
-            if (is_final_gather_technique(o.technique)) return render_final_gather(io, o.technique, o.common, o.final_gather, state->out);
-            return render_rsm(io, o.technique, o.common, o.rsm, state->out);
-          }};
+  state->options.scope.add(render->add_flag("--raw-indirect", state->raw_indirect,
+                                            "also write <out>-raw-indirect.pfm: the unfiltered gather at the indirect buffer's receivers (compare it "
+                                            "with vplkit reference --method rsm-brute-force)"),
+                           setting_readers("indirect-divisor"),
+                           [](const std::string& technique) { return family_of(technique).make_settings(technique)->reads("indirect-divisor"); });
+  render->add_option("--stats", state->stats, "write the settings in effect, the pass times with their method and the quality numbers as JSON (.json)");
+  render->add_option("--reference", state->reference,
+                     "measure the frame against ground truth: rsm-brute-force (the RSM techniques' raw gather against the brute-force gather of "
+                     "the same frame), monte-carlo (the final image against the one-bounce path-traced image) or none")
+      ->check(CLI::IsMember({"none", "rsm-brute-force", "monte-carlo"}))->capture_default_str();
+  add_reference_options(*render, state->quality, state->reference_scope);
+  return {render, [state](const session& io) { return run_render(io, *state); }};
 }
 
 }  // namespace vplkit::cli

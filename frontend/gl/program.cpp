@@ -13,6 +13,7 @@
 #include "frontend/gl/debug_output.hpp"
 #include "frontend/gl/gl.hpp"
 #include "frontend/gl/gl_object.hpp"
+#include <vplkit/gl/settings_uniforms.hpp>
 #include "frontend/core/error.hpp"
 #include "frontend/core/files.hpp"
 
@@ -316,6 +317,8 @@ program link_program(const std::string& program_name, const std::vector<stage_so
   check_gl("building program " + program_name);
   uniform_declarations declarations;
   for (const stage_source& stage : stages) declarations.scan(stage.source.text);
+  // Every uniform struct that twins a kernel settings struct has exactly the described fields.
+  check_glsl_twins(declarations, program_name);
   return program(linked.release(), program_name, std::move(declarations));
 }
 

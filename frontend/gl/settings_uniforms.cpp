@@ -1,86 +1,60 @@
 #include <vplkit/gl/settings_uniforms.hpp>
 
+#include <set>
+
+#include "frontend/core/error.hpp"
+
 namespace vplkit {
 
-void set_uniforms(const program& target, const std::string& name, const irradiance_settings<float>& settings) {
-  target.set(name + ".min_distance", settings.min_distance);
+const std::vector<glsl_twin>& glsl_twins() {
+  static const std::vector<glsl_twin> twins = {
+      glsl_twin_of<irradiance_settings<float>>(),  glsl_twin_of<radial_pattern_constants<float>>(), glsl_twin_of<disk_pattern_settings<float>>(),
+      glsl_twin_of<elevation_slots<float>>(),      glsl_twin_of<rsm_gather_settings<float>>(),      glsl_twin_of<rsm_unprojection<float>>(),
+      glsl_twin_of<shadow_density_settings<float>>(), glsl_twin_of<bilateral_settings<float>>(),    glsl_twin_of<spot_light<float>>(),
+      glsl_twin_of<directional_light<float>>(),    glsl_twin_of<lightwave_layout_settings<float>>(), glsl_twin_of<lightwave_shading_settings<float>>(),
+  };
+  return twins;
 }
 
-void set_uniforms(const program& target, const std::string& name, const elevation_slots<float>& slots) {
-  target.set(name + ".count", slots.count);
-  for (int k = 0; k < micro_linear_buffer_max_slots - 1; ++k)
-    target.set(name + ".boundary_tangent[" + std::to_string(k) + "]", slots.boundary_tangent[k]);
+namespace {
+
+const glsl_twin* twin_named(const std::string& name) {
+  for (const glsl_twin& twin : glsl_twins())
+    if (twin.name == name) return &twin;
+  return nullptr;
 }
 
-void set_uniforms(const program& target, const std::string& name, const spot_light<float>& light) {
-  target.set(name + ".position", light.position);
-  target.set(name + ".direction", light.direction);
-  target.set(name + ".intensity", light.intensity);
-  target.set(name + ".cos_inner", light.cos_inner);
-  target.set(name + ".cos_outer", light.cos_outer);
+void check_struct(const uniform_declarations& declarations, const std::string& struct_name, const std::string& program_name,
+                  std::set<std::string>& checked) {
+  if (!checked.insert(struct_name).second) return;
+  const auto* fields = declarations.struct_fields(struct_name);
+  if (!fields) return;  // a basic type
+  const glsl_twin* twin = twin_named(struct_name);
+  const std::string where = "program " + program_name + ": GLSL struct " + struct_name;
+  if (twin) {
+    for (const glsl_twin::field& field : twin->fields) {
+      const auto declared = fields->find(field.name);
+      if (declared == fields->end())
+        throw error(where + " has no field '" + field.name + "' that the C++ " + struct_name + " sets (" + field.type + (field.array ? "[]" : "") + ")");
+      if (declared->second.type != field.type || declared->second.array != field.array)
+        throw error(where + " declares '" + field.name + "' as " + declared->second.type + (declared->second.array ? "[]" : "") + ", the C++ " +
+                    struct_name + " as " + field.type + (field.array ? "[]" : ""));
+    }
+    for (const auto& [name, declared] : *fields) {
+      bool described = false;
+      for (const glsl_twin::field& field : twin->fields) described = described || field.name == name;
+      if (!described)
+        throw error(where + " declares field '" + name + "' that the C++ " + struct_name + " does not describe: set_uniforms would never set it, and it would read 0");
+    }
+  }
+  for (const auto& [name, declared] : *fields) check_struct(declarations, declared.type, program_name, checked);
 }
 
-void set_uniforms(const program& target, const std::string& name, const directional_light<float>& light) {
-  target.set(name + ".direction", light.direction);
-  target.set(name + ".irradiance", light.irradiance);
-}
+}  // namespace
 
-void set_uniforms(const program& target, const std::string& name, const radial_pattern_constants<float>& constants) {
-  target.set(name + ".paths", constants.paths);
-  target.set(name + ".samples_per_path", constants.samples_per_path);
-  target.set(name + ".min_radius", constants.min_radius);
-  target.set(name + ".ring_ratio", constants.ring_ratio);
-  target.set(name + ".path_turns", constants.path_turns);
-  target.set(name + ".path_angle", constants.path_angle);
-  target.set(name + ".rotation_jitter", constants.rotation_jitter);
-  target.set(name + ".angle_jitter", constants.angle_jitter);
-  target.set(name + ".scale_jitter", constants.scale_jitter);
-  target.set(name + ".seed", static_cast<unsigned>(constants.seed));
-}
-
-void set_uniforms(const program& target, const std::string& name, const disk_pattern_settings<float>& settings) {
-  target.set(name + ".samples", settings.samples);
-  target.set(name + ".max_radius", settings.max_radius);
-  target.set(name + ".seed", static_cast<unsigned>(settings.seed));
-}
-
-void set_uniforms(const program& target, const std::string& name, const rsm_gather_settings<float>& settings) {
-  set_uniforms(target, name + ".irradiance", settings.irradiance);
-  set_uniforms(target, name + ".radial", settings.radial);
-  set_uniforms(target, name + ".disk", settings.disk);
-  set_uniforms(target, name + ".slots", settings.slots);
-  target.set(name + ".rsm_size", settings.rsm_size);
-}
-
-void set_uniforms(const program& target, const std::string& name, const rsm_unprojection<float>& light) {
-  target.set(name + ".ray_origin", light.ray_origin);
-  target.set(name + ".ray_step", light.ray_step);
-  target.set(name + ".perspective", light.perspective);
-}
-
-void set_uniforms(const program& target, const std::string& name, const shadow_density_settings<float>& settings) {
-  target.set(name + ".kernel_size", settings.kernel_size);
-  target.set(name + ".depth_bias", settings.depth_bias);
-}
-
-void set_uniforms(const program& target, const std::string& name, const bilateral_settings<float>& settings) {
-  target.set(name + ".kernel_size", settings.kernel_size);
-  target.set(name + ".spatial_sigma", settings.spatial_sigma);
-  target.set(name + ".depth_sigma", settings.depth_sigma);
-  target.set(name + ".normal_power", settings.normal_power);
-}
-
-void set_uniforms(const program& target, const std::string& name, const lightwave_layout_settings<float>& settings) {
-  target.set(name + ".light_position", settings.light_position);
-  target.set(name + ".light_direction", settings.light_direction);
-  target.set(name + ".angle_deg", settings.angle_deg);
-  target.set(name + ".per_ray", settings.per_ray);
-  target.set(name + ".max_distance", settings.max_distance);
-}
-
-void set_uniforms(const program& target, const std::string& name, const lightwave_shading_settings<float>& settings) {
-  target.set(name + ".specular_strength", settings.specular_strength);
-  target.set(name + ".specular_exponent", settings.specular_exponent);
+void check_glsl_twins(const uniform_declarations& declarations, const std::string& program_name) {
+  std::set<std::string> checked;
+  for (const auto& [name, type] : declarations.uniforms()) check_struct(declarations, type, program_name, checked);
 }
 
 }  // namespace vplkit

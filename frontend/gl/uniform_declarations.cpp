@@ -52,16 +52,19 @@ void uniform_declarations::scan(const std::string& source) {
   };
   for (std::size_t i = 0; i < tokens.size(); ++i) {
     if (tokens[i] == "struct" && token(i + 2) == "{") {
-      std::map<std::string, std::string>& fields = struct_fields_[token(i + 1)];
+      std::map<std::string, field>& fields = struct_fields_[token(i + 1)];
       // Fields: "type name [N]? (, name [N]?)* ;" until the closing brace.
       std::size_t at = i + 3;
       while (at < tokens.size() && tokens[at] != "}") {
         const std::string type = tokens[at++];
+        std::string last;  // the field an array size follows
         while (at < tokens.size() && tokens[at] != ";" && tokens[at] != "}") {
           if (tokens[at] == "[") {
             while (at < tokens.size() && tokens[at] != "]") ++at;
+            if (!last.empty()) fields[last].array = true;
           } else if (tokens[at] != ",") {
-            fields[tokens[at]] = type;
+            last = tokens[at];
+            fields[last] = {type, false};
           }
           ++at;
         }
@@ -99,11 +102,16 @@ bool uniform_declarations::declares(const std::string& path) const {
   for (std::size_t k = 1; k < parts.size(); ++k) {
     const auto fields = struct_fields_.find(type);
     if (fields == struct_fields_.end()) return false;
-    const auto field = fields->second.find(parts[k]);
-    if (field == fields->second.end()) return false;
-    type = field->second;
+    const auto found = fields->second.find(parts[k]);
+    if (found == fields->second.end()) return false;
+    type = found->second.type;
   }
   return true;
+}
+
+const std::map<std::string, uniform_declarations::field>* uniform_declarations::struct_fields(const std::string& name) const {
+  const auto found = struct_fields_.find(name);
+  return found == struct_fields_.end() ? nullptr : &found->second;
 }
 
 std::string uniform_declarations::names() const {

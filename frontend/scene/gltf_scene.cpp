@@ -324,12 +324,12 @@ class reader {
       light.spot.intensity = glm::vec3(power);
       light.spot.cos_inner = static_cast<float>(std::cos(inner));
       light.spot.cos_outer = static_cast<float>(std::cos(outer));
-      if (const char* problem = validate(light.spot)) fail(where + ": " + problem);
+      if (const setting_problem problem = validate(light.spot)) fail(where + ": " + problem.message());
     } else if (source.type == "directional") {
       light.kind = light_kind::directional;
       light.directional.direction = glm::vec3(direction);
       light.directional.irradiance = glm::vec3(power);
-      if (const char* problem = validate(light.directional)) fail(where + ": " + problem);
+      if (const setting_problem problem = validate(light.directional)) fail(where + ": " + problem.message());
     } else {
       return;  // point lights: not read
     }

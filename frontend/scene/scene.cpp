@@ -549,11 +549,11 @@ void check_light(const scene_light& light, const std::string& owner) {
   if (light.kind == light_kind::spot) {
     const spot_light<float>& spot = light.spot;
     if (!finite(spot.position) || !finite(spot.direction) || !finite(spot.intensity)) throw error(owner + ": the spot light has a non-finite value");
-    if (const char* problem = validate(spot)) throw error(owner + ": " + problem);
+    if (const setting_problem problem = validate(spot)) throw error(owner + ": " + problem.message());
   } else {
     const directional_light<float>& sun = light.directional;
     if (!finite(sun.direction) || !finite(sun.irradiance)) throw error(owner + ": the directional light has a non-finite value");
-    if (const char* problem = validate(sun)) throw error(owner + ": " + problem);
+    if (const setting_problem problem = validate(sun)) throw error(owner + ": " + problem.message());
   }
 }
 

@@ -1,22 +1,24 @@
-// One technique family in the viewer: its pipeline, the pose of its camera and light (and of the
-// object, for final gathering), the layers it can show, and its settings as live controls. A move
-// goes to the pipeline, which redraws only what the move invalidated (rsm_pipeline::draw_changed,
-// lightwave_pipeline::draw, final_gather_pipeline::draw_changed); a changed setting builds a new
-// pipeline, since the programs are compiled for the settings.
+// One technique in the viewer: its pipeline (any family's, frontend/techniques/pipeline.hpp), the
+// poses of its camera and light (and of the object, for final gathering), the layers it can show,
+// and its settings as live controls made from their descriptions (frontend/core/setting.hpp),
+// with the ranges and refusals of the command line. A move goes to the pipeline, which redraws
+// only what the move invalidated (draw_changed); a changed setting builds a new pipeline, since
+// the programs are compiled for the settings.
 #pragma once
 
+#include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <vplkit/gl/program.hpp>
 
+#include "frontend/core/setting.hpp"
 #include "frontend/gl/pass_timer.hpp"
 #include "frontend/gl/render_target.hpp"
 #include "frontend/scene/pose.hpp"
-#include "frontend/techniques/final_gather/final_gather_pipeline.hpp"
-#include "frontend/techniques/lightwave/lightwave_pipeline.hpp"
-#include "frontend/techniques/rsm/rsm_pipeline.hpp"
+#include "frontend/techniques/registry.hpp"
 
 namespace vplkit {
 
@@ -38,52 +40,71 @@ struct layer_display {
   float scale = 1.0f;                  ///< times the exposure (8 for the difference)
 };
 
-/// Every family's settings and scenes: what the viewer can switch between.
+/// One family's state in the viewer, kept while another family is shown: its settings (the last
+/// technique of the family), its scene (for a family that draws one) and the poses it was left at.
+struct viewer_family {
+  std::unique_ptr<technique_settings> settings;
+  std::optional<scene> source;
+  std::optional<camera> view;
+  std::optional<scene_light> light;
+  std::optional<glm::vec3> object;
+
+  viewer_family() = default;
+  viewer_family(const viewer_family& other);
+  viewer_family& operator=(const viewer_family& other);
+  viewer_family(viewer_family&&) = default;
+  viewer_family& operator=(viewer_family&&) = default;
+};
+
+/// Every family the viewer can switch between, by family name.
 struct viewer_scenes {
-  scene rsm;                  ///< the RSM techniques' scene
-  scene lightwave;            ///< the Light Wave techniques' scene (a spot light)
-  final_gather_scene final_gather;
-  rsm_pipeline_settings rsm_setup;
-  lightwave_settings lightwave_setup;
-  final_gather_settings final_gather_setup;
+  std::map<std::string, viewer_family> families;
+  /// The family of `technique`. Throws vplkit::error when the viewer has none of its settings.
+  viewer_family& of(const std::string& technique);
+  const viewer_family& of(const std::string& technique) const;
 };
 
 class technique_view {
  public:
-  virtual ~technique_view() = default;
-  virtual std::string technique() const = 0;
+  /// The pipeline of `technique` with its family's settings and scene from `scenes`, at the poses
+  /// stored there. Throws vplkit::error when the pipeline refuses them.
+  technique_view(const shader_library& shaders, const viewer_scenes& scenes, const std::string& technique);
+  std::string technique() const { return settings_->technique(); }
   /// Draws what the moves since the last frame invalidated; true when anything was drawn.
-  virtual bool draw() = 0;
-  virtual std::vector<view_layer> layers() const = 0;
-  virtual layer_display display(view_layer layer) = 0;
+  bool draw();
+  std::vector<view_layer> layers() const;
+  layer_display display(view_layer layer);
   /// The indirect light of the last frame (what `vplkit render` writes as -indirect.pfm).
-  virtual image read_indirect() const = 0;
-  virtual std::vector<pass_time> collect_pass_times() = 0;
-  virtual pose camera_pose() const = 0;
-  virtual pose light_pose() const = 0;
+  image read_indirect() const { return pipeline_->indirect_output().read_image(); }
+  std::vector<pass_time> collect_pass_times();
+  pose camera_pose() const;
+  pose light_pose() const;
   /// Throw vplkit::error, leaving the view as it was, for a pose the pipeline refuses.
-  virtual void set_camera_pose(const pose& where) = 0;
-  virtual void set_light_pose(const pose& where) = 0;
-  virtual bool has_object() const { return false; }
-  virtual glm::vec3 object_position() const { return glm::vec3(0.0f); }
-  virtual void set_object_position(glm::vec3) {}
+  void set_camera_pose(const pose& where);
+  void set_light_pose(const pose& where);
+  bool has_object() const { return pipeline_->has_object(); }
+  glm::vec3 object_position() const { return pipeline_->object_position(); }
+  void set_object_position(glm::vec3 centre) { pipeline_->set_object_position(centre); }
   /// How often each stage was drawn, e.g. "RSM 2, G-buffer to post filter 5": shows (and tests)
   /// what a move recomputed.
-  virtual std::string draw_counts() const = 0;
+  std::string draw_counts() const { return pipeline_->draw_counts(); }
   /// Writes the current poses (and the moved object) into `scenes`, so that a new view of the
   /// family starts where this one is.
-  virtual void store_pose(viewer_scenes& scenes) const = 0;
-  /// The settings as Dear ImGui controls. Returns new settings when one was changed and is
-  /// valid (the caller builds a new view); writes the reason into `problem` when it is not.
-  virtual bool edit_settings(viewer_scenes& scenes, std::string& problem) = 0;
+  void store_pose(viewer_scenes& scenes) const;
+  /// The settings the technique reads, as Dear ImGui controls made from their descriptions.
+  /// Returns true when one was changed and the settings are valid (stored in `scenes`; the caller
+  /// builds a new view); writes the reason into `problem` when they are not.
+  bool edit_settings(viewer_scenes& scenes, std::string& problem);
+
+ private:
+  const shader_library& shaders_;
+  std::unique_ptr<technique_settings> settings_;
+  const scene* source_;
+  std::unique_ptr<pipeline> pipeline_;
+  std::unique_ptr<pipeline> difference_;  ///< the same frame without visibility, built when first shown
 };
 
-/// Every technique make_technique_view knows: direct and rsm-*, lightwave-*, finalgather-* and envmap.
-std::vector<std::string> technique_names();
-
-/// The view of `technique` (any family) over `scenes`, with the family's settings from `scenes`
-/// and the technique set. Throws vplkit::error when the pipeline refuses them (e.g. Light Wave
-/// with a directional light).
+/// The view of `technique` (any family) over `scenes`.
 std::unique_ptr<technique_view> make_technique_view(const shader_library& shaders, const viewer_scenes& scenes, const std::string& technique);
 
 }  // namespace vplkit

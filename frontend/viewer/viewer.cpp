@@ -8,6 +8,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 
 #include "frontend/core/error.hpp"
 #include "frontend/core/files.hpp"
@@ -46,6 +48,7 @@ viewer::viewer(window_context& window, const shader_library& shaders, viewer_opt
       present_program_(load_program(shaders, "fullscreen.vert", "present.frag")),
       empty_vertex_array_(generate_vertex_array()),
       panel_(options.panel),
+      docked_panel_width_(options.docked_panel_width),
       screenshot_path_(std::move(options.screenshot)),
       log_(options.log),
       last_frame_(std::chrono::steady_clock::now()) {
@@ -185,20 +188,53 @@ void viewer::handle_input() {
   }
 }
 
+glm::vec4 viewer::image_rectangle() const {
+  const auto [width, height] = window_.framebuffer_size();
+  return glm::vec4(0.0f, 0.0f, static_cast<float>(std::max(1, width - docked_panel_width_)), static_cast<float>(height));
+}
+
+void viewer::dock_panel(bool docked) {
+  const int image_width = static_cast<int>(image_rectangle().z), image_height = static_cast<int>(image_rectangle().w);
+  docked_panel_width_ = docked ? docked_panel_width : 0;
+  glfwSetWindowSize(window_.window(), image_width + docked_panel_width_, image_height);
+}
+
 void viewer::build_panel() {
-  ImGui::SetNextWindowPos(ImVec2(8.0f, 8.0f), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowBgAlpha(0.85f);
-  // At most the window's height (a scroll bar beyond), so that a small window still shows the image.
-  const auto [window_width, window_height] = window_.framebuffer_size();
-  ImGui::SetNextWindowSizeConstraints(ImVec2(0.0f, 0.0f), ImVec2(static_cast<float>(window_width) - 16.0f, static_cast<float>(window_height) - 16.0f));
-  ImGui::Begin("vplkit", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
-  ImGui::PushItemWidth(120.0f);
-  ImGui::PushTextWrapPos(300.0f);
-  if (ImGui::BeginCombo("technique", technique_.c_str())) {
-    for (const std::string& name : technique_names())
+  const glm::vec4 image = image_rectangle();
+  ImGuiWindowFlags flags = 0;
+  if (docked_panel_width_ > 0) {
+    // A column beside the image: the whole height, the docked width, not moved or resized.
+    ImGui::SetNextWindowPos(ImVec2(image.z, 0.0f));
+    ImGui::SetNextWindowSize(ImVec2(static_cast<float>(docked_panel_width_), image.w));
+    flags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse;
+  } else {
+    // Over the image: at most half its width and half its height, a quarter of it; what does not
+    // fit scrolls.
+    const ImVec2 largest(std::max(32.0f, 0.5f * image.z - 8.0f), std::max(32.0f, 0.5f * image.w - 8.0f));
+    ImGui::SetNextWindowPos(ImVec2(8.0f, 8.0f), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(std::min(largest.x, 380.0f), largest.y), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSizeConstraints(ImVec2(32.0f, 32.0f), largest);
+    ImGui::SetNextWindowBgAlpha(0.85f);
+  }
+  ImGui::Begin("vplkit", nullptr, flags);
+  ImGui::PushItemWidth(-140.0f);
+  ImGui::PushTextWrapPos(0.0f);
+  // The technique list as wide as the panel, the longest name whole.
+  ImGui::TextUnformatted("technique");
+  const std::vector<std::string> names = technique_names();
+  float longest = 0.0f;
+  for (const std::string& name : names) longest = std::max(longest, ImGui::CalcTextSize(name.c_str()).x);
+  ImGui::SetNextItemWidth(-1.0f);
+  if (ImGui::BeginCombo("##technique", technique_.c_str())) {
+    for (const std::string& name : names)
       if (ImGui::Selectable(name.c_str(), name == technique_) && name != technique_) select_technique(name);
     ImGui::EndCombo();
   }
+  const ImGuiStyle& style = ImGui::GetStyle();
+  technique_names_fit_ = ImGui::GetItemRectSize().x >= longest + ImGui::GetFrameHeight() + 2.0f * style.FramePadding.x;
+  for (const technique_family& family : technique_families())
+    for (const technique_entry& entry : family.techniques)
+      if (entry.name == technique_) ImGui::TextDisabled("%s", entry.description.c_str());
   for (view_layer layer : view_->layers())
     if (ImGui::RadioButton(describe(layer), layer_ == layer)) select_layer(layer);
   ImGui::Text("mouse, WASD and Q/E move the %s (Tab: next)", describe(target_));
@@ -241,6 +277,10 @@ void viewer::build_panel() {
   }
   if (!message_.empty()) ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.3f, 1.0f), "%s", message_.c_str());
   ImGui::TextDisabled("H panel, L layer, P screenshot, Esc close");
+  if (ImGui::CollapsingHeader("panel")) {
+    bool docked = docked_panel_width_ > 0;
+    if (ImGui::Checkbox("dock beside the image", &docked)) dock_panel(docked);
+  }
   const ImVec2 position = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
   panel_rectangle_ = glm::vec4(position.x, position.y, size.x, size.y);
   ImGui::PopTextWrapPos();
@@ -254,8 +294,15 @@ void viewer::present() {
     exposure_ = percentile_exposure(view_->read_indirect());
     exposure_stale_ = false;
   }
-  const auto [width, height] = window_.framebuffer_size();
+  const auto [window_width, window_height] = window_.framebuffer_size();
+  const glm::vec4 image = image_rectangle();
+  const int width = static_cast<int>(image.z), height = static_cast<int>(image.w);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  if (docked_panel_width_ > 0) {
+    glViewport(0, 0, window_width, window_height);
+    glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+  }
   glViewport(0, 0, width, height);
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
@@ -358,6 +405,16 @@ int run_viewer(window_context& window, const shader_library& shaders, viewer_opt
   if (!app.message().empty()) out << "last message: " << app.message() << "\n";
   out << "closed the window after " << shown << " frames of " << app.technique() << " (drawn: " << app.view().draw_counts() << ")\n"
       << "pose: " << app.pose_arguments() << "\n";
+  if (app.panel_shown()) {
+    const glm::vec4 panel = app.panel_rectangle(), image = app.image_rectangle();
+    // The part of the image under the panel (none when docked beside it).
+    const float covered_width = std::max(0.0f, std::min(panel.x + panel.z, image.z) - std::max(panel.x, image.x));
+    const float covered_height = std::max(0.0f, std::min(panel.y + panel.w, image.w) - std::max(panel.y, image.y));
+    std::ostringstream share;
+    share << std::fixed << std::setprecision(1) << 100.0 * covered_width * covered_height / (image.z * image.w);
+    out << "panel: " << panel.z << "x" << panel.w << " at " << panel.x << "," << panel.y << ", covering " << share.str() << " % of the " << image.z << "x"
+        << image.w << " image; technique names " << (app.technique_names_fit() ? "fit" : "cut") << "\n";
+  }
   return 0;
 }
 

@@ -3,9 +3,11 @@
 // mouse and keys move the light instead, or the object (final gathering). The panel switches the
 // technique and the layer shown, edits the technique's settings live, shows the per-pass times of
 // the last frame that drew anything (the pass_timer's method), the frame time, what each stage
-// has been drawn so far, and the pose as --camera/--light arguments. H hides the panel, P saves a
-// screenshot PNG and the indirect PFM, L cycles the layers, Esc closes. A move redraws only what
-// it invalidates (technique_view.hpp).
+// has been drawn so far, and the pose as --camera/--light arguments. Floating over the image it
+// covers at most a quarter of it (half its width and half its height, scrolling beyond); docked,
+// it takes a column beside the image, which the window is widened by. H hides the panel, P saves
+// a screenshot PNG and the indirect PFM, L cycles the layers, Esc closes. A move redraws only
+// what it invalidates (technique_view.hpp).
 #pragma once
 
 #include <chrono>
@@ -23,10 +25,16 @@
 
 namespace vplkit {
 
+/// The docked panel's column, in pixels beside the image.
+constexpr int docked_panel_width = 340;
+
 struct viewer_options {
   std::string technique;
   viewer_scenes scenes;
   bool panel = true;
+  /// The width of the docked panel's column beside the image (the window is the image's width
+  /// plus this); 0: the panel floats over the image.
+  int docked_panel_width = 0;
   /// Where the P key (and run_viewer after a scripted run's last frame) saves the screenshot; the
   /// indirect PFM goes next to it as <stem>-indirect.pfm.
   std::filesystem::path screenshot = "output/view.png";
@@ -65,6 +73,9 @@ class viewer {
   void select_layer(view_layer layer);
   view_layer layer() const { return layer_; }
   void show_panel(bool shown) { panel_ = shown; }
+  /// Docks the panel beside the image (the window widens by docked_panel_width) or floats it
+  /// over the image again (the window narrows back).
+  void dock_panel(bool docked);
   bool panel_shown() const { return panel_; }
   /// Moves as the controls make them; a move the view refuses changes nothing and sets message().
   void move_camera(const pose& where);
@@ -74,6 +85,10 @@ class viewer {
   const std::string& message() const { return message_; }
   /// The panel's rectangle in window pixels from the top left (x, y, width, height) in the last frame.
   glm::vec4 panel_rectangle() const { return panel_rectangle_; }
+  /// The image's rectangle in window pixels from the top left: the window, less a docked panel.
+  glm::vec4 image_rectangle() const;
+  /// Whether the last panel showed the technique list wide enough for the longest name.
+  bool technique_names_fit() const { return technique_names_fit_; }
   /// "--technique T --camera ... --light ..." (and --object-position): the pose as `vplkit render` takes it.
   std::string pose_arguments() const;
   /// Whether the last frame drew nothing and no key or button is held (run_viewer then waits for
@@ -106,6 +121,7 @@ class viewer {
   view_layer layer_ = view_layer::image;
   move_target target_ = move_target::camera;
   bool panel_ = true;
+  int docked_panel_width_ = 0;
   std::filesystem::path screenshot_path_;
   std::ostream* log_;
   std::string message_;
@@ -115,6 +131,7 @@ class viewer {
   double frame_ms_ = 0.0;
   std::chrono::steady_clock::time_point last_frame_;
   glm::vec4 panel_rectangle_{0.0f};
+  bool technique_names_fit_ = false;
   bool imgui_ready_ = false;
   bool idle_ = false;
   std::vector<int> pressed_keys_;  ///< GLFW keys pressed since the last frame, in order

@@ -18,9 +18,10 @@
 #pragma once
 
 #include <cmath>
-#include <limits>
 
 #include <glm/glm.hpp>
+
+#include <vplkit/settings.hpp>
 
 namespace vplkit {
 
@@ -42,14 +43,21 @@ struct bilateral_settings {
 };
 
 template <typename T>
-const char* validate(const bilateral_settings<T>& settings) {
-  if (settings.kernel_size < 1 || settings.kernel_size > 63 || settings.kernel_size % 2 == 0)
-    return "bilateral_settings::kernel_size must be odd and in [1, 63]";
-  if (!(settings.spatial_sigma > T(0) && settings.spatial_sigma <= std::numeric_limits<T>::max())) return "bilateral_settings::spatial_sigma must be finite and > 0";
-  if (!(settings.depth_sigma > T(0) && settings.depth_sigma <= std::numeric_limits<T>::max())) return "bilateral_settings::depth_sigma must be finite and > 0";
-  if (settings.normal_power < 0 || settings.normal_power > 64) return "bilateral_settings::normal_power must be in [0, 64]";
-  return nullptr;
-}
+struct settings_description<bilateral_settings<T>> {
+  using S = bilateral_settings<T>;
+  static constexpr const char* name = "bilateral_settings";
+  static constexpr bool glsl_twin = true;
+  static constexpr auto fields() {
+    return std::make_tuple(field(&S::kernel_size, "kernel_size", closed_range(1, 63), "taps", "taps per axis of the post filter (odd)"),
+                           field(&S::spatial_sigma, "spatial_sigma", above(0.0), "indirect texels", "the post filter's spatial Gaussian"),
+                           field(&S::depth_sigma, "depth_sigma", above(0.0), "of the depth", "relative depth difference of half weight"),
+                           field(&S::normal_power, "normal_power", closed_range(0, 64), "", "k of the normal weight max(0, <n_c, n_q>)^k"));
+  }
+  static setting_problem rules(const S& settings) {
+    if (settings.kernel_size % 2 == 0) return setting_problem("bilateral_settings::kernel_size must be odd and in [1, 63]");
+    return {};
+  }
+};
 
 /// The weight of one tap at `offset` (low-resolution texels) from the centre.
 template <typename T>

@@ -38,14 +38,24 @@ struct spot_light {
   T cos_outer = T(0.8);
 };
 
-/// Returns nullptr when the light is usable, else a message naming the bad field.
 template <typename T>
-const char* validate(const spot_light<T>& light) {
-  if (!(std::abs(glm::length(light.direction) - T(1)) < T(1e-3))) return "spot_light::direction must be a unit vector";
-  if (!(light.cos_inner > light.cos_outer)) return "spot_light: cos_inner must be greater than cos_outer";
-  if (!(light.cos_outer >= T(-1) && light.cos_inner <= T(1))) return "spot_light: cone cosines must lie in [-1, 1]";
-  return nullptr;
-}
+struct settings_description<spot_light<T>> {
+  using S = spot_light<T>;
+  static constexpr const char* name = "spot_light";
+  static constexpr bool glsl_twin = true;
+  static constexpr auto fields() {
+    return std::make_tuple(field(&S::position, "position", any_finite(), "scene units", "where the light is"),
+                           field(&S::direction, "direction", closed_range(-1, 1), "", "unit vector along the cone's axis"),
+                           field(&S::intensity, "intensity", at_least(0.0), "W/sr", "radiant intensity on the axis per colour channel"),
+                           field(&S::cos_inner, "cos_inner", closed_range(-1, 1), "", "cosine of the half-angle where the cone starts to fall off"),
+                           field(&S::cos_outer, "cos_outer", closed_range(-1, 1), "", "cosine of the half-angle where the cone reaches 0"));
+  }
+  static setting_problem rules(const S& light) {
+    if (!(std::abs(glm::length(light.direction) - T(1)) < T(1e-3))) return setting_problem("spot_light::direction must be a unit vector");
+    if (!(light.cos_inner > light.cos_outer)) return setting_problem("spot_light: cos_inner must be greater than cos_outer");
+    return {};
+  }
+};
 
 /// The cone's falloff for the cosine of the angle off the axis: a smoothstep from cos_outer (0)
 /// to cos_inner (1).
@@ -79,10 +89,19 @@ struct directional_light {
 };
 
 template <typename T>
-const char* validate(const directional_light<T>& light) {
-  if (!(std::abs(glm::length(light.direction) - T(1)) < T(1e-3))) return "directional_light::direction must be a unit vector";
-  return nullptr;
-}
+struct settings_description<directional_light<T>> {
+  using S = directional_light<T>;
+  static constexpr const char* name = "directional_light";
+  static constexpr bool glsl_twin = true;
+  static constexpr auto fields() {
+    return std::make_tuple(field(&S::direction, "direction", closed_range(-1, 1), "", "unit vector the light travels along"),
+                           field(&S::irradiance, "irradiance", at_least(0.0), "W/m^2", "irradiance on a surface facing the light, per colour channel"));
+  }
+  static setting_problem rules(const S& light) {
+    if (!(std::abs(glm::length(light.direction) - T(1)) < T(1e-3))) return setting_problem("directional_light::direction must be a unit vector");
+    return {};
+  }
+};
 
 template <typename T, glm::qualifier Q>
 glm::vec<3, T, Q> directional_light_irradiance(const glm::vec<3, T, Q>& n, const directional_light<T>& light) {

@@ -13,9 +13,9 @@
 // GLSL twin: shaders/lib/irradiance.glsl.
 #pragma once
 
-#include <limits>
-
 #include <glm/glm.hpp>
+
+#include <vplkit/settings.hpp>
 
 namespace vplkit {
 
@@ -28,13 +28,16 @@ struct irradiance_settings {
   T min_distance = T(0.01);
 };
 
-/// Returns nullptr when the settings are usable, else a message naming the bad field.
 template <typename T>
-constexpr const char* validate(const irradiance_settings<T>& settings) {
-  if (!(settings.min_distance > T(0) && settings.min_distance <= std::numeric_limits<T>::max()))
-    return "irradiance_settings::min_distance must be finite and > 0 (it bounds the 1/r^2 singularity)";
-  return nullptr;
-}
+struct settings_description<irradiance_settings<T>> {
+  static constexpr const char* name = "irradiance_settings";
+  static constexpr bool glsl_twin = true;
+  static constexpr auto fields() {
+    return std::make_tuple(field(&irradiance_settings<T>::min_distance, "min_distance", above(0.0), "scene units",
+                                 "distance clamp of the light terms (Eq. 3.2): it bounds the 1/r^2 singularity"));
+  }
+  static setting_problem rules(const irradiance_settings<T>& settings) { return no_rules(settings); }
+};
 
 /// Eq. 3.2. x, n: receiver position and unit normal; xp, np: pixel-light position and unit normal;
 /// flux: the pixel light's flux. Returns irradiance (flux per area, per colour channel).

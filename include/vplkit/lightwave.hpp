@@ -45,17 +45,14 @@
 #include <vplkit/direct_light.hpp>
 #include <vplkit/irradiance.hpp>
 #include <vplkit/polynomial_math.hpp>
+#include <vplkit/settings.hpp>
 #include <vplkit/shading.hpp>
 
 namespace vplkit {
 
-/// Returns nullptr when `angle_deg` and `per_ray` give a layout, else a message saying why not.
-constexpr const char* validate_lightwave_layout(int angle_deg, int per_ray) {
-  if (angle_deg < 1 || angle_deg > 90 || 90 % angle_deg != 0 || 360 % angle_deg != 0)
-    return "Light Wave ray angle must divide 90 and 360 (1, 2, 3, 5, 6, 9, 10, 15, 18, 30, 45 or 90 degrees)";
-  if (per_ray < 1 || per_ray > 32) return "Light Wave VPLs per ray must be in [1, 32]";
-  return nullptr;
-}
+/// Whether rays every `angle_deg` degrees close up both around the axis and down to 90 degrees
+/// from it (1, 2, 3, 5, 6, 9, 10, 15, 18, 30, 45 or 90).
+constexpr bool lightwave_ray_angle_divides(int angle_deg) { return angle_deg >= 1 && 90 % angle_deg == 0 && 360 % angle_deg == 0; }
 
 /// Rays of the layout: (90 / angle) * (360 / angle) + 1.
 constexpr int lightwave_ray_count(int angle_deg) { return (90 / angle_deg) * (360 / angle_deg) + 1; }
@@ -86,6 +83,35 @@ struct lightwave_layout_settings {
   int per_ray = 5;        ///< VPLs per ray = stacked hemispheres (the thesis: 5)
   T max_distance = T(1);  ///< the hemispheres approach it: h-th at max_distance (1 - 2^-(h+1))
 };
+
+template <typename T>
+struct settings_description<lightwave_layout_settings<T>> {
+  using S = lightwave_layout_settings<T>;
+  static constexpr const char* name = "lightwave_layout_settings";
+  static constexpr bool glsl_twin = true;
+  static constexpr auto fields() {
+    return std::make_tuple(field(&S::light_position, "light_position", any_finite(), "scene units", "the spot light's position"),
+                           field(&S::light_direction, "light_direction", closed_range(-1, 1), "", "the spot light's axis, unit"),
+                           field(&S::angle_deg, "angle_deg", closed_range(1, 90), "degrees", "between VPL rays, around and away from the axis (divides 90 and 360)"),
+                           field(&S::per_ray, "per_ray", closed_range(1, 32), "", "VPLs per ray: stacked hemispheres"),
+                           field(&S::max_distance, "max_distance", at_least(0.0), "scene units", "the distance the hemispheres approach"));
+  }
+  static setting_problem rules(const S& settings) {
+    if (!lightwave_ray_angle_divides(settings.angle_deg))
+      return setting_problem("Light Wave ray angle must divide 90 and 360 (1, 2, 3, 5, 6, 9, 10, 15, 18, 30, 45 or 90 degrees)");
+    if (!(std::abs(glm::length(settings.light_direction) - T(1)) < T(1e-3))) return setting_problem("lightwave_layout_settings::light_direction must be a unit vector");
+    return {};
+  }
+};
+
+/// The problem with a ray angle and a VPL count per ray, if any.
+template <typename T = float>
+setting_problem validate_lightwave_layout(int angle_deg, int per_ray) {
+  lightwave_layout_settings<T> layout;
+  layout.angle_deg = angle_deg;
+  layout.per_ray = per_ray;
+  return validate(layout);
+}
 
 /// One VPL. GLSL twin: struct lightwave_vpl.
 template <typename T>
@@ -256,6 +282,18 @@ template <typename T = float>
 struct lightwave_shading_settings {
   T specular_strength = T(0.05);  ///< weight of the specular term (the thesis does not print one)
   int specular_exponent = 16;     ///< Phong exponent of the specular term (>= 1)
+};
+
+template <typename T>
+struct settings_description<lightwave_shading_settings<T>> {
+  using S = lightwave_shading_settings<T>;
+  static constexpr const char* name = "lightwave_shading_settings";
+  static constexpr bool glsl_twin = true;
+  static constexpr auto fields() {
+    return std::make_tuple(field(&S::specular_strength, "specular_strength", at_least(0.0), "", "weight of Eq. 4.5's specular term"),
+                           field(&S::specular_exponent, "specular_exponent", closed_range(1, 256), "", "Phong exponent of the specular term"));
+  }
+  static setting_problem rules(const S& settings) { return no_rules(settings); }
 };
 
 /// One VPL's term of Eq. 4.5 at vertex (x, n) with albedo, seen from `eye`.

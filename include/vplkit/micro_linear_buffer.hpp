@@ -21,7 +21,7 @@
 //
 // Storage, chosen so that the whole buffer lives in registers: indexing a local array by a
 // run-time index makes llvmpipe (and many GPU compilers) keep the array in memory, which cost
-// 2.8x the gather without visibility instead of 1.17x (bench/rsm_sweep, 512^2, Cornell box).
+// 2.8x the gather without visibility instead of 1.17x (the RSM sweep of bench/, 512^2, Cornell box).
 // - Alg. 2 and 3 keep a "visible"/"occluded" flag per slot: one bit per slot of `occluded`.
 // - Alg. 6 keeps a real number per slot, 1 at the start and decremented by each claim, so its
 //   values are the integers 1, 0, -1, ...: stored as claim counts, 8 bits per slot in the four
@@ -37,6 +37,8 @@
 
 #include <glm/glm.hpp>
 
+#include <vplkit/settings.hpp>
+
 namespace vplkit {
 
 /// Largest slot count B supported (array sizes on both sides). GLSL: VPLKIT_MAX_SLOTS.
@@ -50,11 +52,28 @@ struct elevation_slots {
   T boundary_tangent[micro_linear_buffer_max_slots - 1] = {};
 };
 
-/// Returns nullptr when `count` is a usable slot count, else a message saying why not.
-constexpr const char* validate_slot_count(int count) {
-  if (count < 1 || count > micro_linear_buffer_max_slots)
-    return "micro linear buffer slot count must be in [1, 16]";
-  return nullptr;
+template <typename T>
+struct settings_description<elevation_slots<T>> {
+  using S = elevation_slots<T>;
+  static constexpr const char* name = "elevation_slots";
+  static constexpr bool glsl_twin = true;
+  static constexpr auto fields() {
+    return std::make_tuple(field(&S::count, "count", closed_range(1, micro_linear_buffer_max_slots), "",
+                                 "B: micro linear buffer slots, equal bands of elevation (Alg. 1)"),
+                           field(&S::boundary_tangent, "boundary_tangent", any_finite(), "", "tan of the B - 1 interior slot boundaries, ascending"));
+  }
+  static setting_problem rules(const S& slots) {
+    for (int k = 0; k + 1 < slots.count - 1; ++k)
+      if (!(slots.boundary_tangent[k] < slots.boundary_tangent[k + 1]))
+        return setting_problem("elevation_slots::boundary_tangent must ascend (make_elevation_slots derives it)");
+    return {};
+  }
+};
+
+/// The problem with `count` as a slot count, if any.
+template <typename T = float>
+setting_problem validate_slot_count(int count) {
+  return validate_field(&elevation_slots<T>::count, count);
 }
 
 /// The constants both sides need for B = count slots. Boundary k (1..B-1) is at elevation

@@ -72,6 +72,21 @@ struct rsm_gather_settings {
   glm::ivec2 rsm_size = glm::ivec2(512);
 };
 
+template <typename T>
+struct settings_description<rsm_gather_settings<T>> {
+  using S = rsm_gather_settings<T>;
+  static constexpr const char* name = "rsm_gather_settings";
+  static constexpr bool glsl_twin = true;
+  static constexpr auto fields() {
+    return std::make_tuple(field(&S::irradiance, "irradiance", any_finite(), "", "Eq. 3.2's distance clamp"),
+                           field(&S::radial, "radial", any_finite(), "", "the radial pattern (Alg. 1 and 5)"),
+                           field(&S::disk, "disk", any_finite(), "", "the original RSM's disk pattern"),
+                           field(&S::slots, "slots", any_finite(), "", "the micro linear buffer's elevation slots"),
+                           field(&S::rsm_size, "rsm_size", at_least(1), "texels", "the RSM's width and height"));
+  }
+  static setting_problem rules(const S& settings) { return no_rules(settings); }
+};
+
 /// The few numbers that shape the gather, with the radius relative to the RSM so that it scales
 /// with the RSM's size.
 template <typename T>
@@ -82,7 +97,22 @@ struct rsm_gather_preset {
   int slots;             ///< B, micro linear buffer slots
 };
 
-/// The defaults, chosen by the study of bench/rsm_study.cpp (docs/rsm-study.md) against the
+template <typename T>
+struct settings_description<rsm_gather_preset<T>> {
+  using S = rsm_gather_preset<T>;
+  static constexpr const char* name = "rsm_gather_preset";
+  static constexpr bool glsl_twin = false;  // make_rsm_gather_settings turns it into rsm_gather_settings
+  static constexpr auto fields() {
+    return std::make_tuple(field(&S::radius_fraction, "radius_fraction", open_closed_range(0, 2), "of the RSM side",
+                                 "r_max of the radial and disk patterns as a fraction of the RSM's larger side"),
+                           field(&S::paths, describe_field(&radial_pattern_settings<T>::paths)),
+                           field(&S::samples_per_path, describe_field(&radial_pattern_settings<T>::samples_per_path)),
+                           field(&S::slots, describe_field(&elevation_slots<T>::count)));
+  }
+  static setting_problem rules(const S& settings) { return no_rules(settings); }
+};
+
+/// The defaults, chosen by the study of bench/rsm-study.sweep (docs/rsm-study.md) against the
 /// brute-force gather on five occlusion scenes: 3/4 of the RSM side is the smallest radius of
 /// the study whose gather misses at most ~1 % of the light the whole RSM delivers (1/8 missed
 /// 64-75 %, 1/2 up to 7 %), and 20 paths x 15 samples with 8 slots is the cheapest point of the

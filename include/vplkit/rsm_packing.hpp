@@ -43,6 +43,19 @@ struct rsm_unprojection {
   int perspective = 1;               ///< 1: spot light (perspective RSM), 0: directional (orthographic)
 };
 
+template <typename T>
+struct settings_description<rsm_unprojection<T>> {
+  using S = rsm_unprojection<T>;
+  static constexpr const char* name = "rsm_unprojection";
+  static constexpr bool glsl_twin = true;
+  static constexpr auto fields() {
+    return std::make_tuple(field(&S::ray_origin, "ray_origin", any_finite(), "", "the centre ray of texel (0, 0)"),
+                           field(&S::ray_step, "ray_step", any_finite(), "", "the centre ray's change per texel"),
+                           field(&S::perspective, "perspective", closed_range(0, 1), "", "1: spot light (perspective RSM), 0: directional (orthographic)"));
+  }
+  static setting_problem rules(const S& settings) { return no_rules(settings); }
+};
+
 /// The unprojection of an RSM of `size` texels whose frustum is symmetric with half-width `scale`
 /// at unit distance (perspective: tan of the half field of view) or half-width `scale`
 /// (orthographic): texel t's centre has ndc = (t + 0.5) / size * 2 - 1, and its ray is ndc * scale.

@@ -32,6 +32,7 @@
 
 #include <vplkit/hash.hpp>
 #include <vplkit/polynomial_math.hpp>
+#include <vplkit/settings.hpp>
 
 namespace vplkit {
 
@@ -55,23 +56,27 @@ struct radial_pattern_settings {
   std::uint32_t seed = 0;      ///< changes every per-pixel and per-sample random number
 };
 
-/// Returns nullptr when the settings are usable, else a message naming the bad field.
 template <typename T>
-const char* validate(const radial_pattern_settings<T>& settings) {
-  if (settings.paths < 1 || settings.paths > 256) return "radial_pattern_settings::paths must be in [1, 256]";
-  if (settings.samples_per_path < 1 || settings.samples_per_path > 256)
-    return "radial_pattern_settings::samples_per_path must be in [1, 256]";
-  if (!(settings.min_radius > T(0))) return "radial_pattern_settings::min_radius must be > 0";
-  if (!(settings.max_radius > settings.min_radius && settings.max_radius <= std::numeric_limits<T>::max()))
-    return "radial_pattern_settings::max_radius must be finite and > min_radius";
-  if (!(settings.rotation_jitter >= T(0) && settings.rotation_jitter <= T(1)))
-    return "radial_pattern_settings::rotation_jitter must be in [0, 1]";
-  if (!(settings.angle_jitter >= T(0) && settings.angle_jitter <= T(1)))
-    return "radial_pattern_settings::angle_jitter must be in [0, 1]";
-  if (!(settings.scale_jitter >= T(0) && settings.scale_jitter < T(1)))
-    return "radial_pattern_settings::scale_jitter must be in [0, 1)";
-  return nullptr;
-}
+struct settings_description<radial_pattern_settings<T>> {
+  using S = radial_pattern_settings<T>;
+  static constexpr const char* name = "radial_pattern_settings";
+  static constexpr bool glsl_twin = false;  // the GLSL side reads radial_pattern_constants
+  static constexpr auto fields() {
+    return std::make_tuple(
+        field(&S::paths, "paths", closed_range(1, 256), "", "P: straight paths from the receiver's projection"),
+        field(&S::samples_per_path, "samples_per_path", closed_range(1, 256), "", "S: samples along each path, near to far"),
+        field(&S::min_radius, "min_radius", above(0.0), "RSM texels", "r_min: the inner radius the rings start from"),
+        field(&S::max_radius, "max_radius", above(0.0), "RSM texels", "r_max: the outer radius of the pattern"),
+        field(&S::rotation_jitter, "rotation_jitter", closed_range(0, 1), "path spacings", "per-pixel rotation of the pattern: uniform in [0, this)"),
+        field(&S::angle_jitter, "angle_jitter", closed_range(0, 1), "path spacings", "per-sample angle jitter: +-half of this"),
+        field(&S::scale_jitter, "scale_jitter", closed_open_range(0, 1), "", "per-pixel radius scale: uniform in [1 - this/2, 1 + this/2)"),
+        field(&S::seed, "seed", closed_range(0, 4294967295.0), "", "changes every per-pixel and per-sample random number"));
+  }
+  static setting_problem rules(const S& settings) {
+    if (!(settings.max_radius > settings.min_radius)) return setting_problem("radial_pattern_settings::max_radius must be finite and > min_radius");
+    return {};
+  }
+};
 
 /// The constants both sides use, derived once from the settings. GLSL twin: struct
 /// radial_pattern_constants (a uniform).
@@ -87,6 +92,24 @@ struct radial_pattern_constants {
   T angle_jitter;
   T scale_jitter;
   std::uint32_t seed;
+};
+
+template <typename T>
+struct settings_description<radial_pattern_constants<T>> {
+  using S = radial_pattern_constants<T>;
+  using from = radial_pattern_settings<T>;
+  static constexpr const char* name = "radial_pattern_constants";
+  static constexpr bool glsl_twin = true;
+  static constexpr auto fields() {
+    return std::make_tuple(field(&S::paths, describe_field(&from::paths)), field(&S::samples_per_path, describe_field(&from::samples_per_path)),
+                           field(&S::min_radius, describe_field(&from::min_radius)),
+                           field(&S::ring_ratio, "ring_ratio", at_least(1.0), "", "q = (r_max / r_min)^(1 / S): each ring's outer over inner radius"),
+                           field(&S::path_turns, "path_turns", open_closed_range(0, 1), "turns", "1 / P: the angle between paths"),
+                           field(&S::path_angle, "path_angle", open_closed_range(0, 6.28318530717958647692), "radians", "2 pi / P: the same, for the weights"),
+                           field(&S::rotation_jitter, describe_field(&from::rotation_jitter)), field(&S::angle_jitter, describe_field(&from::angle_jitter)),
+                           field(&S::scale_jitter, describe_field(&from::scale_jitter)), field(&S::seed, describe_field(&from::seed)));
+  }
+  static setting_problem rules(const S& settings) { return no_rules(settings); }
 };
 
 template <typename T>
@@ -153,11 +176,17 @@ struct disk_pattern_settings {
 };
 
 template <typename T>
-const char* validate(const disk_pattern_settings<T>& settings) {
-  if (settings.samples < 1 || settings.samples > 65536) return "disk_pattern_settings::samples must be in [1, 65536]";
-  if (!(settings.max_radius > T(0) && settings.max_radius <= std::numeric_limits<T>::max())) return "disk_pattern_settings::max_radius must be finite and > 0";
-  return nullptr;
-}
+struct settings_description<disk_pattern_settings<T>> {
+  using S = disk_pattern_settings<T>;
+  static constexpr const char* name = "disk_pattern_settings";
+  static constexpr bool glsl_twin = true;
+  static constexpr auto fields() {
+    return std::make_tuple(field(&S::samples, "samples", closed_range(1, 65536), "", "N: samples of the original RSM's disk"),
+                           field(&S::max_radius, "max_radius", above(0.0), "RSM texels", "r_max: the disk's radius"),
+                           field(&S::seed, "seed", closed_range(0, 4294967295.0), "", "changes every sample"));
+  }
+  static setting_problem rules(const S& settings) { return no_rules(settings); }
+};
 
 /// Sample `sample` of the disk pattern: the same for every receiver.
 template <typename T>

@@ -25,9 +25,9 @@
 // `float rsm_depth_fetch(ivec2 texel)`.
 #pragma once
 
-#include <limits>
-
 #include <glm/glm.hpp>
+
+#include <vplkit/settings.hpp>
 
 namespace vplkit {
 
@@ -39,11 +39,16 @@ struct shadow_density_settings {
 };
 
 template <typename T>
-const char* validate(const shadow_density_settings<T>& settings) {
-  if (settings.kernel_size < 1 || settings.kernel_size > 32) return "shadow_density_settings::kernel_size must be in [1, 32]";
-  if (!(settings.depth_bias >= T(0) && settings.depth_bias <= std::numeric_limits<T>::max())) return "shadow_density_settings::depth_bias must be finite and >= 0";
-  return nullptr;
-}
+struct settings_description<shadow_density_settings<T>> {
+  using S = shadow_density_settings<T>;
+  static constexpr const char* name = "shadow_density_settings";
+  static constexpr bool glsl_twin = true;
+  static constexpr auto fields() {
+    return std::make_tuple(field(&S::kernel_size, "kernel_size", closed_range(1, 32), "RSM texels", "Alg. 4's window: kernel_size^2 RSM texels"),
+                           field(&S::depth_bias, "depth_bias", at_least(0.0), "scene units", "Alg. 4's zBias, against self-shadowing"));
+  }
+  static setting_problem rules(const S& settings) { return no_rules(settings); }
+};
 
 /// Alg. 4 for a receiver whose projection on the RSM is `rsm_coordinate` (texels, continuous),
 /// whose light eye-space depth is `receiver_depth`, changing by `depth_gradient` per RSM texel.

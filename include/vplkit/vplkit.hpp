@@ -14,6 +14,7 @@
 #include <vplkit/rsm_packing.hpp>
 #include <vplkit/rsm_pattern.hpp>
 #include <vplkit/shading.hpp>
+#include <vplkit/settings.hpp>
 #include <vplkit/shadow.hpp>
 #include <vplkit/transform.hpp>
 #include <vplkit/version.hpp>

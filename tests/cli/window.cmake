@@ -47,6 +47,21 @@ if(XVFB_RUN)
     message(SEND_ERROR "FAILED the panel shows in the screenshot: RMSE against the render '${CMAKE_MATCH_1}'")
     math(EXPR failures "${failures} + 1")
   endif()
+  # The panel over the image covers at most a quarter of it and shows the technique names whole
+  # at the default size; docked, it covers none of it and widens the window by its column.
+  execute_process(COMMAND ${view_env} --technique lightwave-integrated --size 512 --scene boxes --shadow-map-scale 0.25 --ray-angle 30 --frames 3
+                  OUTPUT_VARIABLE out RESULT_VARIABLE code)
+  string(REGEX MATCH "panel: [0-9.]+x[0-9.]+ at [0-9.]+,[0-9.]+, covering ([0-9.]+) % of the 512x512 image; technique names (fit|cut)" panel "${out}")
+  if(NOT code EQUAL 0 OR NOT panel OR CMAKE_MATCH_1 GREATER 25.0 OR NOT CMAKE_MATCH_2 STREQUAL "fit")
+    message(SEND_ERROR "FAILED the floating panel covers at most a quarter of a 512x512 image and shows whole names: exit ${code}, '${panel}'\n${out}")
+    math(EXPR failures "${failures} + 1")
+  else()
+    message(STATUS "ok the floating panel: ${panel}")
+  endif()
+  expect_success("view --dock-panel puts the panel beside the image" "covering 0\\.0 % of the 64x64 image; technique names fit"
+                 ${view_env} --technique rsm-alg6 --size 64 --rsm-size 64 --dock-panel --frames 3 --screenshot "${WORK}/docked.png")
+  file(READ "${WORK}/docked.png" header OFFSET 16 LIMIT 8 HEX)
+  expect_true("the docked window is the image and the panel's column wide (64 + 340 = 0x194 by 64 = 0x40)" header STREQUAL "0000019400000040")
   # The real input path: a left drag orbits the camera (the RSM stays), Tab then D moves the light
   # (the RSM is redrawn), P saves the screenshot, Esc closes. xdotool drives the X server.
   find_program(XDOTOOL xdotool)

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "frontend/cli/cli.hpp"
+#include "frontend/cli/commands.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view input(reinterpret_cast<const char*>(data), size);
@@ -24,7 +25,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   std::vector<const char*> argv;
   for (const std::string& argument : arguments) argv.push_back(argument.c_str());
   std::ostringstream out, err;
-  const int status = vplkit::run_command_line(static_cast<int>(argv.size()), argv.data(), out, err, vplkit::command_line_mode::check_only);
+  const int status = vplkit::run_command_line(static_cast<int>(argv.size()), argv.data(), out, err, vplkit::command_line_mode::check_only,
+                                                 {vplkit::cli::add_view_command});
   if (status != 0 && status != 1 && status != 2) {
     std::fprintf(stderr, "fuzz_cli_options: exit code %d\n", status);
     std::abort();

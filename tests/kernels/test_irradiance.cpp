@@ -87,9 +87,9 @@ TEST_CASE("Eq. 3.2 clamps the distance at min_distance and is continuous there")
   CHECK(e(0.2) == doctest::Approx(1.0 / 0.04).epsilon(1e-12));
   CHECK(e(0.05) == doctest::Approx(0.05 * 0.05 / 1e-4).epsilon(1e-12));
   CHECK(e(0.1 - 1e-9) == doctest::Approx(e(0.1 + 1e-9)).epsilon(1e-6));
-  CHECK(vplkit::validate(irradiance_settings<float>{0.0f}) != nullptr);
-  CHECK(vplkit::validate(irradiance_settings<float>{-1.0f}) != nullptr);
-  CHECK(vplkit::validate(irradiance_settings<float>{}) == nullptr);
+  CHECK(static_cast<bool>(vplkit::validate(irradiance_settings<float>{0.0f})));
+  CHECK(static_cast<bool>(vplkit::validate(irradiance_settings<float>{-1.0f})));
+  CHECK_FALSE(static_cast<bool>(vplkit::validate(irradiance_settings<float>{})));
 }
 
 TEST_CASE("Eq. 3.2 is finite for coincident points, zero vectors, huge and tiny distances") {
@@ -124,7 +124,7 @@ TEST_CASE("spot_light_irradiance: I / r^2 on the axis, cone falloff, zero behind
   light.intensity = glm::dvec3(3.0);
   light.cos_inner = std::cos(0.5);
   light.cos_outer = std::cos(0.7);
-  REQUIRE(vplkit::validate(light) == nullptr);
+  REQUIRE_FALSE(static_cast<bool>(vplkit::validate(light)));
   const glm::dvec3 up(0, 1, 0);
   // On the axis, facing the light at distance 2: E = I / 4.
   CHECK(vplkit::spot_light_irradiance(glm::dvec3(0), up, light).x == doctest::Approx(0.75).epsilon(1e-14));
@@ -145,5 +145,5 @@ TEST_CASE("spot_light_irradiance: I / r^2 on the axis, cone falloff, zero behind
   // Coincident with the light: finite (the distance clamp).
   CHECK(std::isfinite(vplkit::spot_light_irradiance(light.position, up, light).x));
   light.cos_inner = light.cos_outer;
-  CHECK(vplkit::validate(light) != nullptr);
+  CHECK(static_cast<bool>(vplkit::validate(light)));
 }

@@ -84,10 +84,10 @@ TEST_CASE("the layout: hemisphere distances, unit normals pointing away, no dupl
     // The outermost ring is horizontal: 90 degrees from the axis.
     CHECK(glm::dot(vpls[static_cast<std::size_t>(rays - 1)].normal, w) == doctest::Approx(0.0).scale(1.0).epsilon(1e-9));
   }
-  CHECK(validate_lightwave_layout(7, 5) != nullptr);   // 7 does not divide 90
-  CHECK(validate_lightwave_layout(5, 0) != nullptr);
-  CHECK(validate_lightwave_layout(0, 5) != nullptr);
-  CHECK(validate_lightwave_layout(5, 5) == nullptr);
+  CHECK(static_cast<bool>(validate_lightwave_layout(7, 5)));   // 7 does not divide 90
+  CHECK(static_cast<bool>(validate_lightwave_layout(5, 0)));
+  CHECK(static_cast<bool>(validate_lightwave_layout(0, 5)));
+  CHECK_FALSE(static_cast<bool>(validate_lightwave_layout(5, 5)));
 }
 
 TEST_CASE("Eq. 4.5: one VPL facing a vertex, and the normalised sum over identical VPLs") {

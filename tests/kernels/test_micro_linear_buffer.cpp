@@ -96,9 +96,9 @@ TEST_CASE("make_elevation_slots: ascending, antisymmetric tangents; slot count v
     for (int k = 1; k < slots - 1; ++k) CHECK(table.boundary_tangent[k] > table.boundary_tangent[k - 1]);
     for (int k = 0; k < slots - 1; ++k) CHECK(table.boundary_tangent[k] == -table.boundary_tangent[slots - 2 - k]);
   }
-  CHECK(validate_slot_count(0) != nullptr);
-  CHECK(validate_slot_count(17) != nullptr);
-  CHECK(validate_slot_count(5) == nullptr);
+  CHECK(static_cast<bool>(validate_slot_count(0)));
+  CHECK(static_cast<bool>(validate_slot_count(17)));
+  CHECK_FALSE(static_cast<bool>(validate_slot_count(5)));
 }
 
 namespace {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <sstream>
+#include <tuple>
 #include <thread>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -52,29 +54,81 @@ final_gather_scene make_final_gather_scene(const std::string& object, glm::vec3 
   const bounding_box box_of_shape = bounds(shape);
   const float scale = size / std::max({box_of_shape.maximum.x - box_of_shape.minimum.x, box_of_shape.maximum.y - box_of_shape.minimum.y,
                                         box_of_shape.maximum.z - box_of_shape.minimum.z, 1e-9f});
-  for (vertex& v : shape.vertices) v.position = (v.position - box_of_shape.centre()) * scale + position;
-  s.object = std::move(shape);
+  for (vertex& v : shape.vertices) v.position = (v.position - box_of_shape.centre()) * scale;
+  for (const vertex& v : shape.vertices) s.object_radius = std::max(s.object_radius, glm::length(v.position));
+  s.local_object = std::move(shape);
+  s.object = s.local_object;
+  for (std::size_t i = 0; i < s.object.vertices.size(); ++i) s.object.vertices[i].position = s.local_object.vertices[i].position + position;
   s.reference_point = position;
-  for (const vertex& v : s.object.vertices) s.object_radius = std::max(s.object_radius, glm::length(v.position - position));
   return s;
 }
 
-std::string validate(const final_gather_settings& settings) {
+const std::vector<setting<final_gather_setup, final_gather_technique>>& final_gather_settings_table() {
+  using entry = setting<final_gather_setup, final_gather_technique>;
+  static const std::vector<entry> table = {
+      entry::custom("size", setting_type::size, "pixels", "final image size, N or WxH (the paper: 700)",
+                    [](const final_gather_setup& s) {
+                      const final_gather_settings& p = s.pipeline;
+                      return p.width == p.height ? std::to_string(p.width) : std::to_string(p.width) + "x" + std::to_string(p.height);
+                    },
+                    [](final_gather_setup& s, const std::string& text) { std::tie(s.pipeline.width, s.pipeline.height) = *parse_extent(text); })
+          .within(closed_range(1, max_image_side))
+          .not_live(),
+      entry::choice("format", [](auto& s) -> auto& { return s.pipeline.format; }, {{"rgba16f", texel_format::rgba16f}, {"rgba32f", texel_format::rgba32f}},
+                    "float format of the output targets (the cube map and G-buffer are rgba32f)"),
+      entry::number("min-distance", [](auto& s) -> auto& { return s.pipeline.irradiance.min_distance; },
+                    describe_field(&irradiance_settings<float>::min_distance))
+          .feeds("cube_face.frag: irradiance.min_distance; final_gather_shade.frag: irradiance.min_distance"),
+      entry::number("cube-resolution", [](auto& s) -> auto& { return s.pipeline.resolution; }, closed_range(1, 64), "texels",
+                    "M, the small cube map's face resolution (the paper: 4 or 2)")
+          .feeds("cube_downsample.frag: resolution; final_gather_shade.frag: resolution"),
+      entry::number("face-size", [](auto& s) -> auto& { return s.pipeline.face_size; }, closed_range(1, 4096), "texels",
+                    "the cube map's face size before averaging (the paper: 256)")
+          .feeds("cube_downsample.frag: face_size"),
+      entry::number("environment-resolution", [](auto& s) -> auto& { return s.pipeline.environment_resolution; }, closed_range(1, 256), "texels",
+                    "K, the face resolution of the baseline's irradiance environment map")
+          .read_by([](const final_gather_technique& t) { return t.variant == final_gather_variant::environment_map; }, "the environment map")
+          .feeds("environment_convolution.frag: environment_resolution; final_gather_shade.frag: environment_resolution"),
+      entry::custom("object", setting_type::text, "", "the dynamic object: sphere or an .obj file (meshes/bunny.obj)",
+                    [](const final_gather_setup& s) { return s.object; }, [](final_gather_setup& s, const std::string& text) { s.object = text; })
+          .not_live(),
+      entry::custom("object-position", setting_type::point, "scene units", "the object's centre x,y,z (the room is [-1,1]x[0,2]x[-1,1])",
+                    [](const final_gather_setup& s) {
+                      return format_real(s.object_position.x) + "," + format_real(s.object_position.y) + "," + format_real(s.object_position.z);
+                    },
+                    [](final_gather_setup& s, const std::string& text) {
+                      const std::vector<double> point = *parse_point(text);
+                      s.object_position = glm::vec3(static_cast<float>(point[0]), static_cast<float>(point[1]), static_cast<float>(point[2]));
+                    })
+          .within(closed_range(-max_object_coordinate, max_object_coordinate))
+          .feeds("cube_face.frag: reference_point; final_gather_shade.frag: reference_point")
+          .not_live(),
+      entry::number("object-size", [](auto& s) -> auto& { return s.object_size; }, open_closed_range(0, 10), "scene units",
+                    "the object's size across (the room is 2 wide)")
+          .not_live(),
+  };
+  return table;
+}
+
+std::string validate(const final_gather_setup& setup) {
+  const final_gather_settings& settings = setup.pipeline;
   try {
     find_final_gather_technique(settings.technique);
   } catch (const error& failure) {
     return failure.what();
   }
-  if (const std::string problem = validate_image_size(settings.width, settings.height); !problem.empty()) return problem;
-  if (settings.face_size < 1 || settings.face_size > 4096) return "cube face size must be in [1, 4096]";
-  if (settings.resolution < 1 || settings.resolution > 64) return "M (the small cube map's face resolution) must be in [1, 64]";
+  if (const std::string problem = check_settings(final_gather_settings_table(), setup); !problem.empty()) return problem;
   if (settings.face_size % settings.resolution != 0)
     return "M = " + std::to_string(settings.resolution) + " does not divide the face size " + std::to_string(settings.face_size) +
            ": every small texel must average a whole block of face texels";
-  if (settings.environment_resolution < 1 || settings.environment_resolution > 256) return "environment map resolution must be in [1, 256]";
-  if (settings.format != texel_format::rgba32f && settings.format != texel_format::rgba16f) return "render target format must be rgba16f or rgba32f";
-  if (const char* problem = validate(settings.irradiance)) return problem;
+  if (const setting_problem problem = validate(settings.irradiance)) return problem.message();
   return {};
+}
+
+std::string validate(const final_gather_settings& settings) {
+  final_gather_setup setup;
+  setup.pipeline = settings;
+  return validate(setup);
 }
 
 namespace {
@@ -155,20 +209,36 @@ void final_gather_pipeline::set_camera(const camera& view) {
   view_valid_ = false;
 }
 
-void final_gather_pipeline::set_light(const spot_light<float>& light) {
-  scene_light checked;
-  checked.spot = light;
-  check_light(checked, "final gathering, object " + scene_.name);
-  scene_.light = light;
+void final_gather_pipeline::set_light(const scene_light& light) {
+  if (light.kind != light_kind::spot) throw error("final gathering needs a spot light");
+  check_light(light, "final gathering, object " + scene_.name);
+  scene_.light = light.spot;
   set_pose_uniforms();
   cube_valid_ = view_valid_ = false;
+}
+
+scene_light final_gather_pipeline::current_light() const {
+  scene_light light;
+  light.spot = scene_.light;
+  return light;
+}
+
+std::string final_gather_pipeline::draw_counts() const {
+  return "cube map " + std::to_string(cube_draws_) + ", G-buffer and shading " + std::to_string(view_draws_);
+}
+
+std::string final_gather_pipeline::describe() const {
+  std::ostringstream out;
+  out << "object " << scene_.name << " (" << scene_.object.triangle_count() << " triangles) at (" << scene_.reference_point.x << ", "
+      << scene_.reference_point.y << ", " << scene_.reference_point.z << "), technique " << settings_.technique << ", " << settings_.width << "x"
+      << settings_.height << ", cube map 6 x " << settings_.face_size << "^2 -> 6 x " << settings_.resolution << "^2";
+  return out.str();
 }
 
 void final_gather_pipeline::set_object_position(glm::vec3 centre) {
   if (!(std::isfinite(centre.x) && std::isfinite(centre.y) && std::isfinite(centre.z) && glm::length(centre) <= max_scene_coordinate))
     throw error("final gathering: the object's position must be finite and within " + std::to_string(max_scene_coordinate) + " of the origin");
-  const glm::vec3 offset = centre - scene_.reference_point;
-  for (vertex& v : scene_.object.vertices) v.position += offset;
+  for (std::size_t i = 0; i < scene_.object.vertices.size(); ++i) scene_.object.vertices[i].position = scene_.local_object.vertices[i].position + centre;
   scene_.reference_point = centre;
   object_ = mesh_buffers(scene_.object);
   set_pose_uniforms();

@@ -15,11 +15,13 @@
 #include <vplkit/irradiance.hpp>
 #include <vplkit/gl/program.hpp>
 
+#include "frontend/core/setting.hpp"
 #include "frontend/gl/pass_timer.hpp"
 #include "frontend/scene_gl/mesh_buffers.hpp"
 #include "frontend/gl/render_target.hpp"
 #include "frontend/scene/camera.hpp"
 #include "frontend/scene/scene.hpp"
+#include "frontend/techniques/pipeline.hpp"
 
 namespace vplkit {
 
@@ -40,6 +42,9 @@ struct final_gather_scene {
   std::string name;
   mesh room;
   mesh object;
+  /// The object centred at the origin, scaled: `object` is it moved to the reference point, the
+  /// same sum wherever it moves, so a moved object is the object built at its new place, bit for bit.
+  mesh local_object;
   glm::vec3 reference_point{0.0f};  ///< the object's centre (its bounding box's)
   float object_radius = 0.0f;       ///< of its bounding sphere around the reference point
   camera view;
@@ -64,6 +69,24 @@ struct final_gather_settings {
 
 std::string validate(const final_gather_settings& settings);
 
+/// The largest coordinate of the object's position: the room is [-1, 1] x [0, 2] x [-1, 1].
+constexpr float max_object_coordinate = 1000.0f;
+
+/// What the final-gathering techniques draw and how: the object in the room, and the pipeline's
+/// settings. The family's settings (frontend/techniques/registry.hpp) are this.
+struct final_gather_setup {
+  final_gather_settings pipeline;
+  std::string object = "sphere";                 ///< sphere, or an .obj file (meshes/bunny.obj)
+  glm::vec3 object_position{0.0f, 0.7f, 0.0f};  ///< its centre
+  float object_size = 0.5f;                      ///< across (the room is 2 wide)
+};
+
+/// The description of every setting a user sets (frontend/core/setting.hpp).
+const std::vector<setting<final_gather_setup, final_gather_technique>>& final_gather_settings_table();
+
+/// Empty when usable: the table's ranges, then the pipeline's settings.
+std::string validate(const final_gather_setup& setup);
+
 struct final_gather_frame {
   image radiance;  ///< the final image
   image indirect;  ///< the object's indirect irradiance
@@ -77,31 +100,39 @@ struct final_gather_buffers {
   image gbuffer[3];       ///< [position | kind], [normal | -], [albedo | -]
 };
 
-class final_gather_pipeline {
+class final_gather_pipeline final : public pipeline {
  public:
   final_gather_pipeline(const shader_library& shaders, const final_gather_scene& source, const final_gather_settings& settings);
   /// draw(), then the images read back.
   final_gather_frame render();
   /// Every pass without reading anything back (a frame as the paper times it).
-  void draw();
+  void draw() override;
   /// The passes the moves since the last frame invalidated: the cube map (and the averaged and
   /// convolved maps) after set_light or set_object_position, the G-buffer and the shading after
   /// any move; nothing when nothing moved. The viewer draws its frames this way.
-  void draw_changed();
-  void set_camera(const camera& view);
-  /// Throws vplkit::error for an invalid light.
-  void set_light(const spot_light<float>& light);
+  void draw_changed() override;
+  void set_camera(const camera& view) override;
+  /// Throws vplkit::error for a directional or an invalid light.
+  void set_light(const scene_light& light) override;
+  camera current_camera() const override { return scene_.view; }
+  scene_light current_light() const override;
+  bool has_object() const override { return true; }
+  glm::vec3 object_position() const override { return scene_.reference_point; }
   /// Moves the object (and its reference point) so that its centre is at `centre`. The cube map
   /// is checked on the next frame: an object reaching into a wall or out of the room throws there.
-  void set_object_position(glm::vec3 centre);
+  void set_object_position(glm::vec3 centre) override;
   /// How many times the cube map was drawn, and the G-buffer and shading.
   int cube_draws() const { return cube_draws_; }
-  int view_draws() const { return view_draws_; }
+  int view_draws() const override { return view_draws_; }
+  std::string draw_counts() const override;
+  std::string describe() const override;
+  std::string scene_name() const override { return scene_.name; }
   /// The pass times since the last render() or collect_pass_times().
-  std::vector<pass_time> collect_pass_times() { return timer_.collect(); }
+  std::vector<pass_time> collect_pass_times() override { return timer_.collect(); }
   /// The last frame's radiance and the object's indirect irradiance (black elsewhere).
-  const texture_2d& output() const { return output_.colour(0); }
-  const texture_2d& indirect_output() const { return output_.colour(1); }
+  const texture_2d& output() const override { return output_.colour(0); }
+  const texture_2d& indirect_output() const override { return output_.colour(1); }
+  bool has_indirect() const override { return true; }
   final_gather_buffers read_buffers() const;
   const final_gather_scene& source() const { return scene_; }
   const final_gather_settings& settings() const { return settings_; }

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <limits>
+#include <sstream>
+#include <tuple>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -49,41 +52,110 @@ int indirect_maps(lightwave_mode mode, const lightwave_settings& settings) {
 
 }  // namespace
 
+const std::vector<setting<lightwave_settings, lightwave_technique>>& lightwave_settings_table() {
+  using entry = setting<lightwave_settings, lightwave_technique>;
+  const auto modes = [](std::vector<lightwave_mode> any) {
+    return [any](const lightwave_technique& t) { return std::find(any.begin(), any.end(), t.mode) != any.end(); };
+  };
+  const auto vpl_light = modes({lightwave_mode::unshadowed, lightwave_mode::accurate, lightwave_mode::integrated});
+  const auto shadow_maps = modes({lightwave_mode::accurate, lightwave_mode::integrated});
+  std::vector<int> ray_angles;
+  for (int angle = 1; angle <= 90; ++angle)
+    if (lightwave_ray_angle_divides(angle)) ray_angles.push_back(angle);
+  static const std::vector<entry> table = {
+      entry::custom("size", setting_type::size, "pixels", "final image size, N or WxH (the thesis: 1280x720)",
+                    [](const lightwave_settings& s) { return s.width == s.height ? std::to_string(s.width) : std::to_string(s.width) + "x" + std::to_string(s.height); },
+                    [](lightwave_settings& s, const std::string& text) { std::tie(s.width, s.height) = *parse_extent(text); })
+          .within(closed_range(1, max_image_side))
+          .not_live(),
+      entry::choice("format", [](auto& s) -> auto& { return s.format; }, {{"rgba16f", texel_format::rgba16f}, {"rgba32f", texel_format::rgba32f}},
+                    "float format of the render targets"),
+      entry::number("min-distance", [](auto& s) -> auto& { return s.irradiance.min_distance; }, describe_field(&irradiance_settings<float>::min_distance))
+          .feeds("lightwave.frag: irradiance.min_distance"),
+      entry::number("seed", [](auto& s) -> auto& { return s.seed; }, closed_range(0, 4294967295.0), "",
+                    "seed of the VPL draw of the accurate shadows' thesis variant (the importance variant has none)")
+          .read_by(modes({lightwave_mode::accurate}), "the accurate shadows"),
+      entry::choice("vpl-energy", [](auto& s) -> auto& { return s.energy; }, {{"flux", lightwave_energy::flux}, {"thesis", lightwave_energy::thesis}},
+                    "flux (each VPL reflects the flux its patch of the spot's cone brings, with a diffuse bounce's falloff) or thesis "
+                    "(Eq. 4.5's VPLs on hemispheres, without flux: the Tables 5.x)")
+          .read_by(vpl_light, "the VPL light")
+          .feeds("lightwave.frag: VPLKIT_LIGHTWAVE_ENERGY; lightwave.vert: VPLKIT_LIGHTWAVE_ENERGY"),
+      entry::number("ray-angle", [](auto& s) -> auto& { return s.angle_deg; }, describe_field(&lightwave_layout_settings<float>::angle_deg))
+          .allowing(ray_angles)
+          .read_by(vpl_light, "the VPL light")
+          .feeds("lightwave.vert: vpl_texture; lightwave.vert: vpl_count"),
+      entry::number("vpls-per-ray", [](auto& s) -> auto& { return s.per_ray; }, describe_field(&lightwave_layout_settings<float>::per_ray))
+          .read_by(vpl_light, "the VPL light")
+          .feeds("lightwave.vert: vpl_texture; lightwave.vert: vpl_count"),
+      entry::number("vpl-max-distance", [](auto& s) -> auto& { return s.max_distance; }, closed_range(0, max_scene_coordinate), "scene units",
+                    "thesis energy: the distance the hemispheres approach (0: from the scene's size)")
+          .read_by(vpl_light, "the VPL light")
+          .feeds("lightwave.vert: vpl_texture"),
+      entry::number("shadow-maps", [](auto& s) -> auto& { return s.accurate_maps; }, closed_range(0, lightwave_max_shadow_maps), "",
+                    "VPL shadow maps of the accurate shadows (0: none)")
+          .read_by(modes({lightwave_mode::accurate}), "the accurate shadows")
+          .feeds("lightwave.frag: indirect_maps; lightwave.frag: shadow_matrix"),
+      entry::choice("shadow-variant", [](auto& s) -> auto& { return s.shadow_variant; },
+                    {{"importance", lightwave_shadow_variant::importance}, {"thesis", lightwave_shadow_variant::thesis}},
+                    "importance (the VPLs split into groups of equal light on the visible scene, one map per group from its medoid aimed at "
+                    "what it lights, each map shadowing its group's share; no seed) or thesis (uniform VPLs, maps along their normals, the plain mean)")
+          .read_by(modes({lightwave_mode::accurate}), "the accurate shadows")
+          .feeds("lightwave.frag: VPLKIT_LIGHTWAVE_SHADOW_VARIANT"),
+      entry::number("integrated-maps", [](auto& s) -> auto& { return s.integrated_maps; }, closed_range(2, lightwave_max_shadow_maps), "",
+                    "shadow maps of the integrated shadows: the axis VPL and a ring of the innermost hemisphere")
+          .read_by(modes({lightwave_mode::integrated}), "the integrated shadows")
+          .feeds("lightwave.frag: indirect_maps; lightwave.frag: shadow_matrix"),
+      entry::number("integrated-steps", [](auto& s) -> auto& { return s.integrated_steps; }, closed_range(0, 64), "",
+                    "in-between lookups per pair of maps (the thesis: 2, 4, 6, 10)")
+          .read_by(modes({lightwave_mode::integrated}), "the integrated shadows")
+          .feeds("lightwave.frag: integrated_steps"),
+      entry::number("shadow-map-scale", [](auto& s) -> auto& { return s.shadow_map_scale; }, open_closed_range(0, 16), "screens",
+                    "shadow map size in screens (the thesis: 3)")
+          .feeds("lightwave.frag: shadow_maps"),
+      entry::number("vpl-field-of-view", [](auto& s) -> auto& { return s.vpl_field_of_view; }, {1, 179, true, true}, "degrees",
+                    "field of view of a VPL's shadow map where it looks along the VPL's normal (thesis variant, integrated shadows)")
+          .read_by(shadow_maps, "the indirect shadows")
+          .feeds("lightwave.frag: shadow_matrix"),
+      entry::number("faked-multiplier", [](auto& s) -> auto& { return s.faked_multiplier; }, closed_range(0.5, 4), "Eq. 5.2",
+                    "m of Eq. 5.2 (the thesis uses 1.1 to 1.5)")
+          .read_by(modes({lightwave_mode::faked}), "the faked indirect light")
+          .feeds("lightwave.frag: faked_multiplier"),
+      entry::number("specular-strength", [](auto& s) -> auto& { return s.shading.specular_strength; },
+                    describe_field(&lightwave_shading_settings<float>::specular_strength))
+          .read_by(vpl_light, "the VPL light")
+          .feeds("lightwave.vert: shading.specular_strength"),
+      entry::number("specular-exponent", [](auto& s) -> auto& { return s.shading.specular_exponent; },
+                    describe_field(&lightwave_shading_settings<float>::specular_exponent))
+          .read_by(vpl_light, "the VPL light")
+          .feeds("lightwave.vert: shading.specular_exponent"),
+  };
+  return table;
+}
+
 std::string validate(const lightwave_settings& settings) {
   try {
     find_lightwave_technique(settings.technique);
   } catch (const error& failure) {
     return failure.what();
   }
-  if (const std::string problem = validate_image_size(settings.width, settings.height); !problem.empty()) return problem;
-  if (const char* problem = validate_lightwave_layout(settings.angle_deg, settings.per_ray)) return problem;
+  if (const std::string problem = check_settings(lightwave_settings_table(), settings); !problem.empty()) return problem;
+  for (const setting_problem& problem : {validate_lightwave_layout(settings.angle_deg, settings.per_ray), validate(settings.shading), validate(settings.irradiance)})
+    if (problem) return problem.message();
   const int vpls = lightwave_vpl_count(settings.angle_deg, settings.per_ray);
   // The vertex stage loops over every VPL, and llvmpipe ends a loop after 65535 iterations.
   if (vpls > 65535) return "at most 65535 VPLs (the per-vertex loop; llvmpipe stops loops there), got " + std::to_string(vpls);
-  if (settings.energy != lightwave_energy::thesis && settings.energy != lightwave_energy::flux) return "VPL energy must be flux or thesis";
-  if (!(settings.max_distance >= 0.0f && settings.max_distance <= max_scene_coordinate)) return "Light Wave max distance must be in [0, 1e7] (0: from the scene's size)";
+  // The flux energy puts its VPLs where its rays meet the scene: no hemispheres to place.
   if (settings.energy == lightwave_energy::flux && settings.max_distance != 0.0f)
-    return "Light Wave max distance places the thesis's hemispheres (thesis energy); the flux energy puts its VPLs on the surfaces and needs 0";
-  if (settings.accurate_maps < 0 || settings.accurate_maps > lightwave_max_shadow_maps)
-    return "accurate shadow maps must be in [0, " + std::to_string(lightwave_max_shadow_maps) + "]";
-  if (settings.shadow_variant != lightwave_shadow_variant::importance && settings.shadow_variant != lightwave_shadow_variant::thesis)
-    return "shadow variant must be importance or thesis";
+    return "vpl-max-distance places the thesis's hemispheres and is read with vpl-energy thesis; the flux energy puts its VPLs where its rays "
+           "meet the scene (leave vpl-max-distance at 0)";
+  if (!(settings.receiver_spacing > 0.0f && settings.receiver_spacing <= 4.0f)) return "receiver spacing must be in (0, 4] (a fraction of the scene's bounding radius)";
+  if (settings.receiver_triangles < 1 || settings.receiver_triangles > (1 << 22)) return "receiver triangles must be in [1, 4194304]";
   if (settings.accurate_maps > vpls)
     return "more accurate shadow maps (" + std::to_string(settings.accurate_maps) + ") than VPLs (" + std::to_string(vpls) + ")";
   const int ring = 360 / settings.angle_deg;
-  if (settings.integrated_maps < 2 || settings.integrated_maps > 1 + ring || settings.integrated_maps > lightwave_max_shadow_maps)
-    return "integrated shadow maps must be in [2, " + std::to_string(std::min(1 + ring, lightwave_max_shadow_maps)) + "] (the axis VPL and a ring of the innermost hemisphere)";
-  if (settings.integrated_steps < 0) return "integrated steps must be >= 0";
-  if (settings.integrated_steps > 64) return "integrated steps must be <= 64";
-  if (!(settings.shadow_map_scale > 0.0f && settings.shadow_map_scale <= 16.0f)) return "shadow map scale must be in (0, 16]";
-  if (!(settings.faked_multiplier >= 0.5f && settings.faked_multiplier <= 4.0f))
-    return "faked multiplier must be in [0.5, 4] (Eq. 5.2; the thesis uses 1.1 .. 1.5)";
-  if (!(settings.vpl_field_of_view > 1.0f && settings.vpl_field_of_view < 179.0f)) return "VPL shadow map field of view must be in (1, 179) degrees";
-  if (!(settings.receiver_spacing > 0.0f && settings.receiver_spacing <= 4.0f)) return "receiver spacing must be in (0, 4] (a fraction of the scene's bounding radius)";
-  if (settings.receiver_triangles < 1 || settings.receiver_triangles > (1 << 22)) return "receiver triangles must be in [1, 4194304]";
-  if (settings.shading.specular_exponent < 1 || settings.shading.specular_exponent > 256) return "specular exponent must be in [1, 256]";
-  if (!(settings.shading.specular_strength >= 0.0f && std::isfinite(settings.shading.specular_strength))) return "specular strength must be finite and >= 0";
-  if (const char* problem = validate(settings.irradiance)) return problem;
+  if (settings.integrated_maps > 1 + ring)
+    return "integrated-maps must be at most " + std::to_string(1 + ring) + " (the axis VPL and a ring of the innermost hemisphere at " +
+           std::to_string(settings.angle_deg) + " degrees), got " + std::to_string(settings.integrated_maps);
   return {};
 }
 
@@ -337,7 +409,7 @@ lightwave_pipeline::lightwave_pipeline(const shader_library& shaders, const scen
       shadow_framebuffer_(generate_framebuffer()),
       target_(settings.width, settings.height, {settings.format, settings.format, settings.format}, true) {
   if (source.light.kind != light_kind::spot) throw error("Light Wave needs a spot light; scene " + source.name + " has a directional one");
-  if (const char* problem = validate(source.light.spot)) throw error("scene " + source.name + ": " + problem);
+  if (const setting_problem problem = validate(source.light.spot)) throw error("scene " + source.name + ": " + problem.message());
   const std::string energy = std::to_string(static_cast<int>(settings_.energy));
   // The flux energy's indirect light with indirect shadows: from a screen buffer the receivers
   // fill (indirect_target_), so that the shadows' heavy fragment stage runs on the scene's own
@@ -402,12 +474,33 @@ lightwave_pipeline::lightwave_pipeline(const shader_library& shaders, const scen
 
 std::uint64_t lightwave_pipeline::shadow_map_bytes() const { return lightwave_shadow_map_bytes(shadow_size_.x, shadow_size_.y, shadow_layers_); }
 
-void lightwave_pipeline::set_light(const spot_light<float>& light) {
-  scene_light checked;
-  checked.spot = light;
-  check_light(checked, "Light Wave scene " + scene_.name);
-  scene_.light.spot = light;
+void lightwave_pipeline::set_light(const scene_light& light) {
+  if (light.kind != light_kind::spot) throw error("Light Wave needs a spot light; make a new pipeline for a scene with a directional one");
+  check_light(light, "Light Wave scene " + scene_.name);
+  scene_.light.spot = light.spot;
   vpls_dirty_ = shadows_dirty_ = true;
+  view_valid_ = false;
+}
+
+const texture_2d* lightwave_pipeline::indirect_shadow_output() const {
+  const bool shadowed = technique_.mode == lightwave_mode::accurate || technique_.mode == lightwave_mode::integrated;
+  return shadowed ? &target_.colour(1) : nullptr;
+}
+
+std::string lightwave_pipeline::draw_counts() const {
+  return "VPLs and shadow maps " + std::to_string(rebuilds_) + ", main pass " + std::to_string(main_draws_);
+}
+
+std::string lightwave_pipeline::describe() const {
+  std::ostringstream out;
+  out << "scene " << scene_.name << " (" << scene_.geometry.triangle_count() << " triangles), technique " << settings_.technique << ", " << settings_.width
+      << "x" << settings_.height << ", " << vpl_count() << " VPLs (" << settings_.angle_deg << " degrees, " << settings_.per_ray << " per ray"
+      << (settings_.energy == lightwave_energy::flux && technique_.mode >= lightwave_mode::unshadowed
+              ? ", flux energy: " + std::to_string(lit_vpl_count()) + " carry light"
+              : std::string())
+      << "), shadow maps: "
+      << std::fixed << std::setprecision(2) << static_cast<double>(shadow_map_bytes()) / (1024.0 * 1024.0) << " MB (Eq. 5.4/5.5)";
+  return out.str();
 }
 
 int lightwave_pipeline::lit_vpl_count() const {
@@ -656,6 +749,7 @@ void lightwave_pipeline::set_camera(const camera& view) {
   check_camera(view, "Light Wave scene " + scene_.name);
   scene_.view = view;
   if (casters_follow_camera()) shadows_dirty_ = true;
+  view_valid_ = false;
 }
 
 lightwave_frame lightwave_pipeline::render() {
@@ -669,11 +763,21 @@ lightwave_frame lightwave_pipeline::render() {
 }
 
 void lightwave_pipeline::draw() {
+  vpls_dirty_ = shadows_dirty_ = true;
+  draw_changed();
+}
+
+void lightwave_pipeline::draw_changed() {
   if (vpls_dirty_ || shadows_dirty_) {
     timer_.begin("VPLs and shadow maps");
     rebuild();
     timer_.end();
+    view_valid_ = false;
   }
+  if (!view_valid_) draw_main_pass();
+}
+
+void lightwave_pipeline::draw_main_pass() {
   timer_.begin("main pass");
   glEnable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
@@ -712,6 +816,8 @@ void lightwave_pipeline::draw() {
   else mesh_.draw();
   timer_.end();
   check_gl("rendering scene " + scene_.name + " with " + technique_.name);
+  view_valid_ = true;
+  ++main_draws_;
 }
 
 void lightwave_pipeline::set_vertex_uniforms(const program& target) const {

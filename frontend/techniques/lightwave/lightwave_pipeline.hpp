@@ -19,10 +19,12 @@
 #include <vplkit/lightwave.hpp>
 #include <vplkit/gl/program.hpp>
 
+#include "frontend/core/setting.hpp"
 #include "frontend/gl/pass_timer.hpp"
 #include "frontend/scene_gl/mesh_buffers.hpp"
 #include "frontend/gl/render_target.hpp"
 #include "frontend/scene/scene.hpp"
+#include "frontend/techniques/pipeline.hpp"
 
 namespace vplkit {
 
@@ -99,7 +101,11 @@ struct lightwave_settings {
   texel_format format = texel_format::rgba16f;
 };
 
-/// Empty when usable, else the reason.
+/// The description of every setting a user sets (frontend/core/setting.hpp).
+const std::vector<setting<lightwave_settings, lightwave_technique>>& lightwave_settings_table();
+
+/// Empty when usable, else the reason: the table's ranges, the VPL count the main pass can loop
+/// over, the shadow maps the layout allows, and the kernels' settings.
 std::string validate(const lightwave_settings& settings);
 
 /// The mesh whose vertices the flux energy's indirect light is summed at: `geometry` subdivided
@@ -183,26 +189,37 @@ struct lightwave_frame {
   std::vector<pass_time> pass_times;
 };
 
-class lightwave_pipeline {
+class lightwave_pipeline final : public pipeline {
  public:
   lightwave_pipeline(const shader_library& shaders, const scene& source, const lightwave_settings& settings);
   /// draw(), then the images read back.
   lightwave_frame render();
-  /// One frame without reading anything back: the VPLs and shadow maps when a move invalidated
-  /// them (the first frame, set_light, set_camera for the importance variant), then the main pass.
-  void draw();
-  /// Moves the spot light: VPLs and shadow maps are rebuilt on the next frame.
-  void set_light(const spot_light<float>& light);
+  /// Every pass: the VPLs and shadow maps, then the main pass.
+  void draw() override;
+  /// What the moves since the last frame invalidated: the VPLs and shadow maps after set_light
+  /// (and after set_camera for the importance variant, whose casters follow the camera), the main
+  /// pass after any move; nothing when nothing moved.
+  void draw_changed() override;
+  /// Moves the spot light: VPLs and shadow maps are rebuilt on the next frame. Throws
+  /// vplkit::error for a directional light or an invalid one.
+  void set_light(const scene_light& light) override;
   /// Moves the camera. The VPLs stay; the shadow maps are rebuilt on the next frame only for the
   /// importance variant of the accurate shadows, whose casters are drawn and aimed for the
   /// visible surface.
-  void set_camera(const camera& view);
+  void set_camera(const camera& view) override;
+  camera current_camera() const override { return scene_.view; }
+  scene_light current_light() const override { return scene_.light; }
   /// The pass times since the last render() or collect_pass_times().
-  std::vector<pass_time> collect_pass_times() { return timer_.collect(); }
+  std::vector<pass_time> collect_pass_times() override { return timer_.collect(); }
   /// The last frame's radiance, indirect shadow factor (red) and indirect radiance textures.
-  const texture_2d& output() const { return target_.colour(0); }
-  const texture_2d& indirect_shadow_output() const { return target_.colour(1); }
-  const texture_2d& indirect_output() const { return target_.colour(2); }
+  const texture_2d& output() const override { return target_.colour(0); }
+  const texture_2d* indirect_shadow_output() const override;
+  const texture_2d& indirect_output() const override { return target_.colour(2); }
+  bool has_indirect() const override { return technique_.mode != lightwave_mode::direct; }
+  int view_draws() const override { return main_draws_; }
+  std::string draw_counts() const override;
+  std::string describe() const override;
+  std::string scene_name() const override { return scene_.name; }
   /// How many times VPLs and shadow maps have been built (1 after the first frame).
   int rebuilds() const { return rebuilds_; }
   std::uint64_t shadow_map_bytes() const;
@@ -247,6 +264,7 @@ class lightwave_pipeline {
     glm::mat4 light_view{1.0f};
   };
   frame_geometry geometry() const;
+  void draw_main_pass();
   /// The accurate shadows' importance variant: casters drawn and maps aimed for the visible
   /// surface, so they depend on the camera.
   bool casters_follow_camera() const {
@@ -284,9 +302,11 @@ class lightwave_pipeline {
   framebuffer target_;
   std::optional<framebuffer> surfaces_;  ///< flux energy: [position | 1], [normal], [albedo] as the light sees them
   pass_timer timer_;
-  bool vpls_dirty_ = true;
-  bool shadows_dirty_ = true;
+  bool vpls_dirty_ = true;     ///< the VPLs (and the flux energy's indirect light) must be rebuilt
+  bool shadows_dirty_ = true;  ///< the shadow maps must be rebuilt
+  bool view_valid_ = false;    ///< the main pass matches the camera and the light
   int rebuilds_ = 0;
+  int main_draws_ = 0;
 };
 
 }  // namespace vplkit

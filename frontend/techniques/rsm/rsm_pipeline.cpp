@@ -1,6 +1,7 @@
 #include "frontend/techniques/rsm/rsm_pipeline.hpp"
 
 #include <chrono>
+#include <tuple>
 #include <cmath>
 #include <cstring>
 
@@ -28,6 +29,128 @@ const std::vector<rsm_technique>& rsm_techniques() {
 
 const rsm_technique& find_rsm_technique(const std::string& name) { return find_by_name(rsm_techniques(), name, "technique"); }
 
+const std::vector<setting<rsm_pipeline_settings, rsm_technique>>& rsm_settings_table() {
+  using entry = setting<rsm_pipeline_settings, rsm_technique>;
+  const auto gathers = [](const rsm_technique& t) { return t.indirect; };
+  const auto radial = [](const rsm_technique& t) { return t.indirect && t.pattern == rsm_pattern::radial; };
+  const auto disk = [](const rsm_technique& t) { return t.indirect && t.pattern == rsm_pattern::disk; };
+  const auto with_visibility = [](const rsm_technique& t) { return t.indirect && t.visibility != rsm_visibility::none; };
+  const std::string gathering = "the techniques that gather indirect light";
+  const rsm_gather_preset<float> defaults = default_rsm_gather_preset<float>(), thesis = thesis_rsm_gather_preset<float>();
+  const auto preset_text = [](const rsm_gather_preset<float>& p) {
+    return "radius " + format_real(p.radius_fraction) + ", " + std::to_string(p.paths) + " x " + std::to_string(p.samples_per_path) + ", " +
+           std::to_string(p.slots) + " slots";
+  };
+  static const std::vector<entry> table = {
+      entry::custom("size", setting_type::size, "pixels", "final image size, N or WxH",
+                    [](const rsm_pipeline_settings& s) { return s.width == s.height ? std::to_string(s.width) : std::to_string(s.width) + "x" + std::to_string(s.height); },
+                    [](rsm_pipeline_settings& s, const std::string& text) { std::tie(s.width, s.height) = *parse_extent(text); })
+          .within(closed_range(1, max_image_side))
+          .not_live(),
+      entry::choice("format", [](auto& s) -> auto& { return s.format; }, {{"rgba16f", texel_format::rgba16f}, {"rgba32f", texel_format::rgba32f}},
+                    "float format of the render targets (the RSM is packed: RGBA32UI)"),
+      entry::number("min-distance", [](auto& s) -> auto& { return s.irradiance.min_distance; }, describe_field(&irradiance_settings<float>::min_distance))
+          .feeds("post.frag: irradiance.min_distance; gather.frag: settings.irradiance.min_distance"),
+      entry::number("rsm-size", [](auto& s) -> auto& { return s.rsm_size; }, closed_range(1, max_image_side), "texels", "square RSM resolution")
+          .feeds("rsm.frag: rsm_size; gbuffer.frag: rsm_size; gather.frag: settings.rsm_size"),
+      entry::number("indirect-divisor", [](auto& s) -> auto& { return s.indirect_divisor; }, closed_range(1, 8), "",
+                    "indirect buffer = image / this per axis (2: half, 1: full)")
+          .allowing({1, 2, 4, 8})
+          .read_by(gathers, gathering)
+          .feeds("gather.frag: indirect_divisor; blur_x.frag: indirect_divisor; post.frag: indirect_divisor"),
+      [&] {
+        entry preset = entry::custom(
+            "preset", setting_type::choice, "",
+            "the gather's radius, paths, samples and slots: default (" + preset_text(defaults) + "; docs/rsm-study.md) or thesis (" + preset_text(thesis) +
+                "); --radius, --paths, --samples-per-path and --slots override it",
+            [](const rsm_pipeline_settings& s) {
+              const auto is = [&s](const rsm_gather_preset<float>& p) {
+                return s.radius == p.radius_fraction && s.radial.paths == p.paths && s.radial.samples_per_path == p.samples_per_path && s.slots == p.slots;
+              };
+              return std::string(is(thesis_rsm_gather_preset<float>()) ? "thesis" : is(default_rsm_gather_preset<float>()) ? "default" : "custom");
+            },
+            [](rsm_pipeline_settings& s, const std::string& text) {
+              s.apply(text == "thesis" ? thesis_rsm_gather_preset<float>() : default_rsm_gather_preset<float>());
+            });
+        preset.choices = {"default", "thesis"};
+        preset.applies_first = true;
+        preset.in_effect = false;  // radius, paths, samples and slots are
+        preset.live = false;
+        preset.read_by(gathers, gathering);
+        return preset;
+      }(),
+      entry::number("radius", [](auto& s) -> auto& { return s.radius; }, describe_field(&rsm_gather_preset<float>::radius_fraction))
+          .read_by(gathers, gathering)
+          .feeds("gather.frag: settings.radial.ring_ratio; gather.frag: settings.disk.max_radius"),
+      [&] {
+        entry texels = entry::custom(
+            "max-radius", setting_type::real, "RSM texels", "the sampling radius in RSM texels (instead of --radius)",
+            [](const rsm_pipeline_settings& s) { return format_real(s.radius * static_cast<float>(s.rsm_size)); },
+            [](rsm_pipeline_settings& s, const std::string& text) { s.radius = static_cast<float>(*parse_real(text)) / static_cast<float>(s.rsm_size); });
+        texels.range = above(0.0);
+        texels.in_effect = false;  // radius is
+        texels.excludes = "radius";
+        texels.read_by(gathers, gathering);
+        return texels;
+      }(),
+      entry::number("paths", [](auto& s) -> auto& { return s.radial.paths; }, describe_field(&radial_pattern_settings<float>::paths))
+          .read_by(radial, "the radial pattern")
+          .feeds("gather.frag: settings.radial.paths"),
+      entry::number("samples-per-path", [](auto& s) -> auto& { return s.radial.samples_per_path; },
+                    describe_field(&radial_pattern_settings<float>::samples_per_path))
+          .read_by(radial, "the radial pattern")
+          .feeds("gather.frag: settings.radial.samples_per_path"),
+      entry::number("slots", [](auto& s) -> auto& { return s.slots; }, describe_field(&elevation_slots<float>::count))
+          .read_by(with_visibility, "the micro linear buffer")
+          .feeds("gather.frag: settings.slots.count; gather.frag: VPLKIT_SLOT_COUNT"),
+      entry::number("min-radius", [](auto& s) -> auto& { return s.radial.min_radius; }, describe_field(&radial_pattern_settings<float>::min_radius))
+          .read_by(radial, "the radial pattern")
+          .feeds("gather.frag: settings.radial.min_radius"),
+      entry::number("rotation-jitter", [](auto& s) -> auto& { return s.radial.rotation_jitter; },
+                    describe_field(&radial_pattern_settings<float>::rotation_jitter))
+          .read_by(radial, "the radial pattern")
+          .feeds("gather.frag: settings.radial.rotation_jitter"),
+      entry::number("angle-jitter", [](auto& s) -> auto& { return s.radial.angle_jitter; }, describe_field(&radial_pattern_settings<float>::angle_jitter))
+          .read_by(radial, "the radial pattern")
+          .feeds("gather.frag: settings.radial.angle_jitter"),
+      entry::number("scale-jitter", [](auto& s) -> auto& { return s.radial.scale_jitter; }, describe_field(&radial_pattern_settings<float>::scale_jitter))
+          .read_by(radial, "the radial pattern")
+          .feeds("gather.frag: settings.radial.scale_jitter"),
+      entry::number("disk-samples", [](auto& s) -> auto& { return s.disk.samples; }, describe_field(&disk_pattern_settings<float>::samples))
+          .read_by(disk, "the original RSM's disk")
+          .feeds("gather.frag: settings.disk.samples"),
+      entry::custom("seed", setting_type::integer, "", "seed of the sampling patterns",
+                    [](const rsm_pipeline_settings& s) { return std::to_string(s.radial.seed); },
+                    [](rsm_pipeline_settings& s, const std::string& text) { s.radial.seed = s.disk.seed = static_cast<std::uint32_t>(*parse_integer(text)); })
+          .within(describe_field(&radial_pattern_settings<float>::seed).range)
+          .read_by(gathers, gathering)
+          .feeds("gather.frag: settings.radial.seed; gather.frag: settings.disk.seed"),
+      entry::choice("post-filter", [](auto& s) -> auto& { return s.filter; }, {{"separable", post_filter::separable}, {"full", post_filter::full}},
+                    "bilateral post filter of the indirect light: separable (2 x 17 taps) or the full 2D kernel")
+          .read_by(gathers, gathering)
+          .feeds("post.frag: VPLKIT_SEPARABLE"),
+      entry::number("filter-kernel-size", [](auto& s) -> auto& { return s.bilateral.kernel_size; }, describe_field(&bilateral_settings<float>::kernel_size))
+          .read_by(gathers, gathering)
+          .feeds("blur_x.frag: bilateral.kernel_size; post.frag: bilateral.kernel_size"),
+      entry::number("filter-spatial-sigma", [](auto& s) -> auto& { return s.bilateral.spatial_sigma; },
+                    describe_field(&bilateral_settings<float>::spatial_sigma))
+          .read_by(gathers, gathering)
+          .feeds("blur_x.frag: bilateral.spatial_sigma; post.frag: bilateral.spatial_sigma"),
+      entry::number("filter-depth-sigma", [](auto& s) -> auto& { return s.bilateral.depth_sigma; }, describe_field(&bilateral_settings<float>::depth_sigma))
+          .read_by(gathers, gathering)
+          .feeds("blur_x.frag: bilateral.depth_sigma; post.frag: bilateral.depth_sigma"),
+      entry::number("filter-normal-power", [](auto& s) -> auto& { return s.bilateral.normal_power; },
+                    describe_field(&bilateral_settings<float>::normal_power))
+          .read_by(gathers, gathering)
+          .feeds("blur_x.frag: bilateral.normal_power; post.frag: bilateral.normal_power"),
+      entry::number("shadow-kernel-size", [](auto& s) -> auto& { return s.shadow.kernel_size; }, describe_field(&shadow_density_settings<float>::kernel_size))
+          .feeds("gbuffer.frag: shadow.kernel_size"),
+      entry::number("shadow-depth-bias", [](auto& s) -> auto& { return s.shadow.depth_bias; }, describe_field(&shadow_density_settings<float>::depth_bias))
+          .feeds("gbuffer.frag: shadow.depth_bias"),
+  };
+  return table;
+}
+
 namespace {
 
 // The patterns with their radius in texels, as make_rsm_gather_settings sets it, for validation.
@@ -40,22 +163,15 @@ std::pair<radial_pattern_settings<float>, disk_pattern_settings<float>> patterns
 }  // namespace
 
 std::string validate(const rsm_pipeline_settings& settings) {
-  const auto in_range = [](int value, int low, int high) { return value >= low && value <= high; };
-  if (const std::string problem = validate_image_size(settings.width, settings.height); !problem.empty()) return problem;
-  if (!in_range(settings.rsm_size, 1, max_image_side)) return "RSM size must be in [1, " + std::to_string(max_image_side) + "]";
-  if (settings.indirect_divisor != 1 && settings.indirect_divisor != 2 && settings.indirect_divisor != 4 && settings.indirect_divisor != 8)
-    return "indirect divisor must be 1, 2, 4 or 8";
-  if (settings.format != texel_format::rgba16f && settings.format != texel_format::rgba32f) return "render target format must be rgba16f or rgba32f";
   try {
     find_rsm_technique(settings.technique);
   } catch (const error& failure) {
     return failure.what();
   }
-  if (!(settings.radius > 0.0f && settings.radius <= 2.0f)) return "radius must be in (0, 2] (a fraction of the RSM side)";
+  if (const std::string problem = check_settings(rsm_settings_table(), settings); !problem.empty()) return problem;
   const auto [radial, disk] = patterns_in_texels(settings);
-  for (const char* problem : {validate(radial), validate(disk), validate_slot_count(settings.slots),
-                              validate(settings.irradiance), validate(settings.shadow), validate(settings.bilateral)})
-    if (problem) return problem;
+  for (const setting_problem& problem : {validate(radial), validate(disk), validate(settings.irradiance), validate(settings.shadow), validate(settings.bilateral)})
+    if (problem) return problem.message();
   return {};
 }
 
@@ -85,8 +201,8 @@ light_frustum make_light_frustum(const scene& source, int rsm_size) {
 
 rsm_frame_constants make_frame_constants(const scene& source, const rsm_pipeline_settings& settings) {
   if (const std::string problem = validate(settings); !problem.empty()) throw error("RSM pipeline settings: " + problem);
-  const char* light_problem = source.light.kind == light_kind::spot ? validate(source.light.spot) : validate(source.light.directional);
-  if (light_problem) throw error("scene " + source.name + ": " + light_problem);
+  const setting_problem light_problem = source.light.kind == light_kind::spot ? validate(source.light.spot) : validate(source.light.directional);
+  if (light_problem) throw error("scene " + source.name + ": " + light_problem.message());
   if (source.geometry.indices.empty()) throw error("scene " + source.name + " has no triangles");
   rsm_frame_constants constants;
   constants.technique = find_rsm_technique(settings.technique);
@@ -316,6 +432,21 @@ double rsm_pipeline::draw_wall_clock_ms() {
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   timer_.collect();  // the queries of this frame are not wanted
   return ms;
+}
+
+std::string rsm_pipeline::draw_counts() const {
+  return "RSM " + std::to_string(rsm_draws_) + ", G-buffer to post filter " + std::to_string(view_draws_);
+}
+
+std::string rsm_pipeline::describe() const {
+  return "scene " + scene_.name + " (" + std::to_string(scene_.geometry.triangle_count()) + " triangles), technique " + settings_.technique + ", " +
+         std::to_string(settings_.width) + "x" + std::to_string(settings_.height) + ", RSM " + std::to_string(settings_.rsm_size) + "^2, indirect " +
+         std::to_string(constants_.indirect_size.x) + "x" + std::to_string(constants_.indirect_size.y);
+}
+
+std::optional<image> rsm_pipeline::raw_indirect() const {
+  if (!constants_.technique.indirect) return std::nullopt;
+  return indirect_target_.read_image(0);
 }
 
 rsm_pass_buffers rsm_pipeline::read_buffers() const {

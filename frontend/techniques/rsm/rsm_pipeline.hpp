@@ -17,10 +17,12 @@
 #include <vplkit/shadow.hpp>
 #include <vplkit/gl/program.hpp>
 
+#include "frontend/core/setting.hpp"
 #include "frontend/gl/pass_timer.hpp"
 #include "frontend/scene_gl/mesh_buffers.hpp"
 #include "frontend/gl/render_target.hpp"
 #include "frontend/scene/camera.hpp"
+#include "frontend/techniques/pipeline.hpp"
 
 namespace vplkit {
 
@@ -59,7 +61,7 @@ struct rsm_pipeline_settings {
   shadow_density_settings<float> shadow;
   bilateral_settings<float> bilateral;          ///< kernel 17
   /// Separable by default: 2 x 17 taps instead of 17^2, 7x cheaper on llvmpipe for a few percent
-  /// of difference in the filtered indirect light (bench/rsm_sweep measures both).
+  /// of difference in the filtered indirect light (bench/rsm-tables.sweep measures both).
   post_filter filter = post_filter::separable;
 
   static radial_pattern_settings<float> default_radial_settings() {
@@ -78,7 +80,12 @@ struct rsm_pipeline_settings {
   }
 };
 
-/// Empty when usable, else a message naming the bad setting.
+/// The description of every setting a user sets (frontend/core/setting.hpp): the options of
+/// `vplkit render`, the viewer's controls, the sweep's axes.
+const std::vector<setting<rsm_pipeline_settings, rsm_technique>>& rsm_settings_table();
+
+/// Empty when usable, else a message naming the bad setting: the table's ranges, then the
+/// kernels' settings (the patterns with their radius in texels, slots, shadow, filter).
 std::string validate(const rsm_pipeline_settings& settings);
 
 /// Light-space matrices of the RSM: perspective for a spot light (a square frustum around the
@@ -132,29 +139,35 @@ struct rsm_frame {
   std::vector<pass_time> pass_times;
 };
 
-class rsm_pipeline {
+class rsm_pipeline final : public pipeline {
  public:
   /// Validates, loads the programs and uploads the scene. Throws vplkit::error with the reason.
   rsm_pipeline(const shader_library& shaders, const scene& source, const rsm_pipeline_settings& settings);
+  /// draw(), then the images read back.
   rsm_frame render();
   /// The four passes without reading anything back (a frame as Table 5.3 times it: the light
   /// may have moved, so the RSM is drawn as well).
-  void draw();
+  void draw() override;
   /// The passes that the moves since the last frame invalidated: after set_camera only the
   /// G-buffer, the gather and the post filter; after set_light the RSM as well; nothing when
   /// nothing moved. The viewer draws its frames this way.
-  void draw_changed();
+  void draw_changed() override;
   /// Moves the camera (the RSM stays valid).
-  void set_camera(const camera& view);
+  void set_camera(const camera& view) override;
   /// Moves the light. Throws vplkit::error for an invalid light or one of another kind than the
   /// scene's (the programs are built for a spot or a directional light).
-  void set_light(const scene_light& light);
+  void set_light(const scene_light& light) override;
+  camera current_camera() const override { return scene_.view; }
+  scene_light current_light() const override { return scene_.light; }
   /// How many times the RSM has been drawn.
   int rsm_draws() const { return rsm_draws_; }
   /// How many times the camera-dependent passes (G-buffer to post filter) have been drawn.
-  int view_draws() const { return view_draws_; }
+  int view_draws() const override { return view_draws_; }
+  std::string draw_counts() const override;
+  std::string describe() const override;
+  std::string scene_name() const override { return scene_.name; }
   /// The pass times since the last render() or collect_pass_times().
-  std::vector<pass_time> collect_pass_times() { return timer_.collect(); }
+  std::vector<pass_time> collect_pass_times() override { return timer_.collect(); }
   const scene& source() const { return scene_; }
   const rsm_pipeline_settings& settings() const { return settings_; }
   /// draw() timed by wall clock between two glFinish calls: the frame's cost on any renderer
@@ -164,9 +177,12 @@ class rsm_pipeline {
   /// The intermediate buffers of the last frame.
   rsm_pass_buffers read_buffers() const;
   /// The final radiance texture of the last frame.
-  const texture_2d& output() const { return post_target_.colour(0); }
+  const texture_2d& output() const override { return post_target_.colour(0); }
   /// The filtered indirect irradiance of the last frame at the image's size (black for direct light).
-  const texture_2d& indirect_output() const { return post_target_.colour(1); }
+  const texture_2d& indirect_output() const override { return post_target_.colour(1); }
+  bool has_indirect() const override { return constants_.technique.indirect; }
+  /// The gather's output at the indirect buffer's receivers, before the post filter.
+  std::optional<image> raw_indirect() const override;
 
  private:
   void set_pose_uniforms();

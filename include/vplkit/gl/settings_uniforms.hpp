@@ -1,9 +1,19 @@
-// The one place where each kernel settings struct is copied into its GLSL twin (a uniform struct
-// of the same name and fields). Every program that includes a lib file fills it from here, and so
-// do users' own shaders that take vplkit's settings as uniforms (installed with vplkit::parity).
+// The one way a kernel settings struct reaches its GLSL twin, a uniform struct of the same name
+// and fields: set_uniforms walks the struct's description (vplkit/settings.hpp) and sets every
+// field by name, nested settings through theirs. Every program that includes a lib file fills
+// its twins from here, and so do users' own shaders that take vplkit's settings as uniforms
+// (installed with vplkit::parity). The same descriptions list each twin's fields with their GLSL
+// types (glsl_twins), and link_program checks every uniform struct a program declares against
+// them both ways: a described field the GLSL struct lacks, or a GLSL field no description sets
+// (it would silently read 0), is an error when the program is built.
 #pragma once
 
+#include <cstdint>
 #include <string>
+#include <type_traits>
+#include <vector>
+
+#include <glm/glm.hpp>
 
 #include <vplkit/bilateral.hpp>
 #include <vplkit/direct_light.hpp>
@@ -13,23 +23,84 @@
 #include <vplkit/rsm_gather.hpp>
 #include <vplkit/rsm_packing.hpp>
 #include <vplkit/rsm_pattern.hpp>
+#include <vplkit/settings.hpp>
 #include <vplkit/shadow.hpp>
 
 #include <vplkit/gl/program.hpp>
+#include <vplkit/gl/uniform_declarations.hpp>
 
 namespace vplkit {
 
-void set_uniforms(const program& target, const std::string& name, const irradiance_settings<float>& settings);
-void set_uniforms(const program& target, const std::string& name, const elevation_slots<float>& slots);
-void set_uniforms(const program& target, const std::string& name, const spot_light<float>& light);
-void set_uniforms(const program& target, const std::string& name, const directional_light<float>& light);
-void set_uniforms(const program& target, const std::string& name, const radial_pattern_constants<float>& constants);
-void set_uniforms(const program& target, const std::string& name, const disk_pattern_settings<float>& settings);
-void set_uniforms(const program& target, const std::string& name, const rsm_gather_settings<float>& settings);
-void set_uniforms(const program& target, const std::string& name, const rsm_unprojection<float>& light);
-void set_uniforms(const program& target, const std::string& name, const shadow_density_settings<float>& settings);
-void set_uniforms(const program& target, const std::string& name, const bilateral_settings<float>& settings);
-void set_uniforms(const program& target, const std::string& name, const lightwave_layout_settings<float>& settings);
-void set_uniforms(const program& target, const std::string& name, const lightwave_shading_settings<float>& settings);
+/// A GLSL twin as its C++ description makes it: the struct's name, and per field its name, its
+/// GLSL type ("float", "vec3", a nested twin's name) and whether it is an array.
+struct glsl_twin {
+  struct field {
+    std::string name;
+    std::string type;
+    bool array = false;
+  };
+  std::string name;
+  std::vector<field> fields;
+};
+
+/// The GLSL type name of a described field's C++ type.
+template <typename Value>
+std::string glsl_type_name() {
+  if constexpr (std::is_array_v<Value>) return glsl_type_name<std::remove_extent_t<Value>>();
+  else if constexpr (is_described_v<Value>) return settings_description<Value>::name;
+  else if constexpr (std::is_same_v<Value, float>) return "float";
+  else if constexpr (std::is_same_v<Value, int>) return "int";
+  else if constexpr (std::is_same_v<Value, std::uint32_t>) return "uint";
+  else if constexpr (std::is_same_v<Value, glm::vec2>) return "vec2";
+  else if constexpr (std::is_same_v<Value, glm::vec3>) return "vec3";
+  else if constexpr (std::is_same_v<Value, glm::vec4>) return "vec4";
+  else if constexpr (std::is_same_v<Value, glm::ivec2>) return "ivec2";
+  else static_assert(std::is_void_v<Value>, "a field type without a GLSL twin type");
+}
+
+/// The twin of a described settings struct.
+template <typename Settings>
+glsl_twin glsl_twin_of() {
+  static_assert(settings_description<Settings>::glsl_twin, "this settings struct has no GLSL twin");
+  glsl_twin twin{settings_description<Settings>::name, {}};
+  Settings settings{};
+  for_each_field(settings, [&](const field_description& field, const auto& value) {
+    using value_type = std::remove_cv_t<std::remove_reference_t<decltype(value)>>;
+    twin.fields.push_back({field.name, glsl_type_name<value_type>(), std::is_array_v<value_type>});
+  });
+  return twin;
+}
+
+/// Every kernel settings struct with a GLSL twin, float instantiation (the GPU's).
+const std::vector<glsl_twin>& glsl_twins();
+
+/// Throws vplkit::error naming the program, the struct and the field when a uniform struct that
+/// `declarations` holds has the name of a twin but not exactly its fields (names, types, arrays),
+/// for every struct a uniform uses, nested ones included. link_program calls it.
+void check_glsl_twins(const uniform_declarations& declarations, const std::string& program_name);
+
+namespace detail {
+
+template <typename Value>
+void set_uniform_value(const program& target, const std::string& name, const Value& value) {
+  if constexpr (is_described_v<Value>) {
+    for_each_field(value, [&](const field_description& field, const auto& part) { set_uniform_value(target, name + "." + field.name, part); });
+  } else if constexpr (std::is_array_v<Value>) {
+    for (std::size_t i = 0; i < std::extent_v<Value>; ++i) set_uniform_value(target, name + "[" + std::to_string(i) + "]", value[i]);
+  } else if constexpr (std::is_same_v<Value, std::uint32_t>) {
+    target.set(name, static_cast<unsigned>(value));
+  } else {
+    target.set(name, value);
+  }
+}
+
+}  // namespace detail
+
+/// Sets every field of `settings` into the uniform `name`, a uniform of its GLSL twin's type.
+template <typename Settings>
+void set_uniforms(const program& target, const std::string& name, const Settings& settings) {
+  static_assert(settings_description<Settings>::glsl_twin, "this settings struct has no GLSL twin");
+  detail::set_uniform_value(target, name, settings);
+}
 
 }  // namespace vplkit

@@ -12,6 +12,11 @@ namespace vplkit {
 
 class uniform_declarations {
  public:
+  /// A struct's field: its GLSL type ("float", "vec3", another struct's name) and whether it is an array.
+  struct field {
+    std::string type;
+    bool array = false;
+  };
   /// Adds the declarations of one stage's expanded source.
   void scan(const std::string& source);
   /// Whether `path` ("light.position", "slots.boundary_tangent[2]", "shadow_matrix[0]") names a
@@ -19,10 +24,14 @@ class uniform_declarations {
   bool declares(const std::string& path) const;
   /// The declared uniforms, for messages: "irradiance, light, shadow_maps".
   std::string names() const;
+  /// Every declared uniform and its type.
+  const std::map<std::string, std::string>& uniforms() const { return uniform_types_; }
+  /// The fields of the struct called `name`, or null when the source declares no such struct.
+  const std::map<std::string, field>* struct_fields(const std::string& name) const;
 
  private:
-  std::map<std::string, std::string> uniform_types_;                      // name -> type
-  std::map<std::string, std::map<std::string, std::string>> struct_fields_;  // struct -> field -> type
+  std::map<std::string, std::string> uniform_types_;                   // name -> type
+  std::map<std::string, std::map<std::string, field>> struct_fields_;  // struct -> field -> type
 };
 
 }  // namespace vplkit

@@ -132,21 +132,40 @@ TEST_CASE("Light Wave modes, both energies: finite images; shadows only remove i
   }
 }
 
-TEST_CASE("Light Wave rebuilds VPLs and shadow maps only when the light moves") {
-  lightwave_pipeline pipeline(test_shaders(), make_boxes_scene(), small("lightwave-accurate"));
-  const lightwave_frame first = pipeline.render();
+TEST_CASE("Light Wave redraws what a move invalidated: VPLs and shadow maps after a light move, the main pass after any; draw() redraws both") {
+  lightwave_settings settings = small("lightwave-accurate");
+  settings.shadow_variant = lightwave_shadow_variant::thesis;  // casters that do not follow the camera
+  lightwave_pipeline pipeline(test_shaders(), make_boxes_scene(), settings);
+  const auto passes = [&] {
+    std::vector<std::string> names;
+    for (const pass_time& pass : pipeline.collect_pass_times()) names.push_back(pass.pass);
+    return names;
+  };
+  pipeline.draw_changed();
   CHECK(pipeline.rebuilds() == 1);
-  CHECK(first.pass_times.size() == 2);
-  const lightwave_frame second = pipeline.render();
+  CHECK(passes() == std::vector<std::string>{"VPLs and shadow maps", "main pass"});
+  pipeline.draw_changed();  // nothing moved
+  CHECK(passes().empty());
+  pipeline.set_camera(pipeline.current_camera());
+  pipeline.draw_changed();
   CHECK(pipeline.rebuilds() == 1);
-  REQUIRE(second.pass_times.size() == 1);
-  CHECK(second.pass_times[0].pass == "main pass");
-  spot_light<float> moved = make_boxes_scene().light.spot;
-  moved.position.x += 0.3f;
+  CHECK(passes() == std::vector<std::string>{"main pass"});
+  scene_light moved = make_boxes_scene().light;
+  moved.spot.position.x += 0.3f;
   pipeline.set_light(moved);
-  pipeline.render();
+  pipeline.draw_changed();
   CHECK(pipeline.rebuilds() == 2);
-  CHECK(pipeline.layout().light_position.x == doctest::Approx(moved.position.x));
+  CHECK(pipeline.layout().light_position.x == doctest::Approx(moved.spot.position.x));
+  CHECK(passes().size() == 2);
+  const lightwave_frame every = pipeline.render();  // draw(): every pass
+  CHECK(pipeline.rebuilds() == 3);
+  CHECK(every.pass_times.size() == 2);
+  CHECK(pipeline.view_draws() == 4);
+  // A directional light is refused, and the light stays.
+  scene_light sun;
+  sun.kind = light_kind::directional;
+  CHECK_THROWS_WITH_AS(pipeline.set_light(sun), doctest::Contains("needs a spot light"), vplkit::error);
+  CHECK(pipeline.current_light().spot.position.x == doctest::Approx(moved.spot.position.x));
 }
 
 TEST_CASE("shadow-map memory: Eq. 5.4 and 5.5 for the thesis's configuration") {
@@ -229,31 +248,31 @@ TEST_CASE("Light Wave settings errors name the setting") {
   const auto message = settings_error;
   lightwave_settings s = small("lightwave-accurate");
   s.angle_deg = 7;
-  CHECK(message(s).find("must divide 90 and 360") != std::string::npos);
+  CHECK(message(s).find("ray-angle must be 1, 2, 3, 5, 6, 9, 10, 15, 18, 30, 45 or 90, got '7'") != std::string::npos);
   s = small("lightwave-accurate");
   s.per_ray = 0;
-  CHECK(message(s).find("VPLs per ray") != std::string::npos);
+  CHECK(message(s).find("vpls-per-ray must be a whole number in [1, 32]") != std::string::npos);
   s = small("lightwave-accurate");
   s.angle_deg = 90;
   s.per_ray = 1;  // 5 VPLs
   CHECK(message(s).find("more accurate shadow maps (20) than VPLs (5)") != std::string::npos);
   s = small("lightwave-integrated");
   s.integrated_steps = -1;
-  CHECK(message(s).find("integrated steps must be >= 0") != std::string::npos);
+  CHECK(message(s).find("integrated-steps must be a whole number in [0, 64]") != std::string::npos);
   s = small("lightwave-accurate");
   s.shadow_map_scale = 17.0f;
-  CHECK(message(s).find("shadow map scale must be in (0, 16]") != std::string::npos);
+  CHECK(message(s).find("shadow-map-scale must be a number in (0, 16]") != std::string::npos);
   s.width = 1280;
   s.height = 720;
   s.shadow_map_scale = 14.0f;  // 17920 x 10080
   CHECK(message(s).find("GL_MAX_TEXTURE_SIZE") != std::string::npos);
   s = small("lightwave-accurate");
   s.accurate_maps = 65;
-  CHECK(message(s).find("accurate shadow maps must be in [0, 64]") != std::string::npos);
+  CHECK(message(s).find("shadow-maps must be a whole number in [0, 64]") != std::string::npos);
   s = small("lightwave-faked");
   for (float bad : {std::nanf(""), -1.0f, 0.0f, 100.0f}) {
     s.faked_multiplier = bad;
-    CHECK(message(s).find("faked multiplier must be in [0.5, 4]") != std::string::npos);
+    CHECK(message(s).find("faked-multiplier must be a number in [0.5, 4]") != std::string::npos);
   }
 }
 

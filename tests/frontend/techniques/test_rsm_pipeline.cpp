@@ -152,7 +152,7 @@ TEST_CASE("RSM pipeline settings are validated with the setting's name") {
   const shader_library& shaders = test_shaders();
   rsm_pipeline_settings settings = small_settings("rsm-alg6");
   settings.slots = 0;
-  CHECK_THROWS_WITH_AS(rsm_pipeline(shaders, make_cornell_box(), settings), doctest::Contains("slot count"), vplkit::error);
+  CHECK_THROWS_WITH_AS(rsm_pipeline(shaders, make_cornell_box(), settings), doctest::Contains("slots must be a whole number in [1, 16]"), vplkit::error);
   settings = small_settings("rsm-alg7");
   CHECK_THROWS_WITH_AS(rsm_pipeline(shaders, make_cornell_box(), settings), doctest::Contains("rsm-alg6"), vplkit::error);
   settings = small_settings("rsm-alg6");
@@ -163,7 +163,7 @@ TEST_CASE("RSM pipeline settings are validated with the setting's name") {
   CHECK_THROWS_WITH_AS(rsm_pipeline(shaders, make_cornell_box(), settings), doctest::Contains("divisor"), vplkit::error);
   settings = small_settings("rsm-alg6");
   settings.rsm_size = 1 << 15;
-  CHECK_THROWS_WITH_AS(rsm_pipeline(shaders, make_cornell_box(), settings), doctest::Contains("RSM size must be in [1, 16384]"), vplkit::error);
+  CHECK_THROWS_WITH_AS(rsm_pipeline(shaders, make_cornell_box(), settings), doctest::Contains("rsm-size must be a whole number in [1, 16384]"), vplkit::error);
   // Within the limits, but more than llvmpipe will allocate: the GL error names the texture.
   settings.rsm_size = 1 << 14;
   settings.width = settings.height = 16;

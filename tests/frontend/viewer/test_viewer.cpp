@@ -37,15 +37,15 @@ const shader_library& shaders() {
 viewer_options small_setup(const std::string& technique) {
   viewer_options options;
   options.technique = technique;
-  viewer_scenes& scenes = options.scenes;
-  scenes.rsm = built_in_scene("cornell-box");
-  scenes.lightwave = built_in_scene("boxes");
-  scenes.final_gather = make_final_gather_scene("sphere", glm::vec3(0.0f, 0.7f, 0.0f), 0.5f);
-  scenes.rsm_setup.width = scenes.lightwave_setup.width = scenes.final_gather_setup.width = side;
-  scenes.rsm_setup.height = scenes.lightwave_setup.height = scenes.final_gather_setup.height = side;
-  scenes.rsm_setup.rsm_size = 64;
-  scenes.lightwave_setup.shadow_map_scale = 1.0f;
-  scenes.final_gather_setup.face_size = 32;
+  for (const technique_family& family : technique_families()) {
+    viewer_family& state = options.scenes.families[family.name];
+    state.settings = family.make_settings(family.has(technique) ? technique : family.techniques.front().name);
+    REQUIRE(state.settings->set("size", std::to_string(side)).empty());
+    if (family.reads_scene()) state.source = built_in_scene(family.default_scene);
+  }
+  REQUIRE(options.scenes.families.at("rsm").settings->set("rsm-size", "64").empty());
+  REQUIRE(options.scenes.families.at("lightwave").settings->set("shadow-map-scale", "1").empty());
+  REQUIRE(options.scenes.families.at("final-gather").settings->set("face-size", "32").empty());
   options.screenshot = std::filesystem::temp_directory_path() / "vplkit-viewer-test" / "shot.png";
   return options;
 }
@@ -123,7 +123,7 @@ TEST_CASE("RSM: a camera move redraws the G-buffer to the post filter, a light m
 
 TEST_CASE("Light Wave: VPLs and shadow maps are rebuilt when the light moves; a camera move rebuilds only the importance variant's maps") {
   viewer_options thesis = small_setup("lightwave-accurate");
-  thesis.scenes.lightwave_setup.shadow_variant = lightwave_shadow_variant::thesis;
+  REQUIRE(thesis.scenes.families.at("lightwave").settings->set("shadow-variant", "thesis").empty());
   thesis.panel = false;
   {
   viewer app(window(), shaders(), thesis);
@@ -191,6 +191,10 @@ TEST_CASE("the panel is drawn inside its rectangle and nowhere else, and the hid
   const glm::vec4 panel = app.panel_rectangle();
   CHECK(panel.z > 20.0f);
   CHECK(panel.w > 20.0f);
+  // Floating over the image, the panel covers at most a quarter of it.
+  CHECK(panel.z * panel.w <= 0.25f * side * side);
+  CHECK(panel.z <= 0.5f * side);
+  CHECK(panel.w <= 0.5f * side);
   std::size_t inside = 0, inside_changed = 0, outside_changed = 0;
   for (int y = 0; y < side; ++y)
     for (int x = 0; x < side; ++x) {
@@ -206,6 +210,35 @@ TEST_CASE("the panel is drawn inside its rectangle and nowhere else, and the hid
     }
   CHECK(outside_changed == 0);
   CHECK(static_cast<double>(inside_changed) > 0.5 * static_cast<double>(inside));
+}
+
+TEST_CASE("the docked panel sits beside the image, leaves every pixel of it as the hidden panel does, and shows the full technique names") {
+  viewer app(window(), shaders(), small_setup("rsm-radial"));
+  app.show_panel(false);
+  const window_pixels hidden = shown_frame(app);
+  app.show_panel(true);
+  app.dock_panel(true);
+  // The window widens by the panel's column once the window system has resized it.
+  for (int wait = 0; wait < 200 && window().framebuffer_size().first != side + docked_panel_width; ++wait) shown_frame(app);
+  REQUIRE(window().framebuffer_size().first == side + docked_panel_width);
+  shown_frame(app);
+  const window_pixels docked = shown_frame(app);
+  CHECK(app.image_rectangle() == glm::vec4(0.0f, 0.0f, side, side));
+  const glm::vec4 panel = app.panel_rectangle();
+  CHECK(panel.x == doctest::Approx(side));
+  CHECK(panel.z == doctest::Approx(docked_panel_width));
+  CHECK(app.technique_names_fit());
+  // The image beside the panel is the hidden-panel image, pixel for pixel.
+  std::size_t different = 0;
+  for (int y = 0; y < side; ++y)
+    for (int x = 0; x < side; ++x)
+      for (std::size_t c = 0; c < 3; ++c)
+        different += hidden.rgba8[4 * (static_cast<std::size_t>(y) * side + static_cast<std::size_t>(x)) + c] !=
+                     docked.rgba8[4 * (static_cast<std::size_t>(y) * static_cast<std::size_t>(docked.width) + static_cast<std::size_t>(x)) + c];
+  CHECK(different == 0);
+  app.dock_panel(false);
+  for (int wait = 0; wait < 200 && window().framebuffer_size().first != side; ++wait) shown_frame(app);
+  CHECK(window().framebuffer_size().first == side);
 }
 
 TEST_CASE("every technique and each of its layers can be shown") {

@@ -1,4 +1,4 @@
-#include "bench/rsm_measure.hpp"
+#include "frontend/reference/rsm_measure.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -24,12 +24,6 @@ image filtered_at_receivers(const rsm_frame& frame, const frame_reference& refer
       out.at(x, y) = frame.indirect.at(pixel);
     }
   return out;
-}
-
-void accumulate(relative_error& sum, const relative_error& value, int seeds) {
-  sum.rmse += value.rmse / seeds;
-  sum.bias += value.bias / seeds;
-  sum.pixels = value.pixels;
 }
 
 }  // namespace
@@ -94,81 +88,49 @@ image brute_force_within(const frame_reference& reference, float radius, int thr
   return reference_rsm_gather(*reference.rays, reference.buffers, reference.constants, options);
 }
 
-technique_errors measure_technique(const shader_library& shaders, const scene& source, const rsm_pipeline_settings& settings,
-                                   const frame_reference& reference, int seeds) {
-  if (seeds < 1) throw error("measure_technique: seeds must be >= 1");
-  technique_errors errors;
-  errors.mean_raw = blank(reference);
-  errors.filtered_mean = blank(reference);
-  std::vector<image> raws;
-  for (int seed = 1; seed <= seeds; ++seed) {
-    rsm_pipeline_settings seeded = settings;
-    seeded.radial.seed = static_cast<std::uint32_t>(seed);
-    seeded.disk.seed = static_cast<std::uint32_t>(seed);
-    rsm_pipeline pipeline(shaders, source, seeded);
-    const rsm_frame frame = pipeline.render();
-    // Direct light only has no indirect buffer: its indirect light is 0 everywhere.
-    const image indirect = pipeline.read_buffers().indirect;
-    const image raw = indirect.texels.empty() ? blank(reference) : indirect;
-    const image filtered = filtered_at_receivers(frame, reference);
-    accumulate(errors.raw_vs_unoccluded, relative_error_of(raw, reference.unoccluded, &reference.receivers), seeds);
-    accumulate(errors.raw_vs_exact, relative_error_of(raw, reference.exact, &reference.receivers), seeds);
-    accumulate(errors.raw_leak, relative_error_of(raw, reference.exact, &reference.leak), seeds);
-    accumulate(errors.filtered_vs_exact, relative_error_of(filtered, reference.exact, &reference.receivers), seeds);
-    accumulate(errors.filtered_leak, relative_error_of(filtered, reference.exact, &reference.leak), seeds);
-    for (std::size_t i = 0; i < raw.texels.size(); ++i) {
-      errors.mean_raw.texels[i] += raw.texels[i] / static_cast<float>(seeds);
-      errors.filtered_mean.texels[i] += filtered.texels[i] / static_cast<float>(seeds);
-    }
-    raws.push_back(raw);
-  }
-  if (seeds > 1) {
-    // E|x_i - mean|^2 = (n - 1) / n sigma^2: scale back to one seed's spread.
-    double noise = 0.0;
-    for (const image& raw : raws) noise += relative_error_of(raw, errors.mean_raw, &reference.receivers).rmse / seeds;
-    errors.raw_noise = noise * std::sqrt(static_cast<double>(seeds) / (seeds - 1));
-  }
+frame_errors measure_frame(const rsm_pipeline& drawn, const frame_reference& reference) {
+  frame_errors errors;
+  // Direct light only has no indirect buffer: its indirect light is 0 everywhere.
+  const std::optional<image> indirect = drawn.raw_indirect();
+  errors.raw = indirect ? *indirect : blank(reference);
+  rsm_frame frame;
+  frame.indirect = drawn.indirect_output().read_image();
+  errors.filtered = filtered_at_receivers(frame, reference);
+  require_same_size(errors.raw, reference.exact, "the drawn frame's indirect buffer and the reference's");
+  errors.raw_vs_unoccluded = relative_error_of(errors.raw, reference.unoccluded, &reference.receivers);
+  errors.raw_vs_exact = relative_error_of(errors.raw, reference.exact, &reference.receivers);
+  errors.raw_leak = relative_error_of(errors.raw, reference.exact, &reference.leak);
+  errors.filtered_vs_exact = relative_error_of(errors.filtered, reference.exact, &reference.receivers);
+  errors.filtered_leak = relative_error_of(errors.filtered, reference.exact, &reference.leak);
   return errors;
 }
 
-image ray_cast_gather(const frame_reference& reference, const rsm_pipeline_settings& settings, int seeds, int threads) {
+double seed_noise(const std::vector<image>& raws, const frame_reference& reference) {
+  if (raws.size() < 2) return 0.0;
+  const auto seeds = static_cast<double>(raws.size());
   image mean = blank(reference);
-  for (int seed = 1; seed <= seeds; ++seed) {
-    rsm_pipeline_settings seeded = settings;
-    seeded.radial.seed = static_cast<std::uint32_t>(seed);
-    seeded.disk.seed = static_cast<std::uint32_t>(seed);
-    const rsm_frame_constants constants = make_frame_constants(*reference.source, seeded);
-    const image gathered = gather_with_ray_cast_visibility(*reference.rays, reference.buffers, constants, reference.stride, threads);
-    for (std::size_t i = 0; i < gathered.texels.size(); ++i) mean.texels[i] += gathered.texels[i] / static_cast<float>(seeds);
-  }
-  return mean;
+  for (const image& raw : raws)
+    for (std::size_t i = 0; i < raw.texels.size(); ++i) mean.texels[i] += raw.texels[i] / static_cast<float>(seeds);
+  // E|x_i - mean|^2 = (n - 1) / n sigma^2: scale back to one seed's spread.
+  double noise = 0.0;
+  for (const image& raw : raws) noise += relative_error_of(raw, mean, &reference.receivers).rmse / seeds;
+  return noise * std::sqrt(seeds / (seeds - 1.0));
 }
 
-std::vector<double> interleaved_frame_ms(const shader_library& shaders, const scene& source, const std::vector<rsm_pipeline_settings>& configurations,
-                                         int repeat) {
-  std::vector<std::unique_ptr<rsm_pipeline>> pipelines;
-  for (const rsm_pipeline_settings& settings : configurations) {
-    pipelines.push_back(std::make_unique<rsm_pipeline>(shaders, source, settings));
-    pipelines.back()->draw_wall_clock_ms();  // warm-up: shader JIT
-  }
-  std::vector<std::vector<double>> times(configurations.size());
-  for (int i = 0; i < repeat; ++i)
-    for (std::size_t c = 0; c < pipelines.size(); ++c) times[c].push_back(pipelines[c]->draw_wall_clock_ms());
-  std::vector<double> medians;
-  for (std::vector<double>& values : times) {
-    std::sort(values.begin(), values.end());
-    medians.push_back(values[values.size() / 2]);
-  }
-  return medians;
+image ray_cast_gather(const frame_reference& reference, const rsm_pipeline_settings& settings, int threads) {
+  const rsm_frame_constants constants = make_frame_constants(*reference.source, settings);
+  return gather_with_ray_cast_visibility(*reference.rays, reference.buffers, constants, reference.stride, threads);
 }
 
-std::string fixed(double value, int digits) {
+namespace {
+
+std::string percent(double fraction) {
   std::ostringstream out;
-  out << std::fixed << std::setprecision(digits) << value;
+  out << std::fixed << std::setprecision(1) << 100.0 * fraction;
   return out.str();
 }
 
-std::string percent(double fraction) { return fixed(100.0 * fraction, 1); }
+}  // namespace
 
 std::string describe(const frame_reference& reference) {
   return std::to_string(reference.receiver_count) + " receivers counted (" + std::to_string(reference.uncovered_count) +

@@ -1,0 +1,298 @@
+// One description per setting of a technique family: its name (the command-line option's,
+// without the dashes), type, range, unit, one line of help, which techniques read it and the
+// GLSL uniform it feeds; its default is the settings struct's own. A family's settings struct has
+// one table of these, next to the struct (rsm_settings_table() in rsm_pipeline.hpp, ...), and
+// from that table come
+// - the command-line options and their scoping (frontend/cli/technique_options),
+// - validation and its messages (check_settings, each family's validate()),
+// - the viewer's controls, with the same ranges and refusals (frontend/viewer),
+// - the sweep's axes (frontend/sweep),
+// - the JSON dump of the settings in effect (settings_json).
+// A setting that is a kernel struct's field takes its range, unit and help from the kernel's
+// description (vplkit/settings.hpp): nothing is written twice. Adding a setting is one entry in
+// its family's table (docs/architecture.md says how).
+#pragma once
+
+#include <algorithm>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include <vplkit/settings.hpp>
+
+namespace vplkit {
+
+enum class setting_type {
+  integer,  ///< a whole number in a range, or one of `allowed`
+  real,     ///< a finite number in a range
+  choice,   ///< one of `choices`
+  size,     ///< N or WxH, each side in the range
+  point,    ///< x,y,z, each coordinate in the range
+  text,     ///< any non-empty text (a name or a file)
+};
+
+/// A setting without its struct: what the command line, the viewer and the sweep read.
+struct setting_info {
+  std::string name;                  ///< "radius": the option --radius, the sweep axis radius
+  setting_type type = setting_type::real;
+  setting_range range{};             ///< integer, real, size (each side), point (each coordinate)
+  std::vector<int> allowed;          ///< integer: only these values; empty: the whole range
+  std::vector<std::string> choices;  ///< choice
+  std::string unit;                  ///< "of the RSM side", "texels", "" for a count
+  std::string help;                  ///< one line
+  std::string glsl;                  ///< the uniform (field) it feeds, "" when none directly
+  std::string readers;               ///< who reads it, said next to their names: "the radial pattern"
+  bool live = true;                  ///< the viewer offers a control (not for the frame size)
+  bool in_effect = true;             ///< among the settings in effect (false for another unit of one)
+  bool applies_first = false;        ///< a preset: applied before the other settings, which override it
+  std::string excludes;              ///< a setting that cannot be given together with this one
+
+  /// "" when `text` is a value of this setting, else why not, e.g. "must be a whole number in
+  /// [1, 256], got '0'".
+  std::string check(const std::string& text) const;
+  /// The values it takes, for help texts: "[1, 256]", "(0, 2] of the RSM side", "1, 2, 4 or 8".
+  std::string values() const;
+  /// The value as a number for a slider or a plot's axis; nullopt for the other types.
+  std::optional<double> number(const std::string& text) const;
+};
+
+/// "in [1, 256]", "> 0", "in (0, 2]": numbers as ostream writes them (1e+07).
+std::string describe_range(const setting_range& range);
+/// A float or double as the shortest text that reads back to the same value.
+std::string format_real(double value);
+std::string format_real(float value);
+/// The whole text as a number; nullopt for anything else (trailing characters included).
+std::optional<double> parse_real(std::string_view text);
+std::optional<long long> parse_integer(std::string_view text);
+/// "N" or "WxH" into (width, height); nullopt when it is neither.
+std::optional<std::pair<int, int>> parse_extent(std::string_view text);
+/// "x,y,z" (spaces allowed around the numbers).
+std::optional<std::vector<double>> parse_point(std::string_view text);
+/// A value as a message shows it: quoted, and cut after 60 characters.
+std::string quote_for_message(std::string_view text);
+
+/// A setting of `Settings` for the techniques `Technique` names (the family's technique table).
+template <typename Settings, typename Technique>
+struct setting : setting_info {
+  std::function<bool(const Technique&)> reads;            ///< null: every technique of the family
+  std::function<std::string(const Settings&)> get;        ///< the value, in a form check() accepts
+  std::function<void(Settings&, const std::string&)> set;  ///< a value check() accepted
+
+  setting& read_by(std::function<bool(const Technique&)> predicate, std::string who) {
+    reads = std::move(predicate);
+    readers = std::move(who);
+    return *this;
+  }
+  setting& feeds(std::string uniform) {
+    glsl = std::move(uniform);
+    return *this;
+  }
+  setting& allowing(std::vector<int> values) {
+    allowed = std::move(values);
+    return *this;
+  }
+  setting& within(setting_range values) {
+    range = values;
+    return *this;
+  }
+  setting& not_live() {
+    live = false;
+    return *this;
+  }
+
+  /// A number field: `access` is a generic lambda returning the field, `[](auto& s) -> auto& {
+  /// return s.radial.paths; }`; integral fields are integers, floating ones reals.
+  template <typename Access>
+  static setting number(std::string name, Access access, setting_range range, std::string unit, std::string help) {
+    using value_type = std::decay_t<decltype(access(std::declval<Settings&>()))>;
+    static_assert(std::is_arithmetic_v<value_type>, "setting::number needs a number field");
+    setting entry;
+    entry.name = std::move(name);
+    entry.type = std::is_integral_v<value_type> ? setting_type::integer : setting_type::real;
+    entry.range = range;
+    entry.unit = std::move(unit);
+    entry.help = std::move(help);
+    entry.get = [access](const Settings& s) {
+      if constexpr (std::is_integral_v<value_type>) return std::to_string(access(s));
+      else return format_real(access(s));
+    };
+    entry.set = [access](Settings& s, const std::string& text) {
+      if constexpr (std::is_integral_v<value_type>) access(s) = static_cast<value_type>(*parse_integer(text));
+      else access(s) = static_cast<value_type>(*parse_real(text));
+    };
+    return entry;
+  }
+
+  /// A number field that is a kernel struct's field: range, unit and help from its description.
+  template <typename Access>
+  static setting number(std::string name, Access access, const field_description& kernel_field) {
+    return number(std::move(name), access, kernel_field.range, kernel_field.unit, kernel_field.help);
+  }
+
+  /// The type of the field an accessor returns.
+  template <typename Access>
+  using field_type = std::decay_t<decltype(std::declval<Access&>()(std::declval<Settings&>()))>;
+
+  /// A field of one of `options` (an enum or a string), shown by their names.
+  template <typename Access>
+  static setting choice(std::string name, Access access, std::vector<std::pair<std::string, field_type<Access>>> options, std::string help) {
+    setting entry;
+    entry.name = std::move(name);
+    entry.type = setting_type::choice;
+    for (const auto& option : options) entry.choices.push_back(option.first);
+    entry.help = std::move(help);
+    entry.get = [access, options](const Settings& s) {
+      for (const auto& option : options)
+        if (option.second == access(s)) return option.first;
+      return std::string("?");
+    };
+    entry.set = [access, options](Settings& s, const std::string& text) {
+      for (const auto& option : options)
+        if (option.first == text) access(s) = option.second;
+    };
+    return entry;
+  }
+
+  /// Anything else: its own get and set.
+  static setting custom(std::string name, setting_type type, std::string unit, std::string help, std::function<std::string(const Settings&)> get,
+                        std::function<void(Settings&, const std::string&)> set) {
+    setting entry;
+    entry.name = std::move(name);
+    entry.type = type;
+    entry.unit = std::move(unit);
+    entry.help = std::move(help);
+    entry.get = std::move(get);
+    entry.set = std::move(set);
+    return entry;
+  }
+};
+
+/// "" when every setting in effect of `table` holds a value its description accepts (the
+/// struct may have been filled by code, not by set()), else "<name> <why>".
+template <typename Settings, typename Technique>
+std::string check_settings(const std::vector<setting<Settings, Technique>>& table, const Settings& settings) {
+  for (const setting<Settings, Technique>& entry : table)
+    if (entry.in_effect)
+      if (const std::string why = entry.check(entry.get(settings)); !why.empty()) return entry.name + " " + why;
+  return {};
+}
+
+/// Any family's settings, by name and text: what the command line, the viewer and the sweep hold
+/// and change without knowing the family's struct.
+class technique_settings {
+ public:
+  virtual ~technique_settings() = default;
+  virtual std::unique_ptr<technique_settings> clone() const = 0;
+  virtual std::string technique() const = 0;
+  /// Another technique of the same family (the settings are kept). Throws vplkit::error for a
+  /// technique of another family.
+  virtual void set_technique(const std::string& technique) = 0;
+  /// Every setting of the family, in the table's order.
+  virtual std::vector<const setting_info*> settings() const = 0;
+  /// The setting called `name`, or null.
+  virtual const setting_info* find(const std::string& name) const = 0;
+  /// Whether `technique` (default: the current one) reads the setting.
+  virtual bool reads(const std::string& name, const std::string& technique) const = 0;
+  bool reads(const std::string& name) const { return reads(name, technique()); }
+  /// The techniques of the family that read the setting, in the family's order.
+  virtual std::vector<std::string> readers(const std::string& name) const = 0;
+  virtual std::string get(const std::string& name) const = 0;
+  /// Checks `value` against the setting's type and range and sets it: "" on success, else why
+  /// not (and nothing changed). Cross-setting rules are validate()'s.
+  virtual std::string set(const std::string& name, const std::string& value) = 0;
+  /// "" when the settings are usable (every range and every rule of the family), else the first problem.
+  virtual std::string validate() const = 0;
+};
+
+/// The name and value of every setting in effect that the current technique reads.
+std::vector<std::pair<std::string, std::string>> settings_in_effect(const technique_settings& settings);
+
+/// The settings in effect as a JSON object, numbers as numbers: {"technique": ..., "radius": 0.75, ...}.
+std::string settings_json(const technique_settings& settings, int indent = 2);
+
+namespace detail {
+/// Throws vplkit::error: "unknown technique '<name>' for these settings (known: ...)".
+[[noreturn]] void throw_unknown_technique(const std::string& technique, const std::vector<std::string>& known);
+}  // namespace detail
+
+/// technique_settings over one family's struct and table.
+template <typename Settings, typename Technique>
+class described_settings final : public technique_settings {
+ public:
+  /// What the family supplies: its table, its techniques, its validation and where the struct
+  /// keeps the technique's name.
+  struct family {
+    const std::vector<setting<Settings, Technique>>* table;
+    const std::vector<Technique>* techniques;
+    std::function<std::string(const Settings&)> validate;
+    std::function<std::string(const Settings&)> technique_of;
+    std::function<void(Settings&, const std::string&)> set_technique;
+  };
+
+  described_settings(const family& description, Settings value) : family_(&description), value_(std::move(value)) {}
+
+  Settings& value() { return value_; }
+  const Settings& value() const { return value_; }
+
+  std::unique_ptr<technique_settings> clone() const override { return std::make_unique<described_settings>(*this); }
+  std::string technique() const override { return family_->technique_of(value_); }
+  void set_technique(const std::string& technique) override {
+    if (!find_technique(technique)) detail::throw_unknown_technique(technique, technique_names());
+    family_->set_technique(value_, technique);
+  }
+  std::vector<const setting_info*> settings() const override {
+    std::vector<const setting_info*> all;
+    for (const auto& entry : *family_->table) all.push_back(&entry);
+    return all;
+  }
+  const setting_info* find(const std::string& name) const override { return entry(name); }
+  bool reads(const std::string& name, const std::string& technique) const override {
+    const auto* found = entry(name);
+    const Technique* chosen = find_technique(technique);
+    return found && chosen && (!found->reads || found->reads(*chosen));
+  }
+  std::vector<std::string> readers(const std::string& name) const override {
+    std::vector<std::string> names;
+    for (const Technique& t : *family_->techniques)
+      if (reads(name, t.name)) names.emplace_back(t.name);
+    return names;
+  }
+  std::string get(const std::string& name) const override {
+    const auto* found = entry(name);
+    return found ? found->get(value_) : std::string();
+  }
+  std::string set(const std::string& name, const std::string& text) override {
+    const auto* found = entry(name);
+    if (!found) return "is not a setting of technique " + technique();
+    if (std::string why = found->check(text); !why.empty()) return why;
+    found->set(value_, text);
+    return {};
+  }
+  std::string validate() const override { return family_->validate(value_); }
+
+ private:
+  const setting<Settings, Technique>* entry(const std::string& name) const {
+    for (const auto& candidate : *family_->table)
+      if (candidate.name == name) return &candidate;
+    return nullptr;
+  }
+  const Technique* find_technique(const std::string& name) const {
+    for (const Technique& t : *family_->techniques)
+      if (name == t.name) return &t;
+    return nullptr;
+  }
+  std::vector<std::string> technique_names() const {
+    std::vector<std::string> names;
+    for (const Technique& t : *family_->techniques) names.emplace_back(t.name);
+    return names;
+  }
+  const family* family_;
+  Settings value_;
+};
+
+}  // namespace vplkit

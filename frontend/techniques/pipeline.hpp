@@ -1,0 +1,67 @@
+// The one interface of every technique family's pipeline (rsm_pipeline, lightwave_pipeline,
+// final_gather_pipeline), through which the command line, the viewer and the sweep draw any
+// technique (frontend/techniques/registry.hpp makes them). Cameras and lights are set the same
+// way for every family; a pipeline tracks what a move invalidated:
+// - draw(): every pass, whatever moved (the frame the papers time);
+// - draw_changed(): only the passes the moves since the last frame invalidated (the viewer's
+//   frames): nothing when nothing moved.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "frontend/core/error.hpp"
+#include "frontend/gl/pass_timer.hpp"
+#include "frontend/gl/render_target.hpp"
+#include "frontend/image/image.hpp"
+#include "frontend/scene/scene.hpp"
+
+namespace vplkit {
+
+class pipeline {
+ public:
+  virtual ~pipeline() = default;
+
+  /// Every pass.
+  virtual void draw() = 0;
+  /// The passes the moves since the last frame invalidated.
+  virtual void draw_changed() = 0;
+  /// Moves the camera. Throws vplkit::error (and keeps the camera) for one the pipeline refuses.
+  virtual void set_camera(const camera& view) = 0;
+  /// Moves the light. Throws vplkit::error (and keeps the light) for one the pipeline refuses:
+  /// an invalid light, or a kind the pipeline was not built for (Light Wave and final gathering
+  /// take spot lights; an RSM pipeline keeps its kind).
+  virtual void set_light(const scene_light& light) = 0;
+  virtual camera current_camera() const = 0;
+  virtual scene_light current_light() const = 0;
+  /// A dynamic object the technique gathers for (final gathering), moved by set_object_position.
+  virtual bool has_object() const { return false; }
+  virtual glm::vec3 object_position() const { return glm::vec3(0.0f); }
+  virtual void set_object_position(glm::vec3) { throw error("this technique has no object to move"); }
+
+  /// The pass times since the last call (the pass_timer's method).
+  virtual std::vector<pass_time> collect_pass_times() = 0;
+  /// The last frame's final radiance.
+  virtual const texture_2d& output() const = 0;
+  /// The last frame's indirect light as `vplkit render` writes it to -indirect.pfm.
+  virtual const texture_2d& indirect_output() const = 0;
+  /// Whether the technique computes indirect light at all (direct light only does not).
+  virtual bool has_indirect() const = 0;
+  /// The indirect shadow factor in red (Light Wave's accurate and integrated shadows), or null.
+  virtual const texture_2d* indirect_shadow_output() const { return nullptr; }
+  /// The unfiltered indirect light at the receivers it was gathered for (the RSM gather), if any.
+  virtual std::optional<image> raw_indirect() const { return std::nullopt; }
+  /// How many times the camera-dependent passes were drawn (draw_changed drew when it grows).
+  virtual int view_draws() const = 0;
+  /// How often each stage was drawn, e.g. "RSM 2, G-buffer to post filter 5".
+  virtual std::string draw_counts() const = 0;
+  /// One line: scene (triangles), technique, sizes and what the family adds (VPLs, cube map).
+  virtual std::string describe() const = 0;
+  /// The name of what it draws: the scene, or the object for final gathering.
+  virtual std::string scene_name() const = 0;
+};
+
+}  // namespace vplkit

@@ -1,0 +1,189 @@
+# `vplkit sweep` and `vplkit render --stats`: usage errors exit 2 and write nothing; a grid on OBJ,
+# glTF and built-in scenes writes its rows, the varied settings as columns, the quality against
+# the reference, the plots; a rerun resumes; every family sweeps; the specifications in bench/
+# plan without an error. Tiny frames: the fast tier.
+include("${CMAKE_CURRENT_LIST_DIR}/cli_common.cmake")
+
+# expect_usage_error(<name> <message regex> <folder that must not appear> <args...>): exit 2,
+# the message, and no folder (nothing written).
+function(expect_usage_error name pattern folder)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  set(problem "")
+  if(NOT code EQUAL 2)
+    set(problem "exit code ${code}, expected 2")
+  elseif(NOT "${out}${err}" MATCHES "${pattern}")
+    set(problem "output does not match '${pattern}'")
+  elseif(EXISTS "${folder}")
+    set(problem "wrote ${folder}")
+    file(REMOVE_RECURSE "${folder}")
+  endif()
+  if(problem)
+    message(SEND_ERROR "FAILED ${name}: ${problem}\n  command: ${ARGN}\n  stdout: ${out}\n  stderr: ${err}")
+    math(EXPR count "${failures} + 1")
+    set(failures ${count} PARENT_SCOPE)
+  else()
+    message(STATUS "ok ${name}: ${err}")
+  endif()
+endfunction()
+
+# The rows of a sweep.csv as a list of lines, the header first.
+function(read_rows csv variable)
+  file(STRINGS "${csv}" lines)
+  set(${variable} "${lines}" PARENT_SCOPE)
+endfunction()
+
+# The index of `column` in a CSV header line (no quoted commas in these headers).
+function(column_index header column variable)
+  string(REPLACE "," ";" names "${header}")
+  list(FIND names "${column}" index)
+  set(${variable} ${index} PARENT_SCOPE)
+endfunction()
+
+# A small room as OBJ: a floor, two walls, a table-like box.
+file(WRITE "${WORK}/room.obj" "v -2 0 -2\nv 2 0 -2\nv 2 0 2\nv -2 0 2\nv -2 2 -2\nv 2 2 -2\nv -2 2 2\n"
+                              "v -0.5 0.6 -0.5\nv 0.5 0.6 -0.5\nv 0.5 0.6 0.5\nv -0.5 0.6 0.5\n"
+                              "f 1 3 2\nf 1 4 3\nf 1 2 6\nf 1 6 5\nf 1 5 7\nf 1 7 4\nf 8 10 9\nf 8 11 10\n")
+set(tiny --size 24 --rsm-size 32 --repeat 2 --min-rounds 1)
+
+# --- usage errors: exit 2, nothing written --------------------------------------------------
+expect_usage_error("a setting the technique does not read names who reads it"
+                   "--vary slots: slots is read by rsm-alg2, rsm-alg3 and rsm-alg6 \\(the micro linear buffer\\), not by technique rsm-radial" "${WORK}/u1"
+                   "${VPLKIT}" sweep --technique rsm-radial --vary slots=4,8 --out "${WORK}/u1")
+expect_usage_error("no such setting lists what the technique reads" "--vary radiuss: no setting 'radiuss'; technique rsm-radial reads: size, .*radius, .*paths"
+                   "${WORK}/u2" "${VPLKIT}" sweep --technique rsm-radial --vary radiuss=0.1,0.2 --out "${WORK}/u2")
+expect_usage_error("a Light Wave setting on an RSM technique" "--vary shadow-maps: shadow-maps is read by lightwave-accurate" "${WORK}/u3"
+                   "${VPLKIT}" sweep --technique rsm-alg6 --vary shadow-maps=1,2 --out "${WORK}/u3")
+expect_usage_error("a value out of the setting's range" "--vary radius=3: radius must be a number in \\(0, 2\\]" "${WORK}/u4"
+                   "${VPLKIT}" sweep --technique rsm-radial --vary radius=0.5,3 --out "${WORK}/u4")
+expect_usage_error("--vary without values" "--vary radius: expected NAME=v1,v2" "${WORK}/u5" "${VPLKIT}" sweep --vary radius --out "${WORK}/u5")
+expect_usage_error("the brute force measures RSM techniques only" "rsm-brute-force: the brute-force RSM gather is the reference of the RSM techniques" "${WORK}/u6"
+                   "${VPLKIT}" sweep --technique lightwave-accurate --vary shadow-maps=1,2 --reference rsm-brute-force --out "${WORK}/u6")
+expect_usage_error("--seeds for a technique without a seed" "--seeds 3: technique direct reads no seed" "${WORK}/u7"
+                   "${VPLKIT}" sweep --technique direct --vary rsm-size=16,32 --seeds 3 --out "${WORK}/u7")
+expect_usage_error("a configuration the family refuses" "configuration cube-resolution=3: M = 3 does not divide the face size 32" "${WORK}/u8"
+                   "${VPLKIT}" sweep --technique finalgather-point --face-size 32 --vary cube-resolution=2,3 --out "${WORK}/u8")
+expect_usage_error("final gathering reads no --scene" "--scene is read by the techniques that draw a scene" "${WORK}/u9"
+                   "${VPLKIT}" sweep --technique finalgather-point --scene cornell-box --vary cube-resolution=2,4 --out "${WORK}/u9")
+expect_usage_error("--out is required" "--out is required" "${WORK}/u10" "${VPLKIT}" sweep --vary radius=0.1,0.2)
+expect_usage_error("a technique of another family on the technique axis" "--vary technique=lightwave-direct: not a technique of the rsm family" "${WORK}/u11"
+                   "${VPLKIT}" sweep --technique rsm-alg6 --vary technique=rsm-radial,lightwave-direct --out "${WORK}/u11")
+expect_usage_error("a setting given and not read by the technique" "--ray-angle: ray-angle is read by" "${WORK}/u12"
+                   "${VPLKIT}" sweep --technique rsm-alg6 --ray-angle 10 --vary radius=0.1,0.2 --out "${WORK}/u12")
+
+# --- a grid on an OBJ and a glTF scene against the brute force ------------------------------
+expect_success("export a built-in scene as glTF" "wrote" "${VPLKIT}" export-scene occluder "${WORK}/occluder.gltf")
+expect_success("sweep radius on OBJ and glTF scenes against the brute force, progress on a pipe"
+               "sweep: [0-9]+ % .*left.*wrote .*sweep\\.csv.*wrote .*sweep\\.md"
+               "${VPLKIT}" sweep --technique rsm-radial --scene "${WORK}/room.obj" --scene "${WORK}/occluder.gltf" ${tiny} --vary radius=0.125,0.5
+               --reference rsm-brute-force --seeds 2 --out "${WORK}/s1")
+read_rows("${WORK}/s1/sweep.csv" rows)
+list(LENGTH rows count)
+expect_true("4 rows: 2 radii x 2 scenes (and the header)" count EQUAL 5)
+list(GET rows 0 header)
+expect_true("the CSV names the varied setting and the measures" header MATCHES "^scene,technique,radius,frame_ms,.*,rel_rmse,rel_rmse_sd,.*rel_bias,.*pareto,key$")
+column_index("${header}" "radius" radius_column)
+column_index("${header}" "rel_bias" bias_column)
+column_index("${header}" "frame_ms" time_column)
+column_index("${header}" "pareto" pareto_column)
+# A larger radius reaches more of the RSM's light: the gathered light (and its bias) grows.
+foreach(scene room occluder)
+  set(biases "")
+  foreach(row ${rows})
+    if(row MATCHES "^${scene},")
+      string(REPLACE "," ";" cells "${row}")
+      list(GET cells ${bias_column} bias)
+      list(GET cells ${time_column} time)
+      list(GET cells ${pareto_column} pareto)
+      expect_true("${scene}: rel_bias and frame_ms are numbers, pareto is 0 or 1" bias MATCHES "^-?[0-9]" AND time MATCHES "^[0-9]" AND pareto MATCHES "^[01]$")
+      list(APPEND biases ${bias})
+    endif()
+  endforeach()
+  list(GET biases 0 small_radius)
+  list(GET biases 1 large_radius)
+  expect_true("${scene}: rel_bias rises with the radius (${small_radius} < ${large_radius})" small_radius LESS large_radius)
+endforeach()
+expect_true("sweep.md and the plots" EXISTS "${WORK}/s1/sweep.md")
+file(READ "${WORK}/s1/sweep.md" md)
+expect_true("sweep.md names the timing method and the reference" md MATCHES "wall clock|timer queries" AND md MATCHES "brute-force gather")
+find_program(GNUPLOT gnuplot)
+if(GNUPLOT)
+  expect_true("a plot per varied setting and the Pareto front" EXISTS "${WORK}/s1/radius.png" AND EXISTS "${WORK}/s1/pareto.png")
+endif()
+
+# Resuming: the rows there are kept, only the new configurations run.
+file(SHA256 "${WORK}/s1/sweep.csv" before)
+expect_success("a rerun resumes and adds nothing" "resuming .*4 row\\(s\\)"
+               "${VPLKIT}" sweep --technique rsm-radial --scene "${WORK}/room.obj" --scene "${WORK}/occluder.gltf" ${tiny} --vary radius=0.125,0.5
+               --reference rsm-brute-force --seeds 2 --out "${WORK}/s1")
+read_rows("${WORK}/s1/sweep.csv" again)
+expect_true("the resumed CSV is the same rows" again STREQUAL rows)
+expect_success("a rerun with one more radius runs only it" "resuming"
+               "${VPLKIT}" sweep --technique rsm-radial --scene "${WORK}/room.obj" --scene "${WORK}/occluder.gltf" ${tiny} --vary radius=0.125,0.5,0.75
+               --reference rsm-brute-force --seeds 2 --out "${WORK}/s1")
+read_rows("${WORK}/s1/sweep.csv" grown)
+list(LENGTH grown count)
+expect_true("6 rows after resuming with a third radius" count EQUAL 7)
+list(GET rows 1 first_row)
+list(FIND grown "${first_row}" kept)
+expect_true("the earlier rows are kept as they were" kept GREATER 0)
+expect_usage_error("resuming needs the same --vary" "holds a sweep over other settings \\(radius\\)" "${WORK}/s1/paths.png"
+                   "${VPLKIT}" sweep --technique rsm-radial ${tiny} --vary paths=5,10 --out "${WORK}/s1")
+
+# --- every family: Light Wave's shadow maps against the base configuration, final gathering's
+# techniques and M against Monte Carlo, a zipped axis and the technique axis ---------------------
+expect_success("a Light Wave sweep of shadow-maps" "wrote .*sweep\\.csv"
+               "${VPLKIT}" sweep --technique lightwave-accurate --scene "${WORK}/room.obj" --size 32x18 --shadow-map-scale 1 --vary shadow-maps=0,5
+               --reference base --repeat 2 --min-rounds 1 --out "${WORK}/lw")
+read_rows("${WORK}/lw/sweep.csv" rows)
+list(LENGTH rows count)
+list(GET rows 0 header)
+expect_true("Light Wave: 2 rows, the shadow-maps column, Alg. 1 similarity" count EQUAL 3 AND header MATCHES "shadow-maps" AND header MATCHES "similarity")
+expect_success("a final-gathering sweep of techniques x M against Monte Carlo" "wrote .*sweep\\.csv"
+               "${VPLKIT}" sweep --technique finalgather-point --size 24 --face-size 16 --vary technique=finalgather-point,finalgather-polygon
+               --vary cube-resolution=4,2 --reference monte-carlo --samples 8 --repeat 2 --min-rounds 1 --out "${WORK}/fg")
+read_rows("${WORK}/fg/sweep.csv" rows)
+list(LENGTH rows count)
+list(GET rows 1 row)
+expect_true("final gathering: 4 rows on the sphere with rel_rmse" count EQUAL 5 AND row MATCHES "^sphere,finalgather-(point|polygon),[42]," AND rows MATCHES "rel_rmse")
+expect_success("a zipped axis and the technique axis on a built-in scene" "wrote .*sweep\\.csv"
+               "${VPLKIT}" sweep --technique rsm-radial --scene cornell-box ${tiny} --vary technique=rsm-radial,rsm-alg6 --vary paths:samples-per-path=5:4,10:8
+               --vary slots=4,8 --out "${WORK}/zip")
+read_rows("${WORK}/zip/sweep.csv" rows)
+list(LENGTH rows count)
+# rsm-radial reads no slots: its 2 configurations are not repeated per slot count; rsm-alg6 has 2 x 2.
+expect_true("6 configurations: the radial ones once, Alg. 6 per slot count" count EQUAL 7)
+expect_true("the zipped settings are two columns" rows MATCHES "^scene,technique,paths,samples-per-path,slots,")
+
+# --- specifications: bench/*.sweep plan; a section with an error stops every section -----------
+file(GLOB specs "${CMAKE_CURRENT_LIST_DIR}/../../bench/*.sweep")
+foreach(spec ${specs})
+  get_filename_component(spec_name "${spec}" NAME)
+  expect_success("${spec_name} plans" "configuration" "${VPLKIT}" sweep --spec "${spec}" --plan --out "${WORK}/plan")
+endforeach()
+expect_true("the plan wrote nothing" NOT EXISTS "${WORK}/plan")
+file(WRITE "${WORK}/tiny.sweep" "# two sections\n--technique rsm-radial --size 16 --rsm-size 16\n[radius]\n--vary radius=0.25,0.5\n[paths]\n--vary \"paths=4,8\"\n")
+expect_success("a specification runs each section into its folder" "sweep \\[radius\\].*sweep \\[paths\\]"
+               "${VPLKIT}" sweep --spec "${WORK}/tiny.sweep" --repeat 1 --min-rounds 1 --out "${WORK}/spec")
+expect_true("a folder per section" EXISTS "${WORK}/spec/radius/sweep.csv" AND EXISTS "${WORK}/spec/paths/sweep.csv")
+file(WRITE "${WORK}/broken.sweep" "--technique rsm-radial\n[good]\n--vary radius=0.25,0.5\n[bad]\n--vary slots=4,8\n")
+expect_usage_error("a specification with a bad section writes nothing" "\\[bad\\] --vary slots: slots is read by" "${WORK}/broken"
+                   "${VPLKIT}" sweep --spec "${WORK}/broken.sweep" --out "${WORK}/broken")
+
+# --- render --stats ----------------------------------------------------------------------------
+expect_success("render --stats with a reference" "quality against rsm-brute-force.*rel_rmse.*wrote .*stats\\.json"
+               "${VPLKIT}" render --technique rsm-alg6 --scene occluder --size 24 --rsm-size 32 --reference rsm-brute-force --stats "${WORK}/stats.json"
+               --out "${WORK}/stats.png")
+file(READ "${WORK}/stats.json" json)
+string(JSON radius GET "${json}" settings radius)
+string(JSON slots GET "${json}" settings slots)
+string(JSON method GET "${json}" timing method)
+string(JSON first_pass GET "${json}" timing every_pass passes 0 pass)
+string(JSON rel_rmse GET "${json}" quality rel_rmse)
+expect_true("the JSON holds the settings in effect, the passes with their method and the quality"
+            radius EQUAL 0.75 AND slots EQUAL 8 AND method MATCHES "wall clock|timer queries" AND first_pass STREQUAL "RSM generation" AND rel_rmse GREATER 0)
+expect_failure("--stats must be .json" "--stats must name a \\.json file" "${WORK}/stats2*"
+               "${VPLKIT}" render --size 16 --stats "${WORK}/stats2.txt" --out "${WORK}/stats2.png")
+expect_failure("--samples without --reference monte-carlo" "--samples is read by --reference monte-carlo, not by --reference none" "${WORK}/stats3*"
+               "${VPLKIT}" render --size 16 --samples 4 --out "${WORK}/stats3.png")
+
+cli_report()

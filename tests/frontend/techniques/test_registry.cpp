@@ -1,0 +1,205 @@
+// frontend/techniques/registry.hpp and the setting tables (frontend/core/setting.hpp): every
+// family's settings are usable at their defaults and refuse what their ranges exclude with the
+// setting's name; a value read back is the value set; one name means one range in every family;
+// who reads a setting is what its predicate says; every GLSL uniform a setting claims to feed is
+// declared by the shader it names; and every technique's pipeline takes cameras and lights the
+// same way and redraws only what a move invalidated.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <limits>
+#include <map>
+#include <set>
+
+#include "frontend/core/error.hpp"
+#include <vplkit/gl/uniform_declarations.hpp>
+#include "frontend/techniques/registry.hpp"
+#include <vplkit/parity/parity.hpp>
+
+using namespace vplkit;
+
+namespace {
+
+// A value just outside a finite end of a number's range (nullopt when the end is open to infinity).
+std::optional<std::string> beyond(const setting_info& info, bool low) {
+  const double end = low ? info.range.low : info.range.high;
+  if (!std::isfinite(end)) return std::nullopt;
+  if (info.type == setting_type::integer) return std::to_string(static_cast<long long>(low ? (info.range.low_open ? end : end - 1) : (info.range.high_open ? end : end + 1)));
+  const bool open = low ? info.range.low_open : info.range.high_open;
+  return format_real(open ? end : (low ? end - std::max(1e-3, std::fabs(end) * 1e-3) : end + std::max(1e-3, std::fabs(end) * 1e-3)));
+}
+
+}  // namespace
+
+TEST_CASE("every family's settings are usable at their defaults, for every technique") {
+  for (const technique_family& family : technique_families()) {
+    CHECK_FALSE(family.techniques.empty());
+    for (const technique_entry& technique : family.techniques) {
+      CAPTURE(technique.name);
+      const std::unique_ptr<technique_settings> settings = family.make_settings(technique.name);
+      CHECK(settings->technique() == technique.name);
+      CHECK(settings->validate() == "");
+      std::set<std::string> names;
+      for (const setting_info* info : settings->settings()) {
+        CAPTURE(info->name);
+        CHECK(names.insert(info->name).second);  // one description per setting
+        CHECK_FALSE(info->help.empty());
+        CHECK(info->check(settings->get(info->name)) == "");
+      }
+    }
+  }
+}
+
+TEST_CASE("a setting refuses values out of its range with its name, and reads back what was set") {
+  for (const technique_family& family : technique_families()) {
+    const std::unique_ptr<technique_settings> settings = family.make_settings(family.techniques.back().name);
+    for (const setting_info* info : settings->settings()) {
+      CAPTURE(family.name);
+      CAPTURE(info->name);
+      // Round trip: what get() writes, set() reads, unchanged.
+      const std::string value = settings->get(info->name);
+      CHECK(settings->set(info->name, value) == "");
+      CHECK(settings->get(info->name) == value);
+      if (info->type != setting_type::integer && info->type != setting_type::real) continue;
+      for (const bool low : {true, false}) {
+        const std::optional<std::string> bad = beyond(*info, low);
+        if (!bad) continue;
+        CAPTURE(*bad);
+        const std::string why = settings->set(info->name, *bad);
+        CHECK_FALSE(why.empty());
+        CHECK(settings->get(info->name) == value);  // nothing changed
+        CHECK((why.find(describe_range(info->range)) != std::string::npos || why.find(info->values()) != std::string::npos));
+      }
+      for (const char* nonsense : {"nan", "inf", "x", ""}) CHECK_FALSE(settings->set(info->name, nonsense).empty());
+      // A viewer slider offers the range's ends: a closed end is a value, an open one is refused.
+      if (info->allowed.empty() && std::isfinite(info->range.low) && std::isfinite(info->range.high)) {
+        const std::string low = info->type == setting_type::integer ? std::to_string(static_cast<long long>(info->range.low)) : format_real(info->range.low);
+        CHECK(info->check(low).empty() == !info->range.low_open);
+      }
+      for (int allowed : info->allowed) CHECK(info->check(std::to_string(allowed)).empty());
+    }
+  }
+}
+
+TEST_CASE("a setting several families have takes the same values in each: one option describes it") {
+  std::map<std::string, const setting_info*> first;
+  std::vector<std::unique_ptr<technique_settings>> kept;
+  for (const technique_family& family : technique_families()) {
+    kept.push_back(family.make_settings(family.techniques.front().name));
+    for (const setting_info* info : kept.back()->settings()) {
+      const auto [found, inserted] = first.emplace(info->name, info);
+      if (inserted) continue;
+      CAPTURE(info->name);
+      CHECK(found->second->type == info->type);
+      CHECK(found->second->values() == info->values());
+    }
+  }
+  CHECK(first.count("size") == 1);
+  CHECK(first.count("min-distance") == 1);
+}
+
+TEST_CASE("who reads a setting is its predicate over the family's techniques") {
+  const technique_family& rsm = family_of("rsm-alg6");
+  const std::unique_ptr<technique_settings> settings = rsm.make_settings("rsm-alg6");
+  CHECK(settings->readers("slots") == std::vector<std::string>{"rsm-alg2", "rsm-alg3", "rsm-alg6"});
+  CHECK(settings->readers("disk-samples") == std::vector<std::string>{"rsm-original"});
+  CHECK(settings->readers("paths") == std::vector<std::string>{"rsm-radial", "rsm-alg2", "rsm-alg3", "rsm-alg6"});
+  CHECK(settings->readers("rsm-size").size() == rsm.techniques.size());
+  CHECK_FALSE(settings->reads("slots", "rsm-radial"));
+  const std::unique_ptr<technique_settings> light_wave = family_of("lightwave-faked").make_settings("lightwave-faked");
+  CHECK(light_wave->readers("faked-multiplier") == std::vector<std::string>{"lightwave-faked"});
+  CHECK(light_wave->readers("integrated-steps") == std::vector<std::string>{"lightwave-integrated"});
+  CHECK(light_wave->find("radius") == nullptr);
+  CHECK_THROWS_AS(light_wave->set_technique("rsm-alg6"), vplkit::error);
+  CHECK(family_of("envmap").name == "final-gather");
+  CHECK_THROWS_WITH_AS(family_of("rsm-alg7"), doctest::Contains("unknown technique 'rsm-alg7'"), vplkit::error);
+  CHECK(technique_names().size() == 14u);
+}
+
+TEST_CASE("the settings in effect as JSON: the settings the technique reads, numbers as numbers") {
+  const std::unique_ptr<technique_settings> settings = family_of("rsm-radial").make_settings("rsm-radial");
+  REQUIRE(settings->set("radius", "0.5") == "");
+  const std::string json = settings_json(*settings);
+  CHECK(json.find("\"technique\": \"rsm-radial\"") != std::string::npos);
+  CHECK(json.find("\"radius\": 0.5") != std::string::npos);
+  CHECK(json.find("\"post-filter\": \"separable\"") != std::string::npos);
+  CHECK(json.find("\"slots\"") == std::string::npos);   // rsm-radial reads no slots
+  CHECK(json.find("\"preset\"") == std::string::npos);  // radius, paths, samples and slots are in effect instead
+}
+
+TEST_CASE("every GLSL uniform a setting feeds is declared by the shader it names") {
+  const shader_library& shaders = parity::test_shaders();
+  std::map<std::string, std::pair<uniform_declarations, std::string>> files;
+  int checked = 0;
+  for (const technique_family& family : technique_families()) {
+    const std::unique_ptr<technique_settings> settings = family.make_settings(family.techniques.front().name);
+    for (const setting_info* info : settings->settings()) {
+      std::string rest = info->glsl;
+      while (!rest.empty()) {
+        const std::size_t end = rest.find("; ");
+        const std::string item = rest.substr(0, end);
+        rest = end == std::string::npos ? "" : rest.substr(end + 2);
+        const std::size_t colon = item.find(": ");
+        CAPTURE(info->name);
+        CAPTURE(item);
+        REQUIRE(colon != std::string::npos);
+        const std::string file = item.substr(0, colon), uniform = item.substr(colon + 2);
+        auto found = files.find(file);
+        if (found == files.end()) {
+          const std::string text = shaders.expand_file(file).text;
+          uniform_declarations declarations;
+          declarations.scan(text);
+          found = files.emplace(file, std::make_pair(declarations, text)).first;
+        }
+        if (uniform.rfind("VPLKIT_", 0) == 0) CHECK(found->second.second.find(uniform) != std::string::npos);
+        else CHECK(found->second.first.declares(uniform));
+        ++checked;
+      }
+    }
+  }
+  CHECK(checked > 30);
+}
+
+TEST_CASE("every technique's pipeline takes cameras and lights the same way and redraws only what a move invalidated") {
+  const shader_library& shaders = parity::test_shaders();
+  for (const technique_family& family : technique_families()) {
+    const scene source = family.reads_scene() ? built_in_scene(family.default_scene) : scene{};
+    for (const technique_entry& technique : family.techniques) {
+      CAPTURE(technique.name);
+      std::unique_ptr<technique_settings> settings = family.make_settings(technique.name);
+      REQUIRE(settings->set("size", "24x16") == "");
+      for (const auto& [name, value] : std::map<std::string, std::string>{{"rsm-size", "32"}, {"shadow-map-scale", "1"}, {"face-size", "16"}})
+        if (settings->find(name)) REQUIRE(settings->set(name, value) == "");
+      const std::unique_ptr<pipeline> drawn = family.make_pipeline(shaders, family.reads_scene() ? &source : nullptr, *settings);
+      drawn->draw();
+      const int after_draw = drawn->view_draws();
+      CHECK_FALSE(drawn->collect_pass_times().empty());
+      drawn->draw_changed();  // nothing moved
+      CHECK(drawn->view_draws() == after_draw);
+      CHECK(drawn->collect_pass_times().empty());
+      camera moved = drawn->current_camera();
+      moved.position.x += 0.1f;
+      drawn->set_camera(moved);
+      drawn->draw_changed();
+      CHECK(drawn->view_draws() == after_draw + 1);
+      CHECK(drawn->current_camera().position.x == moved.position.x);
+      scene_light light = drawn->current_light();
+      drawn->set_light(light);
+      drawn->draw_changed();
+      CHECK(drawn->view_draws() == after_draw + 2);
+      drawn->collect_pass_times();
+      // A refused move keeps what was there.
+      camera broken = moved;
+      broken.target = broken.position;
+      CHECK_THROWS_AS(drawn->set_camera(broken), vplkit::error);
+      CHECK(drawn->current_camera().target == moved.target);
+      if (family.name != "rsm") {
+        scene_light sun;
+        sun.kind = light_kind::directional;
+        CHECK_THROWS_WITH_AS(drawn->set_light(sun), doctest::Contains("spot light"), vplkit::error);
+      }
+      CHECK(drawn->has_indirect() == (technique.name != "direct" && technique.name != "lightwave-direct"));
+      CHECK(drawn->describe().find(technique.name) != std::string::npos);
+    }
+  }
+}
