@@ -20,7 +20,7 @@ if ! [[ "$seconds" =~ ^[0-9]+$ ]] || [ "$seconds" -lt 1 ] || [ "$seconds" -gt 86
   exit 2
 fi
 shift || true
-all_targets=(obj pfm png compare cli_options gltf)
+all_targets=(obj pfm png texture compare cli_options gltf)
 targets=("$@")
 [ ${#targets[@]} -eq 0 ] && targets=("${all_targets[@]}")
 for target in "${targets[@]}"; do

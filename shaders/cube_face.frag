@@ -3,6 +3,7 @@
 // point o: [radiance | distance from o] of the environment (the object is left out). The
 // environment's radiance is its direct light: albedo / pi * E_spot.
 #include "lib/direct_light.glsl"
+#include "surface_material.glsl"
 
 uniform spot_light light;
 uniform irradiance_settings irradiance;
@@ -14,6 +15,6 @@ in vec3 surface_albedo;
 layout(location = 0) out vec4 radiance_distance;
 
 void main() {
-  vec3 radiance = surface_albedo * 0.318309886183790671538 * spot_light_irradiance(world_position, normalize(world_normal), light, irradiance);
+  vec3 radiance = material_albedo(surface_albedo) * 0.318309886183790671538 * spot_light_irradiance(world_position, normalize(world_normal), light, irradiance);
   radiance_distance = vec4(radiance, length(world_position - reference_point));
 }

@@ -1,6 +1,8 @@
 #version 330 core
 // Final gathering, G-buffer: [world position | 1 environment, 2 object], [normal | -],
 // [albedo | -]; 0 in .w of the first target means no surface.
+#include "surface_material.glsl"
+
 uniform float surface_kind;
 in vec3 world_position;
 in vec3 world_normal;
@@ -11,5 +13,5 @@ layout(location = 2) out vec4 albedo_out;
 void main() {
   position_kind = vec4(world_position, surface_kind);
   normal_out = vec4(normalize(world_normal), 0.0);
-  albedo_out = vec4(surface_albedo, 0.0);
+  albedo_out = vec4(material_albedo(surface_albedo), 0.0);
 }

@@ -17,10 +17,13 @@
 // Shadow maps: layer 0 of the depth array is the spot light's, layers 1 .. maps the VPLs'.
 // Output 1 is the indirect shadow factor (red), output 2 the indirect radiance added to the
 // direct light (after the factor), for tests, reports and the viewer.
-// VPLKIT_LIGHTWAVE_INDIRECT_BUFFER (the flux energy with indirect shadows): the indirect light
-// comes from the screen buffer lightwave_indirect.frag filled at this pixel, not from the vertices.
+// VPLKIT_LIGHTWAVE_INDIRECT_BUFFER (the flux energy): the indirect light comes from the screen
+// buffer lightwave_indirect.frag filled at this pixel from the receivers, not from the vertices.
 #include "lib/direct_light.glsl"
 #include "lib/lightwave.glsl"
+#define VPLKIT_SHADOW_BIAS_ONLY
+#include "lib/shadow.glsl"
+#include "surface_material.glsl"
 
 // VPLKIT_MAX_SHADOW_MAPS comes from lightwave_max_shadow_maps (lightwave_pipeline.hpp).
 #ifndef VPLKIT_MAX_SHADOW_MAPS
@@ -38,6 +41,8 @@ uniform vec4 group_normal_power[VPLKIT_MAX_SHADOW_MAPS];
 uniform int indirect_maps;
 uniform int integrated_steps;
 uniform float faked_multiplier;
+uniform int shadow_map_width;
+uniform shadow_density_settings shadow_bias;  // its normal offset and slope-scaled bias (lib/shadow.glsl)
 
 in vec3 world_position;
 in vec3 world_normal;
@@ -50,10 +55,24 @@ layout(location = 0) out vec4 colour;
 layout(location = 1) out vec4 indirect_shadow;
 layout(location = 2) out vec4 indirect_out;
 
-// (x, y, depth) in [0, 1] and whether the point is inside map `layer`'s frustum (lib/lightwave.glsl).
-vec4 map_coordinate(int layer) { return lightwave_map_coordinate(shadow_matrix[layer] * vec4(world_position, 1.0)); }
+// (x, y, depth) in [0, 1] and whether the point is inside map `layer`'s frustum (lib/lightwave.glsl),
+// looked up from the receiver moved along its normal and towards the map's origin (the light,
+// or the VPL of map i > 0) by lib/shadow.glsl's normal offset and slope-scaled bias, in the
+// receiver's texel footprint in that map. The map's view is rigid, so the projection's x scale
+// is the length of the matrix's first row.
+vec4 map_coordinate(int layer) {
+  mat4 m = shadow_matrix[layer];
+  vec3 origin = layer == 0 ? light.position : caster_position[max(layer - 1, 0)].xyz;
+  vec3 n = normalize(world_normal);
+  vec3 to_origin = normalize(origin - world_position);
+  vec4 clip = m * vec4(world_position, 1.0);
+  float footprint = 2.0 * abs(clip.w) / (length(vec3(m[0][0], m[1][0], m[2][0])) * float(shadow_map_width));
+  float slope_bias = shadow_slope_bias(dot(n, to_origin), footprint, shadow_bias);
+  vec3 lookup = shadow_normal_offset(world_position, n, to_origin, footprint, shadow_bias) + to_origin * slope_bias;
+  return lightwave_map_coordinate(m * vec4(lookup, 1.0));
+}
 
-// 1 = lit; the depth bias is in the raster state.
+// 1 = lit; a further depth bias is in the raster state.
 float shadow_lookup(vec3 coordinate, int layer) { return texture(shadow_maps, vec4(coordinate.xy, float(layer), coordinate.z)); }
 
 // The light of caster i's group, as one light, at (x, n), and whether caster i's own VPL lights it.
@@ -75,11 +94,16 @@ bool caster_lights(int i, vec3 x, vec3 n) {
 #endif
 
 void main() {
-  vec3 n = normalize(world_normal);
+  // The base-colour texture at this fragment multiplies the vertex's albedo in the direct light
+  // and in the vertex's indirect light (Eq. 4.5 is linear in the receiver's albedo).
+  vec3 texture_colour = material_albedo(vec3(1.0));
 #if VPLKIT_LIGHTWAVE_INDIRECT_BUFFER
-  vec3 vertex_indirect = texelFetch(indirect_buffer, ivec2(gl_FragCoord.xy), 0).rgb;
+  vec3 textured_indirect = texelFetch(indirect_buffer, ivec2(gl_FragCoord.xy), 0).rgb * texture_colour;
+#else
+  vec3 textured_indirect = vertex_indirect * texture_colour;
 #endif
-  vec3 direct = surface_albedo * 0.318309886183790671538 * spot_light_irradiance(world_position, n, light, irradiance);
+  vec3 n = normalize(world_normal);
+  vec3 direct = surface_albedo * texture_colour * 0.318309886183790671538 * spot_light_irradiance(world_position, n, light, irradiance);
   // Outside the light's frustum there is no direct light to shadow.
   vec4 light_coordinate = map_coordinate(0);
   float shadow = light_coordinate.w > 0.5 ? shadow_lookup(light_coordinate.xyz, 0) : 1.0;
@@ -91,7 +115,7 @@ void main() {
   colour = vec4(lightwave_faked_indirect(direct, shadow, faked_multiplier), 1.0);
   indirect = colour.rgb - direct * shadow;
 #elif VPLKIT_LIGHTWAVE_MODE == 2
-  indirect = vertex_indirect;
+  indirect = textured_indirect;
   colour = vec4(direct * shadow + indirect, 1.0);
 #elif VPLKIT_LIGHTWAVE_MODE == 3
 #if VPLKIT_LIGHTWAVE_SHADOW_VARIANT == 0
@@ -118,7 +142,7 @@ void main() {
   }
   factor = indirect_maps > 0 ? lit / float(indirect_maps) : 1.0;
 #endif
-  indirect = vertex_indirect * factor;
+  indirect = textured_indirect * factor;
   colour = vec4(direct * shadow + indirect, 1.0);
 #else
   // An endpoint behind or outside its map does not vote; the in-between lookups run only
@@ -140,7 +164,7 @@ void main() {
     }
   }
   factor = lookups > 0 ? lit / float(lookups) : 1.0;
-  indirect = vertex_indirect * factor;
+  indirect = textured_indirect * factor;
   colour = vec4(direct * shadow + indirect, 1.0);
 #endif
   indirect_shadow = vec4(factor, 0.0, 0.0, 1.0);

@@ -17,6 +17,7 @@
 layout(location = 0) in vec3 position;
 layout(location = 1) in vec3 normal;
 layout(location = 2) in vec3 albedo;
+layout(location = 5) in vec2 texcoord;
 #if VPLKIT_LIGHTWAVE_ENERGY == 1 && !defined(VPLKIT_LIGHTWAVE_CAPTURE)
 layout(location = 3) in vec3 captured_indirect;
 #elif VPLKIT_LIGHTWAVE_ENERGY == 1
@@ -34,6 +35,7 @@ out vec3 world_position;
 out vec3 world_normal;
 out vec3 surface_albedo;
 out vec3 vertex_indirect;
+out vec2 surface_texcoord;
 
 #if VPLKIT_LIGHTWAVE_ENERGY == 1
 lightwave_flux_vpl lightwave_fetch_flux_vpl(int index) {
@@ -62,5 +64,6 @@ void main() {
   world_position = position;
   world_normal = n;
   surface_albedo = albedo;
+  surface_texcoord = texcoord;
   gl_Position = view_projection * vec4(position, 1.0);
 }

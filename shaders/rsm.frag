@@ -6,6 +6,7 @@
 #include "lib/direct_light.glsl"
 #include "lib/rsm_packing.glsl"
 #include "lib/transform.glsl"
+#include "surface_material.glsl"
 
 uniform mat4 light_view;
 uniform ivec2 rsm_size;
@@ -23,12 +24,13 @@ in vec3 surface_albedo;
 layout(location = 0) out uvec4 packed_texel;
 
 void main() {
+  vec3 albedo = material_albedo(surface_albedo);
   vec3 n = normalize(world_normal);
 #if VPLKIT_LIGHT_DIRECTIONAL
-  vec3 flux = directional_light_texel_flux(surface_albedo, n, directional, texel_area);
+  vec3 flux = directional_light_texel_flux(albedo, n, directional, texel_area);
 #else
   vec2 ndc = gl_FragCoord.xy / vec2(rsm_size) * 2.0 - 1.0;
-  vec3 flux = spot_light_texel_flux(surface_albedo, world_position, n, spot, ndc, tan_half_fov, rsm_size);
+  vec3 flux = spot_light_texel_flux(albedo, world_position, n, spot, ndc, tan_half_fov, rsm_size);
 #endif
   packed_texel = pack_rsm_texel(transform_point(light_view, world_position).z, transform_direction(light_view, n), flux);
 }

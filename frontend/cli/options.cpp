@@ -1,8 +1,10 @@
 #include "frontend/cli/options.hpp"
 
 #include <cmath>
+#include <iostream>
 #include <limits>
 #include <optional>
+#include <set>
 #include <sstream>
 
 #include <vplkit/irradiance.hpp>
@@ -105,7 +107,55 @@ void add_pose_options(CLI::App& command, common_options& options) {
   pose_option("--light", options.light_pose,
               "start from this light: a spot light's position and the point it aims at; a directional light shines from the first point "
               "towards the second");
+  command
+      .add_option_function<float>(
+          "--light-intensity", [&options](const float& value) { options.light_intensity = value; },
+          "the light's radiant intensity, W/sr (a spot light), or irradiance, W/m^2 (a directional light), instead of the scene's; its colour "
+          "is kept (the brightest channel becomes this); every output is linear in it")
+      ->check(number_in(0.0, 1.0e12, false, "W/sr or W/m^2"))
+      ->type_name("W");
 }
+
+CLI::Option* add_exposure_option(CLI::App& command, common_options& options) {
+  return command
+      .add_option_function<std::string>(
+          "--exposure",
+          [&options](const std::string& text) {
+            if (text == "auto") {
+              options.auto_exposure = true;
+              return;
+            }
+            options.auto_exposure = false;
+            options.exposure_ev = static_cast<float>(std::stod(text));
+          },
+          "the final image's PNG scaled by 2^EV before the sRGB curve, or auto: the EV that puts the 99th percentile of its luminance at 0.8 "
+          "(printed); the PFMs stay linear [0]")
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            if (text == "auto") return std::string();
+            double value = 0.0;
+            return CLI::detail::lexical_cast(text, value) && value >= -32.0 && value <= 32.0 ? std::string()
+                                                                                              : "must be auto or a number in [-32, 32] (EV), got " + shown(text);
+          },
+          "EV|auto"))
+      ->type_name("EV|auto");
+}
+
+float exposure_scale(const common_options& options, const image& linear, std::ostream& out) {
+  if (!options.auto_exposure) return std::exp2(options.exposure_ev);
+  const float scale = percentile_exposure(linear);
+  out << "exposure: auto, " << format_number(std::log2(scale)) << " EV\n";
+  return scale;
+}
+
+namespace {
+
+// --light-intensity: the colour kept, its brightest channel set to the intensity.
+void apply_light_intensity(const common_options& options, scene_light& light) {
+  if (options.light_intensity) set_light_intensity(light, *options.light_intensity);
+}
+
+}  // namespace
 
 void apply_poses(const common_options& options, camera& view, scene_light& light) {
   try {
@@ -114,6 +164,7 @@ void apply_poses(const common_options& options, camera& view, scene_light& light
   } catch (const vplkit::error& failure) {
     throw usage_error(failure.what());
   }
+  apply_light_intensity(options, light);
 }
 
 void apply_poses(const common_options& options, pipeline& target) {
@@ -123,9 +174,10 @@ void apply_poses(const common_options& options, pipeline& target) {
       apply_pose(*options.camera_pose, view, "--camera");
       target.set_camera(view);
     }
-    if (options.light_pose) {
+    if (options.light_pose || options.light_intensity) {
       scene_light light = target.current_light();
-      apply_pose(*options.light_pose, light, "--light");
+      if (options.light_pose) apply_pose(*options.light_pose, light, "--light");
+      apply_light_intensity(options, light);
       target.set_light(light);
     }
   } catch (const vplkit::error& failure) {
@@ -140,6 +192,13 @@ scene load_scene(const common_options& options, const std::string& name) {
                                                                : built_in_scene(name);
   apply_poses(options, loaded.view, loaded.light);
   check_scene(loaded);
+  // std::cout, not a session's stream: loading happens after the dry run stops, where a command
+  // writes to standard output.
+  // A scene loaded again (render's frame without visibility, the sweep's configurations) prints
+  // its notes once.
+  static std::set<std::string> printed;
+  for (const std::string& note : loaded.notes)
+    if (printed.insert(note).second) std::cout << "note: " << note << "\n";
   return loaded;
 }
 

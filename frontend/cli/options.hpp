@@ -80,6 +80,13 @@ struct common_options {
   int device = -1;               ///< EGL device index, -1: automatic
   std::optional<pose> camera_pose;  ///< --camera: instead of the scene's camera
   std::optional<pose> light_pose;   ///< --light: instead of the scene's light
+  /// --light-intensity: the light's radiant intensity (W/sr, a spot) or irradiance (W/m^2, a
+  /// sun) instead of the scene's, its colour kept (the brightest channel becomes this).
+  std::optional<float> light_intensity;
+  /// --exposure: the final PNG (and the viewer's image) is scaled by 2^EV; auto_exposure picks EV
+  /// from the image (exposure_scale). PFMs stay linear.
+  float exposure_ev = 0.0f;
+  bool auto_exposure = false;
   headless_request headless() const;
   std::filesystem::path shaders() const;
 };
@@ -104,17 +111,27 @@ struct headless_session {
 CLI::Option* add_scene_option(CLI::App& command, common_options& options, const std::string& default_scene);
 
 /// --camera and --light (poses "x,y,z,tx,ty,tz", frontend/scene/pose.hpp), which move the
-/// scene's camera and light before the first frame (every technique and method reads them).
+/// scene's camera and light before the first frame, and --light-intensity (every technique and
+/// method reads them).
 void add_pose_options(CLI::App& command, common_options& options);
 
-/// The camera and light moved to --camera and --light where given. Throws usage_error naming the
-/// option when the scene cannot take the pose (e.g. a camera looking along its up vector).
+/// --exposure EV|auto (the final image's PNG; the viewer's image).
+CLI::Option* add_exposure_option(CLI::App& command, common_options& options);
+
+/// The camera and light moved to --camera and --light where given, and the light's intensity set
+/// to --light-intensity. Throws usage_error naming the option when the scene cannot take the pose
+/// (e.g. a camera looking along its up vector).
 void apply_poses(const common_options& options, camera& view, scene_light& light);
 /// The same for a pipeline that built its own scene (final gathering).
 void apply_poses(const common_options& options, pipeline& target);
 
+/// The scale --exposure gives `linear`'s PNG: 2^EV, or with auto the percentile_exposure of the
+/// image (its 99th luminance percentile at 0.8), which it then prints as an EV to `out`.
+float exposure_scale(const common_options& options, const image& linear, std::ostream& out);
+
 /// A built-in scene by name or an .obj, .gltf or .glb file, checked (finite, in range) before it
-/// is used, with --camera and --light applied.
+/// is used, with --camera, --light and --light-intensity applied. The scene's notes (what a glTF
+/// reader did not read, how a camera or light was placed) go to standard output.
 scene load_scene(const common_options& options, const std::string& name);
 
 }  // namespace vplkit::cli

@@ -87,7 +87,7 @@ int run_monte_carlo(const session& io, const reference_state& s) {
   // PFM and PNG of the final image, PFM of the indirect irradiance: written only after all is done.
   files.add_pfm(files.main(), images.radiance);
   files.add_pfm(files.sibling("-indirect", ".pfm"), images.indirect);
-  files.add_png(files.sibling("", ".png"), images.radiance);
+  files.add_png(files.sibling("", ".png"), images.radiance, exposure_scale(s.common, images.radiance, io.out));
   io.out << "scene " << source.name << ", one-bounce Monte Carlo reference, " << w << "x" << h << ", " << s.options.samples << " bounce rays per pixel, seed "
          << s.options.seed << "\n";
   files.write(io.out);
@@ -100,12 +100,14 @@ command add_reference_command(CLI::App& app) {
   auto state = std::make_shared<reference_state>();
   CLI::App* reference = app.add_subcommand("reference", "render a ground truth: the one-bounce Monte Carlo reference (Embree) or the brute-force RSM gather");
   const auto brute_force = [](const std::string& method) { return method == "rsm-brute-force"; };
+  const auto monte_carlo = [](const std::string& method) { return method == "monte-carlo"; };
   reference->add_option("--method", state->method,
                         "monte-carlo: one-bounce path tracing of the final image (Embree); rsm-brute-force: every lit RSM texel at every "
                         "receiver of the frame's indirect buffer (the thesis's Fig. 5.1d)")
       ->check(CLI::IsMember({"monte-carlo", "rsm-brute-force"}))->capture_default_str();
   add_scene_option(*reference, state->common, "cornell-box");
   add_pose_options(*reference, state->common);
+  state->scope.add(add_exposure_option(*reference, state->common), "--method monte-carlo", monte_carlo);
   const common_option_handles frame = add_common_options(*reference, state->common);
   for (CLI::Option* option : {frame.shader_dir, frame.context, frame.device}) state->scope.add(option, "--method rsm-brute-force", brute_force);
   // The frame `vplkit render` draws: its size for both methods, the rest for the brute force.

@@ -75,7 +75,7 @@ int run_render(const session& io, const render_state& s) {
   const image indirect = drawn->indirect_output().read_image();
 
   // Everything is rendered before anything is written, so a failure leaves no partial set.
-  files.add_png(files.main(), radiance);
+  files.add_png(files.main(), radiance, exposure_scale(o.common, radiance, io.out));
   if (drawn->has_indirect()) {
     const float exposure = percentile_exposure(indirect);
     files.add_png(files.sibling("-indirect", ".png"), indirect, exposure);

@@ -107,6 +107,7 @@ void add_technique_options(CLI::App& command, technique_options& options) {
   options.scope.add(add_scene_option(command, options.common, listed(scene_defaults)), listed(scene_readers),
                     [](const std::string& technique) { return family_of(technique).reads_scene(); });
   add_pose_options(command, options.common);
+  add_exposure_option(command, options.common);
   add_common_options(command, options.common);
   add_setting_options(command, options.given);
 }

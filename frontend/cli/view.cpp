@@ -36,6 +36,8 @@ int run_view(const session& io, const view_state& s) {
   options.panel = !s.hide_panel;
   options.docked_panel_width = s.dock_panel ? docked_panel_width : 0;
   options.screenshot = files.main();
+  options.exposure_ev = o.common.exposure_ev;
+  options.auto_exposure = o.common.auto_exposure;
   // One window size for every family: the chosen technique's.
   const std::string size = chosen->get("size");
   for (const technique_family& family : technique_families()) {
@@ -63,7 +65,7 @@ int run_view(const session& io, const view_state& s) {
   const shader_library shaders(o.common.shaders());
   // The poses of a family without a scene: from a pipeline built once at the start.
   for (const technique_family& family : technique_families())
-    if (!family.reads_scene() && (o.common.camera_pose || o.common.light_pose)) {
+    if (!family.reads_scene() && (o.common.camera_pose || o.common.light_pose || o.common.light_intensity)) {
       viewer_family& state = options.scenes.families[family.name];
       std::unique_ptr<scene> none;
       const std::unique_ptr<pipeline> posed = make_posed_pipeline(shaders, o.common, *state.settings, none);

@@ -55,6 +55,9 @@ struct program_deleter {
 struct shader_deleter {
   void operator()(GLuint name) const { glDeleteShader(name); }
 };
+struct sampler_deleter {
+  void operator()(GLuint name) const { glDeleteSamplers(1, &name); }
+};
 
 using gl_texture = gl_object<texture_deleter>;
 using gl_framebuffer = gl_object<framebuffer_deleter>;
@@ -63,11 +66,13 @@ using gl_vertex_array = gl_object<vertex_array_deleter>;
 using gl_query = gl_object<query_deleter>;
 using gl_program = gl_object<program_deleter>;
 using gl_shader = gl_object<shader_deleter>;
+using gl_sampler = gl_object<sampler_deleter>;
 
 inline GLuint generate_texture() { GLuint name = 0; glGenTextures(1, &name); return name; }
 inline GLuint generate_framebuffer() { GLuint name = 0; glGenFramebuffers(1, &name); return name; }
 inline GLuint generate_buffer() { GLuint name = 0; glGenBuffers(1, &name); return name; }
 inline GLuint generate_vertex_array() { GLuint name = 0; glGenVertexArrays(1, &name); return name; }
 inline GLuint generate_query() { GLuint name = 0; glGenQueries(1, &name); return name; }
+inline GLuint generate_sampler() { GLuint name = 0; glGenSamplers(1, &name); return name; }
 
 }  // namespace vplkit

@@ -27,6 +27,28 @@ struct ray_scene::state {
   RTCScene scene = nullptr;
 };
 
+namespace {
+
+// The alpha test of cut-out (MASK) materials for every ray: a hit where the texture's alpha, at
+// level 0, is below the cutoff is not a hit (material.hpp on where this differs from GL).
+void skip_cut_outs(const RTCFilterFunctionNArguments* args) {
+  const auto* geometry = static_cast<const mesh*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] == 0) continue;
+    const glm::vec2 barycentric(RTCHitN_u(args->hit, args->N, i), RTCHitN_v(args->hit, args->N, i));
+    if (surface_cut_out(*geometry, RTCHitN_primID(args->hit, args->N, i), barycentric)) args->valid[i] = 0;
+  }
+}
+
+bool has_cut_outs(const mesh& geometry) {
+  if (!geometry.materials) return false;
+  for (const material_range& range : geometry.material_ranges)
+    if (geometry.materials->materials[range.material].alpha_mask) return true;
+  return false;
+}
+
+}  // namespace
+
 ray_scene::ray_scene(const mesh& geometry) : state_(std::make_unique<state>()), geometry_(geometry) {
   check_mesh(geometry, "ray tracer scene");  // Embree asserts (aborts) on bounds it cannot represent
   // Embree's own threads build the BVH; as many as the frontend's (hardware_threads()).
@@ -42,6 +64,11 @@ ray_scene::ray_scene(const mesh& geometry) : state_(std::make_unique<state>()), 
   auto* indices = static_cast<unsigned*>(
       rtcSetNewGeometryBuffer(triangles, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), geometry.indices.size() / 3));
   for (std::size_t i = 0; i < geometry.indices.size(); ++i) indices[i] = geometry.indices[i];
+  if (has_cut_outs(geometry)) {
+    rtcSetGeometryUserData(triangles, const_cast<mesh*>(&geometry));
+    rtcSetGeometryIntersectFilterFunction(triangles, skip_cut_outs);
+    rtcSetGeometryOccludedFilterFunction(triangles, skip_cut_outs);
+  }
   rtcCommitGeometry(triangles);
   rtcAttachGeometry(state_->scene, triangles);
   rtcReleaseGeometry(triangles);
@@ -80,7 +107,9 @@ ray_scene::hit ray_scene::intersect(const glm::vec3& origin, const glm::vec3& di
   result.distance = query.ray.tfar;
   result.position = origin + direction * query.ray.tfar;
   result.normal = glm::normalize((1.0f - u - v) * a.normal + u * b.normal + v * c.normal);
-  result.albedo = (1.0f - u - v) * a.albedo + u * b.albedo + v * c.albedo;
+  result.triangle = triangle;
+  result.barycentric = glm::vec2(u, v);
+  result.albedo = glm::vec3(surface_albedo_alpha(geometry_, triangle, result.barycentric));
   return result;
 }
 
@@ -306,6 +335,43 @@ std::vector<std::uint8_t> rsm_covered_receivers(const rsm_pass_buffers& buffers,
   return covered;
 }
 
+namespace {
+
+// GL's texture level of detail at a camera ray's hit: where the rays through the next pixel to the
+// right and the next one down meet the hit triangle's plane, in texels of the material's
+// texture; the larger step (GL's isotropic rho) as log2. On a plane this is the difference GL
+// takes across a pixel quad. 0 (level 0) where there is no texture or no usable step.
+float camera_ray_lod(const mesh& geometry, const ray_scene::hit& hit, const glm::vec3 origins[2], const glm::vec3 directions[2]) {
+  const surface_material* material = material_of_triangle(geometry, hit.triangle);
+  if (!material || material->texture < 0) return 0.0f;
+  const texture_level& level = geometry.materials->textures[static_cast<std::size_t>(material->texture)].levels.front();
+  const vertex& a = geometry.vertices[geometry.indices[3 * hit.triangle]];
+  const vertex& b = geometry.vertices[geometry.indices[3 * hit.triangle + 1]];
+  const vertex& c = geometry.vertices[geometry.indices[3 * hit.triangle + 2]];
+  const glm::vec3 e1 = b.position - a.position, e2 = c.position - a.position, plane = glm::cross(e1, e2);
+  const float area = glm::dot(plane, plane);
+  if (!(area > 0.0f)) return 0.0f;
+  const auto texel_coordinate = [&](const glm::vec3& p) {
+    // Barycentrics of p in the triangle's plane.
+    const glm::vec3 w = p - a.position;
+    const float u = glm::dot(glm::cross(w, e2), plane) / area, v = glm::dot(glm::cross(e1, w), plane) / area;
+    const glm::vec2 uv = material_texture_coordinate(*material, (1.0f - u - v) * a.texcoord + u * b.texcoord + v * c.texcoord);
+    return uv * glm::vec2(static_cast<float>(level.width), static_cast<float>(level.height));
+  };
+  const glm::vec2 centre = texel_coordinate(hit.position);
+  float rho = 0.0f;
+  for (int k = 0; k < 2; ++k) {
+    const float along = glm::dot(directions[k], plane);
+    if (!(std::fabs(along) > 0.0f)) return 0.0f;
+    const float t = glm::dot(a.position - origins[k], plane) / along;
+    if (!(t > 0.0f) || !std::isfinite(t)) return 0.0f;
+    rho = std::max(rho, glm::length(texel_coordinate(origins[k] + t * directions[k]) - centre));
+  }
+  return rho > 0.0f && std::isfinite(rho) ? std::log2(rho) : 0.0f;
+}
+
+}  // namespace
+
 one_bounce_images reference_one_bounce(const scene& source, int width, int height, int samples, std::uint32_t seed, int threads) {
   const ray_scene rays(source.geometry);
   const glm::mat4 inverse = glm::inverse(camera_projection_matrix(source.view, static_cast<float>(width) / static_cast<float>(height)) *
@@ -316,15 +382,26 @@ one_bounce_images reference_one_bounce(const scene& source, int width, int heigh
   out.indirect = out.radiance;
   progress_bar progress("one-bounce Monte Carlo reference", static_cast<std::size_t>(height));
   // Rows counted from the top (the estimate's seed key is y * width + x), stored bottom-up.
+  // The ray through the centre of pixel (x, y), y counted from the top.
+  const auto pixel_ray = [&](int x, int y, glm::vec3& origin, glm::vec3& direction) {
+    const glm::vec2 ndc((static_cast<float>(x) + 0.5f) / static_cast<float>(width) * 2.0f - 1.0f,
+                        1.0f - (static_cast<float>(y) + 0.5f) / static_cast<float>(height) * 2.0f);
+    const glm::vec4 near_point = inverse * glm::vec4(ndc, -1.0f, 1.0f), far_point = inverse * glm::vec4(ndc, 1.0f, 1.0f);
+    origin = glm::vec3(near_point) / near_point.w;
+    direction = glm::normalize(glm::vec3(far_point) / far_point.w - origin);
+  };
   parallel_for(height, threads, [&](int y) {
     for (int x = 0; x < width; ++x) {
-      const glm::vec2 ndc((static_cast<float>(x) + 0.5f) / static_cast<float>(width) * 2.0f - 1.0f,
-                          1.0f - (static_cast<float>(y) + 0.5f) / static_cast<float>(height) * 2.0f);
-      const glm::vec4 near_point = inverse * glm::vec4(ndc, -1.0f, 1.0f), far_point = inverse * glm::vec4(ndc, 1.0f, 1.0f);
-      const glm::vec3 origin = glm::vec3(near_point) / near_point.w;
-      const glm::vec3 direction = glm::normalize(glm::vec3(far_point) / far_point.w - origin);
-      const ray_scene::hit hit = rays.intersect(origin, direction);
+      glm::vec3 origin, direction;
+      pixel_ray(x, y, origin, direction);
+      ray_scene::hit hit = rays.intersect(origin, direction);
       if (!hit.found) continue;
+      if (material_of_triangle(source.geometry, hit.triangle)) {
+        glm::vec3 origins[2], directions[2];
+        pixel_ray(x + 1, y, origins[0], directions[0]);
+        pixel_ray(x, y + 1, origins[1], directions[1]);
+        hit.albedo = glm::vec3(surface_albedo_alpha(source.geometry, hit.triangle, hit.barycentric, camera_ray_lod(source.geometry, hit, origins, directions)));
+      }
       const glm::vec3 n = glm::dot(hit.normal, direction) < 0.0f ? hit.normal : -hit.normal;
       const std::uint32_t key = static_cast<std::uint32_t>(y * width + x);
       const glm::vec3 direct = direct_irradiance(rays, source.light, irradiance, hit.position, n);

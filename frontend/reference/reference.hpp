@@ -20,6 +20,8 @@
 namespace vplkit {
 
 /// An Embree scene of a mesh: closest hits and occlusion tests. The mesh must outlive it.
+/// Cut-outs of alpha-tested materials are not hit (a filter function tests each candidate hit's
+/// alpha at texture level 0).
 class ray_scene {
  public:
   explicit ray_scene(const mesh& geometry);
@@ -32,7 +34,9 @@ class ray_scene {
     float distance = 0.0f;
     glm::vec3 position{0.0f};
     glm::vec3 normal{0.0f};  ///< the triangle's interpolated shading normal, unit
-    glm::vec3 albedo{0.0f};
+    glm::vec3 albedo{0.0f};  ///< surface_albedo_alpha at texture level 0
+    std::size_t triangle = 0;
+    glm::vec2 barycentric{0.0f};  ///< (u, v): the point is (1 - u - v) a + u b + v c
   };
   hit intersect(const glm::vec3& origin, const glm::vec3& direction, float far = 1e30f) const;
   /// Whether anything lies on the segment from `from` to `to` (both ends excluded by a small

@@ -18,6 +18,7 @@
 
 #include "frontend/core/error.hpp"
 #include "frontend/core/files.hpp"
+#include "frontend/image/texture_decode.hpp"
 
 namespace fs = std::filesystem;
 
@@ -61,31 +62,87 @@ bool write_whole_file(std::string* err, const std::string&, const std::vector<un
   return false;
 }
 
-// Images are not used (base colour textures are not sampled): accept them undecoded.
-bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) { return true; }
+// tinygltf hands over each image's bytes (a data URI decoded, or an external file read through
+// read_whole_file above); they are kept undecoded, and only the images a base colour texture uses
+// are decoded, after the model is read. An image in a buffer view is read from the buffer later
+// with its bounds checked (tinygltf passes a pointer into the buffer without checking them).
+using image_bytes = std::map<int, std::string>;
+
+bool keep_image_bytes(tinygltf::Image* image, const int index, std::string*, std::string*, int, int, const unsigned char* bytes, int size, void* user) {
+  if (image->bufferView >= 0 || size <= 0) return true;
+  (*static_cast<image_bytes*>(user))[index].assign(reinterpret_cast<const char*>(bytes), static_cast<std::size_t>(size));
+  return true;
+}
+
+// The extensions the reader reads; any other one the file uses or requires is named in a note.
+bool extension_read(const std::string& name) { return name == "KHR_lights_punctual" || name == "KHR_texture_transform"; }
 
 bool finite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 class reader {
  public:
-  reader(const tinygltf::Model& model, const std::string& name, const gltf_limits& limits) : model_(model), name_(name), limits_(limits) {}
+  reader(const tinygltf::Model& model, const std::string& name, const gltf_limits& limits, const image_bytes& images)
+      : model_(model), name_(name), limits_(limits), images_(images) {}
 
   scene read() {
+    note_model_features();
     visited_.assign(model_.nodes.size(), false);
+    material_of_.assign(model_.materials.size(), unread);
+    texture_of_.assign(model_.images.size(), unread);
     for (int root : roots()) visit(root, glm::dmat4(1.0));
     if (geometry_.indices.empty()) fail("no triangles in its scene (only TRIANGLES primitives are read; points, lines, strips and fans are not)");
-    scene framed = frame_mesh(name_stem(), geometry_);
-    if (light_) {
-      framed.geometry = geometry_;  // its own light: no floor added
-      framed.light = *light_;
-    }
+    if (!library_.materials.empty()) geometry_.materials = std::make_shared<const material_library>(std::move(library_));
+    framing_needs needs;
+    needs.camera = !camera_;
+    needs.light = !light_;
+    scene framed = frame_mesh(name_stem(), std::move(geometry_), needs);
+    if (light_) framed.light = *light_;
     if (camera_) framed.view = *camera_;
     framed.name = name_stem();
+    framed.notes.insert(framed.notes.begin(), notes_.begin(), notes_.end());
     return framed;
   }
 
  private:
   [[noreturn]] void fail(const std::string& what) const { throw error(name_ + ": " + what); }
+
+  // One line per feature the file has and vplkit does not read, the first time it is met.
+  void note(const std::string& feature, const std::string& consequence) {
+    if (std::find(noted_.begin(), noted_.end(), feature) != noted_.end()) return;
+    noted_.push_back(feature);
+    notes_.push_back(name_ + ": " + feature + " not read (" + consequence + ")");
+  }
+
+  void note_model_features() {
+    for (const std::string& extension : model_.extensionsRequired)
+      if (!extension_read(extension)) note("required extension " + extension, "vplkit does not know it; the scene may look other than its author meant");
+    for (const std::string& extension : model_.extensionsUsed)
+      if (!extension_read(extension) &&
+          std::find(model_.extensionsRequired.begin(), model_.extensionsRequired.end(), extension) == model_.extensionsRequired.end())
+        note("extension " + extension, "what it adds is left out");
+    if (!model_.animations.empty()) note("animations", "the scene is drawn at rest");
+    if (!model_.skins.empty()) note("skins", "skinned meshes are drawn in their bind pose");
+    int spots_and_suns = 0;
+    for (const tinygltf::Light& light : model_.lights) {
+      if (light.type == "point") note("point lights", "vplkit's primary light is one spot light or one sun; a file with only point lights is framed with a spot light");
+      if (light.type == "spot" || light.type == "directional") ++spots_and_suns;
+    }
+    if (spots_and_suns > 1) note("lights after the first", "vplkit renders one primary light: the first spot or directional light met in the node tree");
+    for (const tinygltf::Camera& source : model_.cameras)
+      if (source.type != "perspective") note("orthographic cameras", "the first perspective camera is used, else a framing camera");
+    for (const tinygltf::Material& material : model_.materials) {
+      if (material.normalTexture.index >= 0) note("normalTexture", "surfaces are shaded with their geometric normals");
+      if (material.occlusionTexture.index >= 0) note("occlusionTexture", "the techniques compute their own occlusion");
+      if (material.emissiveTexture.index >= 0) note("emissiveTexture", "surfaces do not emit");
+      if (material.emissiveFactor.size() == 3 && (material.emissiveFactor[0] > 0.0 || material.emissiveFactor[1] > 0.0 || material.emissiveFactor[2] > 0.0))
+        note("emissiveFactor", "surfaces do not emit");
+      if (material.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0)
+        note("metallicRoughnessTexture", "surfaces are diffuse: the base colour is their albedo");
+      if (material.alphaMode == "BLEND") note("alphaMode BLEND", "blended surfaces are drawn opaque");
+      for (const auto& [extension, value] : material.extensions)
+        if (!extension_read(extension)) note("material extension " + extension, "the base colour alone is the albedo");
+    }
+  }
 
   std::string name_stem() const { return fs::path(name_).stem().string(); }
 
@@ -212,6 +269,181 @@ class reader {
     return glm::vec3(albedo);
   }
 
+  static constexpr int unread = -2;
+
+  // A number of a JSON value, or fail.
+  double number(const tinygltf::Value& value, const std::string& what) const {
+    if (!value.IsNumber() || !std::isfinite(value.GetNumberAsDouble())) fail(what + " must be a finite number");
+    return value.GetNumberAsDouble();
+  }
+
+  static texture_wrap wrap_of(int mode, bool& known) {
+    known = true;
+    if (mode == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE) return texture_wrap::clamp_to_edge;
+    if (mode == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT) return texture_wrap::mirrored_repeat;
+    known = mode == TINYGLTF_TEXTURE_WRAP_REPEAT;
+    return texture_wrap::repeat;
+  }
+
+  texture_sampler sampler_of(int index) const {
+    texture_sampler sampler;  // glTF leaves the filters to the renderer: linear, mipmapped
+    if (index < 0) return sampler;
+    if (index >= static_cast<int>(model_.samplers.size())) fail("sampler " + std::to_string(index) + " does not exist");
+    const tinygltf::Sampler& source = model_.samplers[static_cast<std::size_t>(index)];
+    const std::string where = "sampler " + std::to_string(index);
+    bool known_s = false, known_t = false;
+    sampler.wrap_s = wrap_of(source.wrapS, known_s);
+    sampler.wrap_t = wrap_of(source.wrapT, known_t);
+    if (!known_s || !known_t) fail(where + ": wrapS and wrapT must be 33071 (CLAMP_TO_EDGE), 33648 (MIRRORED_REPEAT) or 10497 (REPEAT)");
+    if (source.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST) sampler.mag = texture_filter::nearest;
+    else if (source.magFilter != TINYGLTF_TEXTURE_FILTER_LINEAR && source.magFilter != -1) fail(where + ": magFilter must be 9728 (NEAREST) or 9729 (LINEAR)");
+    switch (source.minFilter) {
+      case -1: break;
+      case TINYGLTF_TEXTURE_FILTER_NEAREST: sampler.min = texture_filter::nearest; sampler.mipmaps = false; break;
+      case TINYGLTF_TEXTURE_FILTER_LINEAR: sampler.mipmaps = false; break;
+      case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST: sampler.min = sampler.between_levels = texture_filter::nearest; break;
+      case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_NEAREST: sampler.between_levels = texture_filter::nearest; break;
+      case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR: sampler.min = texture_filter::nearest; break;
+      case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR: break;
+      default: fail(where + ": minFilter " + std::to_string(source.minFilter) + " is not a GL minification filter");
+    }
+    return sampler;
+  }
+
+  // The encoded bytes of image `index`: from its buffer view (bounds checked) or as tinygltf read
+  // its URI.
+  std::string bytes_of_image(int index, const std::string& what) const {
+    const tinygltf::Image& image = model_.images[static_cast<std::size_t>(index)];
+    if (image.bufferView >= 0) {
+      if (image.bufferView >= static_cast<int>(model_.bufferViews.size())) fail(what + ": buffer view " + std::to_string(image.bufferView) + " does not exist");
+      const tinygltf::BufferView& view = model_.bufferViews[static_cast<std::size_t>(image.bufferView)];
+      if (view.buffer < 0 || view.buffer >= static_cast<int>(model_.buffers.size())) fail(what + ": buffer " + std::to_string(view.buffer) + " does not exist");
+      const std::vector<unsigned char>& data = model_.buffers[static_cast<std::size_t>(view.buffer)].data;
+      if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset) fail(what + ": its buffer view lies outside its buffer");
+      return std::string(reinterpret_cast<const char*>(data.data() + view.byteOffset), view.byteLength);
+    }
+    const auto found = images_.find(index);
+    if (found == images_.end()) fail(what + ": its file '" + image.uri + "' could not be read (missing, not a regular file, or over the size limit)");
+    return found->second;
+  }
+
+  // Image `index` decoded into the library (once), or fail naming it.
+  int texture_of(int index) {
+    if (index < 0 || index >= static_cast<int>(model_.images.size())) fail("image " + std::to_string(index) + " does not exist");
+    int& cached = texture_of_[static_cast<std::size_t>(index)];
+    if (cached != unread) return cached;
+    const tinygltf::Image& image = model_.images[static_cast<std::size_t>(index)];
+    const std::string what = "image " + std::to_string(index) + (image.name.empty() ? "" : " '" + image.name + "'") + (image.uri.empty() || image.uri.rfind("data:", 0) == 0 ? "" : " (" + image.uri + ")");
+    const texture_pixels pixels = decode_texture(bytes_of_image(index, what), name_ + ": " + what, limits_.textures);
+    texture_pixels_ += static_cast<std::uint64_t>(pixels.width) * static_cast<std::uint64_t>(pixels.height);
+    if (texture_pixels_ > limits_.max_texture_pixels)
+      fail(what + ": the textures together exceed " + std::to_string(limits_.max_texture_pixels) + " pixels (gltf_limits::max_texture_pixels)");
+    library_.textures.push_back(make_texture(what, texture_level{pixels.width, pixels.height, pixels.rgba8}));
+    cached = static_cast<int>(library_.textures.size() - 1);
+    return cached;
+  }
+
+  // What a primitive's material needs: the index of its surface_material (-1: plain, the factor
+  // alone and opaque) and the TEXCOORD set its texture reads (-1: none).
+  struct material_use {
+    int material = -1;
+    int texcoord_set = -1;
+  };
+
+  material_use material_for(int index) {
+    if (index < 0) return {};
+    int& cached = material_of_[static_cast<std::size_t>(index)];
+    const tinygltf::Material& source = model_.materials[static_cast<std::size_t>(index)];
+    const tinygltf::TextureInfo& base = source.pbrMetallicRoughness.baseColorTexture;
+    // KHR_texture_transform may name another TEXCOORD set.
+    int texcoord_set = base.texCoord;
+    const auto transform = base.extensions.find("KHR_texture_transform");
+    if (transform != base.extensions.end() && transform->second.IsObject() && transform->second.Has("texCoord"))
+      texcoord_set = static_cast<int>(number(transform->second.Get("texCoord"), "material " + std::to_string(index) + " KHR_texture_transform texCoord"));
+    if (cached != unread) return {cached, cached >= 0 && library_.materials[static_cast<std::size_t>(cached)].texture >= 0 ? texcoord_set : -1};
+    const std::string where = "material " + std::to_string(index) + (source.name.empty() ? "" : " '" + source.name + "'");
+    surface_material made;
+    made.name = source.name;
+    const std::vector<double>& factor = source.pbrMetallicRoughness.baseColorFactor;
+    if (factor.size() == 4) {
+      if (!(factor[3] >= 0.0 && factor[3] <= 1.0)) fail(where + ": baseColorFactor's alpha must be in [0, 1]");
+      made.alpha_factor = static_cast<float>(factor[3]);
+    }
+    if (source.alphaMode == "MASK") {
+      if (!(source.alphaCutoff >= 0.0 && std::isfinite(source.alphaCutoff))) fail(where + ": alphaCutoff must be a finite number >= 0");
+      made.alpha_mask = true;
+      made.alpha_cutoff = static_cast<float>(std::min(source.alphaCutoff, 1.0));
+    } else if (source.alphaMode != "OPAQUE" && source.alphaMode != "BLEND") {
+      fail(where + ": alphaMode must be OPAQUE, MASK or BLEND, not '" + source.alphaMode + "'");
+    }
+    if (base.index >= 0) {
+      if (base.index >= static_cast<int>(model_.textures.size())) fail(where + ": baseColorTexture names texture " + std::to_string(base.index) + ", which does not exist");
+      const tinygltf::Texture& texture = model_.textures[static_cast<std::size_t>(base.index)];
+      if (texture.source < 0) {
+        std::string in;
+        for (const auto& [extension, value] : texture.extensions) in += (in.empty() ? "" : ", ") + extension;
+        note("texture images given only by " + (in.empty() ? std::string("no source") : in), "those textures are left out: their factor alone is the albedo");
+      } else if (texcoord_set < 0 || texcoord_set > 7) {
+        fail(where + ": baseColorTexture's texCoord must be in [0, 7]");
+      } else {
+        made.texture = texture_of(texture.source);
+        made.sampler = sampler_of(texture.sampler);
+      }
+      if (transform != base.extensions.end() && transform->second.IsObject()) {
+        const tinygltf::Value& t = transform->second;
+        const std::string in = where + " KHR_texture_transform";
+        glm::dvec2 offset(0.0), scale(1.0);
+        double rotation = 0.0;
+        for (const auto& [key, target] : {std::pair<const char*, glm::dvec2*>{"offset", &offset}, {"scale", &scale}}) {
+          if (!t.Has(key)) continue;
+          const tinygltf::Value& pair = t.Get(key);
+          if (!pair.IsArray() || pair.ArrayLen() != 2) fail(in + ": " + key + " needs 2 numbers");
+          *target = glm::dvec2(number(pair.Get(0), in + " " + key), number(pair.Get(1), in + " " + key));
+        }
+        if (t.Has("rotation")) rotation = number(t.Get("rotation"), in + " rotation");
+        // The extension's matrix: translation x rotation x scale, the rotation counter-clockwise
+        // in the image (v points down): [cos sin; -sin cos].
+        const double c = std::cos(rotation), s = std::sin(rotation);
+        const glm::dmat2 rotate(glm::dvec2(c, -s), glm::dvec2(s, c));  // columns
+        const glm::dmat2 matrix = rotate * glm::dmat2(glm::dvec2(scale.x, 0.0), glm::dvec2(0.0, scale.y));
+        made.texture_matrix = glm::mat2(matrix);
+        made.texture_offset = glm::vec2(offset);
+        if (!std::isfinite(made.texture_matrix[0][0] + made.texture_matrix[0][1] + made.texture_matrix[1][0] + made.texture_matrix[1][1]) ||
+            !std::isfinite(made.texture_offset.x + made.texture_offset.y))
+          fail(in + ": the transform is not finite as floats");
+      }
+    }
+    if (made.texture < 0 && !made.alpha_mask) {
+      cached = -1;  // plain: the factor alone, opaque
+      return {};
+    }
+    library_.materials.push_back(std::move(made));
+    cached = static_cast<int>(library_.materials.size() - 1);
+    return {cached, library_.materials.back().texture >= 0 ? texcoord_set : -1};
+  }
+
+  // TEXCOORD_<set> of a primitive as float pairs (normalized unsigned bytes and shorts scaled to
+  // [0, 1], as the spec allows), or empty when the primitive has none.
+  std::vector<double> texture_coordinates(const tinygltf::Primitive& primitive, int set, std::size_t vertex_count, const std::string& what) const {
+    const auto found = primitive.attributes.find("TEXCOORD_" + std::to_string(set));
+    if (found == primitive.attributes.end()) return {};
+    const std::string where = what + " TEXCOORD_" + std::to_string(set);
+    double scale = 1.0;
+    if (found->second >= 0 && found->second < static_cast<int>(model_.accessors.size())) {
+      const tinygltf::Accessor& accessor = model_.accessors[static_cast<std::size_t>(found->second)];
+      if (accessor.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && accessor.normalized) scale = 1.0 / 255.0;
+      else if (accessor.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT && accessor.normalized) scale = 1.0 / 65535.0;
+      else if (accessor.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT) fail(where + ": must be float, or normalized unsigned bytes or shorts");
+    }
+    std::vector<double> values = read_accessor(found->second, 2, where);
+    if (values.size() != 2 * vertex_count) fail(where + " and POSITION differ in count");
+    for (double& value : values) {
+      value *= scale;
+      if (!std::isfinite(value) || std::fabs(value) > 1e6) fail(where + ": a coordinate is not finite or beyond 1e6");
+    }
+    return values;
+  }
+
   void add_mesh(int index, const glm::dmat4& world) {
     if (index >= static_cast<int>(model_.meshes.size())) fail("mesh " + std::to_string(index) + " does not exist");
     const glm::dmat3 normal_matrix = glm::transpose(glm::inverse(glm::dmat3(world)));
@@ -252,6 +484,16 @@ class reader {
       if (geometry_.triangle_count() + corners.size() / 3 > limits_.max_triangles)
         fail("more than " + std::to_string(limits_.max_triangles) + " triangles");
       const glm::vec3 albedo = albedo_of(primitive.material);
+      const material_use use = material_for(primitive.material);
+      std::vector<double> texcoords;
+      if (use.texcoord_set >= 0) {
+        texcoords = texture_coordinates(primitive, use.texcoord_set, vertex_count, what);
+        if (texcoords.empty())
+          note("base colour textures on primitives without their TEXCOORD set", "those primitives take their material's factor alone");
+      }
+      if (primitive.attributes.count("COLOR_0")) note("COLOR_0 (vertex colours)", "the material's colour is the albedo");
+      if (!primitive.targets.empty()) note("morph targets", "meshes are drawn undeformed");
+      const std::size_t first_index = geometry_.indices.size();
       const auto world_position = [&](std::uint32_t i) {
         const glm::dvec3 p = glm::dvec3(world * glm::dvec4(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2], 1.0));
         if (!finite(p) || glm::any(glm::greaterThan(glm::abs(p), glm::dvec3(max_mesh_coordinate))))
@@ -273,11 +515,34 @@ class reader {
             const double length = glm::length(turned);
             if (std::isfinite(length) && length > 1e-12) n = turned / length;
           }
-          geometry_.vertices.push_back({glm::vec3(p), glm::vec3(n), albedo});
+          const glm::vec2 uv = texcoords.empty() ? glm::vec2(0.0f) : glm::vec2(static_cast<float>(texcoords[2 * i]), static_cast<float>(texcoords[2 * i + 1]));
+          geometry_.vertices.push_back({glm::vec3(p), glm::vec3(n), albedo, uv});
           geometry_.indices.push_back(static_cast<std::uint32_t>(geometry_.vertices.size() - 1));
         }
       }
+      // A range for the primitive's triangles when its material is more than a factor (one range
+      // with the previous when they are adjacent and share the material).
+      const auto count = static_cast<std::uint32_t>(geometry_.indices.size() - first_index);
+      const bool untextured = use.texcoord_set >= 0 && texcoords.empty();
+      if (use.material >= 0 && count > 0 && !(untextured && !library_.materials[static_cast<std::size_t>(use.material)].alpha_mask)) {
+        std::uint32_t material = static_cast<std::uint32_t>(use.material);
+        if (untextured) {
+          // Alpha-tested without coordinates: the same material without its texture.
+          surface_material plain = library_.materials[material];
+          plain.texture = -1;
+          library_.materials.push_back(plain);
+          material = static_cast<std::uint32_t>(library_.materials.size() - 1);
+        }
+        std::vector<material_range>& ranges = geometry_.material_ranges;
+        if (!ranges.empty() && ranges.back().material == material && ranges.back().first_index + ranges.back().index_count == first_index)
+          ranges.back().index_count += count;
+        else
+          ranges.push_back({static_cast<std::uint32_t>(first_index), count, material});
+      }
     }
+    if (std::any_of(source.primitives.begin(), source.primitives.end(),
+                    [](const tinygltf::Primitive& primitive) { return primitive.mode != TINYGLTF_MODE_TRIANGLES && primitive.mode != -1; }))
+      note("points, lines, strips and fans", "only TRIANGLES primitives are drawn");
   }
 
   static glm::dvec3 axis(const glm::dmat4& world, const glm::dvec3& local) { return glm::normalize(glm::dmat3(world) * local); }
@@ -339,8 +604,14 @@ class reader {
   const tinygltf::Model& model_;
   std::string name_;
   gltf_limits limits_;
+  const image_bytes& images_;
   std::vector<bool> visited_;
   mesh geometry_;
+  material_library library_;
+  std::vector<int> material_of_;  ///< glTF material -> library material (-1 plain, unread not yet)
+  std::vector<int> texture_of_;   ///< glTF image -> library texture
+  std::uint64_t texture_pixels_ = 0;
+  std::vector<std::string> noted_, notes_;
   std::optional<camera> camera_;
   std::optional<scene_light> light_;
 };
@@ -352,18 +623,25 @@ scene parse_gltf(const std::string& bytes, bool binary, const std::string& name,
   file_access access{base_dir, limits.max_file_bytes};
   tinygltf::TinyGLTF loader;
   loader.SetFsCallbacks({&file_exists, &expand_file_path, &read_whole_file, &write_whole_file, &access});
-  loader.SetImageLoader(&skip_image, nullptr);
+  image_bytes images;
+  loader.SetImageLoader(&keep_image_bytes, &images);
   tinygltf::Model model;
   std::string err, warn;
   const std::string base = base_dir.empty() ? std::string() : base_dir.string();
-  const bool loaded = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
-                                                           static_cast<unsigned int>(bytes.size()), base)
-                             : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), static_cast<unsigned int>(bytes.size()), base);
+  bool loaded = false;
+  try {
+    loaded = binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
+                                                  static_cast<unsigned int>(bytes.size()), base)
+                    : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), static_cast<unsigned int>(bytes.size()), base);
+  } catch (const std::exception& failure) {
+    // tinygltf indexes an empty decoded data URI with at(0).
+    err += failure.what();
+  }
   if (!loaded) {
     while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
     throw error(name + ": not a readable glTF 2.0 file (" + (err.empty() ? std::string("no reason given") : err) + ")");
   }
-  return reader(model, name, limits).read();
+  return reader(model, name, limits, images).read();
 }
 
 scene load_gltf(const fs::path& path, const gltf_limits& limits) {
@@ -377,6 +655,8 @@ scene load_gltf(const fs::path& path, const gltf_limits& limits) {
 
 std::string gltf_text(const scene& source) {
   check_scene(source);
+  if (!source.geometry.material_ranges.empty())
+    throw error("scene " + source.name + ": textured and alpha-tested materials are not written as glTF (only colour factors are)");
   tinygltf::Model model;
   model.asset.version = "2.0";
   model.asset.generator = "vplkit export-scene";

@@ -5,8 +5,13 @@
 //             first, else every root node), in world space through the node transforms (matrix
 //             or TRS; a mirroring transform keeps the front faces front). Points and lines are
 //             skipped. Without NORMAL a primitive gets flat normals, as the glTF spec asks.
-//   albedo    the material's baseColorFactor (linear RGB); a base colour texture is not sampled
-//             (its factor is used alone); no material: the spec's default, white (1, 1, 1).
+//   albedo    the material's baseColorFactor (linear RGB) times its baseColorTexture (PNG or
+//             JPEG, frontend/image/texture_decode.hpp; sRGB decoded; the sampler's wrap modes
+//             and filters, mipmapped; KHR_texture_transform's offset, rotation, scale and
+//             texCoord) at TEXCOORD_n (float, or normalized unsigned bytes or shorts); alphaMode
+//             MASK with alphaCutoff cuts out (frontend/scene/material.hpp); BLEND is drawn opaque.
+//             No material: the spec's default, white (1, 1, 1). A primitive whose textured
+//             material lacks its TEXCOORD set takes the factor alone.
 //   camera    the first perspective camera node met (depth first): it looks down its -Z with
 //             +Y up, yfov is the vertical field of view, znear/zfar the planes (zfar absent:
 //             1000 x znear). Orthographic cameras are not read.
@@ -16,17 +21,27 @@
 //             spot's radiant intensity (W/sr) and the sun's irradiance (W/m^2), one to one
 //             (write_gltf writes the same numbers back). Cone angles become cos_inner/cos_outer.
 //             Point lights are not read.
-// A file without a light is framed like an OBJ (frame_mesh: a floor, a spot light, a camera),
-// its own camera kept; a file with a light but no camera gets frame_mesh's camera and no floor.
+// A file without a light or a camera gets them from frame_mesh (a room is lit and seen from
+// inside; an object or open scene gets a three-quarter view, a spot light and a floor, the floor
+// only when the light is placed too); what was placed is a note of the scene.
+// What the file has and vplkit does not read is named once per feature in the scene's notes:
+// other texture slots (normal, occlusion, emissive, metallic-roughness), emissive factors,
+// alphaMode BLEND, vertex colours, morph targets, skins, animations, point lights, lights after
+// the first, orthographic cameras, primitives other than triangles, material extensions, and
+// every extension the file uses or requires other than KHR_lights_punctual and
+// KHR_texture_transform.
 //
 // Every index, count, offset and stride is checked against its buffer before it is read, every
-// number for being finite; a bad file throws vplkit::error naming the file and the problem.
+// number for being finite; a bad file throws vplkit::error naming the file and the problem. Images
+// are decoded only when a base colour texture uses them, each within gltf_limits::textures and all
+// together within max_texture_pixels.
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
 #include <string>
 
+#include "frontend/image/texture_decode.hpp"
 #include "frontend/scene/scene.hpp"
 
 namespace vplkit {
@@ -35,9 +50,11 @@ namespace vplkit {
 struct gltf_limits {
   std::uintmax_t max_file_bytes = std::uintmax_t{1} << 30;    ///< the .gltf/.glb and each external buffer
   std::size_t max_triangles = std::size_t{1} << 24;
+  texture_limits textures;                                     ///< each base colour texture's image
+  std::uint64_t max_texture_pixels = std::uint64_t{1} << 28;   ///< all textures together (1 GiB of RGBA8)
 };
 
-/// Loads a .gltf or .glb file (external buffers are read from its folder; images are not read).
+/// Loads a .gltf or .glb file (external buffers and images are read from its folder).
 scene load_gltf(const std::filesystem::path& path, const gltf_limits& limits = {});
 
 /// The same from bytes in memory: `binary` for GLB; external buffers are looked up in
@@ -47,6 +64,8 @@ scene parse_gltf(const std::string& bytes, bool binary, const std::string& name,
 
 /// The scene as glTF 2.0 text with its buffer embedded (a data URI): one mesh with a primitive
 /// per albedo, a perspective camera node and a KHR_lights_punctual light node.
+/// Throws vplkit::error for a mesh with material ranges (textures are not written; the built-in
+/// scenes export-scene writes have none).
 std::string gltf_text(const scene& source);
 
 }  // namespace vplkit

@@ -1,5 +1,6 @@
 #include "frontend/scene/obj_loader.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <map>
@@ -8,6 +9,7 @@
 
 #include "frontend/core/error.hpp"
 #include "frontend/core/files.hpp"
+#include "frontend/image/texture_decode.hpp"
 
 namespace vplkit {
 namespace fs = std::filesystem;
@@ -98,10 +100,53 @@ glm::vec3 parse_vector(const std::vector<std::string_view>& words, std::size_t m
 }
 
 struct material {
+  std::string name;
   glm::vec3 albedo{0.73f};
+  std::string texture_file;  ///< map_Kd's file, relative to the OBJ's folder; empty: none
+  glm::vec2 texture_scale{1.0f}, texture_offset{0.0f};  ///< map_Kd's -s and -o (u, v)
+  bool clamp = false;                                   ///< map_Kd's -clamp on
 };
 
-// newmtl and Kd; the other MTL statements (specular, maps, ...) do not enter a diffuse renderer.
+// map_Kd [-o u [v [w]]] [-s u [v [w]]] [-clamp on|off] [other options] file: the file and the
+// options that change where the texture is sampled; the rest (-bm, -mm, -cc, ...) do not apply to
+// a base colour and are skipped with their arguments.
+void parse_map_kd(const std::vector<std::string_view>& words, material& target, const statement_reader& reader) {
+  if (words.size() < 2) reader.fail("'map_Kd' needs a file name");
+  const std::size_t last = words.size() - 1;
+  const auto is_number = [](std::string_view word) {
+    float value = 0.0f;
+    const auto [end, code] = std::from_chars(word.data(), word.data() + word.size(), value);
+    return code == std::errc() && end == word.data() + word.size();
+  };
+  for (std::size_t i = 1; i < last;) {
+    const std::string_view option = words[i++];
+    if (option == "-o" || option == "-s" || option == "-t") {
+      glm::vec3 values(option == "-s" ? 1.0f : 0.0f);
+      int count = 0;
+      while (i < last && count < 3 && is_number(words[i])) values[count++] = parse_number(words[i++], reader);
+      if (count == 0) reader.fail("map_Kd " + std::string(option) + " needs 1 to 3 numbers");
+      if (option == "-o") target.texture_offset = glm::vec2(values);
+      if (option == "-s") target.texture_scale = glm::vec2(values);
+    } else if (option == "-clamp") {
+      if (i >= last || (words[i] != "on" && words[i] != "off")) reader.fail("map_Kd -clamp needs on or off");
+      target.clamp = words[i++] == "on";
+    } else if (option == "-blendu" || option == "-blendv" || option == "-cc" || option == "-bm" || option == "-boost" || option == "-texres" ||
+               option == "-imfchan") {
+      if (i >= last) reader.fail("map_Kd " + std::string(option) + " needs an argument");
+      ++i;
+    } else if (option == "-mm") {
+      if (i + 1 >= last) reader.fail("map_Kd -mm needs two numbers");
+      i += 2;
+    } else {
+      reader.fail("map_Kd option " + quoted(option) + " is not one of -o, -s, -t, -clamp, -blendu, -blendv, -cc, -bm, -boost, -texres, -imfchan, -mm "
+                  "(a file name with spaces is not read)");
+    }
+  }
+  target.texture_file = std::string(words[last]);
+}
+
+// newmtl, Kd and map_Kd; the other MTL statements (specular, other maps, ...) do not enter a
+// diffuse renderer.
 void parse_material_library(std::string_view text, const std::string& name, std::map<std::string, material, std::less<>>& materials) {
   statement_reader reader(text, name);
   std::vector<std::string_view> words;
@@ -112,19 +157,24 @@ void parse_material_library(std::string_view text, const std::string& name, std:
       if (words.size() != 2) reader.fail("'newmtl' needs one name");
       current = &materials[std::string(words[1])];
       *current = material{};
+      current->name = std::string(words[1]);
     } else if (words[0] == "Kd") {
       if (!current) reader.fail("'Kd' before any 'newmtl'");
       if (words.size() != 2 && words.size() != 4) reader.fail("'Kd' needs 1 or 3 numbers, got " + std::to_string(words.size() - 1));
       glm::vec3 kd(parse_number(words[1], reader));
       if (words.size() == 4) kd = glm::vec3(kd.x, parse_number(words[2], reader), parse_number(words[3], reader));
       current->albedo = glm::clamp(kd, 0.0f, 1.0f);
+    } else if (words[0] == "map_Kd") {
+      if (!current) reader.fail("'map_Kd' before any 'newmtl'");
+      parse_map_kd(words, *current, reader);
     }
   }
 }
 
-// One triangle corner: a position index and a normal index (-1: none), both 0-based.
+// One triangle corner: position, texture coordinate and normal indices (-1: none), 0-based.
 struct corner {
   std::uint32_t position = 0;
+  std::int32_t texture_coordinate = -1;
   std::int32_t normal = -1;
 };
 
@@ -157,21 +207,23 @@ corner parse_corner(std::string_view word, std::size_t positions, std::size_t te
       reader.fail("face " + std::string(names[k]) + " index " + std::string(parts[k]) + " is out of range (" + std::to_string(total) + " defined so far)");
     resolved[k] = zero_based;
   }
-  return {static_cast<std::uint32_t>(resolved[0]), static_cast<std::int32_t>(resolved[2])};
+  return {static_cast<std::uint32_t>(resolved[0]), static_cast<std::int32_t>(resolved[1]), static_cast<std::int32_t>(resolved[2])};
 }
 
 }  // namespace
 
-mesh parse_obj(std::string_view text, const std::string& name, const material_library_reader& read_library, const obj_limits& limits) {
+mesh parse_obj(std::string_view text, const std::string& name, const material_library_reader& read_library, const obj_limits& limits,
+               const texture_file_reader& read_texture) {
   statement_reader reader(text, name);
   std::vector<std::string_view> words;
   std::vector<glm::vec3> positions, normals;
-  std::size_t texture_coordinates = 0;
+  std::vector<glm::vec2> texture_coordinates;  // v flipped: glTF's convention (material.hpp)
   std::map<std::string, material, std::less<>> materials;
   std::vector<std::string> libraries_read;
-  glm::vec3 albedo = material{}.albedo;
-  std::vector<corner> corners;         // three per triangle
-  std::vector<glm::vec3> albedos;      // one per triangle
+  std::vector<material> used{material{}};  // the materials faces use, by first use; 0: none given
+  std::uint32_t current = 0;
+  std::vector<corner> corners;                 // three per triangle
+  std::vector<std::uint32_t> triangle_material;  // one per triangle, into `used`
   std::vector<corner> polygon;
   while (reader.next(words)) {
     if (words.empty()) continue;
@@ -181,17 +233,18 @@ mesh parse_obj(std::string_view text, const std::string& name, const material_li
     } else if (keyword == "vn") {
       normals.push_back(parse_vector(words, 3, 3, reader));
     } else if (keyword == "vt") {
-      parse_vector(words, 1, 3, reader);
-      ++texture_coordinates;
+      const glm::vec3 uvw = parse_vector(words, 1, 3, reader);
+      texture_coordinates.emplace_back(uvw.x, 1.0f - uvw.y);
     } else if (keyword == "f") {
       if (words.size() < 4) reader.fail("a face needs at least 3 corners");
       polygon.clear();
-      for (std::size_t i = 1; i < words.size(); ++i) polygon.push_back(parse_corner(words[i], positions.size(), texture_coordinates, normals.size(), reader));
-      if (albedos.size() + (polygon.size() - 2) > limits.max_triangles)
+      for (std::size_t i = 1; i < words.size(); ++i)
+        polygon.push_back(parse_corner(words[i], positions.size(), texture_coordinates.size(), normals.size(), reader));
+      if (triangle_material.size() + (polygon.size() - 2) > limits.max_triangles)
         reader.fail("more than " + std::to_string(limits.max_triangles) + " triangles (the most vplkit loads)");
       for (std::size_t i = 1; i + 1 < polygon.size(); ++i) {
         corners.insert(corners.end(), {polygon[0], polygon[i], polygon[i + 1]});
-        albedos.push_back(albedo);
+        triangle_material.push_back(current);
       }
     } else if (keyword == "mtllib") {
       if (words.size() < 2) reader.fail("'mtllib' needs a file name");
@@ -212,7 +265,13 @@ mesh parse_obj(std::string_view text, const std::string& name, const material_li
         for (const std::string& library : libraries_read) read += (read.empty() ? "" : ", ") + library;
         reader.fail("material " + quoted(words[1]) + " is not in the material libraries read so far (" + (read.empty() ? "none" : read) + ")");
       }
-      albedo = found->second.albedo;
+      // As the library defines it now (a library read again may redefine a material).
+      auto same = std::find_if(used.begin() + 1, used.end(), [&](const material& m) { return m.name == found->second.name && m.texture_file == found->second.texture_file &&
+                                                                                            m.albedo == found->second.albedo && m.clamp == found->second.clamp &&
+                                                                                            m.texture_scale == found->second.texture_scale &&
+                                                                                            m.texture_offset == found->second.texture_offset; });
+      if (same == used.end()) same = used.insert(used.end(), found->second);
+      current = static_cast<std::uint32_t>(same - used.begin());
     }
     // o, g, s, l, p, vp, curves and surfaces: nothing a triangle renderer uses.
   }
@@ -226,8 +285,46 @@ mesh parse_obj(std::string_view text, const std::string& name, const material_li
     const glm::vec3 area_weighted = glm::cross(b - a, c - a);
     for (std::size_t k = 0; k < 3; ++k) smooth_normals[corners[face + k].position] += area_weighted;
   }
+  // The textures of the materials faces use, each file decoded once, and a surface material per
+  // textured OBJ material.
+  material_library library;
+  std::vector<int> surface_of(used.size(), -1);
+  std::map<std::string, int> texture_of_file;
+  std::uint64_t pixels_so_far = 0;
+  for (std::size_t m = 0; m < used.size(); ++m) {
+    if (used[m].texture_file.empty()) continue;
+    if (std::find(triangle_material.begin(), triangle_material.end(), static_cast<std::uint32_t>(m)) == triangle_material.end()) continue;
+    const material& source = used[m];
+    auto [at, inserted] = texture_of_file.try_emplace(source.texture_file, static_cast<int>(library.textures.size()));
+    if (inserted) {
+      const std::string what = name + ": material '" + source.name + "' map_Kd " + source.texture_file;
+      if (!read_texture) throw error(what + ": texture files are not read here");
+      std::string bytes;
+      try {
+        bytes = read_texture(source.texture_file);
+      } catch (const error& failure) {
+        throw error(what + ": " + failure.what());
+      }
+      const texture_pixels pixels = decode_texture(bytes, what, limits.textures);
+      pixels_so_far += static_cast<std::uint64_t>(pixels.width) * static_cast<std::uint64_t>(pixels.height);
+      if (pixels_so_far > limits.max_texture_pixels)
+        throw error(what + ": the textures together exceed " + std::to_string(limits.max_texture_pixels) + " pixels (obj_limits::max_texture_pixels)");
+      library.textures.push_back(make_texture(source.texture_file, texture_level{pixels.width, pixels.height, pixels.rgba8}));
+    }
+    surface_material made;
+    made.name = source.name;
+    made.texture = at->second;
+    made.sampler.wrap_s = made.sampler.wrap_t = source.clamp ? texture_wrap::clamp_to_edge : texture_wrap::repeat;
+    // -s and -o act on OBJ's (u, v), v up; in the flipped v' = 1 - v: v'_t = s v' + (1 - s - o).
+    made.texture_matrix = glm::mat2(glm::vec2(source.texture_scale.x, 0.0f), glm::vec2(0.0f, source.texture_scale.y));
+    made.texture_offset = glm::vec2(source.texture_offset.x, 1.0f - source.texture_scale.y - source.texture_offset.y);
+    surface_of[m] = static_cast<int>(library.materials.size());
+    library.materials.push_back(std::move(made));
+  }
+
   mesh result;
   for (std::size_t face = 0; face < corners.size(); face += 3) {
+    const material& face_material = used[triangle_material[face / 3]];
     glm::vec3 corner_position[3];
     for (std::size_t k = 0; k < 3; ++k) corner_position[k] = positions[corners[face + k].position];
     glm::vec3 face_normal = glm::cross(corner_position[1] - corner_position[0], corner_position[2] - corner_position[0]);
@@ -244,18 +341,39 @@ mesh parse_obj(std::string_view text, const std::string& name, const material_li
         const float given_length = glm::length(given);
         if (given_length > 0.0f && std::isfinite(given_length)) normal = glm::normalize(given);
       }
+      const std::int32_t uv = corners[face + k].texture_coordinate;
       result.indices.push_back(static_cast<std::uint32_t>(result.vertices.size()));
-      result.vertices.push_back({corner_position[k], normal, albedos[face / 3]});
+      result.vertices.push_back({corner_position[k], normal, face_material.albedo, uv >= 0 ? texture_coordinates[static_cast<std::size_t>(uv)] : glm::vec2(0.0f)});
+    }
+    // A textured face (every corner with a vt) joins its material's range; one without vt is plain.
+    const int surface = surface_of[triangle_material[face / 3]];
+    const bool textured = surface >= 0 && corners[face].texture_coordinate >= 0 && corners[face + 1].texture_coordinate >= 0 &&
+                          corners[face + 2].texture_coordinate >= 0;
+    if (textured) {
+      const auto first = static_cast<std::uint32_t>(result.indices.size() - 3);
+      std::vector<material_range>& ranges = result.material_ranges;
+      if (!ranges.empty() && ranges.back().material == static_cast<std::uint32_t>(surface) && ranges.back().first_index + ranges.back().index_count == first)
+        ranges.back().index_count += 3;
+      else
+        ranges.push_back({first, 3, static_cast<std::uint32_t>(surface)});
     }
   }
   if (result.indices.empty()) throw error(name + ": no faces with area (every triangle is degenerate)");
+  if (!result.material_ranges.empty()) result.materials = std::make_shared<const material_library>(std::move(library));
   return result;
 }
 
 mesh load_obj(const fs::path& path, const obj_limits& limits) {
   const std::string text = read_file(path, limits.max_obj_bytes, "OBJ file");
   const fs::path folder = path.parent_path();
-  return parse_obj(text, path.string(), [&](const std::string& library) { return read_file(folder / library, limits.max_mtl_bytes, "MTL file"); }, limits);
+  return parse_obj(
+      text, path.string(), [&](const std::string& library) { return read_file(folder / library, limits.max_mtl_bytes, "MTL file"); }, limits,
+      [&](const std::string& file) {
+        // Exporters on Windows write map_Kd paths with backslashes.
+        std::string portable = file;
+        std::replace(portable.begin(), portable.end(), '\\', '/');
+        return read_file(folder / portable, limits.max_texture_file_bytes, "texture file");
+      });
 }
 
 }  // namespace vplkit

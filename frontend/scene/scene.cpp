@@ -345,7 +345,7 @@ mesh refine_longest_edges(const mesh& source, std::size_t target_triangles) {
     const vertex& b = welded.vertices[e.second];
     const glm::vec3 normal_sum = a.normal + b.normal;
     const vertex middle{0.5f * (a.position + b.position), glm::length(normal_sum) > 0.0f ? glm::normalize(normal_sum) : a.normal,
-                        0.5f * (a.albedo + b.albedo)};
+                        0.5f * (a.albedo + b.albedo), 0.5f * (a.texcoord + b.texcoord)};
     const auto m = static_cast<std::uint32_t>(welded.vertices.size());
     welded.vertices.push_back(middle);
     for (std::size_t t : sharing) {
@@ -480,31 +480,6 @@ scene built_in_scene(const std::string& name) {
   throw error("unknown scene '" + name + "' (built-in scenes: " + known + ", or a path to an .obj file)");
 }
 
-scene frame_mesh(std::string name, mesh geometry) {
-  scene s;
-  s.name = std::move(name);
-  const bounding_box box = bounds(geometry);
-  const float radius = std::max(box.radius(), 1e-3f);
-  // A floor under the mesh gives its light somewhere to bounce.
-  const float floor_y = box.minimum.y;
-  const glm::vec3 c = box.centre();
-  const float extent = 3.0f * radius;
-  add_quad(geometry, {c.x - extent, floor_y, c.z + extent}, {c.x + extent, floor_y, c.z + extent},
-           {c.x + extent, floor_y, c.z - extent}, {c.x - extent, floor_y, c.z - extent}, {0, 1, 0}, white);
-  s.geometry = std::move(geometry);
-  s.view.target = c;
-  s.view.position = c + glm::vec3(0.0f, 0.6f * radius, 3.2f * radius);
-  s.view.near_plane = 0.02f * radius;
-  s.view.far_plane = 20.0f * radius;
-  s.light.kind = light_kind::spot;
-  s.light.spot.position = c + glm::vec3(0.8f * radius, 2.5f * radius, 0.8f * radius);
-  s.light.spot.direction = glm::normalize(glm::vec3(c.x, floor_y, c.z) - s.light.spot.position);
-  s.light.spot.intensity = glm::vec3(6.0f * radius * radius);
-  s.light.spot.cos_inner = std::cos(glm::radians(35.0f));
-  s.light.spot.cos_outer = std::cos(glm::radians(50.0f));
-  return s;
-}
-
 }  // namespace vplkit
 
 namespace vplkit {
@@ -528,9 +503,85 @@ void check_mesh(const mesh& geometry, const std::string& name) {
       fail("vertex " + std::to_string(i) + " at " + text_of(v.position) + " is not finite or beyond " +
            std::to_string(static_cast<long>(max_scene_coordinate)) + " (vplkit works in float; scale the scene down)");
     if (!finite(v.normal) || !finite(v.albedo)) fail("vertex " + std::to_string(i) + " has a non-finite normal or albedo");
+    if (!std::isfinite(v.texcoord.x) || !std::isfinite(v.texcoord.y)) fail("vertex " + std::to_string(i) + " has a non-finite texture coordinate");
   }
   for (const std::uint32_t index : geometry.indices)
     if (index >= geometry.vertices.size()) fail("index " + std::to_string(index) + " is past the " + std::to_string(geometry.vertices.size()) + " vertices");
+  check_materials(geometry, name);
+}
+
+void check_materials(const mesh& geometry, const std::string& name) {
+  const auto fail = [&](const std::string& what) { throw error(name + ": " + what); };
+  if (geometry.material_ranges.empty()) return;
+  if (!geometry.materials) fail("material ranges without materials");
+  const material_library& library = *geometry.materials;
+  std::uint64_t end = 0;
+  for (std::size_t r = 0; r < geometry.material_ranges.size(); ++r) {
+    const material_range& range = geometry.material_ranges[r];
+    const std::string where = "material range " + std::to_string(r);
+    if (range.first_index < end || range.first_index % 3 != 0 || range.index_count % 3 != 0 ||
+        std::uint64_t{range.first_index} + range.index_count > geometry.indices.size())
+      fail(where + " does not lie in order on whole triangles within the " + std::to_string(geometry.indices.size()) + " indices");
+    end = std::uint64_t{range.first_index} + range.index_count;
+    if (range.material >= library.materials.size()) fail(where + " names material " + std::to_string(range.material) + ", but there are " + std::to_string(library.materials.size()));
+  }
+  for (std::size_t m = 0; m < library.materials.size(); ++m) {
+    const surface_material& material = library.materials[m];
+    const std::string where = "material " + std::to_string(m) + " '" + material.name + "'";
+    if (material.texture >= static_cast<int>(library.textures.size()) || material.texture < -1) fail(where + " names a texture that does not exist");
+    const glm::vec4 matrix(material.texture_matrix[0], material.texture_matrix[1]);
+    if (!finite(glm::vec3(matrix)) || !std::isfinite(matrix.w) || !std::isfinite(material.texture_offset.x) || !std::isfinite(material.texture_offset.y))
+      fail(where + ": its texture transform is not finite");
+    if (!(material.alpha_factor >= 0.0f && material.alpha_factor <= 1.0f) || !(material.alpha_cutoff >= 0.0f && material.alpha_cutoff <= 1.0f))
+      fail(where + ": alpha factor and cutoff must be in [0, 1]");
+  }
+  for (const texture& t : library.textures) {
+    bool consistent = !t.levels.empty();
+    for (const texture_level& level : t.levels)
+      consistent = consistent && level.width >= 1 && level.height >= 1 &&
+                   level.rgba8.size() == static_cast<std::size_t>(level.width) * static_cast<std::size_t>(level.height) * 4;
+    if (!consistent) fail("texture '" + t.name + "' has a level whose pixels do not match its size");
+  }
+}
+
+const surface_material* material_of_triangle(const mesh& geometry, std::size_t triangle) {
+  const std::vector<material_range>& ranges = geometry.material_ranges;
+  if (ranges.empty() || !geometry.materials) return nullptr;
+  const std::size_t first = 3 * triangle;
+  // The last range starting at or before the triangle.
+  auto after = std::upper_bound(ranges.begin(), ranges.end(), first, [](std::size_t index, const material_range& range) { return index < range.first_index; });
+  if (after == ranges.begin()) return nullptr;
+  const material_range& range = *(after - 1);
+  if (first >= std::size_t{range.first_index} + range.index_count) return nullptr;
+  return &geometry.materials->materials[range.material];
+}
+
+glm::vec4 surface_albedo_alpha(const mesh& geometry, std::size_t triangle, glm::vec2 barycentric, float lod) {
+  const vertex& a = geometry.vertices[geometry.indices[3 * triangle]];
+  const vertex& b = geometry.vertices[geometry.indices[3 * triangle + 1]];
+  const vertex& c = geometry.vertices[geometry.indices[3 * triangle + 2]];
+  const float u = barycentric.x, v = barycentric.y, w = 1.0f - u - v;
+  const glm::vec3 factor = w * a.albedo + u * b.albedo + v * c.albedo;
+  const surface_material* material = material_of_triangle(geometry, triangle);
+  if (!material) return glm::vec4(factor, 1.0f);
+  glm::vec4 texel(1.0f);
+  if (material->texture >= 0) {
+    const glm::vec2 uv = material_texture_coordinate(*material, w * a.texcoord + u * b.texcoord + v * c.texcoord);
+    texel = sample_texture(geometry.materials->textures[static_cast<std::size_t>(material->texture)], material->sampler, uv, lod);
+  }
+  return glm::vec4(factor * glm::vec3(texel), material->alpha_factor * texel.a);
+}
+
+bool surface_cut_out(const mesh& geometry, std::size_t triangle, glm::vec2 barycentric, float lod) {
+  const surface_material* material = material_of_triangle(geometry, triangle);
+  return material && material->alpha_mask && surface_albedo_alpha(geometry, triangle, barycentric, lod).a < material->alpha_cutoff;
+}
+
+void set_light_intensity(scene_light& light, float intensity) {
+  if (!(intensity >= 0.0f && std::isfinite(intensity))) throw error("the light intensity must be finite and >= 0, got " + std::to_string(intensity));
+  glm::vec3& power = light.kind == light_kind::spot ? light.spot.intensity : light.directional.irradiance;
+  const float peak = std::max({power.r, power.g, power.b});
+  power = (peak > 0.0f ? power / peak : glm::vec3(1.0f)) * intensity;
 }
 
 void check_camera(const camera& view, const std::string& owner) {

@@ -1,9 +1,12 @@
-// Scenes the frontend renders: triangle geometry with a diffuse albedo per vertex, a camera and
-// one primary light (spot or directional). Built-in scenes are made in code, so the default job
-// needs no files; OBJ files load through frontend/scene/obj_loader.hpp.
+// Scenes the frontend renders: triangle geometry with a diffuse albedo per vertex (times a
+// base-colour texture on the triangles a material range names, frontend/scene/material.hpp), a
+// camera and one primary light (spot or directional). Built-in scenes are made in code, so the
+// default job needs no files; OBJ files load through frontend/scene/obj_loader.hpp, glTF files
+// through frontend/scene/gltf_scene.hpp.
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,19 +15,40 @@
 
 #include <vplkit/direct_light.hpp>
 
+#include "frontend/scene/material.hpp"
+
 namespace vplkit {
 
 struct vertex {
   glm::vec3 position;
   glm::vec3 normal;
-  glm::vec3 albedo;
+  glm::vec3 albedo;  ///< the material's colour factor (the whole albedo where no texture is)
+  glm::vec2 texcoord{0.0f};  ///< glTF's TEXCOORD_0 (OBJ: vt with v flipped); read only where a material range has a texture
 };
 
 struct mesh {
   std::vector<vertex> vertices;
   std::vector<std::uint32_t> indices;  // triangles, counter-clockwise seen from the normal side
+  /// Textured or alpha-tested triangles: ranges of `indices` in increasing order, not
+  /// overlapping, each naming a material of `materials`. A triangle outside every range is
+  /// plain: its vertex albedo, opaque. Built-in scenes have none. Code that reorders or drops
+  /// triangles must keep the ranges (check_mesh refuses ranges that do not fit).
+  std::vector<material_range> material_ranges;
+  std::shared_ptr<const material_library> materials;
   std::size_t triangle_count() const { return indices.size() / 3; }
 };
+
+/// The material of triangle `triangle` (index triple 3 * triangle), or null for a plain one.
+const surface_material* material_of_triangle(const mesh& geometry, std::size_t triangle);
+
+/// Albedo (linear RGB) and alpha at the point (1 - u - v) a + u b + v c of triangle `triangle`:
+/// the interpolated vertex albedo times the material's texture sampled at the interpolated
+/// texture coordinate with level of detail `lod` (material.hpp says how the CPU's level differs
+/// from GL's), and the material's alpha.
+glm::vec4 surface_albedo_alpha(const mesh& geometry, std::size_t triangle, glm::vec2 barycentric, float lod = 0.0f);
+
+/// Whether the point is cut out: an alpha-tested (MASK) material with alpha below its cutoff.
+bool surface_cut_out(const mesh& geometry, std::size_t triangle, glm::vec2 barycentric, float lod = 0.0f);
 
 struct bounding_box {
   glm::vec3 minimum{0.0f};
@@ -65,12 +89,20 @@ struct scene {
   mesh geometry;
   camera view;
   scene_light light;
+  /// One line each: what a loader met and did not read (a glTF feature, once per feature) and
+  /// how frame_mesh placed a camera or light the file did not have. The command line prints them.
+  std::vector<std::string> notes;
 };
 
 /// Throws vplkit::error starting with `name` at the first bad value: a position that is not
-/// finite or beyond max_scene_coordinate, a non-finite normal or albedo, an index out of range,
-/// or no triangles.
+/// finite or beyond max_scene_coordinate, a non-finite normal, albedo or texture coordinate, an
+/// index out of range, no triangles, or material ranges that do not fit the indices or name a
+/// material or texture that does not exist.
 void check_mesh(const mesh& geometry, const std::string& name);
+/// The material part of check_mesh: ranges in order on whole triangles within the indices,
+/// materials and textures that exist, finite transforms, alpha values in [0, 1], texture levels
+/// whose pixels match their size.
+void check_materials(const mesh& geometry, const std::string& name);
 
 /// Throws vplkit::error starting with `owner` when the camera has a non-finite value, bad near/far
 /// planes, a field of view outside (0, 180) degrees, its target at its position or its up vector
@@ -167,8 +199,29 @@ void add_quad(mesh& target, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, 
 /// degenerate ones at the poles are kept for a uniform count).
 void add_sphere(mesh& target, glm::vec3 centre, float radius, int stacks, int slices, glm::vec3 albedo);
 
-/// Places a camera and a spot light for a mesh without a scene description (OBJ files): the
-/// camera looks at the bounding box from +z, the light shines down from above it.
-scene frame_mesh(std::string name, mesh geometry);
+/// Sets the light's intensity (a spot's, W/sr) or irradiance (a sun's, W/m^2): its brightest
+/// channel becomes `intensity`, its colour kept (white for a black light). Throws vplkit::error
+/// for a negative or non-finite value.
+void set_light_intensity(scene_light& light, float intensity);
+
+/// What frame_mesh places: the file had no camera, no light, or neither.
+struct framing_needs {
+  bool camera = true;
+  bool light = true;
+};
+
+/// Places a camera and a spot light for a mesh without them (OBJ files, glTF files without a
+/// camera or a light; frontend/scene/framing.hpp measures what the mesh is):
+/// - a closed room (rays from an inside point meet, in nearly every direction, a surface facing
+///   that point, at a median distance of at least a quarter of the bounding radius: not a hollow in
+///   an object): the camera inside, below the ceiling, near the wall opposite the room's longest
+///   free direction, looking across and down at the contents; the spot light under the ceiling
+///   above the camera, aimed at what the camera looks at, its cone wider than the view;
+/// - anything else (an object, an open scene): a raised three-quarter view of the bounds (35
+///   degrees around from +z, 25 degrees up), the spot light from above on the other side, and a
+///   floor under the mesh, added only here, so that the light has somewhere to bounce.
+/// Without `needs.light` no floor is added and the light stays default (the caller sets its own).
+/// A note says what was placed and how, with the pose as --camera/--light arguments.
+scene frame_mesh(std::string name, mesh geometry, framing_needs needs = {});
 
 }  // namespace vplkit

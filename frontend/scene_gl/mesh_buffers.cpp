@@ -3,15 +3,38 @@
 #include <cstddef>
 
 #include "frontend/gl/debug_output.hpp"
+#include "frontend/gl/render_target.hpp"
 
 namespace vplkit {
+
+namespace {
+
+GLint gl_wrap(texture_wrap wrap) {
+  switch (wrap) {
+    case texture_wrap::clamp_to_edge: return GL_CLAMP_TO_EDGE;
+    case texture_wrap::mirrored_repeat: return GL_MIRRORED_REPEAT;
+    case texture_wrap::repeat: break;
+  }
+  return GL_REPEAT;
+}
+
+GLint gl_min_filter(const texture_sampler& sampler) {
+  const bool linear = sampler.min == texture_filter::linear;
+  if (!sampler.mipmaps) return linear ? GL_LINEAR : GL_NEAREST;
+  if (sampler.between_levels == texture_filter::linear) return linear ? GL_LINEAR_MIPMAP_LINEAR : GL_NEAREST_MIPMAP_LINEAR;
+  return linear ? GL_LINEAR_MIPMAP_NEAREST : GL_NEAREST_MIPMAP_NEAREST;
+}
+
+}  // namespace
 
 mesh_buffers::mesh_buffers(const mesh& source)
     : vertex_array_(generate_vertex_array()),
       vertices_(generate_buffer()),
       indices_(generate_buffer()),
       index_count_(static_cast<GLsizei>(source.indices.size())),
-      vertex_count_(static_cast<GLsizei>(source.vertices.size())) {
+      vertex_count_(static_cast<GLsizei>(source.vertices.size())),
+      materials_(source.material_ranges.empty() ? nullptr : source.materials) {
+  check_materials(source, "mesh");
   glBindVertexArray(vertex_array_.get());
   glBindBuffer(GL_ARRAY_BUFFER, vertices_.get());
   glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(source.vertices.size() * sizeof(vertex)),
@@ -19,21 +42,77 @@ mesh_buffers::mesh_buffers(const mesh& source)
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, indices_.get());
   glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(source.indices.size() * sizeof(std::uint32_t)),
                source.indices.data(), GL_STATIC_DRAW);
-  const auto attribute = [](GLuint location, std::size_t offset) {
+  const auto attribute = [](GLuint location, GLint components, std::size_t offset) {
     glEnableVertexAttribArray(location);
-    glVertexAttribPointer(location, 3, GL_FLOAT, GL_FALSE, sizeof(vertex), reinterpret_cast<const void*>(offset));
+    glVertexAttribPointer(location, components, GL_FLOAT, GL_FALSE, sizeof(vertex), reinterpret_cast<const void*>(offset));
   };
-  attribute(0, offsetof(vertex, position));
-  attribute(1, offsetof(vertex, normal));
-  attribute(2, offsetof(vertex, albedo));
+  attribute(0, 3, offsetof(vertex, position));
+  attribute(1, 3, offsetof(vertex, normal));
+  attribute(2, 3, offsetof(vertex, albedo));
+  attribute(5, 2, offsetof(vertex, texcoord));
   glBindVertexArray(0);
   check_gl("uploading a mesh of " + std::to_string(source.vertices.size()) + " vertices");
+
+  // Segments: the plain triangles between the material ranges, and the ranges.
+  std::size_t at = 0;
+  for (const material_range& range : source.material_ranges) {
+    if (range.first_index > at) segments_.push_back({at, static_cast<GLsizei>(range.first_index - at), -1});
+    if (range.index_count > 0) segments_.push_back({range.first_index, static_cast<GLsizei>(range.index_count), static_cast<int>(range.material)});
+    at = std::size_t{range.first_index} + range.index_count;
+  }
+  if (source.indices.size() > at) segments_.push_back({at, static_cast<GLsizei>(source.indices.size() - at), -1});
+  if (!materials_) return;
+
+  for (const texture& t : materials_->textures) {
+    check_texture_size(t.levels.front().width, t.levels.front().height, "texture '" + t.name + "'");
+    textures_.emplace_back(generate_texture());
+    glBindTexture(GL_TEXTURE_2D, textures_.back().get());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    // Row 0 of each level is the image's top, at t = 0: glTF's (0, 0) is the top-left corner.
+    for (std::size_t level = 0; level < t.levels.size(); ++level) {
+      const texture_level& pixels = t.levels[level];
+      glTexImage2D(GL_TEXTURE_2D, static_cast<GLint>(level), GL_SRGB8_ALPHA8, pixels.width, pixels.height, 0, GL_RGBA, GL_UNSIGNED_BYTE, pixels.rgba8.data());
+    }
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_BASE_LEVEL, 0);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAX_LEVEL, static_cast<GLint>(t.levels.size() - 1));
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    check_gl("uploading texture '" + t.name + "' (" + std::to_string(t.levels.front().width) + "x" + std::to_string(t.levels.front().height) + ")");
+  }
+  glBindTexture(GL_TEXTURE_2D, 0);
+  for (const surface_material& material : materials_->materials) {
+    samplers_.emplace_back(generate_sampler());
+    const GLuint sampler = samplers_.back().get();
+    glSamplerParameteri(sampler, GL_TEXTURE_WRAP_S, gl_wrap(material.sampler.wrap_s));
+    glSamplerParameteri(sampler, GL_TEXTURE_WRAP_T, gl_wrap(material.sampler.wrap_t));
+    glSamplerParameteri(sampler, GL_TEXTURE_MAG_FILTER, material.sampler.mag == texture_filter::linear ? GL_LINEAR : GL_NEAREST);
+    glSamplerParameteri(sampler, GL_TEXTURE_MIN_FILTER, gl_min_filter(material.sampler));
+  }
+  check_gl("making the samplers of " + std::to_string(samplers_.size()) + " materials");
 }
 
-void mesh_buffers::draw() const {
+void mesh_buffers::draw(const program& target) const {
+  target.use();
+  target.set("material_texture", material_texture_unit);
+  glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + material_texture_unit));
   glBindVertexArray(vertex_array_.get());
-  glDrawElements(GL_TRIANGLES, index_count_, GL_UNSIGNED_INT, nullptr);
+  for (const segment& part : segments_) {
+    const surface_material* material = part.material >= 0 ? &materials_->materials[static_cast<std::size_t>(part.material)] : nullptr;
+    const bool textured = material && material->texture >= 0;
+    target.set("material_textured", textured ? 1 : 0);
+    target.set("material_alpha_factor", material ? material->alpha_factor : 1.0f);
+    target.set("material_alpha_cutoff", material && material->alpha_mask ? material->alpha_cutoff : -1.0f);
+    if (material) {
+      target.set("material_texture_matrix", glm::vec4(material->texture_matrix[0], material->texture_matrix[1]));
+      target.set("material_texture_offset", material->texture_offset);
+    }
+    glBindTexture(GL_TEXTURE_2D, textured ? textures_[static_cast<std::size_t>(material->texture)].get() : 0);
+    glBindSampler(static_cast<GLuint>(material_texture_unit), textured ? samplers_[static_cast<std::size_t>(part.material)].get() : 0);
+    glDrawElements(GL_TRIANGLES, part.count, GL_UNSIGNED_INT, reinterpret_cast<const void*>(part.first_index * sizeof(std::uint32_t)));
+  }
   glBindVertexArray(0);
+  glBindSampler(static_cast<GLuint>(material_texture_unit), 0);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  glActiveTexture(GL_TEXTURE0);
 }
 
 void mesh_buffers::draw_points() const {

@@ -1,17 +1,31 @@
-// A mesh on the GPU: one interleaved vertex buffer (position, normal, albedo at attribute
-// locations 0, 1, 2), an index buffer, and the vertex array that binds them; optionally more
-// per-vertex vec3 attributes from other buffers.
+// A mesh on the GPU: one interleaved vertex buffer (position, normal, albedo and texture
+// coordinate at attribute locations 0, 1, 2 and 5; 3 and 4 are left to per-vertex results a
+// pipeline attaches), an index buffer, the vertex array that binds them, and the textures
+// (SRGB8_ALPHA8 with the mip chain frontend/scene/material.hpp made) and sampler objects of the
+// mesh's materials.
 #pragma once
 
+#include <memory>
+#include <vector>
+
 #include "frontend/gl/gl_object.hpp"
+#include <vplkit/gl/program.hpp>
 #include "frontend/scene/scene.hpp"
 
 namespace vplkit {
 
+/// The texture unit a material's base-colour texture is bound to while a mesh draws (the
+/// pipelines' own textures use the units below it).
+constexpr int material_texture_unit = 8;
+
 class mesh_buffers {
  public:
   explicit mesh_buffers(const mesh& source);
-  void draw() const;
+  /// Draws every triangle with `target`, which must include shaders/surface_material.glsl: for
+  /// each material range its texture and sampler are bound to material_texture_unit and the
+  /// material's uniforms set; the plain triangles between ranges draw untextured and opaque.
+  /// Uses `target`.
+  void draw(const program& target) const;
   /// Every vertex once, as points (for transform feedback over the vertex stage).
   void draw_points() const;
   /// Binds `buffer`, one vec3 of floats per vertex, to attribute `location` of the vertex array
@@ -20,11 +34,21 @@ class mesh_buffers {
   GLsizei vertex_count() const { return vertex_count_; }
 
  private:
+  /// Consecutive indices drawn with one material (-1: plain).
+  struct segment {
+    std::size_t first_index;
+    GLsizei count;
+    int material;
+  };
   gl_vertex_array vertex_array_;
   gl_buffer vertices_;
   gl_buffer indices_;
   GLsizei index_count_;
   GLsizei vertex_count_;
+  std::vector<segment> segments_;
+  std::shared_ptr<const material_library> materials_;
+  std::vector<gl_texture> textures_;
+  std::vector<gl_sampler> samplers_;  ///< one per material
 };
 
 }  // namespace vplkit

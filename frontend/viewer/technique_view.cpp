@@ -2,6 +2,7 @@
 
 #include <imgui.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "frontend/core/error.hpp"
@@ -147,6 +148,19 @@ void technique_view::set_camera_pose(const pose& where) {
 void technique_view::set_light_pose(const pose& where) {
   scene_light light = pipeline_->current_light();
   apply_pose(where, light, "light");
+  pipeline_->set_light(light);
+  if (difference_) difference_->set_light(light);
+}
+
+float technique_view::light_intensity() const {
+  const scene_light light = pipeline_->current_light();
+  const glm::vec3 power = light.kind == light_kind::spot ? light.spot.intensity : light.directional.irradiance;
+  return std::max({power.r, power.g, power.b});
+}
+
+void technique_view::set_light_intensity(float intensity) {
+  scene_light light = pipeline_->current_light();
+  vplkit::set_light_intensity(light, intensity);
   pipeline_->set_light(light);
   if (difference_) difference_->set_light(light);
 }

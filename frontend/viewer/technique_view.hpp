@@ -82,6 +82,11 @@ class technique_view {
   /// Throw vplkit::error, leaving the view as it was, for a pose the pipeline refuses.
   void set_camera_pose(const pose& where);
   void set_light_pose(const pose& where);
+  /// The light's intensity (W/sr) or irradiance (W/m^2): its brightest channel.
+  float light_intensity() const;
+  /// The light's intensity set to `intensity`, its colour kept (set_light_intensity of scene.hpp).
+  /// Throws vplkit::error, leaving the view as it was, for a value the light refuses.
+  void set_light_intensity(float intensity);
   bool has_object() const { return pipeline_->has_object(); }
   glm::vec3 object_position() const { return pipeline_->object_position(); }
   void set_object_position(glm::vec3 centre) { pipeline_->set_object_position(centre); }

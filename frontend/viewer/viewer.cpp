@@ -51,6 +51,8 @@ viewer::viewer(window_context& window, const shader_library& shaders, viewer_opt
       docked_panel_width_(options.docked_panel_width),
       screenshot_path_(std::move(options.screenshot)),
       log_(options.log),
+      image_exposure_ev_(options.exposure_ev),
+      image_auto_exposure_(options.auto_exposure),
       last_frame_(std::chrono::steady_clock::now()) {
   if (viewer_exists) throw error("a viewer is already open: Dear ImGui allows one at a time");
   // Key presses are queued by a callback rather than read from ImGui's key state: a press and its
@@ -119,6 +121,21 @@ void viewer::select_layer(view_layer layer) {
 }
 
 void viewer::move_camera(const pose& where) { try_action([&] { view_->set_camera_pose(where); }); }
+
+float viewer::light_intensity() const { return view_->light_intensity(); }
+
+void viewer::set_light_intensity(float intensity) {
+  try_action([&] {
+    view_->set_light_intensity(intensity);
+    exposure_stale_ = true;
+  });
+}
+
+void viewer::set_exposure(float ev, bool automatic) {
+  image_exposure_ev_ = ev;
+  image_auto_exposure_ = automatic;
+  exposure_stale_ = true;
+}
 void viewer::move_light(const pose& where) { try_action([&] { view_->set_light_pose(where); }); }
 void viewer::move_object(glm::vec3 centre) { try_action([&] { view_->set_object_position(centre); }); }
 
@@ -245,6 +262,18 @@ void viewer::build_panel() {
     if (!problem.empty()) message_ = problem;
   }
 
+  if (ImGui::CollapsingHeader("light and exposure", ImGuiTreeNodeFlags_DefaultOpen)) {
+    // The light of the technique shown; a light move for the pipeline (what it invalidates redrawn).
+    float intensity = light_intensity();
+    if (ImGui::DragFloat("light intensity", &intensity, 0.01f * std::max(intensity, 1e-3f), 0.0f, 1e6f, "%.4g W/sr or W/m^2", ImGuiSliderFlags_Logarithmic))
+      set_light_intensity(intensity);
+    float ev = image_exposure_ev_;
+    bool automatic = image_auto_exposure_;
+    const bool moved = ImGui::SliderFloat("exposure (EV)", &ev, -10.0f, 10.0f, "%.2f");
+    const bool toggled = ImGui::Checkbox("auto exposure", &automatic);
+    if (moved || toggled) set_exposure(ev, automatic);
+  }
+
   if (ImGui::CollapsingHeader("pose")) {
     const auto edit_pose = [&](const char* label, pose where, bool light) {
       ImGui::PushID(label);
@@ -290,10 +319,14 @@ void viewer::build_panel() {
 
 void viewer::present() {
   const layer_display display = view_->display(layer_);
-  if (display.auto_exposure && exposure_stale_) {
-    exposure_ = percentile_exposure(view_->read_indirect());
+  // The indirect layers are auto-exposed from the indirect light; the final image takes
+  // --exposure (2^EV, or auto from its own luminance, as vplkit render's PNG).
+  const bool final_image = layer_ == view_layer::image;
+  if (exposure_stale_ && (display.auto_exposure || (final_image && image_auto_exposure_))) {
+    exposure_ = percentile_exposure(final_image ? display.image->read_image() : view_->read_indirect());
     exposure_stale_ = false;
   }
+  const float shown_exposure = final_image ? (image_auto_exposure_ ? exposure_ : std::exp2(image_exposure_ev_)) : display.auto_exposure ? exposure_ : 1.0f;
   const auto [window_width, window_height] = window_.framebuffer_size();
   const glm::vec4 image = image_rectangle();
   const int width = static_cast<int>(image.z), height = static_cast<int>(image.w);
@@ -313,7 +346,7 @@ void viewer::present() {
   present_program_.set("image", 0);
   present_program_.set("other", 1);
   present_program_.set("mode", display.mode);
-  present_program_.set("exposure", (display.auto_exposure ? exposure_ : 1.0f) * display.scale);
+  present_program_.set("exposure", shown_exposure * display.scale);
   present_program_.set("viewport_size", glm::ivec2(width, height));
   glBindVertexArray(empty_vertex_array_.get());
   glDrawArrays(GL_TRIANGLES, 0, 3);

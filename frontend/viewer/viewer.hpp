@@ -40,6 +40,10 @@ struct viewer_options {
   std::filesystem::path screenshot = "output/view.png";
   /// Where "wrote <path>" goes when the P key saves (none when null).
   std::ostream* log = nullptr;
+  /// The final image's exposure (vplkit render's --exposure): 2^exposure_ev, or with
+  /// auto_exposure the percentile_exposure of the image.
+  float exposure_ev = 0.0f;
+  bool auto_exposure = false;
 };
 
 /// What moves with the mouse and the keys.
@@ -81,6 +85,13 @@ class viewer {
   void move_camera(const pose& where);
   void move_light(const pose& where);
   void move_object(glm::vec3 centre);
+  /// The shown technique's light intensity (W/sr, or W/m^2 for a sun), its colour kept: a light
+  /// move (what it invalidates is redrawn). A refusal changes nothing and sets message().
+  void set_light_intensity(float intensity);
+  /// The brightest channel of the current view's light.
+  float light_intensity() const;
+  /// The final image's exposure: 2^ev, or automatic.
+  void set_exposure(float ev, bool automatic);
   /// The last error from a move, a setting or a switch ("" when the last action succeeded).
   const std::string& message() const { return message_; }
   /// The panel's rectangle in window pixels from the top left (x, y, width, height) in the last frame.
@@ -128,6 +139,8 @@ class viewer {
   std::vector<pass_time> last_pass_times_;
   float exposure_ = 1.0f;
   bool exposure_stale_ = true;
+  float image_exposure_ev_ = 0.0f;  ///< the final image layer's exposure (--exposure)
+  bool image_auto_exposure_ = false;
   double frame_ms_ = 0.0;
   std::chrono::steady_clock::time_point last_frame_;
   glm::vec4 panel_rectangle_{0.0f};

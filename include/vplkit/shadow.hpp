@@ -21,6 +21,21 @@
 // depth_gradient is the change of the receiver's light eye depth per RSM texel (the G-buffer
 // pass takes it from screen-space derivatives; 0 gives the thesis's Alg. 4 exactly).
 //
+// Slope-scaled and normal-offset bias (an addition, [RSMV] gives a constant zBias only). One RSM
+// texel covers footprint = 2 |w| / (|P00| size) scene units at the receiver, w = P23 z + P33 the
+// clip w of the light's projection P at the receiver's eye depth z (a spot: 2 |z| tan(fov/2) /
+// size; a sun's orthographic map: its width / size). A receiver whose normal makes the angle theta
+// with the direction to the light
+//   - is looked up from p + n normal_offset footprint sin(theta): moved off its own surface by up
+//     to normal_offset texels, the most where the surface grazes the light (its own depth changes
+//     fastest across a texel) and not at all where it faces it;
+//   - is compared with the bias depth_bias + slope_scale footprint min(tan(theta), max_slope):
+//     the change of its own depth across slope_scale texels.
+// Both are in the receiver's own texel footprint, so they shrink with the map's resolution and
+// grow with the distance to the light; an object standing on a floor keeps its contact shadow
+// as long as the offset (a texel or two) is small against the object. The receiver-plane
+// gradient's clamp (the G-buffer pass) is max_slope footprints per texel, for the same reason.
+//
 // GLSL twin: shaders/lib/shadow.glsl; the including shader defines
 // `float rsm_depth_fetch(ivec2 texel)`.
 #pragma once
@@ -36,6 +51,9 @@ template <typename T = float>
 struct shadow_density_settings {
   int kernel_size = 4;      ///< kernelSize (>= 1): window of kernelSize^2 RSM texels
   T depth_bias = T(0.02);   ///< zBias in scene units (>= 0), against self-shadowing
+  T normal_offset = T(1);   ///< normal offset in texel footprints (>= 0) at a grazing angle
+  T slope_scale = T(1);     ///< slope-scaled bias in texel footprints (>= 0) per unit of tan(theta)
+  T max_slope = T(10);      ///< tan(theta) is clamped at this (> 0): 84 degrees
 };
 
 template <typename T>
@@ -45,10 +63,43 @@ struct settings_description<shadow_density_settings<T>> {
   static constexpr bool glsl_twin = true;
   static constexpr auto fields() {
     return std::make_tuple(field(&S::kernel_size, "kernel_size", closed_range(1, 32), "RSM texels", "Alg. 4's window: kernel_size^2 RSM texels"),
-                           field(&S::depth_bias, "depth_bias", at_least(0.0), "scene units", "Alg. 4's zBias, against self-shadowing"));
+                           field(&S::depth_bias, "depth_bias", at_least(0.0), "scene units", "Alg. 4's zBias, against self-shadowing"),
+                           field(&S::normal_offset, "normal_offset", closed_range(0.0, 64.0), "texel footprints",
+                                 "the lookup moved along the normal by this times sin(theta)"),
+                           field(&S::slope_scale, "slope_scale", closed_range(0.0, 64.0), "texel footprints",
+                                 "the slope-scaled bias: this times tan(theta) footprints"),
+                           field(&S::max_slope, "max_slope", open_closed_range(0.0, 1000.0), "tan(theta)",
+                                 "tan(theta) clamped at this in the bias and the receiver-plane gradient"));
   }
   static setting_problem rules(const S& settings) { return no_rules(settings); }
 };
+
+/// Scene units one texel of a shadow map covers at a receiver of eye depth `eye_depth` (< 0 in
+/// front of the light), for the map's projection `projection` over `map_size` texels per side.
+template <typename T>
+T shadow_texel_footprint(const glm::mat<4, 4, T>& projection, T eye_depth, int map_size) {
+  const T w = projection[2][3] * eye_depth + projection[3][3];
+  return T(2) * glm::abs(w) / (glm::abs(projection[0][0]) * T(map_size));
+}
+
+/// The receiver's position for its shadow lookup: `position` moved along its unit normal `normal`
+/// by normal_offset footprints times sin(theta), theta between `normal` and `to_light` (unit).
+template <typename T>
+glm::vec<3, T> shadow_normal_offset(const glm::vec<3, T>& position, const glm::vec<3, T>& normal, const glm::vec<3, T>& to_light, T footprint,
+                                    const shadow_density_settings<T>& settings) {
+  const T cos_theta = glm::clamp(glm::dot(normal, to_light), T(0), T(1));
+  const T sin_theta = glm::sqrt(T(1) - cos_theta * cos_theta);
+  return position + normal * (settings.normal_offset * footprint * sin_theta);
+}
+
+/// The depth bias for a receiver at the angle theta to the light (cos_theta = <n, to_light>, a
+/// receiver facing away taken at max_slope): depth_bias + slope_scale footprint min(tan, max_slope).
+template <typename T>
+T shadow_slope_bias(T cos_theta, T footprint, const shadow_density_settings<T>& settings) {
+  const T c = glm::clamp(cos_theta, T(0), T(1));
+  const T tan_theta = c * settings.max_slope > glm::sqrt(T(1) - c * c) ? glm::sqrt(T(1) - c * c) / c : settings.max_slope;
+  return settings.depth_bias + settings.slope_scale * footprint * tan_theta;
+}
 
 /// Alg. 4 for a receiver whose projection on the RSM is `rsm_coordinate` (texels, continuous),
 /// whose light eye-space depth is `receiver_depth`, changing by `depth_gradient` per RSM texel.

@@ -1,5 +1,5 @@
-// CPU/GPU parity of include/vplkit/shadow.hpp against shaders/lib/shadow.glsl: shadow_density (Alg. 4), texel by
-// texel (vplkit/parity/parity.hpp).
+// CPU/GPU parity of include/vplkit/shadow.hpp against shaders/lib/shadow.glsl: shadow_density (Alg. 4) and the
+// slope-scaled, normal-offset bias, texel by texel (vplkit/parity/parity.hpp).
 #include <doctest/doctest.h>
 
 #include <array>
@@ -53,4 +53,52 @@ TEST_CASE("parity: shadow_density (Alg. 4) over a synthetic depth map") {
   // A count of depth tests over exactly the same floats (the plane depth is +,* only): the
   // result is a multiple of 1/25 and must match exactly.
   require_parity(compare("shadow_density", gpu.floats[0], cpu, inputs, {0.0f, 0.0f, 0, 0.0, "exact count"}, 1));
+}
+
+TEST_CASE("parity: the slope-scaled, normal-offset bias (footprint, normal offset, slope bias)") {
+  // float input 0: (position, eye depth), input 1: (unit normal, -), input 2: (unit direction to
+  // the light, -). Outputs: (offset position, footprint), (slope bias, -).
+  kernel_inputs inputs = grid_of(64, 64, 3);
+  std::mt19937 random(25);
+  std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
+  const auto unit = [&]() {
+    glm::vec3 v(uniform(random), uniform(random), uniform(random));
+    return glm::length(v) > 1e-3f ? glm::normalize(v) : glm::vec3(0.0f, 1.0f, 0.0f);
+  };
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    inputs.floats[0][i] = glm::vec4(10.0f * uniform(random), 10.0f * uniform(random), 10.0f * uniform(random), -0.1f - 50.0f * (uniform(random) + 1.0f));
+    inputs.floats[1][i] = glm::vec4(unit(), 0.0f);
+    inputs.floats[2][i] = glm::vec4(unit(), 0.0f);
+  }
+  shadow_density_settings<float> settings;
+  settings.normal_offset = 1.5f;
+  settings.slope_scale = 2.0f;
+  for (const bool spot : {true, false}) {
+    CAPTURE(spot);
+    const glm::mat4 projection = spot ? glm::perspective(glm::radians(70.0f), 1.0f, 0.05f, 200.0f) : glm::ortho(-8.0f, 8.0f, -8.0f, 8.0f, 0.5f, 60.0f);
+    kernel_source source;
+    source.name = "shadow_bias";
+    source.includes = {"lib/shadow.glsl"};
+    source.declarations = "uniform shadow_density_settings settings;\nuniform mat4 projection;\n"
+                          "float rsm_depth_fetch(ivec2 texel) { return texelFetch(float_input0, texel, 0).x; }\n";
+    source.body = "float footprint = shadow_texel_footprint(projection, fin0.w, 512);\n"
+                  "fout0 = vec4(shadow_normal_offset(fin0.xyz, fin1.xyz, fin2.xyz, footprint, settings), footprint);\n"
+                  "fout1 = vec4(shadow_slope_bias(dot(fin1.xyz, fin2.xyz), footprint, settings), 0.0, 0.0, 0.0);";
+    source.float_outputs = 2;
+    const kernel_outputs gpu = run_fragment(source, inputs, [&](const program& p) {
+      set_uniforms(p, "settings", settings);
+      p.set("projection", projection);
+    });
+    std::vector<glm::vec4> offset(inputs.size()), bias(inputs.size());
+    for (std::size_t i = 0; i < inputs.size(); ++i) {
+      const glm::vec4 p = inputs.floats[0][i];
+      const float footprint = shadow_texel_footprint(projection, p.w, 512);
+      offset[i] = glm::vec4(shadow_normal_offset(glm::vec3(p), glm::vec3(inputs.floats[1][i]), glm::vec3(inputs.floats[2][i]), footprint, settings), footprint);
+      bias[i] = glm::vec4(shadow_slope_bias(glm::dot(glm::vec3(inputs.floats[1][i]), glm::vec3(inputs.floats[2][i])), footprint, settings), 0.0f, 0.0f, 0.0f);
+    }
+    // A dot product, a sqrt and a divide: a few roundings; the offset is added to a position up
+    // to 10, so its error is absolute; tan = sqrt(1 - c^2) / c grows as c -> 0 (until max_slope).
+    require_parity(compare("shadow_normal_offset", gpu.floats[0], offset, inputs, {1e-5f, 1e-5f, 16, 0.0, "a few roundings added to positions up to 10"}, 4));
+    require_parity(compare("shadow_slope_bias", gpu.floats[1], bias, inputs, {1e-6f, 1e-4f, 64, 0.0, "tan from sqrt(1 - c^2) / c amplifies c's rounding near grazing"}, 1));
+  }
 }

@@ -275,8 +275,7 @@ void final_gather_pipeline::draw_passes(bool with_cube) {
     for (int face = 0; face < 6; ++face) {
       glViewport(face * settings_.face_size, 0, settings_.face_size, settings_.face_size);
       cube_program_.set("view_projection", projection * face_view(face, scene_.reference_point));
-      cube_program_.use();
-      room_.draw();  // the object is left out
+      room_.draw(cube_program_);  // the object is left out
     }
     timer_.end();
 
@@ -317,13 +316,12 @@ void final_gather_pipeline::draw_passes(bool with_cube) {
   glEnable(GL_DEPTH_TEST);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   gbuffer_program_.set("surface_kind", 1.0f);
-  gbuffer_program_.use();
   glEnable(GL_CULL_FACE);  // the room's quads face inwards, counter-clockwise
   glCullFace(GL_BACK);
-  room_.draw();
+  room_.draw(gbuffer_program_);
   glDisable(GL_CULL_FACE);  // an OBJ object's winding is not to be trusted
   gbuffer_program_.set("surface_kind", 2.0f);
-  object_.draw();
+  object_.draw(gbuffer_program_);
   glDisable(GL_DEPTH_TEST);
   timer_.end();
 

@@ -411,10 +411,10 @@ lightwave_pipeline::lightwave_pipeline(const shader_library& shaders, const scen
   if (source.light.kind != light_kind::spot) throw error("Light Wave needs a spot light; scene " + source.name + " has a directional one");
   if (const setting_problem problem = validate(source.light.spot)) throw error("scene " + source.name + ": " + problem.message());
   const std::string energy = std::to_string(static_cast<int>(settings_.energy));
-  // The flux energy's indirect light with indirect shadows: from a screen buffer the receivers
-  // fill (indirect_target_), so that the shadows' heavy fragment stage runs on the scene's own
-  // triangles; without shadows the receivers are drawn directly, one pass.
-  const bool indirect_buffer = settings_.energy == lightwave_energy::flux && technique_.mode >= lightwave_mode::accurate;
+  // The flux energy's indirect light: from a screen buffer the receivers fill (indirect_target_),
+  // so that the main pass runs on the scene's own triangles, with their materials (the receivers
+  // have none) and, with indirect shadows, its heavy fragment stage on few large triangles.
+  const bool indirect_buffer = settings_.energy == lightwave_energy::flux && technique_.mode >= lightwave_mode::unshadowed;
   const shader_defines defines = {{"VPLKIT_LIGHTWAVE_MODE", std::to_string(static_cast<int>(technique_.mode))},
                                   {"VPLKIT_LIGHTWAVE_INDIRECT_BUFFER", indirect_buffer ? "1" : "0"},
                                   {"VPLKIT_LIGHTWAVE_SHADOW_VARIANT", std::to_string(static_cast<int>(settings_.shadow_variant))},
@@ -517,7 +517,7 @@ void lightwave_pipeline::build_flux_vpls(const glm::mat4& light_view_projection)
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   surface_program_.use();
   surface_program_.set("view_projection", light_view_projection);
-  mesh_.draw();
+  mesh_.draw(surface_program_);
   const image positions = surfaces_->read_image(0), normals = surfaces_->read_image(1), albedos = surfaces_->read_image(2);
   // The rays cover the cone up to its outer edge, inside the map's frustum (2 degrees of margin).
   cone_.light_direction = light.direction;
@@ -717,7 +717,7 @@ void lightwave_pipeline::build_shadow_maps() {
       throw error("Light Wave shadow map framebuffer is incomplete");
     glClear(GL_DEPTH_BUFFER_BIT);
     depth_program_.set("view_projection", shadow_matrices_[layer]);
-    mesh_.draw();
+    mesh_.draw(depth_program_);
   }
   glDisable(GL_POLYGON_OFFSET_FILL);
 
@@ -782,14 +782,13 @@ void lightwave_pipeline::draw_main_pass() {
   glEnable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
   if (indirect_target_) {
-    // Flux energy with indirect shadows: the receivers' indirect light into the screen buffer the
-    // main pass reads.
+    // Flux energy: the receivers' indirect light into the screen buffer the main pass reads.
     indirect_target_->bind();
     glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     set_vertex_uniforms(indirect_program_);
     indirect_program_.use();
-    receiver_buffers_->draw();
+    receiver_buffers_->draw(indirect_program_);
     main_program_.set("indirect_buffer", 2);
     glActiveTexture(GL_TEXTURE2);
     glBindTexture(GL_TEXTURE_2D, indirect_target_->colour(0).id());
@@ -806,14 +805,17 @@ void lightwave_pipeline::draw_main_pass() {
   main_program_.set("indirect_maps", static_cast<int>(casters_.size()));
   main_program_.set("integrated_steps", settings_.integrated_steps);
   main_program_.set("faked_multiplier", settings_.faked_multiplier);
+  // The normal offset and slope-scaled bias of include/vplkit/shadow.hpp in every map; the
+  // constant part stays the raster state's polygon offset.
+  shadow_density_settings<float> bias;
+  bias.depth_bias = 0.0f;
+  set_uniforms(main_program_, "shadow_bias", bias);
+  main_program_.set("shadow_map_width", shadow_size_.x);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, vpl_texture_.get());
   glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_2D_ARRAY, shadow_maps_.get());
-  main_program_.use();
-  // The flux energy without indirect shadows draws the receivers, whose vertices carry the light.
-  if (receiver_buffers_ && !indirect_target_) receiver_buffers_->draw();
-  else mesh_.draw();
+  mesh_.draw(main_program_);
   timer_.end();
   check_gl("rendering scene " + scene_.name + " with " + technique_.name);
   view_valid_ = true;

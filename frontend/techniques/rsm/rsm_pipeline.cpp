@@ -309,6 +309,7 @@ void rsm_pipeline::set_pose_uniforms() {
   gbuffer_program_.set("camera_view", constants_.camera_view);
   gbuffer_program_.set("light_view", light.view);
   gbuffer_program_.set("light_view_projection", light.view_projection);
+  gbuffer_program_.set("light_projection", light.view_projection * glm::inverse(light.view));
   if (constants_.technique.indirect) {
     set_uniforms(gather_program_, "unprojection", constants_.unprojection);
     gather_program_.set("light_view", light.view);
@@ -375,8 +376,7 @@ void rsm_pipeline::draw_passes(bool with_rsm) {
     const GLuint empty_texel[4] = {0, 0, 0, 0};  // glClear's float colour is undefined for an integer target
     glClearBufferuiv(GL_COLOR, 0, empty_texel);
     glClear(GL_DEPTH_BUFFER_BIT);
-    rsm_program_.use();
-    mesh_.draw();
+    mesh_.draw(rsm_program_);
     timer_.end();
     rsm_valid_ = true;
     ++rsm_draws_;
@@ -386,8 +386,7 @@ void rsm_pipeline::draw_passes(bool with_rsm) {
   gbuffer_target_.bind();
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   rsm_target_.colour(0).bind(0);
-  gbuffer_program_.use();
-  mesh_.draw();
+  mesh_.draw(gbuffer_program_);
   timer_.end();
 
   glDisable(GL_DEPTH_TEST);

@@ -67,7 +67,8 @@ TEST_CASE("every settings struct's C++ fields are its GLSL struct's fields, both
       CHECK(found->second.array == field.array);
     }
     // GLSL -> C++
-    for (const auto& [name, type] : *declared) {
+    for (const auto& declared_field : *declared) {
+      const std::string& name = declared_field.first;  // named: clang 14's CAPTURE cannot take a structured binding
       CAPTURE(name);
       bool described = false;
       for (const glsl_twin::field& field : twin.fields) described = described || field.name == name;

@@ -417,7 +417,7 @@ TEST_CASE("the number of indirect shadow maps matters: 0, 1, 5, 10 and 20 maps g
     }
 }
 
-TEST_CASE("flux energy: accurate shadows with no map give the unshadowed image (the indirect light read from the screen buffer equals the receivers drawn)") {
+TEST_CASE("flux energy: accurate shadows with no map give the unshadowed image") {
   const scene boxes = make_boxes_scene();
   lightwave_settings settings = small("lightwave-accurate");
   settings.width = 256;
@@ -436,7 +436,7 @@ TEST_CASE("flux energy: accurate shadows with no map give the unshadowed image (
       total += static_cast<double>(direct.radiance.texels[i][c]);
     }
   MESSAGE("largest difference " << largest << ", mean radiance " << total / (3.0 * static_cast<double>(direct.radiance.texels.size())));
-  // The same interpolated vertex light; the two passes' fragment positions may differ in the last bits.
+  // The same indirect light from the receivers' buffer; the two programs' fragments may differ in the last bits.
   CHECK(largest <= 1e-3 * total / (3.0 * static_cast<double>(direct.radiance.texels.size())));
   CHECK(total > 0.0);
 }

@@ -1,0 +1,100 @@
+// Surface materials of users' scenes: a base-colour texture with its sampler and texture
+// transform, and an alpha test (glTF's alphaMode MASK), for ranges of a mesh's triangles. What a
+// surface's albedo is, in one place for every reader of it:
+//
+//   albedo = vertex.albedo (the material's colour factor) x texture.rgb (sRGB decoded)
+//   alpha  = alpha_factor x texture.a; with alpha_mask, a fragment (or a ray's hit) whose alpha
+//            is below alpha_cutoff is not there at all: it is not drawn, casts no shadow, blocks
+//            no ray and reflects no light.
+//
+// Texture coordinates follow glTF: (0, 0) is the image's top-left corner and v grows downwards
+// (the OBJ reader flips its vt's v). The GL passes sample with the sampler's wrap modes and
+// filters and the mipmaps made here (frontend/gl/mesh_buffers.hpp, shaders/surface_material.glsl);
+// the CPU references sample the same texels with sample_texture. Where the two differ: GL chooses
+// the mip level from screen-space derivatives per 2x2 pixel quad (and isotropically, from the
+// larger axis); the CPU has no derivatives, so its callers pass a level of detail: the Monte
+// Carlo reference's camera rays compute GL's from ray differentials (the same value on a plane),
+// every other ray (bounces, shadow rays and the alpha test of a cut-out) samples level 0, the
+// texel itself. Both filters preserve a texture's mean over an area, so areas agree; a pixel can
+// differ by up to the texture's contrast within the footprint of one pixel at grazing angles.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace vplkit {
+
+enum class texture_wrap : std::uint8_t { repeat, clamp_to_edge, mirrored_repeat };
+enum class texture_filter : std::uint8_t { nearest, linear };
+
+/// A glTF sampler: wrap per axis, the magnification filter, the minification filter within a
+/// level and between levels (mipmaps false: level 0 only).
+struct texture_sampler {
+  texture_wrap wrap_s = texture_wrap::repeat;
+  texture_wrap wrap_t = texture_wrap::repeat;
+  texture_filter mag = texture_filter::linear;
+  texture_filter min = texture_filter::linear;
+  bool mipmaps = true;
+  texture_filter between_levels = texture_filter::linear;
+};
+
+/// One level of a texture: RGBA8, RGB sRGB-encoded, alpha linear, rows top-down.
+struct texture_level {
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint8_t> rgba8;
+};
+
+/// A decoded texture with its full mip chain (level i + 1 halves level i per axis, rounding down,
+/// at least 1; each texel the mean of the 2x2, 2x1 or 1x2 texels below it, in linear light).
+struct texture {
+  std::string name;
+  std::vector<texture_level> levels;
+};
+
+/// The mip chain of level 0 (make_texture's; the GL upload and the CPU sampler read these levels).
+texture make_texture(std::string name, texture_level level0);
+
+struct surface_material {
+  std::string name;
+  int texture = -1;  ///< into material_library::textures; -1: no texture (the vertex albedo alone)
+  texture_sampler sampler;
+  /// KHR_texture_transform: uv' = texture_matrix * uv + texture_offset.
+  glm::mat2 texture_matrix{1.0f};
+  glm::vec2 texture_offset{0.0f};
+  float alpha_factor = 1.0f;  ///< baseColorFactor.a
+  bool alpha_mask = false;    ///< alphaMode MASK
+  float alpha_cutoff = 0.5f;
+};
+
+/// The textures and materials a mesh's material ranges name; shared between copies of a mesh.
+struct material_library {
+  std::vector<texture> textures;
+  std::vector<surface_material> materials;
+};
+
+/// Triangles [first_index, first_index + index_count) of a mesh's index list use `material`.
+struct material_range {
+  std::uint32_t first_index = 0;
+  std::uint32_t index_count = 0;
+  std::uint32_t material = 0;
+};
+
+/// Linear RGB and alpha of `t` at texture coordinate `uv` (after the material's transform), with
+/// GL's rules for the wrap modes, the filters and the level of detail `lod` (log2 of texels per
+/// pixel: <= 0 magnifies with sampler.mag at level 0, > 0 minifies with sampler.min and, with
+/// mipmaps, between the levels).
+glm::vec4 sample_texture(const texture& t, const texture_sampler& sampler, glm::vec2 uv, float lod);
+
+/// The texture coordinate the material samples at for a vertex coordinate (its transform).
+glm::vec2 material_texture_coordinate(const surface_material& material, glm::vec2 texcoord);
+
+/// 8-bit sRGB code -> linear value (the table GL's sRGB decode is specified by).
+float srgb8_to_linear(std::uint8_t code);
+
+}  // namespace vplkit
