@@ -2,9 +2,10 @@
 // Pass 3, RSM sampling ([RSMV], section 4.4): the gather at the indirect buffer's resolution,
 // one G-buffer sample per texel (G-buffer texel = indirect texel * divisor). Writes
 // [irradiance | camera eye depth] (Fig. 4.4). VPLKIT_RSM_PATTERN and VPLKIT_VISIBILITY select
-// the variant, VPLKIT_SLOT_COUNT fixes the slot count (lib/rsm_gather.glsl). One fetch per
-// sample: the RSM is one packed texture (lib/rsm_packing.glsl), and the gather runs in the
-// light's eye space.
+// the variant, VPLKIT_SLOT_COUNT fixes the slot count, VPLKIT_RSM_COVERAGE adds the coarse
+// lights of rsm_coarse.frag for the receivers the pattern cannot reach (lib/rsm_gather.glsl). One
+// fetch per sample: the RSM is one packed texture (lib/rsm_packing.glsl), and the gather runs in
+// the light's eye space.
 #include "lib/rsm_gather.glsl"
 #include "lib/rsm_packing.glsl"
 
@@ -17,10 +18,21 @@ uniform ivec2 gbuffer_size;
 uniform usampler2D rsm_packed;
 uniform sampler2D gbuffer_position_depth;
 uniform sampler2D gbuffer_normal;
+#if VPLKIT_RSM_COVERAGE
+uniform sampler2D coarse_position_extent;
+uniform sampler2D coarse_normal;
+uniform sampler2D coarse_flux;
+#endif
 
 layout(location = 0) out vec4 indirect;
 
 rsm_texel rsm_fetch(ivec2 texel) { return unpack_rsm_texel(texelFetch(rsm_packed, texel, 0), texel, unprojection); }
+#if VPLKIT_RSM_COVERAGE
+coarse_light rsm_coarse_fetch(ivec2 block) {
+  vec4 position_extent = texelFetch(coarse_position_extent, block, 0);
+  return coarse_light(position_extent.xyz, texelFetch(coarse_normal, block, 0).xyz, texelFetch(coarse_flux, block, 0).xyz, position_extent.w);
+}
+#endif
 
 void main() {
   ivec2 texel = ivec2(gl_FragCoord.xy);

@@ -4,12 +4,21 @@
 // VPLKIT_LIGHTWAVE_MODE: 0 direct only, 1 faked indirect (Eq. 5.2), 2 indirect without shadows,
 // 3 accurate indirect shadows (the VPL shadow maps), 4 integrated indirect shadows (lookups
 // stepped between every pair of maps, lib/lightwave.glsl).
-// VPLKIT_LIGHTWAVE_SHADOW_VARIANT (accurate shadows): 0 importance, each lookup weighted by its
-// VPL's diffuse weight here over the probability it was drawn with, lookups outside a map not
-// voting; 1 thesis, the plain mean with outside counting as lit. See lightwave_settings.
+// VPLKIT_LIGHTWAVE_SHADOW_VARIANT (accurate shadows): 0 importance: each map stands for a group
+// of VPLs and shadows the share of this fragment's indirect light that its group, taken as one
+// light, brings here; where the map does not cover the fragment (behind its camera, outside its
+// frustum or depth range) or its VPL does not light it, that share stays lit; with the flux
+// energy the lookup counts by lightwave_group_confidence (the smaller the group looks, the more
+// one VPL's view stands for it; the thesis energy, which has no ground truth to weigh that
+// against, takes each lookup at face value); it fades to lit towards the map's border
+// (lightwave_map_fade, over 5 % of the map). 1 thesis: the plain
+// mean of the lookups, outside a map counting as lit. See lightwave_settings.
+// VPLKIT_LIGHTWAVE_ENERGY: 0 the thesis's VPL weights (Eq. 4.5), 1 the flux VPLs' irradiance.
 // Shadow maps: layer 0 of the depth array is the spot light's, layers 1 .. maps the VPLs'.
 // Output 1 is the indirect shadow factor (red), output 2 the indirect radiance added to the
 // direct light (after the factor), for tests, reports and the viewer.
+// VPLKIT_LIGHTWAVE_INDIRECT_BUFFER (the flux energy): the indirect light comes from the screen
+// buffer lightwave_indirect.frag filled at this pixel from the receivers, not from the vertices.
 #include "lib/direct_light.glsl"
 #include "lib/lightwave.glsl"
 #define VPLKIT_SHADOW_BIAS_ONLY
@@ -25,8 +34,10 @@ uniform spot_light light;
 uniform irradiance_settings irradiance;
 uniform sampler2DArrayShadow shadow_maps;
 uniform mat4 shadow_matrix[VPLKIT_MAX_SHADOW_MAPS + 1];
-uniform vec4 caster_position_attenuation[VPLKIT_MAX_SHADOW_MAPS];  // map i + 1's VPL
-uniform vec4 caster_normal_weight[VPLKIT_MAX_SHADOW_MAPS];         // its normal | 1 / probability
+uniform vec4 caster_position[VPLKIT_MAX_SHADOW_MAPS];         // map i + 1's VPL: position | attenuation (thesis) or radius (flux)
+uniform vec4 caster_normal[VPLKIT_MAX_SHADOW_MAPS];           // its normal | -
+uniform vec4 group_position_radius[VPLKIT_MAX_SHADOW_MAPS];   // its group as one light (importance)
+uniform vec4 group_normal_power[VPLKIT_MAX_SHADOW_MAPS];
 uniform int indirect_maps;
 uniform int integrated_steps;
 uniform float faked_multiplier;
@@ -37,6 +48,9 @@ in vec3 world_position;
 in vec3 world_normal;
 in vec3 surface_albedo;
 in vec3 vertex_indirect;
+#if VPLKIT_LIGHTWAVE_INDIRECT_BUFFER
+uniform sampler2D indirect_buffer;
+#endif
 layout(location = 0) out vec4 colour;
 layout(location = 1) out vec4 indirect_shadow;
 layout(location = 2) out vec4 indirect_out;
@@ -48,7 +62,7 @@ layout(location = 2) out vec4 indirect_out;
 // is the length of the matrix's first row.
 vec4 map_coordinate(int layer) {
   mat4 m = shadow_matrix[layer];
-  vec3 origin = layer == 0 ? light.position : caster_position_attenuation[max(layer - 1, 0)].xyz;
+  vec3 origin = layer == 0 ? light.position : caster_position[max(layer - 1, 0)].xyz;
   vec3 n = normalize(world_normal);
   vec3 to_origin = normalize(origin - world_position);
   vec4 clip = m * vec4(world_position, 1.0);
@@ -61,11 +75,33 @@ vec4 map_coordinate(int layer) {
 // 1 = lit; a further depth bias is in the raster state.
 float shadow_lookup(vec3 coordinate, int layer) { return texture(shadow_maps, vec4(coordinate.xy, float(layer), coordinate.z)); }
 
+// The light of caster i's group, as one light, at (x, n), and whether caster i's own VPL lights it.
+#if VPLKIT_LIGHTWAVE_ENERGY == 1
+float group_light(int i, vec3 x, vec3 n) {
+  vec4 a = group_position_radius[i], b = group_normal_power[i];
+  return lightwave_bounce_weight(x, n, lightwave_flux_vpl(a.xyz, b.xyz, vec3(b.w), a.w), irradiance.min_distance);
+}
+bool caster_lights(int i, vec3 x, vec3 n) { return lightwave_flux_vpl_faces(x, n, caster_position[i].xyz, caster_normal[i].xyz); }
+#else
+float group_light(int i, vec3 x, vec3 n) {
+  vec4 a = group_position_radius[i], b = group_normal_power[i];
+  return lightwave_vpl_weight(x, n, lightwave_vpl(a.xyz, b.xyz, 0.0)) * b.w;
+}
+bool caster_lights(int i, vec3 x, vec3 n) {
+  vec4 a = caster_position[i];
+  return lightwave_vpl_weight(x, n, lightwave_vpl(a.xyz, caster_normal[i].xyz, a.w)) > 0.0;
+}
+#endif
+
 void main() {
   // The base-colour texture at this fragment multiplies the vertex's albedo in the direct light
   // and in the vertex's indirect light (Eq. 4.5 is linear in the receiver's albedo).
   vec3 texture_colour = material_albedo(vec3(1.0));
+#if VPLKIT_LIGHTWAVE_INDIRECT_BUFFER
+  vec3 textured_indirect = texelFetch(indirect_buffer, ivec2(gl_FragCoord.xy), 0).rgb * texture_colour;
+#else
   vec3 textured_indirect = vertex_indirect * texture_colour;
+#endif
   vec3 n = normalize(world_normal);
   vec3 direct = surface_albedo * texture_colour * 0.318309886183790671538 * spot_light_irradiance(world_position, n, light, irradiance);
   // Outside the light's frustum there is no direct light to shadow.
@@ -83,18 +119,21 @@ void main() {
   colour = vec4(direct * shadow + indirect, 1.0);
 #elif VPLKIT_LIGHTWAVE_MODE == 3
 #if VPLKIT_LIGHTWAVE_SHADOW_VARIANT == 0
-  float lit = 0.0, weight = 0.0;
+  float lit = 0.0, total = 0.0;
   for (int i = 1; i <= indirect_maps; ++i) {
+    float share = group_light(i - 1, world_position, n);
+    if (!(share > 0.0)) continue;
+    total += share;
     vec4 coordinate = map_coordinate(i);
-    vec4 caster = caster_position_attenuation[i - 1];
-    lightwave_vpl vpl = lightwave_vpl(caster.xyz, caster_normal_weight[i - 1].xyz, caster.w);
-    float w = coordinate.w * lightwave_vpl_weight(world_position, n, vpl) * caster_normal_weight[i - 1].w;
-    if (w > 0.0) {
-      lit += w * shadow_lookup(coordinate.xyz, i);
-      weight += w;
-    }
+#if VPLKIT_LIGHTWAVE_ENERGY == 1
+    float trust = lightwave_group_confidence(world_position, group_position_radius[i - 1].xyz, group_position_radius[i - 1].w);
+#else
+    float trust = 1.0;  // the thesis's VPLs: each lookup at face value, as its tables measure them
+#endif
+    float counts = caster_lights(i - 1, world_position, n) ? trust * lightwave_map_fade(coordinate, 0.05) : 0.0;
+    lit += counts > 0.0 ? share * mix(1.0, shadow_lookup(coordinate.xyz, i), counts) : share;
   }
-  factor = weight > 0.0 ? lit / weight : 1.0;
+  factor = total > 0.0 ? lit / total : 1.0;
 #else  // thesis variant
   float lit = 0.0;
   for (int i = 1; i <= indirect_maps; ++i) {

@@ -1,21 +1,35 @@
 #version 330 core
 // Light Wave main pass, vertex stage ([LW], section 4.2): the indirect colour of each vertex
-// from all VPLs (Eq. 4.5, lib/lightwave.glsl), read from a float texture: texel (0, i) holds
-// [position | attenuation] of VPL i, texel (1, i) its [normal | -]. No [0, 1] encoding (Eq. 4.3,
-// 4.4) is needed with float textures.
+// from all VPLs, read from a float texture, a row per VPL (no [0, 1] encoding, Eq. 4.3, 4.4, is
+// needed with float textures). VPLKIT_LIGHTWAVE_ENERGY 0, the thesis's: Eq. 4.5, texel (0, i)
+// [position | attenuation], (1, i) [normal | -], every frame. 1, flux: albedo / pi times the
+// irradiance of every flux VPL (lib/lightwave.glsl), texel (0, i) [position | radius], (1, i)
+// [normal | -], (2, i) [flux | -]; it does not depend on the camera, so the pipeline sums it once
+// per light (VPLKIT_LIGHTWAVE_CAPTURE: the transform-feedback program) and the main pass reads
+// the result as attribute 3.
+#if VPLKIT_LIGHTWAVE_ENERGY == 1
+#define VPLKIT_LIGHTWAVE_FETCH_FLUX 1
+#else
 #define VPLKIT_LIGHTWAVE_FETCH 1
+#endif
 #include "lib/lightwave.glsl"
 
 layout(location = 0) in vec3 position;
 layout(location = 1) in vec3 normal;
 layout(location = 2) in vec3 albedo;
 layout(location = 5) in vec2 texcoord;
+#if VPLKIT_LIGHTWAVE_ENERGY == 1 && !defined(VPLKIT_LIGHTWAVE_CAPTURE)
+layout(location = 3) in vec3 captured_indirect;
+#elif VPLKIT_LIGHTWAVE_ENERGY == 1
+layout(location = 4) in vec3 sample_position;  // where the vertex's light is evaluated (lightwave_receiver_samples)
+#endif
 
 uniform mat4 view_projection;
 uniform vec3 eye;
 uniform sampler2D vpl_texture;
 uniform int vpl_count;
 uniform lightwave_shading_settings shading;
+uniform irradiance_settings irradiance;
 
 out vec3 world_position;
 out vec3 world_normal;
@@ -23,14 +37,26 @@ out vec3 surface_albedo;
 out vec3 vertex_indirect;
 out vec2 surface_texcoord;
 
+#if VPLKIT_LIGHTWAVE_ENERGY == 1
+lightwave_flux_vpl lightwave_fetch_flux_vpl(int index) {
+  vec4 position_radius = texelFetch(vpl_texture, ivec2(0, index), 0);
+  return lightwave_flux_vpl(position_radius.xyz, texelFetch(vpl_texture, ivec2(1, index), 0).xyz, texelFetch(vpl_texture, ivec2(2, index), 0).xyz,
+                            position_radius.w);
+}
+#else
 lightwave_vpl lightwave_fetch_vpl(int index) {
   vec4 position_attenuation = texelFetch(vpl_texture, ivec2(0, index), 0);
   return lightwave_vpl(position_attenuation.xyz, texelFetch(vpl_texture, ivec2(1, index), 0).xyz, position_attenuation.w);
 }
+#endif
 
 void main() {
   vec3 n = normalize(normal);
-#if VPLKIT_LIGHTWAVE_INDIRECT
+#if VPLKIT_LIGHTWAVE_INDIRECT && VPLKIT_LIGHTWAVE_ENERGY == 1 && defined(VPLKIT_LIGHTWAVE_CAPTURE)
+  vertex_indirect = lightwave_vertex_bounce(sample_position, n, albedo, vpl_count, irradiance);
+#elif VPLKIT_LIGHTWAVE_INDIRECT && VPLKIT_LIGHTWAVE_ENERGY == 1
+  vertex_indirect = captured_indirect;
+#elif VPLKIT_LIGHTWAVE_INDIRECT
   vertex_indirect = lightwave_vertex_indirect(position, n, albedo, eye, vpl_count, shading);
 #else
   vertex_indirect = vec3(0.0);

@@ -10,6 +10,7 @@
 #include "frontend/cli/technique_options.hpp"
 #include "frontend/core/parallel.hpp"
 #include "frontend/reference/reference.hpp"
+#include "frontend/techniques/rsm/rsm_cpu_mirror.hpp"
 
 namespace vplkit::cli {
 
@@ -20,6 +21,7 @@ namespace fs = std::filesystem;
 struct reference_state {
   std::string method = "monte-carlo";
   std::string visibility = "exact";
+  std::string receivers = "all";
   reference_options options = [] {
     reference_options every_receiver;
     every_receiver.receiver_stride = 1;  // the reference command computes every receiver unless told
@@ -79,19 +81,28 @@ int run_rsm_brute_force(const session& io, const reference_state& s) {
   const progress_settings progress =
       announce(s, estimate_rsm_gather(rays, buffers, pipeline.constants(), brute_force), started, brute_force.threads);
   const image gathered = reference_rsm_gather(rays, buffers, pipeline.constants(), brute_force, progress);
-  // The mask: the computed receivers the RSM gather covers.
+  // The mask: every computed receiver with a surface (all), or those the pattern covers.
   const std::vector<std::uint8_t> covered = rsm_covered_receivers(buffers, pipeline.constants(), s.options.receiver_stride);
   image mask(gathered.width, gathered.height);
-  for (std::size_t i = 0; i < covered.size(); ++i) mask.texels[i] = glm::vec4(covered[i] ? 1.0f : 0.0f);
-  const auto counted = std::count(covered.begin(), covered.end(), std::uint8_t{1});
+  std::size_t counted = 0, counted_covered = 0;
+  for (int y = 0; y < mask.height; y += s.options.receiver_stride)
+    for (int x = 0; x < mask.width; x += s.options.receiver_stride) {
+      const std::size_t i = mask.index(x, y);
+      const bool surface = gather_receiver_at(glm::ivec2(x, y), buffers, pipeline.constants()).has_value();
+      const bool counts = s.receivers == "all" ? surface : covered[i] != 0;
+      mask.texels[i] = glm::vec4(counts ? 1.0f : 0.0f);
+      counted += surface;
+      counted_covered += covered[i] != 0;
+    }
   files.add_pfm(files.main(), gathered);
   files.add_png(files.sibling("", ".png"), gathered, percentile_exposure(gathered));
   const fs::path receivers = files.sibling("-receivers", ".pfm");
   files.add_pfm(receivers, mask);
   io.out << "scene " << source.name << ", brute-force RSM gather with " << (brute_force.exact_visibility ? "exact (ray-cast)" : "no") << " visibility, RSM "
          << settings.rsm_size << "^2, at the " << gathered.width << "x" << gathered.height << " receivers of the indirect buffer of a " << settings.width
-         << "x" << settings.height << " frame (every " << s.options.receiver_stride << ". per axis), " << counted
-         << " covered by the RSM gather (in front of the light, inside its frustum)\n"
+         << "x" << settings.height << " frame (every " << s.options.receiver_stride << ". per axis): " << counted << " with a surface, "
+         << counted_covered << " of them covered by the pattern (in front of the light, inside its frustum); -receivers.pfm marks "
+         << (s.receivers == "all" ? "every one with a surface" : "the covered ones") << "\n"
          << "compare with `vplkit render --raw-indirect` of the same frame: vplkit compare <out>-raw-indirect.pfm " << files.main().string() << " --mask "
          << receivers.string() << "\n";
   files.write(io.out);
@@ -144,6 +155,12 @@ command add_reference_command(CLI::App& app) {
     state->scope.add(option, "--method rsm-brute-force", brute_force);
   state->scope.add(reference->add_option("--visibility", state->visibility, "rsm-brute-force: exact (a ray per pixel light) or none")
                        ->check(CLI::IsMember({"exact", "none"}))->capture_default_str(),
+                   "--method rsm-brute-force", brute_force);
+  state->scope.add(reference->add_option("--receivers", state->receivers,
+                                         "rsm-brute-force: the receivers -receivers.pfm marks: all (every receiver with a surface, the light's first "
+                                         "bounce reaches it whether the RSM's projection covers it or not) or covered (in front of the light, "
+                                         "projecting inside the RSM: what the pattern alone reaches)")
+                       ->check(CLI::IsMember({"all", "covered"}))->capture_default_str(),
                    "--method rsm-brute-force", brute_force);
   add_reference_options(*reference, state->options, state->scope, "--method");
   reference->add_option("--max-seconds", state->max_seconds,

@@ -2,7 +2,9 @@
 // from the registry (frontend/techniques/registry.hpp); every setting is an option scoped to the
 // techniques that read it (technique_options), so an option the technique ignores is an error.
 // --reference measures the frame against ground truth (frontend/reference/quality.hpp) and
-// --stats writes the settings in effect, the pass times and the quality as JSON.
+// --stats writes the settings in effect, the pass times and the quality as JSON. --poses renders
+// an RSM technique's sequence in one pipeline (numbered frames, all or nothing).
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
@@ -14,6 +16,8 @@
 #include "frontend/cli/technique_options.hpp"
 #include "frontend/core/parallel.hpp"
 #include "frontend/reference/quality.hpp"
+#include "frontend/scene/pose.hpp"
+#include "frontend/techniques/rsm/rsm_pipeline.hpp"
 
 namespace vplkit::cli {
 
@@ -27,6 +31,7 @@ struct render_state {
   std::string reference = "none";
   reference_options quality;
   option_scope reference_scope;  ///< --receiver-stride, --samples, --reference-seed
+  std::string poses;             ///< --poses: a pose file, one frame per line
 };
 
 std::string json_string(const std::string& text) {
@@ -50,6 +55,55 @@ std::string pass_json(const std::vector<pass_time>& passes) {
   return json + "], \"frame_ms\": " + json_number(total);
 }
 
+// "-0001" for frame 1 of a sequence of `count` frames (at least 4 digits, more for longer ones).
+std::string frame_suffix(std::size_t frame, std::size_t count) {
+  std::string number = std::to_string(frame);
+  const std::size_t digits = std::max<std::size_t>(4, std::to_string(count).size());
+  return "-" + std::string(digits - std::min(digits, number.size()), '0') + number;
+}
+
+// The frames of --poses, rendered in one RSM pipeline (render_next: the pattern turns and the
+// temporal accumulation blends with the history); nothing is written unless every frame renders.
+int render_sequence(const session& io, const render_state& s, const technique_settings& settings, output_set& files) {
+  const std::vector<pose_frame> frames = read_pose_file(s.poses, false);
+  const headless_session gl(s.options.common);
+  std::unique_ptr<scene> source;
+  const std::unique_ptr<pipeline> drawn = make_posed_pipeline(gl.shaders, s.options.common, settings, source);
+  auto* rsm = dynamic_cast<rsm_pipeline*>(drawn.get());
+  if (!rsm) throw usage_error("--poses is read by the RSM techniques (direct, rsm-*), not by technique " + s.options.technique);
+  // Every frame's files are kept in memory until the end (all or nothing): bound them.
+  const image first = rsm->render().radiance;
+  const double bytes_per_frame = static_cast<double>(first.width) * first.height * (s.raw_indirect ? 19.0 : 15.0);
+  if (bytes_per_frame * static_cast<double>(frames.size()) > 4.0 * 1024 * 1024 * 1024)
+    throw error(s.poses + ": " + std::to_string(frames.size()) + " frames of " + std::to_string(first.width) + "x" + std::to_string(first.height) +
+                " would hold more than 4 GiB until they are written; split the pose file");
+  camera view = rsm->current_camera();
+  scene_light light = rsm->current_light();
+  double total_ms = 0.0;
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    const pose_frame& frame = frames[i];
+    const std::string where = s.poses + ":" + std::to_string(frame.line);
+    if (frame.camera) {
+      apply_pose(*frame.camera, view, where + ": --camera");
+      rsm->set_camera(view);
+    }
+    if (frame.light) {
+      apply_pose(*frame.light, light, where + ": --light");
+      rsm->set_light(light);
+    }
+    const rsm_frame rendered = rsm->render_next();
+    for (const pass_time& pass : rendered.pass_times) total_ms += pass.milliseconds;
+    const std::string suffix = frame_suffix(i + 1, frames.size());
+    files.add_png(files.sibling(suffix, ".png"), rendered.radiance);
+    files.add_pfm(files.sibling(suffix + "-indirect", ".pfm"), rendered.indirect);
+    if (s.raw_indirect) files.add_pfm(files.sibling(suffix + "-raw-indirect", ".pfm"), rsm->read_buffers().indirect);
+  }
+  io.out << drawn->describe() << "\n" << frames.size() << " frames from " << s.poses << ", " << std::fixed << std::setprecision(1)
+         << total_ms / static_cast<double>(frames.size()) << " ms per frame (passes)\n";
+  files.write(io.out);
+  return 0;
+}
+
 int run_render(const session& io, const render_state& s) {
   const technique_options& o = s.options;
   o.scope.require_read_by(o.technique, "technique");
@@ -60,7 +114,10 @@ int run_render(const session& io, const render_state& s) {
   if (const std::string refusal = reference_refusal(kind, o.technique); !refusal.empty()) throw usage_error("--reference " + s.reference + ": " + refusal);
   output_set files(s.out, "output/" + std::filesystem::path(drawn_scene_name(o.common, *settings)).stem().string() + "-" + o.technique + ".png", ".png", "--out");
   if (!s.stats.empty() && std::filesystem::path(s.stats).extension() != ".json") throw usage_error("--stats must name a .json file, got " + shown(s.stats));
+  if (!s.poses.empty() && (kind != reference_kind::none || !s.stats.empty())) throw usage_error("--poses renders a sequence: no --reference or --stats");
+  if (s.poses.empty() && o.given.find("temporal-blend")) throw usage_error("--temporal-blend is read with --poses (a sequence), not for one frame");
   if (io.dry_run) return 0;
+  if (!s.poses.empty()) return render_sequence(io, s, *settings, files);
 
   const headless_session gl(o.common);
   std::unique_ptr<scene> source;
@@ -147,6 +204,11 @@ command add_render_command(CLI::App& app) {
                                             "with vplkit reference --method rsm-brute-force)"),
                            setting_readers("indirect-divisor"),
                            [](const std::string& technique) { return family_of(technique).make_settings(technique)->reads("indirect-divisor"); });
+  state->options.scope.add(render->add_option("--poses", state->poses,
+                                             "render a sequence in one pipeline: a file with one frame per line, each line --camera x,y,z,tx,ty,tz "
+                                             "and/or --light x,y,z,tx,ty,tz ('#' comments; a pose a line leaves out stays); writes <out>-0001.png, "
+                                             "<out>-0001-indirect.pfm, ... for every frame, or nothing; --temporal-blend sets the accumulation"),
+                           "the RSM techniques (direct, rsm-*)", [](const std::string& technique) { return family_of(technique).name == "rsm"; });
   render->add_option("--stats", state->stats, "write the settings in effect, the pass times with their method and the quality numbers as JSON (.json)");
   render->add_option("--reference", state->reference,
                      "measure the frame against ground truth: rsm-brute-force (the RSM techniques' raw gather against the brute-force gather of "

@@ -12,6 +12,7 @@ const std::vector<glsl_twin>& glsl_twins() {
       glsl_twin_of<elevation_slots<float>>(),      glsl_twin_of<rsm_gather_settings<float>>(),      glsl_twin_of<rsm_unprojection<float>>(),
       glsl_twin_of<shadow_density_settings<float>>(), glsl_twin_of<bilateral_settings<float>>(),    glsl_twin_of<spot_light<float>>(),
       glsl_twin_of<directional_light<float>>(),    glsl_twin_of<lightwave_layout_settings<float>>(), glsl_twin_of<lightwave_shading_settings<float>>(),
+      glsl_twin_of<temporal_settings<float>>(),
   };
   return twins;
 }

@@ -381,6 +381,20 @@ image gather_with_ray_cast_visibility(const ray_scene& rays, const rsm_pass_buff
     return rsm[static_cast<std::size_t>(texel.y) * static_cast<std::size_t>(buffers.rsm.width) + static_cast<std::size_t>(texel.x)];
   };
   const glm::mat4 to_world = glm::inverse(constants.light.view);
+  // The coverage's coarse lights as the frame gathered them (none without coverage).
+  const std::vector<coarse_light<float>> coarse = coarse_lights_of(buffers);
+  const int blocks = buffers.coarse[0].width;
+  const auto coarse_fetch = [&](glm::ivec2 block) {
+    return coarse[static_cast<std::size_t>(block.y) * static_cast<std::size_t>(blocks) + static_cast<std::size_t>(block.x)];
+  };
+  const auto gather = [&](const gather_receiver<float>& receiver) {
+    ray_cast_visibility visibility(rays, to_world, receiver);
+    if (constants.technique.pattern == rsm_pattern::disk)
+      return coarse.empty() ? gather_rsm_with<rsm_pattern::disk>(receiver, fetch, constants.gather, visibility)
+                            : gather_rsm_with<rsm_pattern::disk>(receiver, fetch, coarse_fetch, constants.gather, visibility);
+    return coarse.empty() ? gather_rsm_with<rsm_pattern::radial>(receiver, fetch, constants.gather, visibility)
+                          : gather_rsm_with<rsm_pattern::radial>(receiver, fetch, coarse_fetch, constants.gather, visibility);
+  };
   const int rows = (out.height + receiver_stride - 1) / receiver_stride;
   parallel_for(rows, threads, [&](int row) {
     const int y = row * receiver_stride;
@@ -388,9 +402,7 @@ image gather_with_ray_cast_visibility(const ray_scene& rays, const rsm_pass_buff
       const glm::ivec2 texel(x, y);
       const std::optional<gather_receiver<float>> receiver = gather_receiver_at(texel, buffers, constants);
       if (!receiver) continue;
-      const glm::vec3 e = constants.technique.pattern == rsm_pattern::disk
-                              ? gather_rsm_with<rsm_pattern::disk>(*receiver, fetch, constants.gather, ray_cast_visibility(rays, to_world, *receiver))
-                              : gather_rsm_with<rsm_pattern::radial>(*receiver, fetch, constants.gather, ray_cast_visibility(rays, to_world, *receiver));
+      const glm::vec3 e = gather(*receiver);
       out.at(texel) = glm::vec4(e, buffers.gbuffer[0].at(gbuffer_texel_of(texel, constants)).w);
     }
   });

@@ -5,7 +5,11 @@
 #include <iomanip>
 #include <sstream>
 
+#include <filesystem>
+
 #include "frontend/core/error.hpp"
+#include "frontend/core/files.hpp"
+#include "frontend/image/image_files.hpp"
 #include "frontend/techniques/rsm/rsm_cpu_mirror.hpp"
 
 namespace vplkit {
@@ -28,8 +32,16 @@ image filtered_at_receivers(const rsm_frame& frame, const frame_reference& refer
 
 }  // namespace
 
+std::string cache_key(const std::string& text) {
+  std::uint64_t hash = 14695981039346656037ull;
+  for (const char c : text) hash = (hash ^ static_cast<unsigned char>(c)) * 1099511628211ull;
+  std::ostringstream out;
+  out << std::hex << std::setw(16) << std::setfill('0') << hash;
+  return out.str();
+}
+
 frame_reference make_frame_reference(const shader_library& shaders, const scene& source, const rsm_pipeline_settings& settings, int stride,
-                                     int threads) {
+                                     int threads, const std::string& cache) {
   frame_reference reference;
   reference.source = std::make_unique<scene>(source);
   reference.rays = std::make_unique<ray_scene>(reference.source->geometry);
@@ -40,15 +52,26 @@ frame_reference make_frame_reference(const shader_library& shaders, const scene&
   reference.buffers = pipeline.read_buffers();
   reference.constants = pipeline.constants();
   reference.stride = stride;
-  rsm_brute_force_options options;
-  options.receiver_stride = stride;
-  options.threads = threads;
-  const image unoccluded = reference_rsm_gather(*reference.rays, reference.buffers, reference.constants, options);
-  options.exact_visibility = true;
-  const image exact = reference_rsm_gather(*reference.rays, reference.buffers, reference.constants, options);
-  reference.unoccluded = unoccluded;
-  reference.exact = exact;
+  const std::string unoccluded_file = cache + "-unoccluded.pfm", exact_file = cache + "-exact.pfm";
+  if (!cache.empty() && std::filesystem::exists(unoccluded_file) && std::filesystem::exists(exact_file)) {
+    reference.unoccluded = read_image_file(unoccluded_file);
+    reference.exact = read_image_file(exact_file);
+    if (reference.unoccluded.width != reference.constants.indirect_size.x || reference.unoccluded.height != reference.constants.indirect_size.y ||
+        reference.exact.width != reference.unoccluded.width || reference.exact.height != reference.unoccluded.height)
+      throw error(cache + ": the cached brute force does not match the frame's indirect buffer; remove it");
+  } else {
+    rsm_brute_force_options options;
+    options.receiver_stride = stride;
+    options.threads = threads;
+    reference.unoccluded = reference_rsm_gather(*reference.rays, reference.buffers, reference.constants, options);
+    options.exact_visibility = true;
+    reference.exact = reference_rsm_gather(*reference.rays, reference.buffers, reference.constants, options);
+    if (!cache.empty())
+      write_all_or_nothing({{unoccluded_file, [&] { return encode_pfm(reference.unoccluded); }}, {exact_file, [&] { return encode_pfm(reference.exact); }}});
+  }
   reference.receivers = blank(reference);
+  reference.covered = blank(reference);
+  reference.uncovered = blank(reference);
   reference.leak = blank(reference);
   const std::vector<std::uint8_t> covered = rsm_covered_receivers(reference.buffers, reference.constants, stride);
   double all = 0.0, behind = 0.0, seen = 0.0, leak_all = 0.0, leak_seen = 0.0;
@@ -58,15 +81,17 @@ frame_reference make_frame_reference(const shader_library& shaders, const scene&
       const std::size_t i = reference.unoccluded.index(x, y);
       const glm::vec3 u(reference.unoccluded.texels[i]), e(reference.exact.texels[i]);
       const double u_sum = u.x + u.y + u.z, e_sum = e.x + e.y + e.z;
-      if (!covered[static_cast<std::size_t>(y) * static_cast<std::size_t>(reference.unoccluded.width) + static_cast<std::size_t>(x)]) {
-        ++reference.uncovered_count;
-        behind += u_sum;
-        continue;
-      }
       reference.receivers.texels[i] = glm::vec4(1.0f);
       ++reference.receiver_count;
       all += u_sum;
       seen += e_sum;
+      if (covered[static_cast<std::size_t>(y) * static_cast<std::size_t>(reference.unoccluded.width) + static_cast<std::size_t>(x)]) {
+        reference.covered.texels[i] = glm::vec4(1.0f);
+      } else {
+        reference.uncovered.texels[i] = glm::vec4(1.0f);
+        ++reference.uncovered_count;
+        behind += u_sum;
+      }
       if (u_sum > 0.0 && e_sum <= 0.8 * u_sum) {
         reference.leak.texels[i] = glm::vec4(1.0f);
         ++reference.leak_count;
@@ -74,7 +99,7 @@ frame_reference make_frame_reference(const shader_library& shaders, const scene&
         leak_seen += e_sum;
       }
     }
-  reference.uncovered_share = all + behind > 0.0 ? behind / (all + behind) : 0.0;
+  reference.uncovered_share = all > 0.0 ? behind / all : 0.0;
   reference.occluded_share = all > 0.0 ? 1.0 - seen / all : 0.0;
   reference.leak_occluded_share = leak_all > 0.0 ? 1.0 - leak_seen / leak_all : 0.0;
   return reference;
@@ -100,6 +125,8 @@ frame_errors measure_frame(const rsm_pipeline& drawn, const frame_reference& ref
   errors.raw_vs_unoccluded = relative_error_of(errors.raw, reference.unoccluded, &reference.receivers);
   errors.raw_vs_exact = relative_error_of(errors.raw, reference.exact, &reference.receivers);
   errors.raw_leak = relative_error_of(errors.raw, reference.exact, &reference.leak);
+  errors.raw_covered_vs_exact = relative_error_of(errors.raw, reference.exact, &reference.covered);
+  errors.raw_uncovered_vs_unoccluded = relative_error_of(errors.raw, reference.unoccluded, &reference.uncovered);
   errors.filtered_vs_exact = relative_error_of(errors.filtered, reference.exact, &reference.receivers);
   errors.filtered_leak = relative_error_of(errors.filtered, reference.exact, &reference.leak);
   return errors;
@@ -133,9 +160,9 @@ std::string percent(double fraction) {
 }  // namespace
 
 std::string describe(const frame_reference& reference) {
-  return std::to_string(reference.receiver_count) + " receivers counted (" + std::to_string(reference.uncovered_count) +
-         " more behind the light or outside its frustum, not counted: they hold " + percent(reference.uncovered_share) +
-         " % of the unoccluded light), " + std::to_string(reference.leak_count) + " in the leak region. Exact visibility removes " +
+  return std::to_string(reference.receiver_count) + " receivers counted, every one with a surface (" + std::to_string(reference.uncovered_count) +
+         " of them behind the light or off the map, where the pattern cannot reach and the coverage lights them: they hold " +
+         percent(reference.uncovered_share) + " % of the unoccluded light), " + std::to_string(reference.leak_count) + " in the leak region. Exact visibility removes " +
          percent(reference.occluded_share) + " % of the light over the receivers, " + percent(reference.leak_occluded_share) +
          " % in the leak region.";
 }

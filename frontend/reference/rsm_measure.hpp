@@ -19,7 +19,8 @@
 namespace vplkit {
 
 /// The ground truth of one frame: the brute force with and without exact visibility at every
-/// stride-th receiver, and the masks the metrics use.
+/// stride-th receiver, every receiver with a surface (the light's first bounce reaches it whether
+/// the pattern covers it or not), and the masks the metrics use.
 struct frame_reference {
   std::unique_ptr<scene> source;       ///< kept alive for `rays`
   std::unique_ptr<ray_scene> rays;
@@ -28,18 +29,26 @@ struct frame_reference {
   int stride = 1;
   image unoccluded;              ///< brute force, every lit texel, no visibility
   image exact;                   ///< brute force with ray-cast visibility
-  image receivers;               ///< mask: covered (in front of the light, inside its frustum) and on the stride grid
+  image receivers;               ///< mask: every receiver with a surface on the stride grid (what the metrics count)
+  image covered;                 ///< mask: the receivers the pattern covers (in front of the light, projection inside the RSM)
+  image uncovered;               ///< mask: the others, behind the light or projecting off the map (the coverage lights them)
   image leak;                    ///< mask: receivers where exact visibility removes >= 20 %
-  std::size_t receiver_count = 0, leak_count = 0, uncovered_count = 0;
-  double uncovered_share = 0.0;        ///< of the unoccluded light, on receivers not covered
+  std::size_t receiver_count = 0, leak_count = 0, uncovered_count = 0;  ///< uncovered_count of receiver_count
+  double uncovered_share = 0.0;        ///< of the unoccluded light, on the receivers not covered
   double occluded_share = 0.0;         ///< of the unoccluded light that exact visibility removes (receivers)
   double leak_occluded_share = 0.0;    ///< the same over the leak region
 };
 
 /// Renders `source` once with `settings` (only the frame's size, RSM size, indirect divisor and
 /// format matter) and computes the references. Exact visibility costs receivers x lit texels rays.
+/// With a non-empty `cache` (a path prefix), the two brute-force images are read from
+/// <cache>-unoccluded.pfm and <cache>-exact.pfm when both exist, and written there after they are
+/// computed (cache_key names a frame).
 frame_reference make_frame_reference(const shader_library& shaders, const scene& source, const rsm_pipeline_settings& settings, int stride,
-                                     int threads);
+                                     int threads, const std::string& cache = {});
+
+/// A file-name-safe 64-bit FNV-1a hash of `text` in hex, for make_frame_reference's cache.
+std::string cache_key(const std::string& text);
 
 /// One sentence on a reference: the receivers counted and not covered, the leak region, and how
 /// much light exact visibility removes.
@@ -52,6 +61,8 @@ image brute_force_within(const frame_reference& reference, float radius, int thr
 /// A drawn frame's errors against the references.
 struct frame_errors {
   relative_error raw_vs_unoccluded, raw_vs_exact, raw_leak, filtered_vs_exact, filtered_leak;
+  relative_error raw_covered_vs_exact;      ///< over the receivers the pattern covers
+  relative_error raw_uncovered_vs_unoccluded;  ///< over the others: what the coverage brings against what reaches them
   image raw;       ///< the gather's output at the receivers (0 for direct light only)
   image filtered;  ///< the filtered indirect light at the receivers' G-buffer texels
 };

@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "frontend/core/error.hpp"
+#include "frontend/core/files.hpp"
 
 namespace vplkit {
 
@@ -85,6 +86,59 @@ std::string parse_pose(const std::string& text, pose& where) {
   if (parsed.position == parsed.target) return "the position and the target are the same point";
   where = parsed;
   return {};
+}
+
+std::vector<pose_frame> read_pose_file(const std::filesystem::path& path, bool with_scene) {
+  const std::string text = read_file(path, max_pose_file_bytes, "pose file");
+  std::vector<pose_frame> frames;
+  std::size_t start = 0;
+  for (int number = 1; start < text.size(); ++number) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    std::string_view line(text.data() + start, end - start);
+    start = end + 1;
+    const std::string where = path.string() + ":" + std::to_string(number);
+    pose_frame frame;
+    frame.line = number;
+    if (const std::size_t hash = line.find('#'); hash != std::string_view::npos) {
+      std::string_view comment = line.substr(hash + 1);
+      while (!comment.empty() && (comment.front() == ' ' || comment.front() == '\t')) comment.remove_prefix(1);
+      while (!comment.empty() && (comment.back() == ' ' || comment.back() == '\t' || comment.back() == '\r')) comment.remove_suffix(1);
+      frame.comment = std::string(comment);
+      line = line.substr(0, hash);
+    }
+    std::vector<std::string_view> words;
+    for (std::size_t at = 0; at < line.size();) {
+      while (at < line.size() && (line[at] == ' ' || line[at] == '\t' || line[at] == '\r')) ++at;
+      std::size_t stop = at;
+      while (stop < line.size() && line[stop] != ' ' && line[stop] != '\t' && line[stop] != '\r') ++stop;
+      if (stop > at) words.push_back(line.substr(at, stop - at));
+      at = stop;
+    }
+    if (words.empty()) continue;
+    for (std::size_t i = 0; i < words.size(); i += 2) {
+      const std::string name(words[i]);
+      if (i + 1 >= words.size()) throw error(where + ": " + name.substr(0, 40) + " needs a value");
+      const std::string value(words[i + 1]);
+      if (name == "--camera" || name == "--light") {
+        std::optional<pose>& target = name == "--camera" ? frame.camera : frame.light;
+        if (target) throw error(where + ": " + name + " is given twice");
+        pose parsed;
+        if (const std::string problem = parse_pose(value, parsed); !problem.empty()) throw error(where + ": " + name + ": " + problem);
+        target = parsed;
+      } else if (name == "--scene" && with_scene) {
+        if (!frame.scene.empty()) throw error(where + ": --scene is given twice");
+        frame.scene = value;
+      } else {
+        throw error(where + ": expected " + (with_scene ? "--scene, " : "") + "--camera or --light, got '" + name.substr(0, 40) + "'");
+      }
+    }
+    if (!frame.camera && !frame.light && frame.scene.empty()) throw error(where + ": the line gives no pose");
+    if (frames.size() == max_pose_frames) throw error(path.string() + ": more than " + std::to_string(max_pose_frames) + " frames");
+    frames.push_back(std::move(frame));
+  }
+  if (frames.empty()) throw error(path.string() + ": no frames (one per line: --camera x,y,z,tx,ty,tz and/or --light x,y,z,tx,ty,tz)");
+  return frames;
 }
 
 }  // namespace vplkit

@@ -5,8 +5,11 @@
 // the position towards the target (only the direction is kept).
 #pragma once
 
+#include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -43,5 +46,26 @@ std::string format_pose(const pose& where);
 /// Empty on success, else the reason (without the text, which the caller shows as it shows
 /// arguments).
 std::string parse_pose(const std::string& text, pose& where);
+
+/// One frame of a pose file: the poses its line gives (a missing one keeps the previous frame's,
+/// or the scene's for the first frame) and, where the reader allows it, a scene.
+struct pose_frame {
+  std::optional<pose> camera;  ///< --camera
+  std::optional<pose> light;   ///< --light
+  std::string scene;           ///< --scene (empty: none given)
+  int line = 0;                ///< 1-based line in the file
+  std::string comment;         ///< what follows '#' on the line, trimmed
+};
+
+/// The largest pose file read (bytes) and the most frames it may hold.
+inline constexpr std::uintmax_t max_pose_file_bytes = std::uintmax_t{16} << 20;
+inline constexpr std::size_t max_pose_frames = 100000;
+
+/// Reads a pose file: one frame per line, each line the pose options as `render` takes them,
+/// `--camera x,y,z,tx,ty,tz` and `--light x,y,z,tx,ty,tz` (and `--scene NAME` when `with_scene`),
+/// separated by spaces; '#' starts a comment; blank and comment-only lines are skipped. Throws
+/// vplkit::error naming the file and the line for anything else (an unknown or repeated option, a
+/// bad pose, a line without a pose), for a file without frames and for one beyond the limits above.
+std::vector<pose_frame> read_pose_file(const std::filesystem::path& path, bool with_scene);
 
 }  // namespace vplkit

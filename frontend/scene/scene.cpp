@@ -367,6 +367,58 @@ mesh refine_longest_edges(const mesh& source, std::size_t target_triangles) {
   return refined;
 }
 
+std::optional<mesh> subdivide_long_edges(const mesh& source, float max_edge, std::size_t max_triangles) {
+  using triangle = std::array<vertex, 3>;
+  const auto longest_edge = [](const triangle& t, float& length) {
+    int edge = 0;
+    length = -1.0f;
+    for (int k = 0; k < 3; ++k) {
+      const float candidate = glm::length(t[static_cast<std::size_t>(k)].position - t[static_cast<std::size_t>((k + 1) % 3)].position);
+      if (candidate > length) length = candidate, edge = k;
+    }
+    return static_cast<std::size_t>(edge);
+  };
+  // One source triangle at a time, so that the output keeps the source's order (a renderer's
+  // early depth test depends on it: a floor's underside drawn first would be shaded in full).
+  // A split replaces a triangle by two: the count grows by one per split.
+  const std::size_t source_triangles = source.indices.size() / 3;
+  if (source_triangles > max_triangles) return std::nullopt;
+  std::vector<triangle> pending, done;
+  for (std::size_t first = 0; first < source_triangles; ++first) {
+    pending.push_back({source.vertices[source.indices[3 * first]], source.vertices[source.indices[3 * first + 1]],
+                       source.vertices[source.indices[3 * first + 2]]});
+    while (!pending.empty()) {
+      const triangle t = pending.back();
+      pending.pop_back();
+      float length = 0.0f;
+      const std::size_t a = longest_edge(t, length), b = (a + 1) % 3, c = (a + 2) % 3;
+      if (!(length > max_edge)) {
+        done.push_back(t);
+        continue;
+      }
+      if (done.size() + pending.size() + 2 + (source_triangles - first - 1) > max_triangles) return std::nullopt;
+      vertex middle;
+      middle.position = 0.5f * (t[a].position + t[b].position);  // + commutes: both triangles of the edge get the same bits
+      // Equal ends keep their normal and albedo bit for bit (a flat face stays one face).
+      const glm::vec3 normal = t[a].normal + t[b].normal;
+      middle.normal = t[a].normal == t[b].normal || !(glm::length(normal) > 0.0f) ? t[a].normal : glm::normalize(normal);
+      middle.albedo = t[a].albedo == t[b].albedo ? t[a].albedo : 0.5f * (t[a].albedo + t[b].albedo);
+      pending.push_back({middle, t[b], t[c]});
+      pending.push_back({t[a], middle, t[c]});
+    }
+  }
+  mesh out;
+  std::map<std::array<float, 9>, std::uint32_t> index_of;
+  for (const triangle& t : done)
+    for (const vertex& v : t) {
+      const std::array<float, 9> key = {v.position.x, v.position.y, v.position.z, v.normal.x, v.normal.y, v.normal.z, v.albedo.x, v.albedo.y, v.albedo.z};
+      const auto [found, inserted] = index_of.emplace(key, static_cast<std::uint32_t>(out.vertices.size()));
+      if (inserted) out.vertices.push_back(v);
+      out.indices.push_back(found->second);
+    }
+  return out;
+}
+
 scene make_teapot_scene(int copies) {
   namespace fs = std::filesystem;
   const char* from_environment = std::getenv("VPLKIT_MESH_DIR");

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -183,6 +184,15 @@ scene make_teapot_scene(int copies);
 /// it has at least `target_triangles`. Vertices at the same position are welded first; a new
 /// vertex takes the mean position, normal (renormalised) and albedo of its edge.
 mesh refine_longest_edges(const mesh& source, std::size_t target_triangles);
+
+/// Bisects every triangle at the midpoint of its longest edge, recursively, until no edge is
+/// longer than `max_edge`; empty when that takes more than `max_triangles` triangles. Every
+/// vertex keeps its triangle's own attributes (a box keeps its flat faces and colours; a new
+/// vertex takes the mean of its edge's, the normal renormalised), the new points lie on the
+/// triangles' planes, and two triangles that share an edge split it at the same points whatever
+/// their attributes (the decision depends on the edge's length alone), so no T-junction opens a
+/// crack. Vertices equal in position, normal and albedo are shared.
+std::optional<mesh> subdivide_long_edges(const mesh& source, float max_edge, std::size_t max_triangles);
 
 /// Throws vplkit::error listing the known names when `name` is not one of them.
 scene built_in_scene(const std::string& name);

@@ -42,8 +42,11 @@
 
 #include <glm/glm.hpp>
 
+#include <vplkit/direct_light.hpp>
+#include <vplkit/irradiance.hpp>
 #include <vplkit/polynomial_math.hpp>
 #include <vplkit/settings.hpp>
+#include <vplkit/shading.hpp>
 
 namespace vplkit {
 
@@ -118,6 +121,16 @@ struct lightwave_vpl {
   T attenuation;          ///< Eq. 4.2
 };
 
+/// The direction at (cos, sin) `polar` off the unit axis w and (cos, sin) `azimuth` around it, in
+/// the orthonormal basis (u, v, w) that every Light Wave layout builds around the light's direction.
+template <typename T>
+glm::vec<3, T> lightwave_direction(const glm::vec<3, T>& w, const glm::vec<2, T>& polar, const glm::vec<2, T>& azimuth) {
+  const glm::vec<3, T> helper = glm::abs(w.y) < T(0.9) ? glm::vec<3, T>(0, 1, 0) : glm::vec<3, T>(1, 0, 0);
+  const glm::vec<3, T> u = glm::normalize(glm::cross(helper, w));
+  const glm::vec<3, T> v = glm::cross(w, u);
+  return w * polar.x + (u * azimuth.x + v * azimuth.y) * polar.y;
+}
+
 /// VPL number `index` (0 .. lightwave_vpl_count - 1) of the layout.
 template <typename T>
 lightwave_vpl<T> lightwave_layout_vpl(int index, const lightwave_layout_settings<T>& settings) {
@@ -127,14 +140,9 @@ lightwave_vpl<T> lightwave_layout_vpl(int index, const lightwave_layout_settings
   const int ray = index - hemisphere * rays;
   const int polar_step = ray == 0 ? 0 : (ray - 1) / azimuths + 1;
   const int azimuth_step = ray == 0 ? 0 : (ray - 1) - (polar_step - 1) * azimuths;
-  // An orthonormal basis (u, v, w) around the light's direction w.
-  const glm::vec<3, T> w = settings.light_direction;
-  const glm::vec<3, T> helper = glm::abs(w.y) < T(0.9) ? glm::vec<3, T>(0, 1, 0) : glm::vec<3, T>(1, 0, 0);
-  const glm::vec<3, T> u = glm::normalize(glm::cross(helper, w));
-  const glm::vec<3, T> v = glm::cross(w, u);
   const glm::vec<2, T> polar = direction_from_turns(T(polar_step * settings.angle_deg) / T(360));
   const glm::vec<2, T> azimuth = direction_from_turns(T(azimuth_step * settings.angle_deg) / T(360));
-  const glm::vec<3, T> direction = w * polar.x + (u * azimuth.x + v * azimuth.y) * polar.y;
+  const glm::vec<3, T> direction = lightwave_direction(settings.light_direction, polar, azimuth);
   T fraction = T(0.5);  // 2^-(h+1)
   for (int h = 0; h < hemisphere; ++h) fraction *= T(0.5);
   return {settings.light_position + direction * (settings.max_distance * (T(1) - fraction)), direction,
@@ -147,6 +155,126 @@ OutputIterator lightwave_layout(const lightwave_layout_settings<T>& settings, Ou
   const int count = lightwave_vpl_count(settings.angle_deg, settings.per_ray);
   for (int index = 0; index < count; ++index) *out++ = lightwave_layout_vpl(index, settings);
   return out;
+}
+
+// ---- VPLs that carry the light's flux (vplkit's default energy; docs/errata.md, LW-8) ----
+//
+// The thesis's VPLs float in space with a strength that ignores the light (Eq. 4.5 has no flux
+// and no distance), so their indirect light has no physical level. Here every ray of the layout
+// stands for a patch of the spot's cone, and the VPL it makes sits where that ray meets the scene,
+// reflecting the flux the patch carries there:
+//   flux = albedo * I * cone(direction) * solid_angle          (0 where the surface faces away)
+// and lighting a vertex as a diffuse surface patch does (Eq. 3.2 of [RSMV], the RSM's pixel light):
+//   E(x, n) = flux / pi * max(0, <n_vpl, x - p>) * max(0, <n, p - x>) / max(|x - p|, r)^4
+// with r the radius of the disk the patch covers (lightwave_patch_radius), which bounds the 1/r^2
+// singularity where a point light would overstate a patch. The rays cover the cone, not the
+// hemisphere: `angle_deg` gives the thesis's counts (Eq. 5.1), the rings are spread evenly up to
+// the cone's half-angle, and the `per_ray` VPLs of a ray are stratified samples of the ray's
+// patch (a rank-1 lattice over the patch, equal solid angles), not stacked hemispheres.
+
+/// The cone the flux layout covers. GLSL twin: struct lightwave_cone_settings.
+template <typename T = float>
+struct lightwave_cone_settings {
+  glm::vec<3, T> light_direction = glm::vec<3, T>(0, -1, 0);  ///< unit
+  int angle_deg = 5;      ///< as lightwave_layout_settings: (90 / angle) rings of (360 / angle) rays, plus the axis
+  int per_ray = 5;        ///< samples of each ray's patch
+  T half_angle_deg = T(50);  ///< the cone's half-angle the rings reach, in (0, 90]
+};
+
+/// Sample `index` (0 .. lightwave_vpl_count - 1; index = sample * rays + ray, ray 0 the axis) of
+/// the flux layout: (unit direction, solid angle). The axis ray's patch is the cap of polar
+/// angles [0, d/2], ring e's (e = 1 .. 90 / angle) the band [(e - 1/2) d, (e + 1/2) d] cut into
+/// 360 / angle equal sectors, d = half_angle / (90 / angle + 1/2), so that the patches tile the
+/// cone exactly; each patch is split into per_ray equal solid angles. Sample s of a patch lies at
+/// (u, v) = ((s + 1/2) / per_ray, frac(1/2 + s g)), g the golden ratio's conjugate, with u
+/// uniform in the cosine of the polar angle (equal solid angle) and v across the sector's azimuths.
+template <typename T>
+glm::vec<4, T> lightwave_cone_sample(int index, const lightwave_cone_settings<T>& settings) {
+  const int rays = lightwave_ray_count(settings.angle_deg);
+  const int rings = 90 / settings.angle_deg;
+  const int azimuths = 360 / settings.angle_deg;
+  const int sample = index / rays;
+  const int ray = index - sample * rays;
+  const int ring = ray == 0 ? 0 : (ray - 1) / azimuths + 1;
+  const int sector = ray == 0 ? 0 : (ray - 1) - (ring - 1) * azimuths;
+  const T band_turns = settings.half_angle_deg / (T(360) * (T(rings) + T(0.5)));  // d in turns
+  const T lower = direction_from_turns(ray == 0 ? T(0) : (T(ring) - T(0.5)) * band_turns).x;  // cos of the patch's polar bounds
+  const T upper = direction_from_turns((T(ring) + T(0.5)) * band_turns).x;
+  const T u = (T(sample) + T(0.5)) / T(settings.per_ray);
+  const T lattice = T(0.5) + T(sample) * T(0.618033988749894848);
+  const T v = lattice - std::floor(lattice);
+  const T cos_polar = lower + (upper - lower) * u;
+  const T sin_polar = std::sqrt(glm::max(T(0), T(1) - cos_polar * cos_polar));
+  const T azimuth_turns = ray == 0 ? v : (T(sector) + v - T(0.5)) / T(azimuths);
+  const glm::vec<3, T> direction =
+      lightwave_direction(settings.light_direction, glm::vec<2, T>(cos_polar, sin_polar), direction_from_turns(azimuth_turns));
+  const T solid_angle = T(6.28318530717958647692) * (lower - upper) / T(ray == 0 ? settings.per_ray : azimuths * settings.per_ray);
+  return {direction, solid_angle};
+}
+
+/// The flux a ray's patch brings to the surface it meets and that surface reflects: albedo * I *
+/// cone(direction) * solid_angle, 0 when the surface faces away from the light (its back is lit).
+template <typename T>
+glm::vec<3, T> lightwave_ray_flux(const spot_light<T>& light, const glm::vec<3, T>& direction, T solid_angle, const glm::vec<3, T>& albedo,
+                                  const glm::vec<3, T>& surface_normal) {
+  const T cone = spot_light_cone(light, glm::dot(light.direction, direction));
+  const T facing = glm::dot(surface_normal, direction) < T(0) ? T(1) : T(0);
+  return albedo * light.intensity * (facing * cone * solid_angle);
+}
+
+/// The radius of the disk with the area a patch of `solid_angle` covers on a surface at
+/// `distance` met at `cos_incidence` (the ray against the surface's normal): sqrt(solid_angle
+/// distance^2 / (|cos| pi)), with |cos| at least 1/16 (a grazing patch is long, not wide).
+template <typename T>
+T lightwave_patch_radius(T solid_angle, T distance, T cos_incidence) {
+  return std::sqrt(solid_angle * distance * distance / (glm::max(std::abs(cos_incidence), T(0.0625)) * T(3.14159265358979323846)));
+}
+
+/// A VPL of the flux layout. GLSL twin: struct lightwave_flux_vpl.
+template <typename T>
+struct lightwave_flux_vpl {
+  glm::vec<3, T> position;  ///< on the surface its ray met
+  glm::vec<3, T> normal;    ///< that surface's unit normal
+  glm::vec<3, T> flux;      ///< lightwave_ray_flux
+  T radius;                 ///< lightwave_patch_radius: the distance clamp of its light
+};
+
+/// The irradiance a flux VPL gives (x, n): Eq. 3.2 / pi with the distance clamped at
+/// max(vpl.radius, min_distance).
+template <typename T>
+glm::vec<3, T> lightwave_bounce_irradiance(const glm::vec<3, T>& x, const glm::vec<3, T>& n, const lightwave_flux_vpl<T>& vpl, T min_distance) {
+  irradiance_settings<T> clamp;
+  clamp.min_distance = glm::max(vpl.radius, min_distance);
+  return pixel_light_irradiance(x, n, vpl.position, vpl.normal, vpl.flux, clamp) * inv_pi<T>;
+}
+
+/// Whether a flux VPL at (position, normal) lights (x, n) at all: x in front of its surface and
+/// facing it, the two factors of Eq. 3.2 that can vanish (lightwave_bounce_irradiance > 0 for a
+/// VPL of positive flux).
+template <typename T>
+bool lightwave_flux_vpl_faces(const glm::vec<3, T>& x, const glm::vec<3, T>& n, const glm::vec<3, T>& position, const glm::vec<3, T>& normal) {
+  const glm::vec<3, T> light_to_receiver = x - position;
+  return glm::dot(normal, light_to_receiver) > T(0) && -glm::dot(n, light_to_receiver) > T(0);
+}
+
+/// A flux VPL's weight at (x, n) for the indirect shadows: the sum of the channels of its irradiance.
+template <typename T>
+T lightwave_bounce_weight(const glm::vec<3, T>& x, const glm::vec<3, T>& n, const lightwave_flux_vpl<T>& vpl, T min_distance) {
+  const glm::vec<3, T> e = lightwave_bounce_irradiance(x, n, vpl, min_distance);
+  return e.x + e.y + e.z;
+}
+
+/// The radiance one bounce sends to the camera from vertex (x, n) with albedo: albedo / pi times
+/// the irradiance of `count` flux VPLs from `fetch(int index) -> lightwave_flux_vpl<T>`, summed
+/// (diffuse_radiance). GLSL twin: lightwave_vertex_bounce, with the VPLs from the including
+/// shader's `lightwave_flux_vpl lightwave_fetch_flux_vpl(int index)` (define
+/// VPLKIT_LIGHTWAVE_FETCH_FLUX first).
+template <typename T, typename Fetch>
+glm::vec<3, T> lightwave_vertex_bounce(const glm::vec<3, T>& x, const glm::vec<3, T>& n, const glm::vec<3, T>& albedo, Fetch&& fetch, int count,
+                                       const irradiance_settings<T>& settings) {
+  glm::vec<3, T> sum(0);
+  for (int index = 0; index < count; ++index) sum += lightwave_bounce_irradiance(x, n, fetch(index), settings.min_distance);
+  return diffuse_radiance(albedo, glm::vec<3, T>(0), T(0), sum);
 }
 
 /// The shading parameters of Eq. 4.5. GLSL twin: struct lightwave_shading_settings.
@@ -217,6 +345,31 @@ glm::vec<4, T> lightwave_map_coordinate(const glm::vec<4, T>& clip) {
   const bool inside = coordinate.x >= T(0) && coordinate.y >= T(0) && coordinate.z >= T(0) && coordinate.x <= T(1) &&
                       coordinate.y <= T(1) && coordinate.z <= T(1);
   return glm::vec<4, T>(coordinate, inside ? T(1) : T(0));
+}
+
+/// How much a lookup in a map counts at its coordinate (lightwave_map_coordinate): 0 outside the
+/// map, rising smoothly (smoothstep) to 1 within `margin` of the map's side from its border. The
+/// accurate shadows blend a lookup towards "lit" by 1 - this, so that a map's frustum does not
+/// draw its rectangle into a shadow that reaches past it.
+template <typename T>
+T lightwave_map_fade(const glm::vec<4, T>& coordinate, T margin) {
+  const T border = glm::min(glm::min(coordinate.x, T(1) - coordinate.x), glm::min(coordinate.y, T(1) - coordinate.y));
+  const T t = glm::clamp(border / margin, T(0), T(1));
+  return coordinate.w * (t * t * (T(3) - T(2) * t));
+}
+
+/// How far the accurate shadows trust one map for a group of VPLs at x: the map is rendered from
+/// one point of the group, whose visibility stands for the whole group's only while the group
+/// looks small. 1 / (1 + theta^2), theta = 4 radius / |x - position| the group's angular
+/// diameter (small-angle, radians), `group_radius` being its RMS radius (a disc's extent is about
+/// twice its RMS radius): 1 for a group seen as a point, 1/2 at theta = 1. (With the diameter
+/// taken as 2 RMS radii, one map for all of a room's VPLs still shadowed a corner it lights the
+/// more: further from the one-bounce reference than no map, docs/lightwave-shadows.md.)
+template <typename T>
+T lightwave_group_confidence(const glm::vec<3, T>& x, const glm::vec<3, T>& group_position, T group_radius) {
+  const glm::vec<3, T> offset = group_position - x;
+  const T diameter = T(4) * group_radius;
+  return T(1) / (T(1) + diameter * diameter / glm::max(glm::dot(offset, offset), T(1e-12)));
 }
 
 /// Eq. 4.5 summed over `count` VPLs from `fetch(int index) -> lightwave_vpl<T>`, divided by count.

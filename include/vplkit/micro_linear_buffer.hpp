@@ -19,6 +19,21 @@
 // (multiply, add, sqrt, compare) instead of two different atan approximations.
 // Points straight above (dz > 0, dxy = 0) fall in the top slot, straight below in the bottom one.
 //
+// The variant alg6_ray (rsm_gather.hpp's rsm_visibility::alg6_ray, docs/errata.md RSMV-12):
+// - elevation_bucket_about measures the elevation above the plane perpendicular to a unit vector
+//   `up` instead of the light's xy plane: dz becomes <d, up> and |dxy| the length of d less that
+//   component; with up = (0, 0, 1) it is elevation_bucket. The gather takes the direction from the
+//   receiver towards a perspective light as `up`: a path of the radial pattern lies in a plane
+//   through the light and the receiver, and in that plane this elevation orders the directions
+//   from the receiver the way the thesis's elevation does for an orthographic light, where every
+//   such plane is vertical.
+// - alg6_ray_in_front: only samples in front of the receiver's tangent plane enter the buffer.
+// - micro_linear_buffer_alg6_ray: Alg. 3's same-slot rule (repeat the predecessor's verdict)
+//   holds only when the predecessor faces the receiver and the sample does not lie behind the
+//   predecessor's surface. Consecutive samples of one smooth surface still share a verdict; a
+//   surface seen from behind (the far face of a wall) or a surface the sample lies behind (a panel
+//   before the floor) no longer passes "visible" on to what it hides in its slot.
+//
 // Storage, chosen so that the whole buffer lives in registers: indexing a local array by a
 // run-time index makes llvmpipe (and many GPU compilers) keep the array in memory, which cost
 // 2.8x the gather without visibility instead of 1.17x (the RSM sweep of bench/, 512^2, Cornell box).
@@ -110,6 +125,17 @@ int elevation_bucket(const glm::vec<3, T, Q>& x_eye, const glm::vec<3, T, Q>& xp
   return elevation_slot(dz, std::sqrt(dx * dx + dy * dy), slots);
 }
 
+/// Slot index in [0, slots.count) of the elevation of xp_eye seen from x_eye above the plane
+/// perpendicular to the unit vector `up` (light eye space).
+template <typename T, glm::qualifier Q>
+int elevation_bucket_about(const glm::vec<3, T, Q>& x_eye, const glm::vec<3, T, Q>& xp_eye, const glm::vec<3, T, Q>& up,
+                           const elevation_slots<T>& slots) {
+  const glm::vec<3, T, Q> d = xp_eye - x_eye;
+  const T vertical = d.x * up.x + d.y * up.y + d.z * up.z;
+  const glm::vec<3, T, Q> across = d - vertical * up;
+  return elevation_slot(vertical, std::sqrt(across.x * across.x + across.y * across.y + across.z * across.z), slots);
+}
+
 /// Convenience form of the public contract elevation_bucket(x_eye, xp_eye, slots) with an int
 /// slot count (C++ only: in a shader, pass the elevation_slots uniform instead).
 template <typename T, glm::qualifier Q>
@@ -128,6 +154,9 @@ struct micro_linear_buffer {
   int previous_index = -1;
   /// nu_{-1}: the verdict (Alg. 3) or unclamped slot value (Alg. 6) of that sample.
   T previous_visibility = T(1);
+  /// alg6_ray: that sample's position and normal (light eye space).
+  glm::vec<3, T> previous_position{T(0)};
+  glm::vec<3, T> previous_normal{T(0)};
 };
 
 /// Start a new path: every slot visible, no predecessor. (The buffer is reset for every path.)
@@ -139,6 +168,8 @@ void micro_linear_buffer_reset(micro_linear_buffer<T>& buffer, int slot_count) {
   buffer.occluded = 0u;
   buffer.previous_index = -1;
   buffer.previous_visibility = T(1);
+  buffer.previous_position = glm::vec<3, T>(T(0));
+  buffer.previous_normal = glm::vec<3, T>(T(0));
 }
 
 /// Alg. 2: returns 1 (visible) or 0 (occluded).
@@ -182,6 +213,46 @@ T micro_linear_buffer_alg6(micro_linear_buffer<T>& buffer, int index) {
   buffer.claims += in_word * (claim << shift);
   buffer.previous_index = index;
   buffer.previous_visibility = visibility;
+  return visibility;
+}
+
+/// alg6_ray's tolerances. A sample enters the buffer only when its offset d from the receiver
+/// (normal n) has <n, d> > alg6_ray_tangent_slope |d| + min_distance: within about a degree of
+/// the tangent plane (and Eq. 3.2's distance clamp, about the precision of the G-buffer's and the
+/// RSM's positions) a sample is the receiver's own surface or below its horizon: it lights the
+/// receiver at most 2 % of what it would face-on and hides nothing in front of it. A sample lies
+/// behind its predecessor's surface when its offset s from it has <n_previous, s> <
+/// -alg6_ray_behind_slope |s| (about 11 degrees: the same surface, seen through the positions'
+/// precision and a slightly curved or jittered path, stays in front).
+inline constexpr double alg6_ray_tangent_slope = 0.02;
+inline constexpr double alg6_ray_behind_slope = 0.2;
+
+/// Whether a sample at xp enters alg6_ray's buffer for the receiver at x with unit normal n (light
+/// eye space): it lies in front of the receiver's tangent plane.
+template <typename T, glm::qualifier Q>
+bool alg6_ray_in_front(const glm::vec<3, T, Q>& x, const glm::vec<3, T, Q>& n, const glm::vec<3, T, Q>& xp, T min_distance) {
+  const glm::vec<3, T, Q> d = xp - x;
+  const T facing = n.x * d.x + n.y * d.y + n.z * d.z;
+  const T length = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+  return facing > T(alg6_ray_tangent_slope) * length + min_distance;
+}
+
+/// alg6_ray: Alg. 6 for the sample at `position` with unit `normal` in slot `index`, seen from the
+/// receiver at `receiver` (light eye space). The predecessor's verdict is repeated (Alg. 3's
+/// same-slot rule) only when the predecessor faces the receiver and the sample does not lie behind
+/// the predecessor's surface; otherwise the slot decides. Returns nu unclamped, like Alg. 6.
+template <typename T>
+T micro_linear_buffer_alg6_ray(micro_linear_buffer<T>& buffer, int index, const glm::vec<3, T>& receiver, const glm::vec<3, T>& position,
+                               const glm::vec<3, T>& normal) {
+  const glm::vec<3, T> to_receiver = receiver - buffer.previous_position;
+  const glm::vec<3, T> step = position - buffer.previous_position;
+  const T faces = buffer.previous_normal.x * to_receiver.x + buffer.previous_normal.y * to_receiver.y + buffer.previous_normal.z * to_receiver.z;
+  const T ahead = buffer.previous_normal.x * step.x + buffer.previous_normal.y * step.y + buffer.previous_normal.z * step.z;
+  const T step_length = std::sqrt(step.x * step.x + step.y * step.y + step.z * step.z);
+  if (!(faces > T(0)) || ahead < -T(alg6_ray_behind_slope) * step_length) buffer.previous_index = -1;
+  const T visibility = micro_linear_buffer_alg6(buffer, index);
+  buffer.previous_position = position;
+  buffer.previous_normal = normal;
   return visibility;
 }
 

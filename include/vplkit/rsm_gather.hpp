@@ -15,7 +15,11 @@
 //
 // A receiver behind the light (light eye z >= 0) has no projection onto the RSM: the perspective
 // divide mirrors it, and sampling around the mirrored point lit a blob on the Cornell box's
-// ceiling. The RSM has nothing to say about such a receiver: the gather returns 0.
+// ceiling. The pattern skips such a receiver; one outside the light's frustum gets what the
+// pattern reaches from its projection off the map. With coverage (settings.coverage_blocks > 0
+// and a coarse-light fetch: vplkit/rsm_coverage.hpp, docs/errata.md RSMV-10) both also gather the
+// coarse pixel lights of the blocks the pattern does not reach; without it they get only what
+// the pattern reaches, as in the thesis.
 //
 // Space: the gather runs in the light's eye space. The elevation angle of Alg. 1 is defined
 // there (section 4.2: the thesis stores the light's eye-space depth in the RSM for it), and
@@ -32,8 +36,11 @@
 
 #include <glm/glm.hpp>
 
+#include <type_traits>
+
 #include <vplkit/irradiance.hpp>
 #include <vplkit/micro_linear_buffer.hpp>
+#include <vplkit/rsm_coverage.hpp>
 #include <vplkit/rsm_pattern.hpp>
 #include <vplkit/transform.hpp>
 
@@ -48,18 +55,27 @@ struct rsm_texel {
 };
 
 enum class rsm_pattern { radial = 0, disk = 1 };                 ///< GLSL: VPLKIT_RSM_PATTERN 0 / 1
-enum class rsm_visibility { none = 0, alg2 = 2, alg3 = 3, alg6 = 6 };  ///< GLSL: VPLKIT_VISIBILITY
+/// The visibility of the samples: none, the thesis's Alg. 2, 3 and 6 as printed, or alg6_ray:
+/// Alg. 6 with the elevation measured about the receiver's own light ray (elevation_bucket_about,
+/// `up` towards the light), without the samples that lie in or behind the receiver's tangent plane
+/// (they light nothing and hide nothing), and with Alg. 3's same-slot rule only between samples
+/// that cannot hide one another (micro_linear_buffer_alg6_ray; docs/errata.md, RSMV-12). GLSL:
+/// VPLKIT_VISIBILITY.
+enum class rsm_visibility { none = 0, alg2 = 2, alg3 = 3, alg6 = 6, alg6_ray = 7 };
 
-/// "none", "alg2", "alg3", "alg6".
+/// "none", "alg2", "alg3", "alg6", "alg6-ray".
 inline const char* visibility_name(rsm_visibility visibility) {
   switch (visibility) {
     case rsm_visibility::none: return "none";
     case rsm_visibility::alg2: return "alg2";
     case rsm_visibility::alg3: return "alg3";
     case rsm_visibility::alg6: return "alg6";
+    case rsm_visibility::alg6_ray: return "alg6-ray";
   }
   return "unknown";
 }
+
+
 
 /// Everything the gather needs besides the receiver and the RSM. GLSL twin: the uniforms of
 /// shaders/gather.frag, filled by set_uniforms.
@@ -70,7 +86,17 @@ struct rsm_gather_settings {
   disk_pattern_settings<T> disk;
   elevation_slots<T> slots = make_elevation_slots<T>(5);  ///< the thesis's 5 slots
   glm::ivec2 rsm_size = glm::ivec2(512);
+  /// C, the coarse lights' blocks per side of the RSM (vplkit/rsm_coverage.hpp); 0: no coverage, as
+  /// in the thesis. Read only by the gathers given a coarse-light fetch.
+  int coverage_blocks = 0;
+  /// 1: the RSM is a perspective (spot) light's, the light at the eye-space origin; 0: an
+  /// orthographic (directional) one, shining along -z. alg6_ray's `up` is the direction to the
+  /// light: -position / |position|, or +z.
+  int perspective = 1;
 };
+
+/// The coverage the defaults use: 16 x 16 coarse lights (docs/rsm-study.md, "Any frame").
+inline constexpr int default_coverage_blocks = 16;
 
 template <typename T>
 struct settings_description<rsm_gather_settings<T>> {
@@ -82,7 +108,10 @@ struct settings_description<rsm_gather_settings<T>> {
                            field(&S::radial, "radial", any_finite(), "", "the radial pattern (Alg. 1 and 5)"),
                            field(&S::disk, "disk", any_finite(), "", "the original RSM's disk pattern"),
                            field(&S::slots, "slots", any_finite(), "", "the micro linear buffer's elevation slots"),
-                           field(&S::rsm_size, "rsm_size", at_least(1), "texels", "the RSM's width and height"));
+                           field(&S::rsm_size, "rsm_size", at_least(1), "texels", "the RSM's width and height"),
+                           field(&S::coverage_blocks, "coverage_blocks", closed_range(0, rsm_coverage_max_blocks), "per RSM side",
+                                 "coarse pixel lights that light the receivers the pattern cannot reach; 0: none"),
+                           field(&S::perspective, "perspective", closed_range(0, 1), "", "1: a spot light (perspective RSM), 0: a directional one"));
   }
   static setting_problem rules(const S& settings) { return no_rules(settings); }
 };
@@ -180,25 +209,47 @@ rsm_gather_settings<T> rsm_gather_settings_from(const rsm_gather_preset<T>& pres
   return make_rsm_gather_settings(radial, disk_pattern_settings<T>{}, preset.radius_fraction, preset.slots, rsm_size);
 }
 
-/// The settings `vplkit render` uses for an RSM of `rsm_size` texels.
+/// The settings `vplkit render` uses for an RSM of `rsm_size` texels: the default preset with
+/// coverage.
 template <typename T>
 rsm_gather_settings<T> default_rsm_gather_settings(glm::ivec2 rsm_size) {
-  return rsm_gather_settings_from(default_rsm_gather_preset<T>(), rsm_size);
+  rsm_gather_settings<T> settings = rsm_gather_settings_from(default_rsm_gather_preset<T>(), rsm_size);
+  settings.coverage_blocks = default_coverage_blocks;
+  return settings;
 }
+
+/// The coarse-light fetch of a gather without coverage.
+struct no_coarse_lights {};
 
 namespace detail {
 
-/// The per-path visibility of Alg. 2, 3 and 6 (or none): a micro linear buffer, reset for every
-/// path, fed with the elevation slot of each sample (both points in the light's eye space).
+/// alg6_ray's `up` for a receiver: the unit direction from it towards the light (see
+/// rsm_gather_settings::perspective).
+template <typename T>
+glm::vec<3, T> towards_light(const gather_receiver<T>& receiver, const rsm_gather_settings<T>& settings) {
+  if (settings.perspective == 0) return glm::vec<3, T>(T(0), T(0), T(1));
+  return -receiver.position / std::sqrt(receiver.position.x * receiver.position.x + receiver.position.y * receiver.position.y +
+                                        receiver.position.z * receiver.position.z);
+}
+
+/// The per-path visibility of Alg. 2, 3 and 6 (or none, or alg6_ray): a micro linear buffer,
+/// reset for every path, fed with the elevation slot of each sample (both points in the light's
+/// eye space).
 template <rsm_visibility Visibility, typename T>
 struct micro_linear_buffer_visibility {
   const elevation_slots<T>& slots;
+  glm::vec<3, T> up{T(0), T(0), T(1)};  ///< alg6_ray: towards the light
+  T min_distance = T(0);                ///< alg6_ray: the tangent-plane tolerance's distance
   micro_linear_buffer<T> buffer{};
   void begin_path() { micro_linear_buffer_reset(buffer, slots.count); }
   T operator()(const gather_receiver<T>& receiver, const rsm_texel<T>& light) {
     if constexpr (Visibility == rsm_visibility::none) {
       (void)receiver, (void)light;
       return T(1);
+    } else if constexpr (Visibility == rsm_visibility::alg6_ray) {
+      if (!alg6_ray_in_front(receiver.position, receiver.normal, light.position, min_distance)) return T(1);  // no claim
+      const int index = elevation_bucket_about(receiver.position, light.position, up, slots);
+      return glm::clamp(micro_linear_buffer_alg6_ray(buffer, index, receiver.position, light.position, light.normal), T(0), T(1));
     } else {
       const int index = elevation_bucket(receiver.position, light.position, slots);
       if constexpr (Visibility == rsm_visibility::alg2) return micro_linear_buffer_alg2(buffer, index);
@@ -216,47 +267,96 @@ struct micro_linear_buffer_visibility {
 /// called for every sample that lands on a lit texel, near to far along each path. This is the
 /// one sampling loop: gather_rsm below passes the micro linear buffer, the ground truth
 /// (gather_with_ray_cast_visibility in frontend/reference/reference.hpp) passes a ray cast to measure the
-/// same samples with exact visibility. C++ only: the GLSL twin selects its visibility by define.
-template <rsm_pattern Pattern, typename T, typename Fetch, typename Visibility>
-glm::vec<3, T> gather_rsm_with(const gather_receiver<T>& receiver, Fetch&& fetch, const rsm_gather_settings<T>& settings,
+/// same samples with exact visibility. `coarse_fetch(glm::ivec2 block) -> coarse_light<T>` reads the
+/// coarse lights (rsm_coverage.hpp) when settings.coverage_blocks > 0; no_coarse_lights{}: none.
+/// C++ only: the GLSL twin selects its visibility by define.
+template <rsm_pattern Pattern, typename T, typename Fetch, typename CoarseFetch, typename Visibility>
+glm::vec<3, T> gather_rsm_with(const gather_receiver<T>& receiver, Fetch&& fetch, CoarseFetch&& coarse_fetch, const rsm_gather_settings<T>& settings,
                                Visibility&& visibility) {
+  constexpr bool with_coverage = !std::is_same_v<std::decay_t<CoarseFetch>, no_coarse_lights>;
   glm::vec<3, T> irradiance(0);
-  if (!(receiver.position.z < T(0))) return irradiance;
-  // One sample: fetch, visibility, Eq. 3.2, accumulate (Alg. 1 lines 9-16, Alg. 5 lines 9-15).
-  auto accumulate = [&](const pattern_sample<T>& sample) {
-    const glm::ivec2 texel = glm::ivec2(glm::floor(receiver.rsm_coordinate + sample.offset));
-    if (texel.x < 0 || texel.y < 0 || texel.x >= settings.rsm_size.x || texel.y >= settings.rsm_size.y) return;
-    const rsm_texel<T> light = fetch(texel);
-    if (!(light.position.z < T(0))) return;
-    const T seen = visibility(receiver, light);
-    const glm::vec<3, T> e = pixel_light_irradiance(receiver.position, receiver.normal, light.position, light.normal,
-                                                    light.flux, settings.irradiance);
-    irradiance += (seen * sample.weight) * e;
-  };
-  if constexpr (Pattern == rsm_pattern::radial) {
-    const radial_pixel<T> pixel = radial_pattern_pixel(receiver.pixel, settings.radial);
-    for (int path = 0; path < settings.radial.paths; ++path) {
-      visibility.begin_path();
-      T ring_inner_radius = settings.radial.min_radius;
-      for (int sample = 0; sample < settings.radial.samples_per_path; ++sample) {
-        accumulate(radial_pattern_sample(path, sample, ring_inner_radius, pixel, settings.radial));
-        ring_inner_radius *= settings.radial.ring_ratio;
+  const bool in_front = receiver.position.z < T(0);
+  // The pattern's outer radius for this receiver, in texels.
+  T reach = settings.disk.max_radius;
+  if (in_front) {
+    // One sample: fetch, visibility, Eq. 3.2, accumulate (Alg. 1 lines 9-16, Alg. 5 lines 9-15).
+    auto accumulate = [&](const pattern_sample<T>& sample) {
+      const glm::ivec2 texel = glm::ivec2(glm::floor(receiver.rsm_coordinate + sample.offset));
+      if (texel.x < 0 || texel.y < 0 || texel.x >= settings.rsm_size.x || texel.y >= settings.rsm_size.y) return;
+      const rsm_texel<T> light = fetch(texel);
+      if (!(light.position.z < T(0))) return;
+      const T seen = visibility(receiver, light);
+      const glm::vec<3, T> e = pixel_light_irradiance(receiver.position, receiver.normal, light.position, light.normal,
+                                                      light.flux, settings.irradiance);
+      irradiance += (seen * sample.weight) * e;
+    };
+    // How far the projection lies outside the RSM: the pattern runs only when it can land on it.
+    const glm::vec<2, T> size(settings.rsm_size);
+    const glm::vec<2, T> outside = glm::max(glm::max(-receiver.rsm_coordinate, receiver.rsm_coordinate - size), glm::vec<2, T>(T(0)));
+    const T outside_squared = glm::dot(outside, outside);
+    if constexpr (Pattern == rsm_pattern::radial) {
+      const radial_pixel<T> pixel = radial_pattern_pixel(receiver.pixel, settings.radial);
+      reach = pixel.scale * settings.radial.max_radius;
+      if (outside_squared <= (reach + T(1)) * (reach + T(1))) {
+        for (int path = 0; path < settings.radial.paths; ++path) {
+          visibility.begin_path();
+          T ring_inner_radius = settings.radial.min_radius;
+          for (int sample = 0; sample < settings.radial.samples_per_path; ++sample) {
+            accumulate(radial_pattern_sample(path, sample, ring_inner_radius, pixel, settings.radial));
+            ring_inner_radius *= settings.radial.ring_ratio;
+          }
+        }
+      }
+    } else {
+      if (outside_squared <= (reach + T(1)) * (reach + T(1))) {
+        visibility.begin_path();
+        for (int sample = 0; sample < settings.disk.samples; ++sample) accumulate(rsm_disk_sample(sample, settings.disk));
       }
     }
+    if (!(outside_squared > T(0))) return irradiance * T(0.318309886183790671538);  // on the map: the pattern alone
+  }
+  if constexpr (with_coverage) {
+    // Behind the light every block; off the map the blocks beyond the pattern's reach.
+    const int blocks = settings.coverage_blocks;
+    const glm::ivec2 side = coverage_block_side(settings.rsm_size, glm::max(blocks, 1));
+    for (int y = 0; y < blocks; ++y)
+      for (int x = 0; x < blocks; ++x) {
+        const glm::vec<2, T> offset = coverage_block_centre<T>(glm::ivec2(x, y), side) - receiver.rsm_coordinate;
+        if (in_front && !(glm::dot(offset, offset) > reach * reach)) continue;
+        irradiance += coarse_light_irradiance(receiver.position, receiver.normal, coarse_fetch(glm::ivec2(x, y)), settings.irradiance);
+      }
   } else {
-    visibility.begin_path();
-    for (int sample = 0; sample < settings.disk.samples; ++sample) accumulate(rsm_disk_sample(sample, settings.disk));
+    (void)coarse_fetch;
   }
   return irradiance * T(0.318309886183790671538);  // 1 / pi
 }
 
-/// The gather: irradiance at the receiver. Visibility needs the radial pattern (its samples
-/// lie on paths); the disk pattern has none.
-template <rsm_pattern Pattern, rsm_visibility Visibility, typename T, typename Fetch>
-glm::vec<3, T> gather_rsm(const gather_receiver<T>& receiver, Fetch&& fetch, const rsm_gather_settings<T>& settings) {
+/// The same without coverage: the pattern alone.
+template <rsm_pattern Pattern, typename T, typename Fetch, typename Visibility>
+glm::vec<3, T> gather_rsm_with(const gather_receiver<T>& receiver, Fetch&& fetch, const rsm_gather_settings<T>& settings, Visibility&& visibility) {
+  return gather_rsm_with<Pattern>(receiver, fetch, no_coarse_lights{}, settings, visibility);
+}
+
+/// The gather: irradiance at the receiver, with coverage when settings.coverage_blocks > 0
+/// (`coarse_fetch(glm::ivec2 block) -> coarse_light<T>`, e.g. reduce_rsm_block's results).
+/// Visibility needs the radial pattern (its samples lie on paths); the disk pattern has none.
+template <rsm_pattern Pattern, rsm_visibility Visibility, typename T, typename Fetch, typename CoarseFetch>
+glm::vec<3, T> gather_rsm(const gather_receiver<T>& receiver, Fetch&& fetch, CoarseFetch&& coarse_fetch, const rsm_gather_settings<T>& settings) {
   static_assert(Pattern == rsm_pattern::radial || Visibility == rsm_visibility::none,
                 "the disk pattern has no paths: visibility needs rsm_pattern::radial");
-  return gather_rsm_with<Pattern>(receiver, fetch, settings, detail::micro_linear_buffer_visibility<Visibility, T>{settings.slots});
+  detail::micro_linear_buffer_visibility<Visibility, T> visibility{settings.slots};
+  if constexpr (Visibility == rsm_visibility::alg6_ray) {
+    // Behind the light there is no path (the coverage alone): no `up` to compute.
+    if (receiver.position.z < T(0)) visibility.up = detail::towards_light(receiver, settings);
+    visibility.min_distance = T(settings.irradiance.min_distance);
+  }
+  return gather_rsm_with<Pattern>(receiver, fetch, coarse_fetch, settings, visibility);
+}
+
+/// The gather of the pattern alone (no coverage, whatever settings.coverage_blocks says).
+template <rsm_pattern Pattern, rsm_visibility Visibility, typename T, typename Fetch>
+glm::vec<3, T> gather_rsm(const gather_receiver<T>& receiver, Fetch&& fetch, const rsm_gather_settings<T>& settings) {
+  return gather_rsm<Pattern, Visibility>(receiver, fetch, no_coarse_lights{}, settings);
 }
 
 }  // namespace vplkit

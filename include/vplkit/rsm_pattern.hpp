@@ -17,10 +17,15 @@
 // The thesis gives no amounts: they are settings. Randomness comes from hash.hpp and angles go
 // through direction_from_turns, so the GLSL twin computes the same offsets to the bit.
 //
-// Disk pattern: offset = r_max * xi1 * (sin 2 pi xi2, cos 2 pi xi2), weight xi1^2, the same for
-// every pixel. The weight is normalised by 3 pi r_max^2 / N so that the weights sum to the disk's
-// area in expectation (E[xi1^2] = 1/3). Like the original, it is biased for anything but a
-// constant: uniform xi1 puts area density ~ 1 / r, and xi1^2 over-compensates it.
+// Disk pattern: offset = r_max * xi1 * (sin 2 pi xi2, cos 2 pi xi2), the same for every pixel.
+// Uniform xi1 puts the samples' area density at 1 / (2 pi r_max r): dense near the receiver, as
+// the original RSM intends. The weight that makes the sum an unbiased estimate is the inverse of
+// that density over N, xi1 * 2 pi r_max^2 / N (weights ~ r; they sum to the disk's area in
+// expectation, E[xi1] = 1/2): the default. The original RSM prints xi1^2 (normalised here by
+// 3 pi r_max^2 / N so that those weights sum to the area as well, E[xi1^2] = 1/3), which
+// over-compensates the density: far samples weigh too much, near ones too little, and the estimate
+// is biased for anything but a constant (-23 % to -57 % on the frames of docs/rsm-study.md);
+// `printed_weights` keeps it (docs/errata.md, RSMV-9).
 //
 // GLSL twin: shaders/lib/rsm_pattern.glsl.
 #pragma once
@@ -92,6 +97,7 @@ struct radial_pattern_constants {
   T angle_jitter;
   T scale_jitter;
   std::uint32_t seed;
+  T max_radius;     ///< r_max: how far the unscaled pattern reaches
 };
 
 template <typename T>
@@ -107,7 +113,8 @@ struct settings_description<radial_pattern_constants<T>> {
                            field(&S::path_turns, "path_turns", open_closed_range(0, 1), "turns", "1 / P: the angle between paths"),
                            field(&S::path_angle, "path_angle", open_closed_range(0, 6.28318530717958647692), "radians", "2 pi / P: the same, for the weights"),
                            field(&S::rotation_jitter, describe_field(&from::rotation_jitter)), field(&S::angle_jitter, describe_field(&from::angle_jitter)),
-                           field(&S::scale_jitter, describe_field(&from::scale_jitter)), field(&S::seed, describe_field(&from::seed)));
+                           field(&S::scale_jitter, describe_field(&from::scale_jitter)), field(&S::seed, describe_field(&from::seed)),
+                           field(&S::max_radius, describe_field(&from::max_radius)));
   }
   static setting_problem rules(const S& settings) { return no_rules(settings); }
 };
@@ -124,7 +131,8 @@ radial_pattern_constants<T> make_radial_pattern_constants(const radial_pattern_s
           settings.rotation_jitter,
           settings.angle_jitter,
           settings.scale_jitter,
-          settings.seed};
+          settings.seed,
+          settings.max_radius};
 }
 
 /// The per-receiver part of the radial pattern: its hash, rotation and scale.
@@ -173,6 +181,7 @@ struct disk_pattern_settings {
   int samples = 400;         ///< N (>= 1)
   T max_radius = T(64);      ///< r_max in RSM texels (> 0)
   std::uint32_t seed = 0;
+  bool printed_weights = false;  ///< the original's xi1^2 weights (biased) instead of the unbiased xi1
 };
 
 template <typename T>
@@ -183,7 +192,8 @@ struct settings_description<disk_pattern_settings<T>> {
   static constexpr auto fields() {
     return std::make_tuple(field(&S::samples, "samples", closed_range(1, 65536), "", "N: samples of the original RSM's disk"),
                            field(&S::max_radius, "max_radius", above(0.0), "RSM texels", "r_max: the disk's radius"),
-                           field(&S::seed, "seed", closed_range(0, 4294967295.0), "", "changes every sample"));
+                           field(&S::seed, "seed", closed_range(0, 4294967295.0), "", "changes every sample"),
+                           field(&S::printed_weights, "printed_weights", closed_range(0, 1), "", "the original's xi1^2 weights (biased) instead of xi1"));
   }
   static setting_problem rules(const S& settings) { return no_rules(settings); }
 };
@@ -196,9 +206,14 @@ pattern_sample<T> rsm_disk_sample(int sample, const disk_pattern_settings<T>& se
   const T xi2 = T(uniform_float_from_bits(hash_uint32(sample_hash)));
   const glm::vec<2, T> direction = direction_from_turns(xi2);
   const T radius = settings.max_radius * xi1;
-  const T normalisation = T(3) * T(3.14159265358979323846) * settings.max_radius * settings.max_radius / T(settings.samples);
   // (sin, cos) as printed in the RSM paper.
-  return {glm::vec<2, T>(direction.y, direction.x) * radius, xi1 * xi1 * normalisation};
+  const glm::vec<2, T> offset = glm::vec<2, T>(direction.y, direction.x) * radius;
+  if (settings.printed_weights) {
+    const T normalisation = T(3) * T(3.14159265358979323846) * settings.max_radius * settings.max_radius / T(settings.samples);
+    return {offset, xi1 * xi1 * normalisation};
+  }
+  const T normalisation = T(2) * T(3.14159265358979323846) * settings.max_radius * settings.max_radius / T(settings.samples);
+  return {offset, xi1 * normalisation};
 }
 
 }  // namespace vplkit

@@ -1,10 +1,13 @@
-// GLSL twin of include/vplkit/lightwave.hpp: the Light Wave layout, lobe, Eq. 4.5 and the
-// integrated-shadow stepping of [LW]. The image comparison (Alg. 1) and the ranking
+// GLSL twin of include/vplkit/lightwave.hpp: the Light Wave layout, lobe, Eq. 4.5, the flux
+// layout and its VPLs' light, and the integrated-shadow stepping of [LW]. The image comparison (Alg. 1) and the ranking
 // (Eq. 5.3) are host-side evaluations of whole images and have no shader twin.
 #ifndef VPLKIT_LIGHTWAVE_GLSL
 #define VPLKIT_LIGHTWAVE_GLSL
 
+#include "lib/direct_light.glsl"
+#include "lib/irradiance.glsl"
 #include "lib/polynomial_math.glsl"
+#include "lib/shading.glsl"
 
 int lightwave_ray_count(int angle_deg) { return (90 / angle_deg) * (360 / angle_deg) + 1; }
 
@@ -32,6 +35,13 @@ struct lightwave_vpl {
   float attenuation;
 };
 
+vec3 lightwave_direction(vec3 w, vec2 polar, vec2 azimuth) {
+  vec3 helper = abs(w.y) < 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
+  vec3 u = normalize(cross(helper, w));
+  vec3 v = cross(w, u);
+  return w * polar.x + (u * azimuth.x + v * azimuth.y) * polar.y;
+}
+
 lightwave_vpl lightwave_layout_vpl(int index, lightwave_layout_settings settings) {
   int rays = lightwave_ray_count(settings.angle_deg);
   int azimuths = 360 / settings.angle_deg;
@@ -39,18 +49,88 @@ lightwave_vpl lightwave_layout_vpl(int index, lightwave_layout_settings settings
   int ray = index - hemisphere * rays;
   int polar_step = ray == 0 ? 0 : (ray - 1) / azimuths + 1;
   int azimuth_step = ray == 0 ? 0 : (ray - 1) - (polar_step - 1) * azimuths;
-  vec3 w = settings.light_direction;
-  vec3 helper = abs(w.y) < 0.9 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0);
-  vec3 u = normalize(cross(helper, w));
-  vec3 v = cross(w, u);
   vec2 polar = direction_from_turns(float(polar_step * settings.angle_deg) / 360.0);
   vec2 azimuth = direction_from_turns(float(azimuth_step * settings.angle_deg) / 360.0);
-  vec3 direction = w * polar.x + (u * azimuth.x + v * azimuth.y) * polar.y;
+  vec3 direction = lightwave_direction(settings.light_direction, polar, azimuth);
   float fraction = 0.5;
   for (int h = 0; h < hemisphere; ++h) fraction *= 0.5;
   return lightwave_vpl(settings.light_position + direction * (settings.max_distance * (1.0 - fraction)), direction,
                        lightwave_attenuation(hemisphere));
 }
+
+// ---- VPLs that carry the light's flux (see the C++ twin) ----
+
+struct lightwave_cone_settings {
+  vec3 light_direction;
+  int angle_deg;
+  int per_ray;
+  float half_angle_deg;
+};
+
+vec4 lightwave_cone_sample(int index, lightwave_cone_settings settings) {
+  int rays = lightwave_ray_count(settings.angle_deg);
+  int rings = 90 / settings.angle_deg;
+  int azimuths = 360 / settings.angle_deg;
+  int sample_index = index / rays;
+  int ray = index - sample_index * rays;
+  int ring = ray == 0 ? 0 : (ray - 1) / azimuths + 1;
+  int sector = ray == 0 ? 0 : (ray - 1) - (ring - 1) * azimuths;
+  float band_turns = settings.half_angle_deg / (360.0 * (float(rings) + 0.5));
+  float lower = direction_from_turns(ray == 0 ? 0.0 : (float(ring) - 0.5) * band_turns).x;
+  float upper = direction_from_turns((float(ring) + 0.5) * band_turns).x;
+  float u = (float(sample_index) + 0.5) / float(settings.per_ray);
+  float lattice = 0.5 + float(sample_index) * 0.618033988749894848;
+  float v = lattice - floor(lattice);
+  float cos_polar = lower + (upper - lower) * u;
+  float sin_polar = sqrt(max(0.0, 1.0 - cos_polar * cos_polar));
+  float azimuth_turns = ray == 0 ? v : (float(sector) + v - 0.5) / float(azimuths);
+  vec3 direction = lightwave_direction(settings.light_direction, vec2(cos_polar, sin_polar), direction_from_turns(azimuth_turns));
+  float solid_angle = 6.28318530717958647692 * (lower - upper) / float(ray == 0 ? settings.per_ray : azimuths * settings.per_ray);
+  return vec4(direction, solid_angle);
+}
+
+vec3 lightwave_ray_flux(spot_light light, vec3 direction, float solid_angle, vec3 albedo, vec3 surface_normal) {
+  float cone = spot_light_cone(light, dot(light.direction, direction));
+  float facing = dot(surface_normal, direction) < 0.0 ? 1.0 : 0.0;
+  return albedo * light.intensity * (facing * cone * solid_angle);
+}
+
+float lightwave_patch_radius(float solid_angle, float distance_to_patch, float cos_incidence) {
+  return sqrt(solid_angle * distance_to_patch * distance_to_patch / (max(abs(cos_incidence), 0.0625) * 3.14159265358979323846));
+}
+
+struct lightwave_flux_vpl {
+  vec3 position;
+  vec3 normal;
+  vec3 flux;
+  float radius;
+};
+
+vec3 lightwave_bounce_irradiance(vec3 x, vec3 n, lightwave_flux_vpl vpl, float min_distance) {
+  irradiance_settings clamp_settings = irradiance_settings(max(vpl.radius, min_distance));
+  return pixel_light_irradiance(x, n, vpl.position, vpl.normal, vpl.flux, clamp_settings) * 0.318309886183790671538;
+}
+
+bool lightwave_flux_vpl_faces(vec3 x, vec3 n, vec3 position, vec3 normal) {
+  vec3 light_to_receiver = x - position;
+  return dot(normal, light_to_receiver) > 0.0 && -dot(n, light_to_receiver) > 0.0;
+}
+
+float lightwave_bounce_weight(vec3 x, vec3 n, lightwave_flux_vpl vpl, float min_distance) {
+  vec3 e = lightwave_bounce_irradiance(x, n, vpl, min_distance);
+  return e.x + e.y + e.z;
+}
+
+#ifdef VPLKIT_LIGHTWAVE_FETCH_FLUX
+// Defined by the including shader: flux VPL number `index`.
+lightwave_flux_vpl lightwave_fetch_flux_vpl(int index);
+
+vec3 lightwave_vertex_bounce(vec3 x, vec3 n, vec3 albedo, int count, irradiance_settings settings) {
+  vec3 sum = vec3(0.0);
+  for (int index = 0; index < count; ++index) sum += lightwave_bounce_irradiance(x, n, lightwave_fetch_flux_vpl(index), settings.min_distance);
+  return diffuse_radiance(albedo, vec3(0.0), 0.0, sum);
+}
+#endif
 
 struct lightwave_shading_settings {
   float specular_strength;
@@ -89,6 +169,18 @@ vec4 lightwave_map_coordinate(vec4 clip) {
   bool inside = coordinate.x >= 0.0 && coordinate.y >= 0.0 && coordinate.z >= 0.0 && coordinate.x <= 1.0 && coordinate.y <= 1.0 &&
                 coordinate.z <= 1.0;
   return vec4(coordinate, inside ? 1.0 : 0.0);
+}
+
+float lightwave_map_fade(vec4 coordinate, float margin) {
+  float border = min(min(coordinate.x, 1.0 - coordinate.x), min(coordinate.y, 1.0 - coordinate.y));
+  float t = clamp(border / margin, 0.0, 1.0);
+  return coordinate.w * (t * t * (3.0 - 2.0 * t));
+}
+
+float lightwave_group_confidence(vec3 x, vec3 group_position, float group_radius) {
+  vec3 offset = group_position - x;
+  float diameter = 4.0 * group_radius;
+  return 1.0 / (1.0 + diameter * diameter / max(dot(offset, offset), 1e-12));
 }
 
 #ifdef VPLKIT_LIGHTWAVE_FETCH

@@ -1,5 +1,6 @@
-// GLSL twin of include/vplkit/micro_linear_buffer.hpp ([RSMV], section 3.3, Alg. 2, 3, 6):
-// Alg. 2 and 3 keep one bit per slot, Alg. 6 an 8-bit claim count per slot (see the header).
+// GLSL twin of include/vplkit/micro_linear_buffer.hpp ([RSMV], section 3.3, Alg. 2, 3, 6, and the
+// variant alg6_ray): Alg. 2 and 3 keep one bit per slot, Alg. 6 an 8-bit claim count per slot
+// (see the header). The literals 0.02 and 0.2 are alg6_ray_tangent_slope and alg6_ray_behind_slope.
 // elevation_slots comes from the C++ make_elevation_slots through a uniform, so the bucket
 // decisions are bit-identical on both sides; see the header.
 #ifndef VPLKIT_MICRO_LINEAR_BUFFER_GLSL
@@ -34,11 +35,20 @@ int elevation_bucket(vec3 x_eye, vec3 xp_eye, elevation_slots slots) {
   return elevation_slot(dz, sqrt(dx * dx + dy * dy), slots);
 }
 
+int elevation_bucket_about(vec3 x_eye, vec3 xp_eye, vec3 up, elevation_slots slots) {
+  vec3 d = xp_eye - x_eye;
+  float vertical = d.x * up.x + d.y * up.y + d.z * up.z;
+  vec3 across = d - vertical * up;
+  return elevation_slot(vertical, sqrt(across.x * across.x + across.y * across.y + across.z * across.z), slots);
+}
+
 struct micro_linear_buffer {
   uint occluded;
   uvec4 claims;
   int previous_index;
   float previous_visibility;
+  vec3 previous_position;
+  vec3 previous_normal;
 };
 
 void micro_linear_buffer_reset(out micro_linear_buffer buffer, int slot_count) {
@@ -46,6 +56,8 @@ void micro_linear_buffer_reset(out micro_linear_buffer buffer, int slot_count) {
   buffer.occluded = 0u;
   buffer.previous_index = -1;
   buffer.previous_visibility = 1.0;
+  buffer.previous_position = vec3(0.0);
+  buffer.previous_normal = vec3(0.0);
 }
 
 float micro_linear_buffer_alg2(inout micro_linear_buffer buffer, int index) {
@@ -82,6 +94,26 @@ float micro_linear_buffer_alg6(inout micro_linear_buffer buffer, int index) {
   buffer.claims += in_word * (claim << shift);
   buffer.previous_index = index;
   buffer.previous_visibility = visibility;
+  return visibility;
+}
+
+bool alg6_ray_in_front(vec3 x, vec3 n, vec3 xp, float min_distance) {
+  vec3 d = xp - x;
+  float facing = n.x * d.x + n.y * d.y + n.z * d.z;
+  float d_length = sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+  return facing > 0.02 * d_length + min_distance;
+}
+
+float micro_linear_buffer_alg6_ray(inout micro_linear_buffer buffer, int index, vec3 receiver, vec3 position, vec3 normal) {
+  vec3 to_receiver = receiver - buffer.previous_position;
+  vec3 step = position - buffer.previous_position;
+  float faces = buffer.previous_normal.x * to_receiver.x + buffer.previous_normal.y * to_receiver.y + buffer.previous_normal.z * to_receiver.z;
+  float ahead = buffer.previous_normal.x * step.x + buffer.previous_normal.y * step.y + buffer.previous_normal.z * step.z;
+  float step_length = sqrt(step.x * step.x + step.y * step.y + step.z * step.z);
+  if (!(faces > 0.0) || ahead < -0.2 * step_length) buffer.previous_index = -1;
+  float visibility = micro_linear_buffer_alg6(buffer, index);
+  buffer.previous_position = position;
+  buffer.previous_normal = normal;
   return visibility;
 }
 

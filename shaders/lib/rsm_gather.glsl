@@ -2,8 +2,12 @@
 // visibility of Alg. 2, 3 or 6, or the original disk pattern), in the light's eye space.
 // Before including, define
 //   VPLKIT_RSM_PATTERN  0 radial, 1 disk
-//   VPLKIT_VISIBILITY   0 none, 2 Alg. 2, 3 Alg. 3, 6 Alg. 6
+//   VPLKIT_VISIBILITY   0 none, 2 Alg. 2, 3 Alg. 3, 6 Alg. 6, 7 Alg. 6 about the receiver's light ray
+//                       (rsm_visibility::alg6_ray)
 //   VPLKIT_SLOT_COUNT   (optional) settings.slots.count, as a constant: see lib/micro_linear_buffer.glsl
+//   VPLKIT_RSM_COVERAGE (optional) 1: the coverage of vplkit/rsm_coverage.hpp, reading the coarse
+//                       lights through `coarse_light rsm_coarse_fetch(ivec2 block)` (the C++
+//                       gather given a coarse fetch); absent or 0: the pattern alone
 // and the function `rsm_texel rsm_fetch(ivec2 texel)` (declare it after including this file's
 // rsm_texel, e.g. with a prototype: the struct comes first, the fetch after).
 #ifndef VPLKIT_RSM_GATHER_GLSL
@@ -11,6 +15,7 @@
 
 #include "lib/irradiance.glsl"
 #include "lib/micro_linear_buffer.glsl"
+#include "lib/rsm_coverage.glsl"
 #include "lib/rsm_pattern.glsl"
 #include "lib/rsm_texel.glsl"
 #include "lib/transform.glsl"
@@ -19,13 +24,20 @@
 #error "define VPLKIT_RSM_PATTERN (0 radial, 1 disk) before including lib/rsm_gather.glsl"
 #endif
 #ifndef VPLKIT_VISIBILITY
-#error "define VPLKIT_VISIBILITY (0, 2, 3 or 6) before including lib/rsm_gather.glsl"
+#error "define VPLKIT_VISIBILITY (0, 2, 3, 6 or 7) before including lib/rsm_gather.glsl"
 #endif
 #if VPLKIT_RSM_PATTERN == 1 && VPLKIT_VISIBILITY != 0
 #error "the disk pattern has no paths: visibility needs VPLKIT_RSM_PATTERN 0"
 #endif
 
+#ifndef VPLKIT_RSM_COVERAGE
+#define VPLKIT_RSM_COVERAGE 0
+#endif
+
 rsm_texel rsm_fetch(ivec2 texel);
+#if VPLKIT_RSM_COVERAGE
+coarse_light rsm_coarse_fetch(ivec2 block);
+#endif
 
 struct rsm_gather_settings {
   irradiance_settings irradiance;
@@ -33,6 +45,8 @@ struct rsm_gather_settings {
   disk_pattern_settings disk;
   elevation_slots slots;
   ivec2 rsm_size;
+  int coverage_blocks;
+  int perspective;
 };
 
 struct gather_receiver {
@@ -48,15 +62,28 @@ gather_receiver make_gather_receiver(vec3 world_position, vec3 world_normal, mat
                          map_coordinate(light_view_projection, world_position, rsm_size), pixel);
 }
 
-// The C++ twin is the lambda `accumulate` inside gather_rsm (a function here: GLSL has no lambdas).
-void rsm_gather_accumulate(gather_receiver receiver, pattern_sample s, rsm_gather_settings settings,
+// The C++ twin's towards_light (alg6_ray's `up`).
+vec3 towards_light(gather_receiver receiver, rsm_gather_settings settings) {
+  if (settings.perspective == 0) return vec3(0.0, 0.0, 1.0);
+  return -receiver.position / sqrt(receiver.position.x * receiver.position.x + receiver.position.y * receiver.position.y +
+                                   receiver.position.z * receiver.position.z);
+}
+
+// The C++ twin is the lambda `accumulate` inside gather_rsm (a function here: GLSL has no lambdas),
+// with the visibility object's operator().
+void rsm_gather_accumulate(gather_receiver receiver, pattern_sample s, rsm_gather_settings settings, vec3 up,
                            inout micro_linear_buffer buffer, inout vec3 irradiance) {
   ivec2 texel = ivec2(floor(receiver.rsm_coordinate + s.offset));
   if (texel.x < 0 || texel.y < 0 || texel.x >= settings.rsm_size.x || texel.y >= settings.rsm_size.y) return;
   rsm_texel light = rsm_fetch(texel);
   if (!(light.position.z < 0.0)) return;
   float visibility = 1.0;
-#if VPLKIT_VISIBILITY != 0
+#if VPLKIT_VISIBILITY == 7
+  if (alg6_ray_in_front(receiver.position, receiver.normal, light.position, settings.irradiance.min_distance))
+    visibility = clamp(micro_linear_buffer_alg6_ray(buffer, elevation_bucket_about(receiver.position, light.position, up, settings.slots),
+                                                    receiver.position, light.position, light.normal),
+                       0.0, 1.0);
+#elif VPLKIT_VISIBILITY != 0
   int index = elevation_bucket(receiver.position, light.position, settings.slots);
 #if VPLKIT_VISIBILITY == 2
   visibility = micro_linear_buffer_alg2(buffer, index);
@@ -73,23 +100,51 @@ void rsm_gather_accumulate(gather_receiver receiver, pattern_sample s, rsm_gathe
 
 vec3 gather_rsm(gather_receiver receiver, rsm_gather_settings settings) {
   vec3 irradiance = vec3(0.0);
-  if (!(receiver.position.z < 0.0)) return irradiance;  // behind the light: see the C++ twin
-  micro_linear_buffer buffer;
-#if VPLKIT_RSM_PATTERN == 0
-  radial_pixel pixel = radial_pattern_pixel(receiver.pixel, settings.radial);
-  for (int path = 0; path < settings.radial.paths; ++path) {
-    micro_linear_buffer_reset(buffer, settings.slots.count);
-    float ring_inner_radius = settings.radial.min_radius;
-    for (int sample = 0; sample < settings.radial.samples_per_path; ++sample) {
-      rsm_gather_accumulate(receiver, radial_pattern_sample(path, sample, ring_inner_radius, pixel, settings.radial),
-                            settings, buffer, irradiance);
-      ring_inner_radius *= settings.radial.ring_ratio;
-    }
-  }
+  bool in_front = receiver.position.z < 0.0;
+  float reach = settings.disk.max_radius;
+  if (in_front) {
+    micro_linear_buffer buffer;
+#if VPLKIT_VISIBILITY == 7
+    vec3 up = towards_light(receiver, settings);
 #else
-  micro_linear_buffer_reset(buffer, settings.slots.count);  // unused without paths, but defined
-  for (int sample = 0; sample < settings.disk.samples; ++sample)
-    rsm_gather_accumulate(receiver, rsm_disk_sample(sample, settings.disk), settings, buffer, irradiance);
+    vec3 up = vec3(0.0, 0.0, 1.0);
+#endif
+    vec2 size = vec2(settings.rsm_size);
+    vec2 outside = max(max(-receiver.rsm_coordinate, receiver.rsm_coordinate - size), vec2(0.0));
+    float outside_squared = dot(outside, outside);
+#if VPLKIT_RSM_PATTERN == 0
+    radial_pixel pixel = radial_pattern_pixel(receiver.pixel, settings.radial);
+    reach = pixel.scale * settings.radial.max_radius;
+    if (outside_squared <= (reach + 1.0) * (reach + 1.0)) {
+      for (int path = 0; path < settings.radial.paths; ++path) {
+        micro_linear_buffer_reset(buffer, settings.slots.count);
+        float ring_inner_radius = settings.radial.min_radius;
+        for (int sample = 0; sample < settings.radial.samples_per_path; ++sample) {
+          rsm_gather_accumulate(receiver, radial_pattern_sample(path, sample, ring_inner_radius, pixel, settings.radial),
+                                settings, up, buffer, irradiance);
+          ring_inner_radius *= settings.radial.ring_ratio;
+        }
+      }
+    }
+#else
+    if (outside_squared <= (reach + 1.0) * (reach + 1.0)) {
+      micro_linear_buffer_reset(buffer, settings.slots.count);  // unused without paths, but defined
+      for (int sample = 0; sample < settings.disk.samples; ++sample)
+        rsm_gather_accumulate(receiver, rsm_disk_sample(sample, settings.disk), settings, up, buffer, irradiance);
+    }
+#endif
+    if (!(outside_squared > 0.0)) return irradiance * 0.318309886183790671538;  // on the map: the pattern alone
+  }
+#if VPLKIT_RSM_COVERAGE
+  // Behind the light every block; off the map the blocks beyond the pattern's reach (see the C++ twin).
+  int blocks = settings.coverage_blocks;
+  ivec2 side = coverage_block_side(settings.rsm_size, max(blocks, 1));
+  for (int y = 0; y < blocks; ++y)
+    for (int x = 0; x < blocks; ++x) {
+      vec2 offset = coverage_block_centre(ivec2(x, y), side) - receiver.rsm_coordinate;
+      if (in_front && !(dot(offset, offset) > reach * reach)) continue;
+      irradiance += coarse_light_irradiance(receiver.position, receiver.normal, rsm_coarse_fetch(ivec2(x, y)), settings.irradiance);
+    }
 #endif
   return irradiance * 0.318309886183790671538;
 }

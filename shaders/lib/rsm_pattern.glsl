@@ -22,6 +22,7 @@ struct radial_pattern_constants {
   float angle_jitter;
   float scale_jitter;
   uint seed;
+  float max_radius;
 };
 
 struct radial_pixel {
@@ -58,6 +59,7 @@ struct disk_pattern_settings {
   int samples;
   float max_radius;
   uint seed;
+  bool printed_weights;
 };
 
 pattern_sample rsm_disk_sample(int sample, disk_pattern_settings settings) {
@@ -66,8 +68,13 @@ pattern_sample rsm_disk_sample(int sample, disk_pattern_settings settings) {
   float xi2 = uniform_float_from_bits(hash_uint32(sample_hash));
   vec2 direction = direction_from_turns(xi2);
   float radius = settings.max_radius * xi1;
-  float normalisation = 3.0 * 3.14159265358979323846 * settings.max_radius * settings.max_radius / float(settings.samples);
-  return pattern_sample(vec2(direction.y, direction.x) * radius, xi1 * xi1 * normalisation);
+  vec2 offset = vec2(direction.y, direction.x) * radius;
+  if (settings.printed_weights) {
+    float normalisation = 3.0 * 3.14159265358979323846 * settings.max_radius * settings.max_radius / float(settings.samples);
+    return pattern_sample(offset, xi1 * xi1 * normalisation);
+  }
+  float normalisation = 2.0 * 3.14159265358979323846 * settings.max_radius * settings.max_radius / float(settings.samples);
+  return pattern_sample(offset, xi1 * normalisation);
 }
 
 #endif

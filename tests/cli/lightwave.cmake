@@ -30,6 +30,16 @@ expect_failure("--shadow-variant that does not exist" "--shadow-variant.*must be
                "${VPLKIT}" render --technique lightwave-accurate --shadow-variant fancy --size 64x36 --out "${WORK}/lw10.png")
 expect_failure("Light Wave shadow maps beyond memory" "GL_OUT_OF_MEMORY" "${WORK}/lw6.png"
                "${VPLKIT}" render --technique lightwave-accurate --shadow-map-scale 12 --size 1280x720 --out "${WORK}/lw6.png")
+expect_success("Light Wave flux energy (the default) says how many VPLs carry light" "6485 VPLs \\(5 degrees, 5 per ray, flux energy: [0-9]+ carry light\\)"
+               "${VPLKIT}" render --technique lightwave-unshadowed --size 64x36 --shadow-map-scale 1 --out "${WORK}/lw11.png")
+expect_success("Light Wave thesis energy with its max distance" "technique lightwave-accurate, 64x36, 6485 VPLs \\(5 degrees, 5 per ray\\)"
+               "${VPLKIT}" render --technique lightwave-accurate --vpl-energy thesis --vpl-max-distance 3 --size 64x36 --shadow-map-scale 1 --out "${WORK}/lw12.png")
+expect_failure("--vpl-max-distance without the thesis energy" "vpl-max-distance places the thesis's hemispheres and is read with vpl-energy thesis" "${WORK}/lw13.png"
+               "${VPLKIT}" render --technique lightwave-accurate --vpl-max-distance 3 --size 64x36 --out "${WORK}/lw13.png")
+expect_failure("--vpl-energy that does not exist" "--vpl-energy.*must be flux or thesis" "${WORK}/lw14.png"
+               "${VPLKIT}" render --technique lightwave-accurate --vpl-energy photons --size 64x36 --out "${WORK}/lw14.png")
+expect_failure("--vpl-energy is not read by lightwave-direct" "--vpl-energy is read by lightwave-unshadowed, lightwave-accurate and lightwave-integrated \\(the VPL light\\), not by technique lightwave-direct" "${WORK}/lw15.png"
+               "${VPLKIT}" render --technique lightwave-direct --vpl-energy thesis --size 64x36 --out "${WORK}/lw15.png")
 expect_failure("Light Wave with a directional light" "Light Wave needs a spot light" "${WORK}/lw7.png"
                "${VPLKIT}" render --technique lightwave-accurate --scene indirect-shadow --size 32 --out "${WORK}/lw7.png")
 

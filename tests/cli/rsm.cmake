@@ -14,7 +14,7 @@ endforeach()
 expect_success("render prints the pass table of Table 5.3"
                "\\| RSM generation \\|.*\\| G-buffer generation \\|.*\\| RSM sampling \\|.*\\| post processing \\|.*\\| total \\|"
                "${VPLKIT}" render --size 16 --rsm-size 32 --format rgba32f --out "${WORK}/f32.png")
-foreach(technique direct rsm-original rsm-radial rsm-alg2 rsm-alg3 rsm-alg6)
+foreach(technique direct rsm-original rsm-radial rsm-alg2 rsm-alg3 rsm-alg6 rsm-alg6-ray)
   expect_success("render --technique ${technique}" "technique ${technique}"
                  "${VPLKIT}" render --technique ${technique} --scene indirect-shadow --size 24 --rsm-size 32
                  --out "${WORK}/t-${technique}.png")
@@ -57,5 +57,48 @@ if(EXISTS "${WORK}/blocked.png")
   message(SEND_ERROR "FAILED brute-force reference: a failed write left blocked.png behind")
   math(EXPR failures "${failures} + 1")
 endif()
+
+# Coverage, the original RSM's weights and the brute force over every receiver (issue 23).
+expect_success("render --coverage-blocks 0 (the pattern alone) and --disk-weights printed" "technique rsm-original"
+               "${VPLKIT}" render --technique rsm-original --disk-weights printed --coverage-blocks 0 --size 16 --rsm-size 32 --out "${WORK}/printed.png")
+expect_failure("--disk-weights is rsm-original's" "--disk-weights is read by rsm-original \\(the original RSM.s disk\\), not by technique rsm-alg6" ""
+               "${VPLKIT}" render --disk-weights printed --size 16 --out "${WORK}/nothing.png")
+expect_success("reference --receivers all counts every receiver with a surface, covered marks the pattern's"
+               "16x16 receivers.*with a surface.*covered by the pattern.*-receivers\\.pfm marks the covered ones"
+               "${VPLKIT}" reference --method rsm-brute-force --visibility none --receivers covered --scene cornell-box --size 32 --rsm-size 32
+               --out "${WORK}/bf-covered.pfm")
+expect_success("reference --receivers all (the default)" "-receivers\\.pfm marks every one with a surface"
+               "${VPLKIT}" reference --method rsm-brute-force --visibility none --scene cornell-box --size 32 --rsm-size 32 --out "${WORK}/bf-all.pfm")
+
+# Sequences: render --poses (issue 23). One pipeline renders every line; frame k equals a render
+# started at frame k's poses (without accumulation, and the first frame with it).
+file(WRITE "${WORK}/poses.txt" "# a light move, a camera move, both\n--light 0.2,1.9,0.1,0,0,0\n\n--camera 0.5,1,3.5,0,1,0  # look from the right\n"
+                               "--light -0.2,1.9,0,0,0,0 --camera 0,1.2,3.6,0,0.9,0\n")
+expect_success("render --poses writes a numbered frame per line"
+               "3 frames from .*wrote .*/seq-0001\\.png.*wrote .*/seq-0001-indirect\\.pfm.*wrote .*/seq-0003\\.png.*wrote .*/seq-0003-indirect\\.pfm"
+               "${VPLKIT}" render --poses "${WORK}/poses.txt" --temporal-blend 1 --size 24 --rsm-size 32 --out "${WORK}/seq.png")
+expect_success("the third frame's poses as one render" "technique rsm-alg6"
+               "${VPLKIT}" render --light -0.2,1.9,0,0,0,0 --camera 0,1.2,3.6,0,0.9,0 --size 24 --rsm-size 32 --out "${WORK}/third.png")
+compare_within("frame 3 of a sequence equals a render at its poses" "${WORK}/seq-0003-indirect.pfm" "${WORK}/third-indirect.pfm" 0)
+expect_success("render --poses with temporal accumulation (the default)" "3 frames"
+               "${VPLKIT}" render --poses "${WORK}/poses.txt" --size 24 --rsm-size 32 --out "${WORK}/acc.png")
+expect_success("the first frame's poses as one render" "technique rsm-alg6"
+               "${VPLKIT}" render --light 0.2,1.9,0.1,0,0,0 --size 24 --rsm-size 32 --out "${WORK}/first.png")
+compare_within("the first accumulated frame has no history: a render at its poses" "${WORK}/acc-0001-indirect.pfm" "${WORK}/first-indirect.pfm" 0)
+file(WRITE "${WORK}/bad-poses.txt" "--light 0.2,1.9,0.1,0,0,0\n--size 32\n")
+expect_failure("a pose file with another option names the line" "bad-poses\\.txt:2: expected --camera or --light, got '--size'" "${WORK}/bad-*.png"
+               "${VPLKIT}" render --poses "${WORK}/bad-poses.txt" --size 16 --rsm-size 16 --out "${WORK}/bad.png")
+file(WRITE "${WORK}/up-poses.txt" "--light 0.2,1.9,0.1,0,0,0\n--camera 0,1,3,0,1,3\n")
+expect_failure("a pose file with an impossible pose names the line" "up-poses\\.txt:2: --camera" "${WORK}/up-0*"
+               "${VPLKIT}" render --poses "${WORK}/up-poses.txt" --size 16 --rsm-size 16 --out "${WORK}/up.png")
+file(WRITE "${WORK}/along-up.txt" "--light 0.2,1.9,0.1,0,0,0\n--camera 0,1,3,0,2,3\n")
+expect_failure("a camera looking along its up vector on line 2 leaves no frame behind" "along-up\\.txt:2: --camera: the camera looks along its up vector"
+               "${WORK}/along*.p*" "${VPLKIT}" render --poses "${WORK}/along-up.txt" --size 16 --rsm-size 16 --out "${WORK}/along.png")
+expect_failure("--temporal-blend needs --poses" "--temporal-blend is read with --poses" ""
+               "${VPLKIT}" render --temporal-blend 0.5 --size 16 --out "${WORK}/nothing.png")
+expect_failure("--poses is the RSM techniques'" "--poses is read by the RSM techniques \\(direct, rsm-\\*\\), not by technique lightwave-direct" ""
+               "${VPLKIT}" render --technique lightwave-direct --poses "${WORK}/poses.txt" --out "${WORK}/nothing.png")
+expect_failure("a missing pose file" "none\\.txt" "${WORK}/none-*"
+               "${VPLKIT}" render --poses "${WORK}/none.txt" --size 16 --out "${WORK}/none.png")
 
 cli_report()

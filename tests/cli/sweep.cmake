@@ -47,7 +47,7 @@ set(tiny --size 24 --rsm-size 32 --repeat 2 --min-rounds 1)
 
 # --- usage errors: exit 2, nothing written --------------------------------------------------
 expect_usage_error("a setting the technique does not read names who reads it"
-                   "--vary slots: slots is read by rsm-alg2, rsm-alg3 and rsm-alg6 \\(the micro linear buffer\\), not by technique rsm-radial" "${WORK}/u1"
+                   "--vary slots: slots is read by rsm-alg2, rsm-alg3, rsm-alg6 and rsm-alg6-ray \\(the micro linear buffer\\), not by technique rsm-radial" "${WORK}/u1"
                    "${VPLKIT}" sweep --technique rsm-radial --vary slots=4,8 --out "${WORK}/u1")
 expect_usage_error("no such setting lists what the technique reads" "--vary radiuss: no setting 'radiuss'; technique rsm-radial reads: size, .*radius, .*paths"
                    "${WORK}/u2" "${VPLKIT}" sweep --technique rsm-radial --vary radiuss=0.1,0.2 --out "${WORK}/u2")

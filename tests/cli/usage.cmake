@@ -59,7 +59,7 @@ expect_failure("--visibility of the Monte Carlo reference" "--visibility is read
                "${VPLKIT}" reference --visibility none --size 16 --out "${WORK}/mc.pfm")
 expect_failure("--samples of the brute-force reference" "--samples is read by --method monte-carlo, not by method rsm-brute-force" "${WORK}/bf2.pfm"
                "${VPLKIT}" reference --method rsm-brute-force --samples 4 --size 16 --out "${WORK}/bf2.pfm")
-expect_failure("--raw-indirect without indirect light" "--raw-indirect is read by rsm-original, rsm-radial, rsm-alg2, rsm-alg3 and rsm-alg6 \\(the techniques that gather indirect light\\), not by technique direct" "${WORK}/direct-raw.png"
+expect_failure("--raw-indirect without indirect light" "--raw-indirect is read by rsm-original, rsm-radial, rsm-alg2, rsm-alg3, rsm-alg6 and rsm-alg6-ray \\(the techniques that gather indirect light\\), not by technique direct" "${WORK}/direct-raw.png"
                "${VPLKIT}" render --technique direct --raw-indirect --size 16 --rsm-size 32 --out "${WORK}/direct-raw.png")
 if(EXISTS "${WORK}/direct-raw-indirect.pfm")
   message(SEND_ERROR "FAILED --raw-indirect without indirect light: left ${WORK}/direct-raw-indirect.pfm behind")
@@ -77,7 +77,7 @@ expect_failure("an RSM technique reads no Light Wave option" "--ray-angle is rea
                "${WORK}/scoped-rsm.png" "${VPLKIT}" render --technique rsm-alg6 --ray-angle 10 --out "${WORK}/scoped-rsm.png")
 expect_failure("--faked-multiplier is lightwave-faked's" "--faked-multiplier is read by lightwave-faked \\(the faked indirect light\\), not by technique lightwave-accurate"
                "${WORK}/scoped-lw.png" "${VPLKIT}" render --technique lightwave-accurate --faked-multiplier 1.2 --out "${WORK}/scoped-lw.png")
-expect_failure("--slots needs the micro linear buffer" "--slots is read by rsm-alg2, rsm-alg3 and rsm-alg6 \\(the micro linear buffer\\), not by technique rsm-radial"
+expect_failure("--slots needs the micro linear buffer" "--slots is read by rsm-alg2, rsm-alg3, rsm-alg6 and rsm-alg6-ray \\(the micro linear buffer\\), not by technique rsm-radial"
                "${WORK}/scoped-slots.png" "${VPLKIT}" render --technique rsm-radial --slots 4 --out "${WORK}/scoped-slots.png")
 expect_failure("Light Wave reads no --object" "--object is read by finalgather-polygon, finalgather-point and envmap, not by technique lightwave-direct"
                "${WORK}/scoped-object.png" "${VPLKIT}" render --technique lightwave-direct --object sphere --out "${WORK}/scoped-object.png")

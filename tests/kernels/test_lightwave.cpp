@@ -157,3 +157,226 @@ TEST_CASE("Eq. 5.2, Alg. 1 as fixed, and Eq. 5.3 reproduce the thesis's numbers"
     CHECK(lightwave_rank(r.fps - 55.0, r.similar) == doctest::Approx(r.rank).epsilon(1e-5));
   }
 }
+
+// ---- The flux energy: the cone layout, the flux a ray's patch carries, and the VPLs' light ----
+
+namespace {
+
+lightwave_cone_settings<double> cone_settings(int angle, int per_ray, double half_angle_deg) {
+  lightwave_cone_settings<double> settings;
+  settings.light_direction = glm::normalize(glm::dvec3(0.3, -1.0, 0.2));
+  settings.angle_deg = angle;
+  settings.per_ray = per_ray;
+  settings.half_angle_deg = half_angle_deg;
+  return settings;
+}
+
+constexpr double pi = 3.14159265358979323846;
+
+}  // namespace
+
+TEST_CASE("the cone layout: unit directions inside the cone, patches that tile it exactly, equal within a ring") {
+  for (int angle : {5, 10, 30, 90})
+    for (int per_ray : {1, 3, 5})
+      for (double half_angle : {10.0, 50.0, 83.0}) {
+        const lightwave_cone_settings<double> settings = cone_settings(angle, per_ray, half_angle);
+        const int count = lightwave_vpl_count(angle, per_ray), rays = lightwave_ray_count(angle);
+        double total = 0.0, smallest_cos = 1.0;
+        for (int index = 0; index < count; ++index) {
+          const glm::dvec4 sample = lightwave_cone_sample(index, settings);
+          const glm::dvec3 direction(sample);
+          REQUIRE(glm::length(direction) == doctest::Approx(1.0).epsilon(1e-8));  // the polynomial sin/cos: 1e-9
+          REQUIRE(sample.w > 0.0);
+          smallest_cos = std::min(smallest_cos, glm::dot(direction, settings.light_direction));
+          total += sample.w;
+          // Every sample of a ring (not the axis) has the same solid angle: equal sectors split equally.
+          if (index % rays > 0) REQUIRE(sample.w == doctest::Approx(lightwave_cone_sample((index / rays) * rays + 1 + ((index % rays) - 1) / (360 / angle) * (360 / angle), settings).w));
+        }
+        CAPTURE(angle);
+        CAPTURE(per_ray);
+        CAPTURE(half_angle);
+        // The patches tile the cone: their solid angles sum to 2 pi (1 - cos half_angle) (the
+        // polynomial cosine is exact to 1e-9).
+        CHECK(total == doctest::Approx(2.0 * pi * (1.0 - std::cos(half_angle * pi / 180.0))).epsilon(1e-7));
+        CHECK(smallest_cos >= std::cos(half_angle * pi / 180.0) - 1e-9);  // nothing outside the cone
+      }
+}
+
+TEST_CASE("the cone layout: a sample lies in its ray's patch; one sample per ray sits at the patch's solid-angle median; symmetric about the axis") {
+  const lightwave_cone_settings<double> settings = cone_settings(5, 5, 45.0);
+  const int rays = lightwave_ray_count(5), rings = 18;
+  const double band = 45.0 / (rings + 0.5);  // degrees
+  for (int index = 0; index < lightwave_vpl_count(5, 5); ++index) {
+    const int ray = index % rays, ring = ray == 0 ? 0 : (ray - 1) / 72 + 1;
+    const double polar = std::acos(std::min(1.0, glm::dot(glm::dvec3(lightwave_cone_sample(index, settings)), settings.light_direction))) * 180.0 / pi;
+    REQUIRE(polar >= (ring == 0 ? 0.0 : (ring - 0.5) * band) - 1e-6);
+    REQUIRE(polar <= (ring + 0.5) * band + 1e-6);
+  }
+  // One sample per ray: at the median of its patch's solid angle (the mean of the cosines of its
+  // polar bounds), for the axis's cap and for ring e's band.
+  const lightwave_cone_settings<double> one = cone_settings(5, 1, 45.0);
+  CHECK(glm::dot(glm::dvec3(lightwave_cone_sample(0, one)), one.light_direction) == doctest::Approx(0.5 * (1.0 + std::cos(0.5 * band * pi / 180.0))).epsilon(1e-9));
+  for (int ring : {1, 9, 18}) {
+    const double low = std::cos((ring - 0.5) * band * pi / 180.0), high = std::cos((ring + 0.5) * band * pi / 180.0);
+    const glm::dvec3 direction(lightwave_cone_sample(1 + (ring - 1) * 72 + 7, one));
+    CHECK(glm::dot(direction, one.light_direction) == doctest::Approx(0.5 * (low + high)).epsilon(1e-9));
+  }
+  // Rotating by the ray angle about the axis maps the layout onto itself (one sample per ray).
+  const glm::dvec3 w = one.light_direction;
+  const double a = 5.0 * pi / 180.0;
+  for (int ray = 1; ray < rays; ++ray) {
+    const glm::dvec3 p(lightwave_cone_sample(ray, one));
+    const glm::dvec3 rotated = p * std::cos(a) + glm::cross(w, p) * std::sin(a) + w * glm::dot(w, p) * (1.0 - std::cos(a));
+    double nearest = 1e30;
+    for (int other = 1; other < rays; ++other) nearest = std::min(nearest, glm::length(glm::dvec3(lightwave_cone_sample(other, one)) - rotated));
+    REQUIRE(nearest < 1e-8);
+  }
+}
+
+TEST_CASE("the flux of a ray's patch: the spot's intensity, cone and solid angle times the albedo; nothing on a back face") {
+  spot_light<double> light;
+  light.direction = glm::dvec3(0, -1, 0);
+  light.intensity = glm::dvec3(2.0, 1.0, 0.5);
+  light.cos_inner = std::cos(30.0 * pi / 180.0);
+  light.cos_outer = std::cos(50.0 * pi / 180.0);
+  const glm::dvec3 albedo(0.5, 0.25, 1.0), up(0, 1, 0);
+  const glm::dvec3 on_axis(0, -1, 0);
+  CHECK(lightwave_ray_flux(light, on_axis, 0.01, albedo, up) == glm::dvec3(0.01, 0.0025, 0.005));
+  CHECK(lightwave_ray_flux(light, on_axis, 0.01, albedo, -up) == glm::dvec3(0.0));  // the back of a surface
+  const glm::dvec3 outside(std::sin(60.0 * pi / 180.0), -std::cos(60.0 * pi / 180.0), 0.0);
+  CHECK(lightwave_ray_flux(light, outside, 0.01, albedo, up) == glm::dvec3(0.0));  // beyond the cone
+  // Summed over the cone layout, the flux the spot sends: I * integral of the smoothstep cone over
+  // the sphere = 2 pi I ((1 - cos_inner) + (cos_inner - cos_outer) / 2), times the albedo.
+  lightwave_cone_settings<double> settings = cone_settings(5, 5, 50.0);
+  settings.light_direction = light.direction;
+  glm::dvec3 total(0.0);
+  for (int index = 0; index < lightwave_vpl_count(5, 5); ++index) {
+    const glm::dvec4 sample = lightwave_cone_sample(index, settings);
+    total += lightwave_ray_flux(light, glm::dvec3(sample), sample.w, albedo, up);
+  }
+  const double exact = 2.0 * pi * ((1.0 - light.cos_inner) + 0.5 * (light.cos_inner - light.cos_outer));
+  CHECK(total.x == doctest::Approx(exact * 2.0 * 0.5).epsilon(2e-3));
+  CHECK(total.z == doctest::Approx(exact * 0.5 * 1.0).epsilon(2e-3));
+}
+
+TEST_CASE("a flux VPL's light: Eq. 3.2 / pi, clamped at its patch's radius; over a plane it faces it delivers its flux") {
+  const lightwave_flux_vpl<double> vpl{glm::dvec3(0, 2, 0), glm::dvec3(0, -1, 0), glm::dvec3(3.0, 1.5, 0.0), 0.1};
+  // Straight below at distance 2, facing it: flux / (pi d^2).
+  const glm::dvec3 e = lightwave_bounce_irradiance(glm::dvec3(0.0), glm::dvec3(0, 1, 0), vpl, 0.01);
+  CHECK(e.x == doctest::Approx(3.0 / (pi * 4.0)));
+  CHECK(lightwave_bounce_weight(glm::dvec3(0.0), glm::dvec3(0, 1, 0), vpl, 0.01) == doctest::Approx(4.5 / (pi * 4.0)));
+  // Twice as far: a quarter (a diffuse bounce's falloff, which Eq. 4.5 lacks).
+  const lightwave_flux_vpl<double> farther{glm::dvec3(0, 4, 0), glm::dvec3(0, -1, 0), glm::dvec3(3.0, 1.5, 0.0), 0.1};
+  CHECK(lightwave_bounce_irradiance(glm::dvec3(0.0), glm::dvec3(0, 1, 0), farther, 0.01).x == doctest::Approx(e.x / 4.0));
+  // Nearer than its radius: clamped there (the disk the patch covers, not a point), and the
+  // larger of radius and min_distance.
+  const glm::dvec3 near_point(0, 1.95, 0);
+  CHECK(lightwave_bounce_irradiance(near_point, glm::dvec3(0, 1, 0), vpl, 0.01).x == doctest::Approx(3.0 * 0.05 * 0.05 / (pi * 0.01 * 0.01)));
+  CHECK(lightwave_bounce_irradiance(near_point, glm::dvec3(0, 1, 0), vpl, 0.2).x == doctest::Approx(3.0 * 0.05 * 0.05 / (pi * 0.04 * 0.04)));
+  // Behind it, or a receiver turned away: nothing.
+  CHECK(lightwave_bounce_irradiance(glm::dvec3(0, 3, 0), glm::dvec3(0, -1, 0), vpl, 0.01) == glm::dvec3(0.0));
+  CHECK(lightwave_bounce_irradiance(glm::dvec3(0.0), glm::dvec3(0, -1, 0), vpl, 0.01) == glm::dvec3(0.0));
+  // Energy: summed over a plane the VPL faces, irradiance times area is the flux it sends there:
+  // out to radius R at height h, flux (1 - h^2 / (R^2 + h^2)) (a cosine lobe). Rings of the plane
+  // at height 0 (the light is the same all around a ring), R = 200; the clamp does not act at h = 2.
+  double caught = 0.0;
+  for (double rho = 0.0005, step = 0.001; rho < 200.0; rho += step, step = rho < 20.0 ? 0.001 : 0.01)
+    caught += lightwave_bounce_irradiance(glm::dvec3(rho, 0, 0), glm::dvec3(0, 1, 0), vpl, 0.01).x * 2.0 * pi * rho * step;
+  CHECK(caught == doctest::Approx(3.0 * (1.0 - 4.0 / (200.0 * 200.0 + 4.0))).epsilon(1e-3));
+  // Summed at a vertex: albedo / pi times the sum (diffuse_radiance).
+  const auto fetch = [&](int index) { return index == 0 ? vpl : farther; };
+  const glm::dvec3 radiance = lightwave_vertex_bounce(glm::dvec3(0.0), glm::dvec3(0, 1, 0), glm::dvec3(0.5), fetch, 2, irradiance_settings<double>{});
+  CHECK(radiance.x == doctest::Approx(0.5 / pi * (e.x + e.x / 4.0)));
+}
+
+TEST_CASE("a patch's radius: the disk of the area the patch covers on the surface") {
+  // A patch of solid angle w met head-on at distance d covers w d^2: pi r^2 = w d^2.
+  const double r = lightwave_patch_radius(0.01, 3.0, 1.0);
+  CHECK(pi * r * r == doctest::Approx(0.01 * 9.0));
+  // At 60 degrees off the normal, twice the area; at grazing, at most 16 times.
+  CHECK(lightwave_patch_radius(0.01, 3.0, -0.5) == doctest::Approx(r * std::sqrt(2.0)));
+  CHECK(lightwave_patch_radius(0.01, 3.0, 0.0) == doctest::Approx(r * 4.0));
+}
+
+TEST_CASE("the flux energy reproduces a one-bounce integral: a spot over a floor lighting a wall") {
+  // The spot at height 2 looks straight down at a floor of albedo 0.6 (y = 0); a wall point at
+  // x = 3, height 1, facing -x. The VPLs sit where the cone's rays meet the floor. Reference: the
+  // floor's reflected light integrated on a fine grid, E = integral of (albedo / pi) E_floor(q)
+  // cos cos / r^2 dA, with E_floor the spot's irradiance there.
+  spot_light<double> light;
+  light.position = glm::dvec3(0, 2, 0);
+  light.direction = glm::dvec3(0, -1, 0);
+  light.intensity = glm::dvec3(5.0);
+  light.cos_inner = std::cos(25.0 * pi / 180.0);
+  light.cos_outer = std::cos(40.0 * pi / 180.0);
+  const double albedo = 0.6;
+  const glm::dvec3 receiver(3, 1, 0), normal(-1, 0, 0);
+  lightwave_cone_settings<double> settings = cone_settings(5, 5, 40.0);
+  settings.light_direction = light.direction;
+  double vpl_sum = 0.0;
+  for (int index = 0; index < lightwave_vpl_count(5, 5); ++index) {
+    const glm::dvec4 sample = lightwave_cone_sample(index, settings);
+    const glm::dvec3 direction(sample);
+    const double distance = 2.0 / -direction.y;
+    const lightwave_flux_vpl<double> vpl{light.position + direction * distance, glm::dvec3(0, 1, 0),
+                                         lightwave_ray_flux(light, direction, sample.w, glm::dvec3(albedo), glm::dvec3(0, 1, 0)),
+                                         lightwave_patch_radius(sample.w, distance, -direction.y)};
+    vpl_sum += lightwave_bounce_irradiance(receiver, normal, vpl, 0.01).x;
+  }
+  double integral = 0.0;
+  const double step = 0.01, reach = 2.0 * std::tan(40.0 * pi / 180.0) + 0.01;
+  for (double x = -reach; x < reach; x += step)
+    for (double z = -reach; z < reach; z += step) {
+      const glm::dvec3 q(x + step / 2, 0, z + step / 2);
+      const double e_floor = spot_light_irradiance(q, glm::dvec3(0, 1, 0), light).x;
+      const glm::dvec3 to_receiver = receiver - q;
+      const double r2 = glm::dot(to_receiver, to_receiver), r = std::sqrt(r2);
+      integral += albedo / pi * e_floor * (to_receiver.y / r) * std::max(0.0, -glm::dot(normal, to_receiver) / r) / r2 * step * step;
+    }
+  CHECK(vpl_sum == doctest::Approx(integral).epsilon(0.01));
+}
+
+TEST_CASE("lightwave_map_fade: 0 outside a map and on its border, 1 from the margin in, rising smoothly") {
+  CHECK(lightwave_map_fade(glm::dvec4(0.5, 0.5, 0.5, 1.0), 0.05) == 1.0);
+  CHECK(lightwave_map_fade(glm::dvec4(0.5, 0.5, 0.5, 0.0), 0.05) == 0.0);  // outside (lightwave_map_coordinate's w)
+  CHECK(lightwave_map_fade(glm::dvec4(0.0, 0.5, 0.5, 1.0), 0.05) == 0.0);
+  CHECK(lightwave_map_fade(glm::dvec4(0.5, 1.0, 0.5, 1.0), 0.05) == 0.0);
+  CHECK(lightwave_map_fade(glm::dvec4(0.05, 0.5, 0.5, 1.0), 0.05) == 1.0);
+  CHECK(lightwave_map_fade(glm::dvec4(0.5, 0.975, 0.5, 1.0), 0.05) == doctest::Approx(0.5));  // halfway into the margin
+  double previous = 0.0;
+  for (double x = 0.0; x <= 0.05; x += 0.001) {
+    const double fade = lightwave_map_fade(glm::dvec4(x, 0.5, 0.5, 1.0), 0.05);
+    CHECK(fade >= previous);
+    previous = fade;
+  }
+}
+
+TEST_CASE("lightwave_group_confidence: 1 for a group seen as a point, 1/2 where its angular diameter (4 RMS radii) is one radian, falling with its size") {
+  const glm::dvec3 x(0.0), group(0, 0, 4);
+  CHECK(lightwave_group_confidence(x, group, 0.0) == 1.0);
+  CHECK(lightwave_group_confidence(x, group, 1.0) == doctest::Approx(0.5));  // diameter 4 at distance 4
+  CHECK(lightwave_group_confidence(x, group, 0.2) == doctest::Approx(1.0 / (1.0 + 0.04)));
+  CHECK(lightwave_group_confidence(x, group, 1.0) > lightwave_group_confidence(x, group, 3.0));
+  CHECK(lightwave_group_confidence(x, glm::dvec3(0, 0, 8), 2.0) > lightwave_group_confidence(x, group, 2.0));  // farther: smaller
+  CHECK(lightwave_group_confidence(group, group, 1.0) >= 0.0);  // at its centre: finite, about 0
+  CHECK(lightwave_group_confidence(group, group, 1.0) < 1e-9);
+}
+
+TEST_CASE("lightwave_flux_vpl_faces: exactly where a flux VPL's light is positive") {
+  std::uint32_t state = 12345u;
+  const auto next = [&] {
+    state = state * 1664525u + 1013904223u;
+    return static_cast<double>(state >> 8) / 16777216.0 * 2.0 - 1.0;
+  };
+  int lit = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const glm::dvec3 x(next(), next(), next()), p(next(), next(), next());
+    const glm::dvec3 n = glm::normalize(glm::dvec3(next(), next(), next())), normal = glm::normalize(glm::dvec3(next(), next(), next()));
+    const lightwave_flux_vpl<double> vpl{p, normal, glm::dvec3(0.3, 0.2, 0.1), 0.05};
+    const bool faces = lightwave_flux_vpl_faces(x, n, p, normal);
+    REQUIRE(faces == (lightwave_bounce_weight(x, n, vpl, 0.01) > 0.0));
+    lit += faces;
+  }
+  CHECK(lit > 2000);  // a quarter of random pairs face each other
+  CHECK(lit < 8000);
+}

@@ -144,29 +144,54 @@ TEST_CASE("radial pattern integrates a smooth function, and its error falls as t
 }
 
 TEST_CASE("disk pattern: the same for every receiver, inside r_max, weights sum to the disk's area in expectation") {
+  for (const bool printed : {false, true}) {
+    CAPTURE(printed);
+    disk_pattern_settings<double> settings;
+    settings.samples = 400;
+    settings.printed_weights = printed;
+    double weight_sum = 0.0;
+    for (int sample = 0; sample < settings.samples; ++sample) {
+      const auto s = rsm_disk_sample(sample, settings);
+      REQUIRE(glm::length(s.offset) <= settings.max_radius);
+      // Unbiased: xi1 * 2 pi r_max^2 / N; printed: xi1^2 * 3 pi r_max^2 / N; xi1 = |offset| / r_max.
+      const double xi1 = glm::length(s.offset) / settings.max_radius, area = pi * settings.max_radius * settings.max_radius;
+      const double expected = printed ? xi1 * xi1 * 3 * area / settings.samples : xi1 * 2 * area / settings.samples;
+      REQUIRE(s.weight == doctest::Approx(expected).epsilon(1e-7));
+      weight_sum += s.weight;
+    }
+    CHECK(weight_sum == doctest::Approx(pi * settings.max_radius * settings.max_radius).epsilon(0.1));  // 400 samples: sd ~ 3-4.5 %
+  }
+}
+
+TEST_CASE("disk pattern: the default weights integrate 1/r without bias, the printed ones miss a quarter of it") {
+  // f = 1/r over the disk integrates to 2 pi r_max. With the density 1 / (2 pi r_max r) of uniform
+  // xi1, the default weights (~ r) cancel it exactly: the estimate is 2 pi r_max for every sample.
+  // The printed weights (~ r^2) give E[3 xi1^2 / xi1] / 2 = 3/4 of it.
+  const auto inverse_r = [](const glm::dvec2& o) { return 1.0 / std::max(glm::length(o), 1e-9); };
+  for (const bool printed : {false, true}) {
+    CAPTURE(printed);
+    disk_pattern_settings<double> settings;
+    settings.samples = 20000;
+    settings.printed_weights = printed;
+    double estimate = 0.0;
+    for (int sample = 0; sample < settings.samples; ++sample) {
+      const auto s = rsm_disk_sample(sample, settings);
+      estimate += s.weight * inverse_r(s.offset);
+    }
+    const double exact = 2 * pi * settings.max_radius;
+    CAPTURE(estimate / exact);
+    if (printed) CHECK(std::fabs(estimate / exact - 0.75) < 0.02);
+    else CHECK(estimate / exact == doctest::Approx(1.0).epsilon(1e-9));
+  }
+  // And a smooth function that is not a power of r: f = exp(-r / 20), integral 2 pi 20^2 (1 - (1 + 64/20) e^(-64/20)).
   disk_pattern_settings<double> settings;
-  settings.samples = 400;
-  double weight_sum = 0.0;
+  settings.samples = 40000;
+  double estimate = 0.0;
   for (int sample = 0; sample < settings.samples; ++sample) {
     const auto s = rsm_disk_sample(sample, settings);
-    REQUIRE(glm::length(s.offset) <= settings.max_radius);
-    // weight = xi1^2 * 3 pi r_max^2 / N with xi1 = |offset| / r_max.
-    const double xi1 = glm::length(s.offset) / settings.max_radius;
-    REQUIRE(s.weight == doctest::Approx(xi1 * xi1 * 3 * pi * settings.max_radius * settings.max_radius / settings.samples).epsilon(1e-7));
-    weight_sum += s.weight;
+    estimate += s.weight * std::exp(-glm::length(s.offset) / 20.0);
   }
-  const double area = pi * settings.max_radius * settings.max_radius;
-  CHECK(weight_sum == doctest::Approx(area).epsilon(0.1));  // 400 samples of xi1^2: sd ~ 4.5%
-  // Biased for anything but a constant (documented): for f = 1/r the disk estimate differs from
-  // the integral 2 pi r_max by more than the radial pattern's.
-  const auto inverse_r = [](const glm::dvec2& o) { return 1.0 / std::max(glm::length(o), 1e-9); };
-  double disk_estimate = 0.0;
-  for (int sample = 0; sample < 20000; ++sample) {
-    settings.samples = 20000;
-    const auto s = rsm_disk_sample(sample, settings);
-    disk_estimate += s.weight * inverse_r(s.offset);
-  }
-  const double exact = 2 * pi * settings.max_radius;
-  CAPTURE(disk_estimate / exact);
-  CHECK(std::fabs(disk_estimate / exact - 0.75) < 0.02);  // E[3 xi^2 / xi] / E[2] = (3/2) / 2
+  const double exact = 2 * pi * 400.0 * (1.0 - (1.0 + 64.0 / 20.0) * std::exp(-64.0 / 20.0));
+  CAPTURE(estimate / exact);
+  CHECK(estimate / exact == doctest::Approx(1.0).epsilon(0.02));
 }

@@ -49,6 +49,86 @@ TEST_CASE("parity: elevation_bucket makes the same decision on both sides, bound
   require_parity(compare_exact("elevation_bucket (exact)", gpu.uints[0], cpu, inputs, 0.0, 1));
 }
 
+TEST_CASE("parity: elevation_bucket_about makes the same decision on both sides, boundaries included") {
+  random_inputs random(12);
+  kernel_inputs inputs = grid_of(64, 64, 3);
+  const int slots = 8;
+  const elevation_slots<float> table = make_elevation_slots<float>(slots);
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    inputs.floats[0][i] = glm::vec4(random.point(2.0f), 0.0f);
+    inputs.floats[1][i] = glm::vec4(random.point(2.0f), 0.0f);
+    inputs.floats[2][i] = glm::vec4(random.unit_vector(), 0.0f);  // up
+    if (i % 4 == 0) {
+      // On the boundary at elevation 0 (8 slots have one there): a point in the plane across `up`.
+      const glm::vec3 up(inputs.floats[2][i]), d(inputs.floats[1][i] - inputs.floats[0][i]);
+      inputs.floats[1][i] = inputs.floats[0][i] + glm::vec4(d - glm::dot(d, up) * up, 0.0f);
+    }
+    if (i % 8 == 1) inputs.floats[2][i] = glm::vec4(0, 0, 1, 0);  // the thesis's axis
+  }
+  kernel_source source;
+  source.name = "elevation_bucket_about";
+  source.includes = {"lib/micro_linear_buffer.glsl"};
+  source.declarations = "uniform elevation_slots slots;\n";
+  source.body = "uout0 = uvec4(uint(elevation_bucket_about(fin0.xyz, fin1.xyz, fin2.xyz, slots)), 0u, 0u, 0u);";
+  source.uint_outputs = 1;
+  const kernel_outputs gpu = run_fragment(source, inputs, [&](const program& p) { set_uniforms(p, "slots", table); });
+  std::vector<glm::uvec4> cpu(inputs.size());
+  for (std::size_t i = 0; i < inputs.size(); ++i)
+    cpu[i] = glm::uvec4(static_cast<unsigned>(elevation_bucket_about(glm::vec3(inputs.floats[0][i]), glm::vec3(inputs.floats[1][i]),
+                                                                     glm::vec3(inputs.floats[2][i]), table)),
+                        0u, 0u, 0u);
+  // A dot product and a vector less its projection: multiply-adds that llvmpipe may fuse, so a
+  // point within an ulp of a boundary can fall on either side. None did in this grid (the
+  // boundary points above included); allow none.
+  require_parity(compare_exact("elevation_bucket_about", gpu.uints[0], cpu, inputs, 0.0, 1));
+}
+
+TEST_CASE("parity: alg6_ray's verdicts on random three-sample paths, and alg6_ray_in_front") {
+  // Each texel: a receiver (fin0) and three samples, position | slot (fin1..3) and normal (fin4..6),
+  // on a few shared planes so that predecessors pass their verdicts on, or not, both ways.
+  random_inputs random(13);
+  kernel_inputs inputs = grid_of(64, 64, 7);
+  const glm::vec3 normals[3] = {{0, 0, 1}, glm::normalize(glm::vec3(1, 0, 1)), {-1, 0, 0}};
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    inputs.floats[0][i] = glm::vec4(random.point(2.0f), 0.0f);
+    for (int k = 0; k < 3; ++k) {
+      const glm::vec3 n = normals[random.uniform_uint(0, 2)] * (random.uniform_uint(0, 3) == 0 ? -1.0f : 1.0f);
+      glm::vec3 p = random.point(2.0f);
+      p -= glm::dot(p, n) * n;  // on the plane through the origin
+      inputs.floats[static_cast<std::size_t>(1 + k)][i] = glm::vec4(p, static_cast<float>(random.uniform_uint(0, 4)));
+      inputs.floats[static_cast<std::size_t>(4 + k)][i] = glm::vec4(n, 0.0f);
+    }
+  }
+  kernel_source source;
+  source.name = "micro_linear_buffer_alg6_ray";
+  source.includes = {"lib/micro_linear_buffer.glsl"};
+  source.body = R"(
+    micro_linear_buffer b;
+    micro_linear_buffer_reset(b, 5);
+    float v0 = micro_linear_buffer_alg6_ray(b, int(fin1.w), fin0.xyz, fin1.xyz, fin4.xyz);
+    float v1 = micro_linear_buffer_alg6_ray(b, int(fin2.w), fin0.xyz, fin2.xyz, fin5.xyz);
+    float v2 = micro_linear_buffer_alg6_ray(b, int(fin3.w), fin0.xyz, fin3.xyz, fin6.xyz);
+    fout0 = vec4(v0, v1, v2, alg6_ray_in_front(fin0.xyz, fin4.xyz, fin2.xyz, 0.01) ? 1.0 : 0.0);)";
+  source.float_outputs = 1;
+  const kernel_outputs gpu = run_fragment(source, inputs);
+  std::vector<glm::vec4> cpu(inputs.size());
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    micro_linear_buffer<float> b;
+    micro_linear_buffer_reset(b, 5);
+    glm::vec4 out(0.0f);
+    for (int k = 0; k < 3; ++k) {
+      const glm::vec4 sample = inputs.floats[static_cast<std::size_t>(1 + k)][i];
+      out[k] = micro_linear_buffer_alg6_ray(b, static_cast<int>(sample.w), glm::vec3(inputs.floats[0][i]), glm::vec3(sample),
+                                            glm::vec3(inputs.floats[static_cast<std::size_t>(4 + k)][i]));
+    }
+    out.w = alg6_ray_in_front(glm::vec3(inputs.floats[0][i]), glm::vec3(inputs.floats[4][i]), glm::vec3(inputs.floats[2][i]), 0.01f) ? 1.0f : 0.0f;
+    cpu[i] = out;
+  }
+  // Verdicts are small integers decided by comparisons of dot products that llvmpipe may fuse: a
+  // decision within an ulp of its threshold could flip; none did on this grid, and none is allowed.
+  require_parity(compare("micro_linear_buffer_alg6_ray", gpu.floats[0], cpu, inputs, {0.0f, 0.0f, 0, 0.0, "integer verdicts"}, 4));
+}
+
 TEST_CASE("parity: micro_linear_buffer Alg. 2, 3 and 6 verdicts on random slot sequences") {
   // Each texel holds a path of 10 slot indices (4 bits each, packed into two words) and a slot
   // count; the outputs are the verdict bit masks of the three algorithms, and the sum of the

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 #include <tuple>
 
@@ -71,8 +72,14 @@ const std::vector<setting<lightwave_settings, lightwave_technique>>& lightwave_s
                     "float format of the render targets"),
       entry::number("min-distance", [](auto& s) -> auto& { return s.irradiance.min_distance; }, describe_field(&irradiance_settings<float>::min_distance))
           .feeds("lightwave.frag: irradiance.min_distance"),
-      entry::number("seed", [](auto& s) -> auto& { return s.seed; }, closed_range(0, 4294967295.0), "", "seed of the accurate shadows' VPL draw")
+      entry::number("seed", [](auto& s) -> auto& { return s.seed; }, closed_range(0, 4294967295.0), "",
+                    "seed of the VPL draw of the accurate shadows' thesis variant (the importance variant has none)")
           .read_by(modes({lightwave_mode::accurate}), "the accurate shadows"),
+      entry::choice("vpl-energy", [](auto& s) -> auto& { return s.energy; }, {{"flux", lightwave_energy::flux}, {"thesis", lightwave_energy::thesis}},
+                    "flux (each VPL reflects the flux its patch of the spot's cone brings, with a diffuse bounce's falloff) or thesis "
+                    "(Eq. 4.5's VPLs on hemispheres, without flux: the Tables 5.x)")
+          .read_by(vpl_light, "the VPL light")
+          .feeds("lightwave.frag: VPLKIT_LIGHTWAVE_ENERGY; lightwave.vert: VPLKIT_LIGHTWAVE_ENERGY"),
       entry::number("ray-angle", [](auto& s) -> auto& { return s.angle_deg; }, describe_field(&lightwave_layout_settings<float>::angle_deg))
           .allowing(ray_angles)
           .read_by(vpl_light, "the VPL light")
@@ -81,7 +88,7 @@ const std::vector<setting<lightwave_settings, lightwave_technique>>& lightwave_s
           .read_by(vpl_light, "the VPL light")
           .feeds("lightwave.vert: vpl_texture; lightwave.vert: vpl_count"),
       entry::number("vpl-max-distance", [](auto& s) -> auto& { return s.max_distance; }, closed_range(0, max_scene_coordinate), "scene units",
-                    "the distance the hemispheres approach (0: from the scene's size)")
+                    "thesis energy: the distance the hemispheres approach (0: from the scene's size)")
           .read_by(vpl_light, "the VPL light")
           .feeds("lightwave.vert: vpl_texture"),
       entry::number("shadow-maps", [](auto& s) -> auto& { return s.accurate_maps; }, closed_range(0, lightwave_max_shadow_maps), "",
@@ -90,8 +97,8 @@ const std::vector<setting<lightwave_settings, lightwave_technique>>& lightwave_s
           .feeds("lightwave.frag: indirect_maps; lightwave.frag: shadow_matrix"),
       entry::choice("shadow-variant", [](auto& s) -> auto& { return s.shadow_variant; },
                     {{"importance", lightwave_shadow_variant::importance}, {"thesis", lightwave_shadow_variant::thesis}},
-                    "importance (VPLs drawn by their light on the scene, maps aimed at it, lookups weighted by each VPL's light) or thesis "
-                    "(uniform VPLs, maps along their normals, the plain mean)")
+                    "importance (the VPLs split into groups of equal light on the visible scene, one map per group from its medoid aimed at "
+                    "what it lights, each map shadowing its group's share; no seed) or thesis (uniform VPLs, maps along their normals, the plain mean)")
           .read_by(modes({lightwave_mode::accurate}), "the accurate shadows")
           .feeds("lightwave.frag: VPLKIT_LIGHTWAVE_SHADOW_VARIANT"),
       entry::number("integrated-maps", [](auto& s) -> auto& { return s.integrated_maps; }, closed_range(2, lightwave_max_shadow_maps), "",
@@ -146,6 +153,12 @@ std::string validate(const lightwave_settings& settings) {
   const int vpls = lightwave_vpl_count(settings.angle_deg, settings.per_ray);
   // The vertex stage loops over every VPL, and llvmpipe ends a loop after 65535 iterations.
   if (vpls > 65535) return "at most 65535 VPLs (the per-vertex loop; llvmpipe stops loops there), got " + std::to_string(vpls);
+  // The flux energy puts its VPLs where its rays meet the scene: no hemispheres to place.
+  if (settings.energy == lightwave_energy::flux && settings.max_distance != 0.0f)
+    return "vpl-max-distance places the thesis's hemispheres and is read with vpl-energy thesis; the flux energy puts its VPLs where its rays "
+           "meet the scene (leave vpl-max-distance at 0)";
+  if (!(settings.receiver_spacing > 0.0f && settings.receiver_spacing <= 4.0f)) return "receiver spacing must be in (0, 4] (a fraction of the scene's bounding radius)";
+  if (settings.receiver_triangles < 1 || settings.receiver_triangles > (1 << 22)) return "receiver triangles must be in [1, 4194304]";
   if (settings.accurate_maps > vpls)
     return "more accurate shadow maps (" + std::to_string(settings.accurate_maps) + ") than VPLs (" + std::to_string(vpls) + ")";
   const int ring = 360 / settings.angle_deg;
@@ -178,32 +191,101 @@ std::vector<int> lightwave_shadow_vpls(lightwave_mode mode, const lightwave_sett
   return chosen;
 }
 
-std::vector<lightwave_shadow_caster> lightwave_importance_vpls(const std::vector<lightwave_vpl<float>>& vpls,
-                                                               const std::vector<lightwave_receiver_point>& points, int count, std::uint32_t seed) {
-  std::vector<double> weight(vpls.size(), 0.0);
-  double total = 0.0;
-  for (std::size_t i = 0; i < vpls.size(); ++i) {
-    for (const lightwave_receiver_point& point : points) weight[i] += lightwave_vpl_weight(point.position, point.normal, vpls[i]);
-    total += weight[i];
+namespace {
+
+// One group of lightwave_cluster_casters: its members (indices into the VPLs) and its map's VPL.
+lightwave_shadow_caster make_group(const std::vector<lightwave_cluster_vpl>& vpls, const std::vector<int>& members, float normal_scale) {
+  lightwave_shadow_caster group;
+  double importance = 0.0, power = 0.0;
+  glm::dvec3 position(0.0), normal(0.0);
+  for (int i : members) {
+    const lightwave_cluster_vpl& vpl = vpls[static_cast<std::size_t>(i)];
+    importance += vpl.importance;
+    power += vpl.power;
+    position += static_cast<double>(vpl.power) * glm::dvec3(vpl.position);
+    normal += static_cast<double>(vpl.power) * glm::dvec3(vpl.normal);
   }
-  std::vector<lightwave_shadow_caster> chosen;
-  if (!(total > 0.0) || count < 1) return chosen;
-  // Systematic sampling: the k-th pick at (k + u) / count of the cumulative weight. A VPL heavier
-  // than total / count would be picked twice: the repeat moves on to the next VPL not chosen.
-  const double offset = uniform_float_from_bits(hash_uint32(seed ^ 0x2545f491u));
-  std::vector<char> taken(vpls.size(), 0);
-  std::size_t cursor = 0;
-  double cumulative = 0.0;
-  for (int k = 0; k < count; ++k) {
-    const double target = (static_cast<double>(k) + offset) / count * total;
-    while (cursor + 1 < vpls.size() && cumulative + weight[cursor] <= target) cumulative += weight[cursor++];
-    std::size_t pick = cursor;
-    while (pick < vpls.size() && (taken[pick] || weight[pick] <= 0.0)) ++pick;
-    if (pick == vpls.size()) break;
-    taken[pick] = 1;
-    chosen.push_back({static_cast<int>(pick), static_cast<float>(std::min(1.0, count * weight[pick] / total))});
+  if (power > 0.0) position /= power;
+  double spread = 0.0;
+  for (int i : members) {
+    const lightwave_cluster_vpl& vpl = vpls[static_cast<std::size_t>(i)];
+    spread += static_cast<double>(vpl.power) *
+              (glm::dot(glm::dvec3(vpl.position) - position, glm::dvec3(vpl.position) - position) + static_cast<double>(vpl.radius) * vpl.radius);
   }
-  return chosen;
+  group.position = glm::vec3(position);
+  group.normal = glm::length(normal) > 0.0 ? glm::vec3(glm::normalize(normal)) : vpls[static_cast<std::size_t>(members.front())].normal;
+  group.radius = static_cast<float>(power > 0.0 ? std::sqrt(spread / power) : 0.0);
+  group.power = static_cast<float>(power);
+  group.members = members;
+  // The map's VPL: the member nearest the group's importance-weighted centre (position, and the
+  // normal scaled to scene units), the one point whose view stands best for the group's.
+  glm::dvec3 centre(0.0), facing(0.0);
+  for (int i : members) {
+    const lightwave_cluster_vpl& vpl = vpls[static_cast<std::size_t>(i)];
+    centre += static_cast<double>(vpl.importance) * glm::dvec3(vpl.position);
+    facing += static_cast<double>(vpl.importance) * glm::dvec3(vpl.normal);
+  }
+  centre /= importance;
+  facing /= importance;
+  double nearest = std::numeric_limits<double>::max();
+  for (int i : members) {
+    const lightwave_cluster_vpl& vpl = vpls[static_cast<std::size_t>(i)];
+    const glm::dvec3 d = glm::dvec3(vpl.position) - centre, e = (glm::dvec3(vpl.normal) - facing) * static_cast<double>(normal_scale);
+    const double distance = glm::dot(d, d) + glm::dot(e, e);
+    if (distance < nearest) nearest = distance, group.vpl = i;
+  }
+  return group;
+}
+
+}  // namespace
+
+std::vector<lightwave_shadow_caster> lightwave_cluster_casters(const std::vector<lightwave_cluster_vpl>& vpls, int count, float normal_scale) {
+  std::vector<int> order;
+  for (std::size_t i = 0; i < vpls.size(); ++i)
+    if (vpls[i].importance > 0.0f) order.push_back(static_cast<int>(i));
+  std::vector<lightwave_shadow_caster> groups;
+  if (order.empty() || count < 1) return groups;
+  // The coordinate a split sorts by: position, or the normal scaled to scene units.
+  const auto coordinate = [&](int i, int axis) {
+    const lightwave_cluster_vpl& vpl = vpls[static_cast<std::size_t>(i)];
+    return axis < 3 ? vpl.position[axis] : normal_scale * vpl.normal[axis - 3];
+  };
+  // Splits order[begin, end) into k groups, appended in a fixed order (depth first, low side first).
+  const auto split = [&](const auto& self, std::size_t begin, std::size_t end, int k) -> void {
+    if (k <= 1 || end - begin <= 1) {
+      const std::vector<int> members(order.begin() + static_cast<std::ptrdiff_t>(begin), order.begin() + static_cast<std::ptrdiff_t>(end));
+      groups.push_back(make_group(vpls, members, normal_scale));
+      return;
+    }
+    int widest = 0;
+    float extent = -1.0f;
+    for (int axis = 0; axis < 6; ++axis) {
+      float low = coordinate(order[begin], axis), high = low;
+      for (std::size_t j = begin; j < end; ++j) {
+        low = std::min(low, coordinate(order[j], axis));
+        high = std::max(high, coordinate(order[j], axis));
+      }
+      if (high - low > extent) extent = high - low, widest = axis;
+    }
+    std::sort(order.begin() + static_cast<std::ptrdiff_t>(begin), order.begin() + static_cast<std::ptrdiff_t>(end), [&](int a, int b) {
+      const float ca = coordinate(a, widest), cb = coordinate(b, widest);
+      return ca < cb || (ca == cb && a < b);
+    });
+    double total = 0.0;
+    for (std::size_t j = begin; j < end; ++j) total += vpls[static_cast<std::size_t>(order[j])].importance;
+    const int low_groups = k / 2;
+    const double target = total * low_groups / k;
+    std::size_t middle = begin;
+    double cumulative = 0.0;
+    while (middle < end && cumulative + 0.5 * vpls[static_cast<std::size_t>(order[middle])].importance < target)
+      cumulative += vpls[static_cast<std::size_t>(order[middle++])].importance;
+    middle = std::clamp(middle, begin + 1, end - 1);
+    const int low = std::min(low_groups, static_cast<int>(middle - begin));
+    self(self, begin, middle, low);
+    self(self, middle, end, std::min(k - low, static_cast<int>(end - middle)));
+  };
+  split(split, 0, order.size(), std::min(count, static_cast<int>(order.size())));
+  return groups;
 }
 
 namespace {
@@ -253,30 +335,69 @@ std::vector<lightwave_receiver_point> visible_surface_points(const mesh& geometr
 
 }  // namespace
 
-glm::mat4 lightwave_aimed_shadow_matrix(const lightwave_vpl<float>& vpl, const std::vector<lightwave_receiver_point>& points, float near_plane,
-                                        float far_plane, float aspect, float fallback_fov_degrees) {
+glm::mat4 lightwave_aimed_shadow_matrix(const glm::vec3& eye, const glm::vec3& fallback_direction, const std::vector<lightwave_receiver_point>& points,
+                                        const std::vector<float>& weights, float near_plane, float far_plane, float aspect, float fallback_fov_degrees) {
   glm::vec3 mean(0.0f);
-  std::vector<glm::vec3> lit;  // the points this VPL lights
-  for (const lightwave_receiver_point& point : points) {
-    const float w = lightwave_vpl_weight(point.position, point.normal, vpl);
-    if (!(w > 0.0f)) continue;
-    mean += w * glm::normalize(point.position - vpl.position);
-    lit.push_back(point.position);
+  std::vector<glm::vec3> lit;  // the points of weight > 0
+  for (std::size_t i = 0; i < points.size() && i < weights.size(); ++i) {
+    if (!(weights[i] > 0.0f)) continue;
+    const glm::vec3 offset = points[i].position - eye;
+    if (!(glm::dot(offset, offset) > 0.0f)) continue;
+    mean += weights[i] * glm::normalize(offset);
+    lit.push_back(points[i].position);
   }
-  if (!(glm::length(mean) > 1e-6f)) return glm::perspective(glm::radians(fallback_fov_degrees), aspect, near_plane, far_plane) * look_along(vpl.position, vpl.normal);
+  if (!(glm::length(mean) > 1e-6f))
+    return glm::perspective(glm::radians(fallback_fov_degrees), aspect, near_plane, far_plane) * look_along(eye, fallback_direction);
   const glm::vec3 axis = glm::normalize(mean);
-  const glm::mat4 view = look_along(vpl.position, axis);
+  const glm::mat4 view = look_along(eye, axis);
   // The half-angles that hold every lit point, across and up the map, plus 2 degrees.
   float tan_x = 0.0f, tan_y = 0.0f;
   for (const glm::vec3& position : lit) {
-    const glm::vec3 eye = glm::vec3(view * glm::vec4(position, 1.0f));
-    const float depth = std::max(-eye.z, 1e-4f);
-    tan_x = std::max(tan_x, std::abs(eye.x) / depth);
-    tan_y = std::max(tan_y, std::abs(eye.y) / depth);
+    const glm::vec3 in_view = glm::vec3(view * glm::vec4(position, 1.0f));
+    const float depth = std::max(-in_view.z, 1e-4f);
+    tan_x = std::max(tan_x, std::abs(in_view.x) / depth);
+    tan_y = std::max(tan_y, std::abs(in_view.y) / depth);
   }
   const float max_half = glm::radians(80.0f), margin = glm::radians(2.0f);
   const float half_y = std::min(max_half, std::max(std::atan(tan_y), std::atan(tan_x / aspect)) + margin);
   return glm::perspective(2.0f * half_y, aspect, near_plane, far_plane) * view;
+}
+
+mesh lightwave_receivers(const mesh& geometry, const lightwave_settings& settings) {
+  // The edge bound grows by half until the subdivision fits the budget (a scene already that
+  // fine, or finer, stays as it is).
+  float max_edge = settings.receiver_spacing * std::max(bounds(geometry).radius(), 1e-3f);
+  for (int attempt = 0; attempt < 64; ++attempt, max_edge *= 1.5f)
+    if (std::optional<mesh> subdivided = subdivide_long_edges(geometry, max_edge, static_cast<std::size_t>(settings.receiver_triangles)))
+      return *subdivided;
+  return geometry;
+}
+
+std::vector<glm::vec3> lightwave_receiver_samples(const mesh& receivers) {
+  std::vector<glm::dvec3> sums(receivers.vertices.size(), glm::dvec3(0.0));
+  std::vector<int> counts(receivers.vertices.size(), 0);
+  for (std::size_t t = 0; t + 2 < receivers.indices.size(); t += 3) {
+    const glm::dvec3 centroid = (glm::dvec3(receivers.vertices[receivers.indices[t]].position) + glm::dvec3(receivers.vertices[receivers.indices[t + 1]].position) +
+                                 glm::dvec3(receivers.vertices[receivers.indices[t + 2]].position)) /
+                                3.0;
+    for (std::size_t k = 0; k < 3; ++k) {
+      sums[receivers.indices[t + k]] += centroid;
+      ++counts[receivers.indices[t + k]];
+    }
+  }
+  std::vector<glm::vec3> samples(receivers.vertices.size());
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const vertex& v = receivers.vertices[i];
+    if (counts[i] == 0) {
+      samples[i] = v.position;
+      continue;
+    }
+    const glm::dvec3 offset = sums[i] / static_cast<double>(counts[i]) - glm::dvec3(v.position);
+    const double length = glm::length(glm::dvec3(v.normal));
+    const glm::dvec3 n = length > 0.0 ? glm::dvec3(v.normal) / length : glm::dvec3(0.0);
+    samples[i] = glm::vec3(glm::dvec3(v.position) + offset - n * glm::dot(offset, n));
+  }
+  return samples;
 }
 
 namespace {
@@ -298,14 +419,46 @@ lightwave_pipeline::lightwave_pipeline(const shader_library& shaders, const scen
       target_(settings.width, settings.height, {settings.format, settings.format, settings.format}, true) {
   if (source.light.kind != light_kind::spot) throw error("Light Wave needs a spot light; scene " + source.name + " has a directional one");
   if (const setting_problem problem = validate(source.light.spot)) throw error("scene " + source.name + ": " + problem.message());
+  const std::string energy = std::to_string(static_cast<int>(settings_.energy));
+  // The flux energy's indirect light: from a screen buffer the receivers fill (indirect_target_),
+  // so that the main pass runs on the scene's own triangles, with their materials (the receivers
+  // have none) and, with indirect shadows, its heavy fragment stage on few large triangles.
+  const bool indirect_buffer = settings_.energy == lightwave_energy::flux && technique_.mode >= lightwave_mode::unshadowed;
   const shader_defines defines = {{"VPLKIT_LIGHTWAVE_MODE", std::to_string(static_cast<int>(technique_.mode))},
+                                  {"VPLKIT_LIGHTWAVE_INDIRECT_BUFFER", indirect_buffer ? "1" : "0"},
                                   {"VPLKIT_LIGHTWAVE_SHADOW_VARIANT", std::to_string(static_cast<int>(settings_.shadow_variant))},
+                                  {"VPLKIT_LIGHTWAVE_ENERGY", energy},
                                   {"VPLKIT_LIGHTWAVE_INDIRECT", technique_.mode >= lightwave_mode::unshadowed ? "1" : "0"},
                                   {"VPLKIT_MAX_SHADOW_MAPS", std::to_string(lightwave_max_shadow_maps)}};
   main_program_ = load_program(shaders, "lightwave.vert", "lightwave.frag", defines);
-  capture_program_ = link_program("lightwave.vert (transform feedback)",
-                                  {{shader_stage::vertex, shaders.expand_file("lightwave.vert", {{"VPLKIT_LIGHTWAVE_INDIRECT", "1"}})}},
-                                  {"vertex_indirect"});
+  capture_program_ = link_program(
+      "lightwave.vert (transform feedback)",
+      {{shader_stage::vertex,
+        shaders.expand_file("lightwave.vert", {{"VPLKIT_LIGHTWAVE_INDIRECT", "1"}, {"VPLKIT_LIGHTWAVE_ENERGY", energy}, {"VPLKIT_LIGHTWAVE_CAPTURE", "1"}})}},
+      {"vertex_indirect"});
+  // Direct light alone and the faked indirect light use no VPLs.
+  if (settings_.energy == lightwave_energy::flux && technique_.mode >= lightwave_mode::unshadowed) {
+    surface_program_ = load_program(shaders, "scene.vert", "lightwave_surfaces.frag");
+    surfaces_.emplace(lightwave_surface_map_size, lightwave_surface_map_size,
+                      std::vector<texel_format>{texel_format::rgba32f, texel_format::rgba32f, texel_format::rgba32f}, true);
+    receivers_ = lightwave_receivers(source.geometry, settings_);
+    receiver_samples_ = lightwave_receiver_samples(receivers_);
+    receiver_buffers_.emplace(receivers_);
+    const auto bytes = static_cast<GLsizeiptr>(receivers_.vertices.size() * sizeof(glm::vec3));
+    sample_buffer_ = gl_buffer(generate_buffer());
+    glBindBuffer(GL_ARRAY_BUFFER, sample_buffer_.get());
+    glBufferData(GL_ARRAY_BUFFER, bytes, receiver_samples_.data(), GL_STATIC_DRAW);
+    indirect_buffer_ = gl_buffer(generate_buffer());
+    glBindBuffer(GL_ARRAY_BUFFER, indirect_buffer_.get());
+    glBufferData(GL_ARRAY_BUFFER, bytes, nullptr, GL_DYNAMIC_COPY);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    receiver_buffers_->attach_vec3_attribute(3, indirect_buffer_.get());
+    receiver_buffers_->attach_vec3_attribute(4, sample_buffer_.get());
+    if (indirect_buffer) {
+      indirect_program_ = load_program(shaders, "lightwave.vert", "lightwave_indirect.frag", defines);
+      indirect_target_.emplace(settings_.width, settings_.height, std::vector<texel_format>{texel_format::rgba32f}, true);
+    }
+  }
 
   // The shadow maps: layer 0 for the light, then one per chosen VPL.
   shadow_size_ = shadow_map_size(settings_);
@@ -334,7 +487,7 @@ void lightwave_pipeline::set_light(const scene_light& light) {
   if (light.kind != light_kind::spot) throw error("Light Wave needs a spot light; make a new pipeline for a scene with a directional one");
   check_light(light, "Light Wave scene " + scene_.name);
   scene_.light.spot = light.spot;
-  dirty_ = true;
+  vpls_dirty_ = shadows_dirty_ = true;
   view_valid_ = false;
 }
 
@@ -350,64 +503,212 @@ std::string lightwave_pipeline::draw_counts() const {
 std::string lightwave_pipeline::describe() const {
   std::ostringstream out;
   out << "scene " << scene_.name << " (" << scene_.geometry.triangle_count() << " triangles), technique " << settings_.technique << ", " << settings_.width
-      << "x" << settings_.height << ", " << vpl_count() << " VPLs (" << settings_.angle_deg << " degrees, " << settings_.per_ray << " per ray), shadow maps: "
+      << "x" << settings_.height << ", " << vpl_count() << " VPLs (" << settings_.angle_deg << " degrees, " << settings_.per_ray << " per ray"
+      << (settings_.energy == lightwave_energy::flux && technique_.mode >= lightwave_mode::unshadowed
+              ? ", flux energy: " + std::to_string(lit_vpl_count()) + " carry light"
+              : std::string())
+      << "), shadow maps: "
       << std::fixed << std::setprecision(2) << static_cast<double>(shadow_map_bytes()) / (1024.0 * 1024.0) << " MB (Eq. 5.4/5.5)";
   return out.str();
 }
 
-void lightwave_pipeline::rebuild() {
+int lightwave_pipeline::lit_vpl_count() const {
+  return static_cast<int>(settings_.energy == lightwave_energy::flux ? flux_vpls_.size() : vpls_.size());
+}
+
+void lightwave_pipeline::build_flux_vpls(const glm::mat4& light_view_projection) {
+  const spot_light<float>& light = scene_.light.spot;
+  // What the light sees: world position (w = 1 where a surface is), normal and albedo per texel.
+  surfaces_->bind();
+  glEnable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  surface_program_.use();
+  surface_program_.set("view_projection", light_view_projection);
+  mesh_.draw(surface_program_);
+  const image positions = surfaces_->read_image(0), normals = surfaces_->read_image(1), albedos = surfaces_->read_image(2);
+  // The rays cover the cone up to its outer edge, inside the map's frustum (2 degrees of margin).
+  cone_.light_direction = light.direction;
+  cone_.angle_deg = settings_.angle_deg;
+  cone_.per_ray = settings_.per_ray;
+  cone_.half_angle_deg = glm::degrees(spot_light_frustum_half_angle(light)) - 2.0f;
+  flux_vpls_.clear();
+  flux_layout_index_.clear();
+  const int count = lightwave_vpl_count(settings_.angle_deg, settings_.per_ray);
+  const int side = lightwave_surface_map_size;
+  for (int index = 0; index < count; ++index) {
+    const glm::vec4 sample = lightwave_cone_sample(index, cone_);
+    const glm::vec3 direction(sample);
+    const glm::vec4 clip = light_view_projection * glm::vec4(light.position + direction, 1.0f);
+    if (!(clip.w > 0.0f)) continue;
+    const glm::ivec2 texel = glm::clamp(glm::ivec2(glm::floor((glm::vec2(clip) / clip.w * 0.5f + 0.5f) * static_cast<float>(side))), glm::ivec2(0),
+                                        glm::ivec2(side - 1));
+    const glm::vec4 surface = positions.at(texel);
+    if (!(surface.w > 0.5f)) continue;  // the ray leaves the scene
+    const glm::vec3 normal(normals.at(texel)), albedo(albedos.at(texel));
+    const glm::vec3 flux = lightwave_ray_flux(light, direction, sample.w, albedo, normal);
+    if (!(flux.x + flux.y + flux.z > 0.0f)) continue;  // black, the back of a surface, or outside the cone
+    // The texel holds the surface at its centre's ray; the ray's own point lies on that surface's
+    // plane (unless the texel straddles an edge: then the texel's point).
+    const glm::vec3 texel_point(surface);
+    const float texel_distance = glm::length(texel_point - light.position);
+    const float facing = glm::dot(direction, normal);
+    float distance = glm::dot(texel_point - light.position, normal) / facing;
+    if (!(distance > 0.5f * texel_distance && distance < 2.0f * texel_distance)) distance = texel_distance;
+    flux_vpls_.push_back({light.position + direction * distance, normal, flux, lightwave_patch_radius(sample.w, distance, facing)});
+    flux_layout_index_.push_back(index);
+  }
+}
+
+namespace {
+
+// What the shadow casters need of every VPL of either energy: where it is, its normal, and its
+// weight (the light it gives) at a point.
+struct vpl_view {
+  const std::vector<lightwave_vpl<float>>* thesis = nullptr;
+  const std::vector<lightwave_flux_vpl<float>>* flux = nullptr;
+  float min_distance = 0.01f;
+  std::size_t size() const { return thesis ? thesis->size() : flux->size(); }
+  glm::vec3 position(std::size_t i) const { return thesis ? (*thesis)[i].position : (*flux)[i].position; }
+  glm::vec3 normal(std::size_t i) const { return thesis ? (*thesis)[i].normal : (*flux)[i].normal; }
+  float weight(std::size_t i, const lightwave_receiver_point& point) const {
+    return thesis ? lightwave_vpl_weight(point.position, point.normal, (*thesis)[i])
+                  : lightwave_bounce_weight(point.position, point.normal, (*flux)[i], min_distance);
+  }
+  float power(std::size_t i) const {
+    if (thesis) return std::max(0.0f, 1.0f - (*thesis)[i].attenuation);
+    const glm::vec3& f = (*flux)[i].flux;
+    return (f.x + f.y + f.z) / 3.0f;
+  }
+  float radius(std::size_t i) const { return thesis ? 0.0f : (*flux)[i].radius; }
+};
+
+vpl_view view_of(const lightwave_settings& settings, const std::vector<lightwave_vpl<float>>& thesis,
+                 const std::vector<lightwave_flux_vpl<float>>& flux) {
+  vpl_view view;
+  if (settings.energy == lightwave_energy::thesis) view.thesis = &thesis;
+  else view.flux = &flux;
+  view.min_distance = settings.irradiance.min_distance;
+  return view;
+}
+
+}  // namespace
+
+lightwave_pipeline::frame_geometry lightwave_pipeline::geometry() const {
   const spot_light<float>& light = scene_.light.spot;
   const bounding_box box = bounds(scene_.geometry);
-  float max_distance = settings_.max_distance;
-  if (max_distance == 0.0f)
-    for (int corner = 0; corner < 8; ++corner) {
-      const glm::vec3 p((corner & 1) ? box.maximum.x : box.minimum.x, (corner & 2) ? box.maximum.y : box.minimum.y,
-                        (corner & 4) ? box.maximum.z : box.minimum.z);
-      max_distance = std::max(max_distance, glm::length(p - light.position));
-    }
-  layout_ = {light.position, light.direction, settings_.angle_deg, settings_.per_ray, max_distance};
-  vpls_.clear();
-  lightwave_layout(layout_, std::back_inserter(vpls_));
+  frame_geometry g;
+  g.radius = std::max(box.radius(), 1e-3f);
+  g.near_plane = 0.01f * g.radius;
+  g.far_plane = glm::length(light.position - box.centre()) + 2.0f * g.radius;
+  g.light_view = look_along(light.position, light.direction);
+  return g;
+}
 
-  // VPL texture: texel (0, i) = [position | attenuation], texel (1, i) = [normal | 0].
-  std::vector<glm::vec4> texels(vpls_.size() * 2);
+void lightwave_pipeline::build_vpls() {
+  const spot_light<float>& light = scene_.light.spot;
+  const bounding_box box = bounds(scene_.geometry);
+  const frame_geometry g = geometry();
+  float max_distance = settings_.max_distance;
+  vpls_.clear();
+  flux_vpls_.clear();
+  flux_layout_index_.clear();
+  if (settings_.energy == lightwave_energy::thesis) {
+    if (max_distance == 0.0f)
+      for (int corner = 0; corner < 8; ++corner) {
+        const glm::vec3 p((corner & 1) ? box.maximum.x : box.minimum.x, (corner & 2) ? box.maximum.y : box.minimum.y,
+                          (corner & 4) ? box.maximum.z : box.minimum.z);
+        max_distance = std::max(max_distance, glm::length(p - light.position));
+      }
+    layout_ = {light.position, light.direction, settings_.angle_deg, settings_.per_ray, max_distance};
+    lightwave_layout(layout_, std::back_inserter(vpls_));
+  } else {
+    layout_ = {light.position, light.direction, settings_.angle_deg, settings_.per_ray, 0.0f};
+    build_flux_vpls(glm::perspective(2.0f * spot_light_frustum_half_angle(light), 1.0f, g.near_plane, g.far_plane) * g.light_view);
+  }
+  layout_.max_distance = max_distance;
+  const vpl_view view = view_of(settings_, vpls_, flux_vpls_);
+
+  // VPL texture, a row per VPL: thesis [position | attenuation], [normal | 0]; flux [position |
+  // radius], [normal | 0], [flux | 0]. At least one row (a light that meets nothing has none).
+  const int columns = settings_.energy == lightwave_energy::thesis ? 2 : 3;
+  const std::size_t rows = std::max<std::size_t>(view.size(), 1);
+  std::vector<glm::vec4> texels(rows * static_cast<std::size_t>(columns), glm::vec4(0.0f));
   for (std::size_t i = 0; i < vpls_.size(); ++i) {
     texels[2 * i] = glm::vec4(vpls_[i].position, vpls_[i].attenuation);
     texels[2 * i + 1] = glm::vec4(vpls_[i].normal, 0.0f);
   }
-  check_texture_size(2, static_cast<int>(vpls_.size()), "the Light Wave VPL texture");
+  for (std::size_t i = 0; i < flux_vpls_.size(); ++i) {
+    texels[3 * i] = glm::vec4(flux_vpls_[i].position, flux_vpls_[i].radius);
+    texels[3 * i + 1] = glm::vec4(flux_vpls_[i].normal, 0.0f);
+    texels[3 * i + 2] = glm::vec4(flux_vpls_[i].flux, 0.0f);
+  }
+  check_texture_size(columns, static_cast<int>(rows), "the Light Wave VPL texture");
   vpl_texture_ = gl_texture(generate_texture());
   glBindTexture(GL_TEXTURE_2D, vpl_texture_.get());
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, 2, static_cast<GLsizei>(vpls_.size()), 0, GL_RGBA, GL_FLOAT, texels.data());
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, columns, static_cast<GLsizei>(rows), 0, GL_RGBA, GL_FLOAT, texels.data());
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  // The flux energy's indirect light does not depend on the camera: summed once per light, at
+  // the receivers' vertices, into the buffer the main pass reads.
+  if (receiver_buffers_) capture_into(indirect_buffer_.get(), *receiver_buffers_);
+  check_gl("building the Light Wave VPLs");
+}
 
-  // Shadow matrices: the spot light's frustum, then each chosen VPL's.
-  const float radius = std::max(box.radius(), 1e-3f);
+void lightwave_pipeline::build_shadow_maps() {
+  const spot_light<float>& light = scene_.light.spot;
+  const frame_geometry g = geometry();
+  const float radius = g.radius, near_plane = g.near_plane, far_plane = g.far_plane;
   const float aspect = static_cast<float>(shadow_size_.x) / static_cast<float>(shadow_size_.y);
-  const float near_plane = 0.01f * radius, far_plane = glm::length(light.position - box.centre()) + 2.0f * radius;
+  const vpl_view view = view_of(settings_, vpls_, flux_vpls_);
+  // Shadow matrices: the spot light's frustum, then each chosen VPL's.
+  const float map_far = far_plane + layout_.max_distance;
   shadow_matrices_.clear();
-  shadow_matrices_.push_back(glm::perspective(2.0f * spot_light_frustum_half_angle(light), aspect, near_plane, far_plane) * look_along(light.position, light.direction));
-  // The shadow casters: drawn by importance or uniformly (accurate), the fixed ring (integrated).
-  // The integrated shadows keep the thesis's maps (along the VPLs' normals, one field of view):
-  // their in-between lookups interpolate a fragment's coordinates between two maps, which stands
-  // for an in-between light only when the maps share their projection; aimed maps of different
-  // fields of view darkened an empty plane (lowest factor 0.72, measured).
+  shadow_matrices_.push_back(glm::perspective(2.0f * spot_light_frustum_half_angle(light), aspect, near_plane, far_plane) * g.light_view);
+  // The shadow casters: groups by importance (accurate), drawn uniformly (the thesis variant),
+  // the fixed ring (integrated). The integrated shadows keep the thesis's maps (along the VPLs'
+  // normals, one field of view): their in-between lookups interpolate a fragment's coordinates
+  // between two maps, which stands for an in-between light only when the maps share their
+  // projection; aimed maps of different fields of view darkened an empty plane (lowest factor
+  // 0.72, measured).
   const bool importance = casters_follow_camera();
-  const std::vector<lightwave_receiver_point> points =
-      importance ? visible_surface_points(scene_.geometry, scene_.view, static_cast<float>(settings_.width) / static_cast<float>(settings_.height), 4096)
-                 : std::vector<lightwave_receiver_point>{};
   casters_.clear();
+  // A flux VPL sits on its surface: its map's eye is lifted off it, so that the surface does not
+  // shadow what it lights.
+  const auto eye_of = [&](std::size_t i) { return view.position(i) + (view.thesis ? 0.0f : 1e-3f * radius) * view.normal(i); };
   if (importance) {
-    casters_ = lightwave_importance_vpls(vpls_, points, settings_.accurate_maps, settings_.seed);
+    const std::vector<lightwave_receiver_point> points =
+        visible_surface_points(scene_.geometry, scene_.view, static_cast<float>(settings_.width) / static_cast<float>(settings_.height), 4096);
+    std::vector<lightwave_cluster_vpl> candidates(view.size());
+    for (std::size_t i = 0; i < view.size(); ++i) {
+      double importance_sum = 0.0;
+      for (const lightwave_receiver_point& point : points) importance_sum += view.weight(i, point);
+      candidates[i] = {view.position(i), view.normal(i), static_cast<float>(importance_sum), view.power(i), view.radius(i)};
+    }
+    casters_ = lightwave_cluster_casters(candidates, settings_.accurate_maps, 0.25f * radius);
+    std::vector<float> weights(points.size());
+    for (const lightwave_shadow_caster& caster : casters_) {
+      const auto i = static_cast<std::size_t>(caster.vpl);
+      for (std::size_t k = 0; k < points.size(); ++k) weights[k] = view.weight(i, points[k]);
+      shadow_matrices_.push_back(
+          lightwave_aimed_shadow_matrix(eye_of(i), view.normal(i), points, weights, near_plane, map_far, aspect, settings_.vpl_field_of_view));
+    }
   } else {
-    for (int index : lightwave_shadow_vpls(technique_.mode, settings_)) casters_.push_back({index, 1.0f});
-  }
-  for (const lightwave_shadow_caster& caster : casters_) {
-    const lightwave_vpl<float>& vpl = vpls_[static_cast<std::size_t>(caster.vpl)];
-    shadow_matrices_.push_back(importance ? lightwave_aimed_shadow_matrix(vpl, points, near_plane, far_plane + max_distance, aspect, settings_.vpl_field_of_view)
-                                          : glm::perspective(glm::radians(settings_.vpl_field_of_view), aspect, near_plane, far_plane + max_distance) *
-                                                look_along(vpl.position, vpl.normal));
+    for (int index : lightwave_shadow_vpls(technique_.mode, settings_)) {
+      // The flux energy keeps only the VPLs that carry light: the layout's index, if it does.
+      std::size_t i = static_cast<std::size_t>(index);
+      if (view.flux) {
+        const auto found = std::lower_bound(flux_layout_index_.begin(), flux_layout_index_.end(), index);
+        if (found == flux_layout_index_.end() || *found != index) continue;
+        i = static_cast<std::size_t>(found - flux_layout_index_.begin());
+      }
+      lightwave_shadow_caster caster;
+      caster.vpl = static_cast<int>(i);
+      casters_.push_back(caster);
+      shadow_matrices_.push_back(glm::perspective(glm::radians(settings_.vpl_field_of_view), aspect, near_plane, map_far) *
+                                 look_along(eye_of(i), view.normal(i)));
+    }
   }
 
   // Depth passes into the layers.
@@ -430,23 +731,33 @@ void lightwave_pipeline::rebuild() {
   glDisable(GL_POLYGON_OFFSET_FILL);
 
   const program& p = main_program_;
-  for (std::size_t i = 0; i < shadow_matrices_.size(); ++i) p.set("shadow_matrix[" + std::to_string(i) + "]", shadow_matrices_[i]);
-  // Each caster's VPL and the inverse of the probability it was drawn with: the weights of its
-  // lookups (importance variant).
-  for (std::size_t i = 0; i < casters_.size(); ++i) {
-    const lightwave_vpl<float>& vpl = vpls_[static_cast<std::size_t>(casters_[i].vpl)];
-    p.set("caster_position_attenuation[" + std::to_string(i) + "]", glm::vec4(vpl.position, vpl.attenuation));
-    p.set("caster_normal_weight[" + std::to_string(i) + "]", glm::vec4(vpl.normal, 1.0f / casters_[i].probability));
+  for (std::size_t i = 0; i < shadow_matrices_.size(); ++i) {
+    p.set("shadow_matrix[" + std::to_string(i) + "]", shadow_matrices_[i]);
   }
-  check_gl("building the Light Wave VPLs and shadow maps");
-  dirty_ = false;
+  // Each caster's VPL (whether it lights a fragment decides whether its map votes there) and,
+  // with importance, its group as one light (the share of the fragment's light the map stands for).
+  for (std::size_t i = 0; i < casters_.size(); ++i) {
+    const std::string index = std::to_string(i);
+    const auto vpl = static_cast<std::size_t>(casters_[i].vpl);
+    p.set("caster_position[" + index + "]", glm::vec4(view.position(vpl), view.thesis ? vpls_[vpl].attenuation : flux_vpls_[vpl].radius));
+    p.set("caster_normal[" + index + "]", glm::vec4(view.normal(vpl), 0.0f));
+    p.set("group_position_radius[" + index + "]", glm::vec4(casters_[i].position, casters_[i].radius));
+    p.set("group_normal_power[" + index + "]", glm::vec4(casters_[i].normal, casters_[i].power));
+  }
+  check_gl("building the Light Wave shadow maps");
+}
+
+void lightwave_pipeline::rebuild() {
+  if (vpls_dirty_ && technique_.mode >= lightwave_mode::unshadowed) build_vpls();
+  if (shadows_dirty_) build_shadow_maps();
+  vpls_dirty_ = shadows_dirty_ = false;
   ++rebuilds_;
 }
 
 void lightwave_pipeline::set_camera(const camera& view) {
   check_camera(view, "Light Wave scene " + scene_.name);
   scene_.view = view;
-  if (casters_follow_camera()) dirty_ = true;
+  if (casters_follow_camera()) shadows_dirty_ = true;
   view_valid_ = false;
 }
 
@@ -461,12 +772,12 @@ lightwave_frame lightwave_pipeline::render() {
 }
 
 void lightwave_pipeline::draw() {
-  dirty_ = true;
+  vpls_dirty_ = shadows_dirty_ = true;
   draw_changed();
 }
 
 void lightwave_pipeline::draw_changed() {
-  if (dirty_) {
+  if (vpls_dirty_ || shadows_dirty_) {
     timer_.begin("VPLs and shadow maps");
     rebuild();
     timer_.end();
@@ -477,9 +788,21 @@ void lightwave_pipeline::draw_changed() {
 
 void lightwave_pipeline::draw_main_pass() {
   timer_.begin("main pass");
-  target_.bind();
   glEnable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
+  if (indirect_target_) {
+    // Flux energy: the receivers' indirect light into the screen buffer the main pass reads.
+    indirect_target_->bind();
+    glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    set_vertex_uniforms(indirect_program_);
+    indirect_program_.use();
+    receiver_buffers_->draw(indirect_program_);
+    main_program_.set("indirect_buffer", 2);
+    glActiveTexture(GL_TEXTURE2);
+    glBindTexture(GL_TEXTURE_2D, indirect_target_->colour(0).id());
+  }
+  target_.bind();
   glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   const GLfloat unshadowed[4] = {1.0f, 0.0f, 0.0f, 1.0f};  // the factor where no surface is
@@ -513,18 +836,14 @@ void lightwave_pipeline::set_vertex_uniforms(const program& target) const {
                                     camera_view_matrix(scene_.view));
   target.set("eye", scene_.view.position);
   target.set("vpl_texture", 0);
-  target.set("vpl_count", static_cast<int>(vpls_.size()));
+  target.set("vpl_count", lit_vpl_count());
   set_uniforms(target, "shading", settings_.shading);
+  set_uniforms(target, "irradiance", settings_.irradiance);
 }
 
-std::vector<glm::vec3> lightwave_pipeline::capture_vertex_indirect() {
-  if (dirty_) rebuild();
+void lightwave_pipeline::capture_into(GLuint buffer, const mesh_buffers& vertices) {
   set_vertex_uniforms(capture_program_);
-  const std::size_t count = scene_.geometry.vertices.size();
-  gl_buffer captured(generate_buffer());
-  glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, captured.get());
-  glBufferData(GL_TRANSFORM_FEEDBACK_BUFFER, static_cast<GLsizeiptr>(count * sizeof(glm::vec3)), nullptr, GL_STATIC_READ);
-  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, captured.get());
+  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, buffer);
   glActiveTexture(GL_TEXTURE0);
   glBindTexture(GL_TEXTURE_2D, vpl_texture_.get());
   // Nothing is rasterised, but a draw needs a complete framebuffer (a surfaceless EGL context
@@ -533,13 +852,28 @@ std::vector<glm::vec3> lightwave_pipeline::capture_vertex_indirect() {
   capture_program_.use();
   glEnable(GL_RASTERIZER_DISCARD);
   glBeginTransformFeedback(GL_POINTS);
-  mesh_.draw_points();
+  vertices.draw_points();
   glEndTransformFeedback();
   glDisable(GL_RASTERIZER_DISCARD);
-  std::vector<glm::vec3> result(count);
-  glGetBufferSubData(GL_TRANSFORM_FEEDBACK_BUFFER, 0, static_cast<GLsizeiptr>(count * sizeof(glm::vec3)), result.data());
   glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, 0);
   check_gl("capturing the Light Wave vertex stage");
+}
+
+std::vector<glm::vec3> lightwave_pipeline::capture_vertex_indirect() {
+  if (vpls_dirty_ || shadows_dirty_) rebuild();
+  // Flux energy: the buffer the main pass reads, captured at the last build.
+  const std::size_t count = receiver_buffers_ ? receivers_.vertices.size() : scene_.geometry.vertices.size();
+  gl_buffer captured(generate_buffer());
+  if (!receiver_buffers_) {
+    glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, captured.get());
+    glBufferData(GL_TRANSFORM_FEEDBACK_BUFFER, static_cast<GLsizeiptr>(count * sizeof(glm::vec3)), nullptr, GL_STATIC_READ);
+    capture_into(captured.get(), mesh_);
+  }
+  std::vector<glm::vec3> result(count);
+  glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, receiver_buffers_ ? indirect_buffer_.get() : captured.get());
+  glGetBufferSubData(GL_TRANSFORM_FEEDBACK_BUFFER, 0, static_cast<GLsizeiptr>(count * sizeof(glm::vec3)), result.data());
+  glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, 0);
+  check_gl("reading the Light Wave vertex stage back");
   return result;
 }
 

@@ -1,12 +1,15 @@
-// The Light Wave pipeline of [LW] (chapter 4): VPLs on hemispheres around the spot light
-// (laid out on the CPU by the lightwave kernels and uploaded to a float texture), shadow maps for
-// the light and for some VPLs in one depth texture array, and one main pass whose vertex stage
-// sums Eq. 4.5 over every VPL and whose fragment stage combines direct and indirect light with
-// their shadows (Eq. 4.9). VPLs and shadow maps are rebuilt only when the light or the scene
-// moves, as in the thesis.
+// The Light Wave pipeline of [LW] (chapter 4): VPLs laid out on the CPU by the lightwave
+// kernels and uploaded to a float texture, shadow maps for the light and for some VPLs in one
+// depth texture array, and one main pass whose vertex stage sums the VPLs' light at every vertex
+// and whose fragment stage combines direct and indirect light with their shadows (Eq. 4.9). VPLs
+// and shadow maps are rebuilt only when the light or the scene moves, as in the thesis.
+// Two energies (lightwave_energy): the thesis's VPLs floating on hemispheres with Eq. 4.5, or
+// (the default) VPLs where the rays of the spot's cone meet the scene, found in a map of what the
+// light sees, each reflecting the flux its patch of the cone brings (docs/lightwave-shadows.md).
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,6 +36,15 @@ enum class lightwave_mode { direct = 0, faked = 1, unshadowed = 2, accurate = 3,
 
 enum class lightwave_shadow_variant { importance = 0, thesis = 1 };
 
+/// What the VPLs carry. thesis: strength 1 - attenuation, no distance falloff, on hemispheres
+/// in space (Eq. 4.1, 4.2, 4.5: the Tables 5.x); flux: the flux the light brings to each ray's patch
+/// of its cone, reflected where the ray meets the scene, with a diffuse bounce's falloff.
+enum class lightwave_energy { thesis = 0, flux = 1 };
+
+/// The side of the square map of what the spot light sees (position, normal, albedo) in which the
+/// flux layout looks its rays up.
+constexpr int lightwave_surface_map_size = 512;
+
 struct lightwave_technique {
   const char* name = "";
   lightwave_mode mode = lightwave_mode::accurate;
@@ -49,17 +61,23 @@ struct lightwave_settings {
   int width = 1280;            ///< the thesis: 1280 x 720
   int height = 720;
   int angle_deg = 5;           ///< between VPL rays
-  int per_ray = 5;             ///< VPLs per ray (stacked hemispheres)
-  /// Distance the hemispheres approach; 0 = the distance from the light to the farthest corner
-  /// of the scene's bounding box (the thesis: "varies based off the dimensions of the scene").
+  int per_ray = 5;             ///< VPLs per ray (thesis: stacked hemispheres; flux: samples of the ray's patch)
+  /// flux (the default) or thesis; see lightwave_energy.
+  lightwave_energy energy = lightwave_energy::flux;
+  /// Thesis energy: distance the hemispheres approach; 0 = the distance from the light to the
+  /// farthest corner of the scene's bounding box (the thesis: "varies based off the dimensions of
+  /// the scene"). The flux energy puts its VPLs on the surfaces and must leave it 0.
   float max_distance = 0.0f;
   int accurate_maps = 20;      ///< VPL shadow maps of the accurate shadows (0: none, the same as unshadowed)
   /// How the accurate shadows choose, aim and combine their maps (the integrated shadows keep
   /// the thesis's maps, whose shared projection their in-between lookups need; both modes skip
   /// lookups behind a map's camera):
-  /// - importance (the default): VPLs drawn in proportion to their diffuse weight on the visible
-  ///   scene, each map aimed at the region its VPL lights, each lookup weighted by that VPL's
-  ///   weight at the fragment over its probability, lookups outside a map not voting;
+  /// - importance (the default): the VPLs that light the visible scene split into as many
+  ///   compact groups of equal light as there are maps (lightwave_cluster_casters), one map per
+  ///   group from its medoid VPL, aimed at what that VPL lights; each map shadows the share of a
+  ///   fragment's indirect light its group brings there, trusted the less the larger the group
+  ///   looks from the fragment (lightwave_group_confidence), fading to lit towards the map's
+  ///   border and nothing where it does not cover the fragment; no seed;
   /// - thesis: VPLs drawn uniformly, each map looking along its VPL's normal with
   ///   vpl_field_of_view, the plain mean of the lookups, outside a map counting as lit.
   lightwave_shadow_variant shadow_variant = lightwave_shadow_variant::importance;
@@ -71,9 +89,15 @@ struct lightwave_settings {
   /// peak. The importance variant fits each map to the region its VPL lights instead.
   float vpl_field_of_view = 120.0f;
   float faked_multiplier = 1.3f;  ///< m of Eq. 5.2 (the thesis: 1.1 .. 1.5; 1.3 ranked best)
-  std::uint32_t seed = 1;         ///< draws the VPLs of the accurate shadow maps
-  lightwave_shading_settings<float> shading;
-  irradiance_settings<float> irradiance;
+  /// Flux energy: the indirect light is summed at the vertices of the scene subdivided until no
+  /// edge is longer than this fraction of its bounding radius (lightwave_receivers), at most
+  /// receiver_triangles triangles (the bound grows until it fits). Once per light position: a
+  /// diffuse bounce does not depend on the camera, and the main pass reads it as a vertex attribute.
+  float receiver_spacing = 1.0f / 8.0f;
+  int receiver_triangles = 32768;
+  std::uint32_t seed = 1;         ///< draws the VPLs of the accurate shadow maps of the thesis variant
+  lightwave_shading_settings<float> shading;  ///< thesis energy (Eq. 4.5's specular term)
+  irradiance_settings<float> irradiance;      ///< the direct light's and the flux VPLs' distance clamp
   texel_format format = texel_format::rgba16f;
 };
 
@@ -83,6 +107,21 @@ const std::vector<setting<lightwave_settings, lightwave_technique>>& lightwave_s
 /// Empty when usable, else the reason: the table's ranges, the VPL count the main pass can loop
 /// over, the shadow maps the layout allows, and the kernels' settings.
 std::string validate(const lightwave_settings& settings);
+
+/// The mesh whose vertices the flux energy's indirect light is summed at: `geometry` subdivided
+/// (subdivide_long_edges) until no edge exceeds settings.receiver_spacing times its bounding
+/// radius, the bound grown by half until at most settings.receiver_triangles triangles result.
+/// The thesis sums Eq. 4.5 at the scene's own vertices, which a diffuse bounce's falloff cannot
+/// afford: a wall's corner vertices see the floor that lights it edge-on (docs/lightwave-shadows.md).
+mesh lightwave_receivers(const mesh& geometry, const lightwave_settings& settings);
+
+/// Where the flux energy evaluates each vertex's indirect light: the mean of the centroids of the
+/// triangles that use the vertex, moved into the vertex's tangent plane. Inside a surface that is
+/// the vertex, near enough; on its border it lies inside the surface, a third of a triangle in:
+/// a wall's bottom vertex sits in the plane of the floor that lights the wall and gets none of its
+/// light (the floor is seen edge-on), while the wall just above gets the most, and interpolating
+/// from the corner would darken the whole band of triangles along it.
+std::vector<glm::vec3> lightwave_receiver_samples(const mesh& receivers);
 
 /// Bytes of a depth texture array of `maps` layers of width x height 32-bit depths: the memory
 /// figure of Eq. 5.4 / 5.5 (3840 x 2160 x 21 x 4 bytes = 664.45 MiB).
@@ -100,24 +139,44 @@ struct lightwave_receiver_point {
   glm::vec3 normal;
 };
 
-/// A VPL that casts an accurate indirect shadow, and the probability with which it was drawn.
+/// One accurate indirect shadow map of the importance variant: the group of VPLs it stands for
+/// and the VPL it is rendered from.
 struct lightwave_shadow_caster {
-  int vpl = 0;
-  float probability = 1.0f;
+  int vpl = 0;  ///< the VPL the map is rendered from (an index into the pipeline's VPLs)
+  /// The group as one light, for the share of a fragment's indirect light the map stands for:
+  /// its members' power-weighted position and normal, their spread (the RMS distance from that
+  /// position, with their own patch radii), and their total power (the channel mean of the flux,
+  /// or the thesis's 1 - attenuation).
+  glm::vec3 position{0.0f};
+  glm::vec3 normal{0.0f, 1.0f, 0.0f};
+  float radius = 0.0f;
+  float power = 0.0f;
+  std::vector<int> members;  ///< the group's VPLs (indices into the pipeline's VPLs)
 };
 
-/// `count` distinct VPLs drawn in proportion to their total diffuse weight (lightwave_vpl_weight)
-/// over `points`, by systematic sampling of the cumulative weights with an offset from `seed`;
-/// probability = min(1, count x weight / total). Fewer when fewer VPLs light any point.
-std::vector<lightwave_shadow_caster> lightwave_importance_vpls(const std::vector<lightwave_vpl<float>>& vpls,
-                                                               const std::vector<lightwave_receiver_point>& points, int count, std::uint32_t seed);
+/// What lightwave_cluster_casters needs of a VPL.
+struct lightwave_cluster_vpl {
+  glm::vec3 position{0.0f};
+  glm::vec3 normal{0.0f, 1.0f, 0.0f};
+  float importance = 0.0f;  ///< its light on the visible scene; 0: no group
+  float power = 0.0f;
+  float radius = 0.0f;
+};
 
-/// The view-projection of a shadow map for `vpl` that holds the points it lights: looking at
+/// Splits the VPLs of importance > 0 into `count` groups (fewer when fewer VPLs light anything),
+/// each compact and of about equal importance: a k-d split at the importance median along the
+/// widest extent of position and normal (the normal scaled by `normal_scale`, scene units),
+/// recursively. Each group's map is rendered from its medoid: the member nearest the group's
+/// importance-weighted mean position and normal, the one point whose view stands best for the
+/// group's. Deterministic: no seed, so the shadows do not depend on one.
+std::vector<lightwave_shadow_caster> lightwave_cluster_casters(const std::vector<lightwave_cluster_vpl>& vpls, int count, float normal_scale);
+
+/// The view-projection of a shadow map from `eye` that holds the points of weight > 0: looking at
 /// their weighted mean direction, with the field of view of the farthest of them plus a margin
-/// (at most 160 degrees; points beyond do not vote). Looks along the VPL's normal with
-/// `fallback_fov_degrees` when it lights none of them.
-glm::mat4 lightwave_aimed_shadow_matrix(const lightwave_vpl<float>& vpl, const std::vector<lightwave_receiver_point>& points, float near_plane,
-                                        float far_plane, float aspect, float fallback_fov_degrees);
+/// (at most 160 degrees; points beyond do not vote). Looks along `fallback_direction` with
+/// `fallback_fov_degrees` when no point has weight.
+glm::mat4 lightwave_aimed_shadow_matrix(const glm::vec3& eye, const glm::vec3& fallback_direction, const std::vector<lightwave_receiver_point>& points,
+                                        const std::vector<float>& weights, float near_plane, float far_plane, float aspect, float fallback_fov_degrees);
 
 struct lightwave_frame {
   image radiance;  ///< the final image
@@ -164,19 +223,47 @@ class lightwave_pipeline final : public pipeline {
   /// How many times VPLs and shadow maps have been built (1 after the first frame).
   int rebuilds() const { return rebuilds_; }
   std::uint64_t shadow_map_bytes() const;
+  /// The layout's VPLs (Eq. 5.1); the flux energy keeps those whose ray met a lit surface.
   int vpl_count() const { return lightwave_vpl_count(settings_.angle_deg, settings_.per_ray); }
+  /// The VPLs of the last build: thesis energy (vpls) or flux energy (flux_vpls, only those that
+  /// carry light, in layout order; flux_vpl_layout_index gives each one's layout index).
   const std::vector<lightwave_vpl<float>>& vpls() const { return vpls_; }
+  const std::vector<lightwave_flux_vpl<float>>& flux_vpls() const { return flux_vpls_; }
+  const std::vector<int>& flux_vpl_layout_index() const { return flux_layout_index_; }
+  /// The VPLs the vertex stage sums: vpls().size() or flux_vpls().size().
+  int lit_vpl_count() const;
   const lightwave_layout_settings<float>& layout() const { return layout_; }
-  /// Runs the main pass's vertex stage on the scene's vertices with transform feedback and
-  /// returns each vertex's indirect colour (the parity test compares it with the CPU sum).
+  const lightwave_cone_settings<float>& cone() const { return cone_; }
+  /// Each vertex's indirect colour from the main pass's vertex stage (transform feedback): the
+  /// thesis energy at the scene's vertices, the flux energy at the receivers' (the buffer the main
+  /// pass reads). The parity test compares it with the CPU sum.
   std::vector<glm::vec3> capture_vertex_indirect();
+  /// The mesh whose vertices carry the indirect light: the scene's, or the flux energy's receivers.
+  const mesh& drawn_mesh() const { return receiver_buffers_ ? receivers_ : scene_.geometry; }
+  /// Flux energy: where each receiver vertex's indirect light is evaluated (lightwave_receiver_samples).
+  const std::vector<glm::vec3>& receiver_samples() const { return receiver_samples_; }
   const scene& source() const { return scene_; }
   const lightwave_settings& settings() const { return settings_; }
-  /// The VPLs with shadow maps of the last build (accurate and integrated modes).
+  /// The VPLs with shadow maps of the last build (accurate and integrated modes; the group
+  /// fields are set for the importance variant only).
   const std::vector<lightwave_shadow_caster>& shadow_casters() const { return casters_; }
 
  private:
+  /// What the last set_light / set_camera invalidated: the VPLs (and the flux energy's indirect
+  /// light), then the shadow maps.
   void rebuild();
+  void build_vpls();
+  /// The flux energy's VPLs: each ray of the cone looked up in a map of what the light sees.
+  void build_flux_vpls(const glm::mat4& light_view_projection);
+  void build_shadow_maps();
+  /// The vertex stage's indirect colour of every vertex of `vertices` into `buffer` (transform feedback).
+  void capture_into(GLuint buffer, const mesh_buffers& vertices);
+  /// The scene's size and the light's frustum, for the maps and the VPLs.
+  struct frame_geometry {
+    float radius = 1.0f, near_plane = 0.01f, far_plane = 1.0f;
+    glm::mat4 light_view{1.0f};
+  };
+  frame_geometry geometry() const;
   void draw_main_pass();
   /// The accurate shadows' importance variant: casters drawn and maps aimed for the visible
   /// surface, so they depend on the camera.
@@ -189,22 +276,35 @@ class lightwave_pipeline final : public pipeline {
   lightwave_settings settings_;
   lightwave_technique technique_;
   lightwave_layout_settings<float> layout_;
+  lightwave_cone_settings<float> cone_;
   std::vector<lightwave_vpl<float>> vpls_;
+  std::vector<lightwave_flux_vpl<float>> flux_vpls_;
+  std::vector<int> flux_layout_index_;
   std::vector<glm::mat4> shadow_matrices_;
   std::vector<lightwave_shadow_caster> casters_;
   mesh_buffers mesh_;
+  mesh receivers_;                              ///< flux energy: lightwave_receivers
+  std::optional<mesh_buffers> receiver_buffers_;  ///< flux energy: drawn, with the indirect at attribute 3
+  std::vector<glm::vec3> receiver_samples_;     ///< flux energy: lightwave_receiver_samples, attribute 4 of the capture
+  gl_buffer sample_buffer_;
+  gl_buffer indirect_buffer_;                   ///< flux energy: a vec3 per receiver vertex
   program depth_program_;
+  program surface_program_;  ///< flux energy: what the light sees
   program main_program_;
   program capture_program_;
+  program indirect_program_;                    ///< flux energy: the receivers' indirect light into indirect_target_
+  std::optional<framebuffer> indirect_target_;
   gl_texture vpl_texture_;
   gl_texture shadow_maps_;
   gl_framebuffer shadow_framebuffer_;
   glm::ivec2 shadow_size_{0};
   int shadow_layers_ = 1;  ///< allocated: 1 + the maps asked for; drawn: 1 + casters_ (fewer when fewer VPLs light the scene)
   framebuffer target_;
+  std::optional<framebuffer> surfaces_;  ///< flux energy: [position | 1], [normal], [albedo] as the light sees them
   pass_timer timer_;
-  bool dirty_ = true;        ///< the VPLs and shadow maps must be rebuilt
-  bool view_valid_ = false;  ///< the main pass matches the camera and the light
+  bool vpls_dirty_ = true;     ///< the VPLs (and the flux energy's indirect light) must be rebuilt
+  bool shadows_dirty_ = true;  ///< the shadow maps must be rebuilt
+  bool view_valid_ = false;    ///< the main pass matches the camera and the light
   int rebuilds_ = 0;
   int main_draws_ = 0;
 };

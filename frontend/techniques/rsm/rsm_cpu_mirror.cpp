@@ -12,23 +12,35 @@
 namespace vplkit {
 namespace {
 
+// What the gather reads: the decoded RSM and, with coverage, the coarse lights read back.
+struct gather_inputs {
+  const std::vector<rsm_texel<float>>& rsm;
+  int rsm_width;
+  const std::vector<coarse_light<float>>& coarse;
+  int blocks;
+};
+
 template <rsm_pattern Pattern, rsm_visibility Visibility>
-glm::vec3 gather_variant(const gather_receiver<float>& receiver, const std::vector<rsm_texel<float>>& rsm, int rsm_width,
-                         const rsm_frame_constants& constants) {
-  return gather_rsm<Pattern, Visibility>(
-      receiver, [&](glm::ivec2 texel) { return rsm[static_cast<std::size_t>(texel.y) * static_cast<std::size_t>(rsm_width) + static_cast<std::size_t>(texel.x)]; },
-      constants.gather);
+glm::vec3 gather_variant(const gather_receiver<float>& receiver, const gather_inputs& in, const rsm_frame_constants& constants) {
+  const auto fetch = [&](glm::ivec2 texel) {
+    return in.rsm[static_cast<std::size_t>(texel.y) * static_cast<std::size_t>(in.rsm_width) + static_cast<std::size_t>(texel.x)];
+  };
+  if (in.coarse.empty()) return gather_rsm<Pattern, Visibility>(receiver, fetch, constants.gather);
+  const auto coarse_fetch = [&](glm::ivec2 block) {
+    return in.coarse[static_cast<std::size_t>(block.y) * static_cast<std::size_t>(in.blocks) + static_cast<std::size_t>(block.x)];
+  };
+  return gather_rsm<Pattern, Visibility>(receiver, fetch, coarse_fetch, constants.gather);
 }
 
-glm::vec3 gather_dispatch(const gather_receiver<float>& receiver, const std::vector<rsm_texel<float>>& rsm, int rsm_width,
-                          const rsm_frame_constants& constants) {
+glm::vec3 gather_dispatch(const gather_receiver<float>& receiver, const gather_inputs& in, const rsm_frame_constants& constants) {
   const rsm_technique& technique = constants.technique;
-  if (technique.pattern == rsm_pattern::disk) return gather_variant<rsm_pattern::disk, rsm_visibility::none>(receiver, rsm, rsm_width, constants);
+  if (technique.pattern == rsm_pattern::disk) return gather_variant<rsm_pattern::disk, rsm_visibility::none>(receiver, in, constants);
   switch (technique.visibility) {
-    case rsm_visibility::none: return gather_variant<rsm_pattern::radial, rsm_visibility::none>(receiver, rsm, rsm_width, constants);
-    case rsm_visibility::alg2: return gather_variant<rsm_pattern::radial, rsm_visibility::alg2>(receiver, rsm, rsm_width, constants);
-    case rsm_visibility::alg3: return gather_variant<rsm_pattern::radial, rsm_visibility::alg3>(receiver, rsm, rsm_width, constants);
-    case rsm_visibility::alg6: return gather_variant<rsm_pattern::radial, rsm_visibility::alg6>(receiver, rsm, rsm_width, constants);
+    case rsm_visibility::none: return gather_variant<rsm_pattern::radial, rsm_visibility::none>(receiver, in, constants);
+    case rsm_visibility::alg2: return gather_variant<rsm_pattern::radial, rsm_visibility::alg2>(receiver, in, constants);
+    case rsm_visibility::alg3: return gather_variant<rsm_pattern::radial, rsm_visibility::alg3>(receiver, in, constants);
+    case rsm_visibility::alg6: return gather_variant<rsm_pattern::radial, rsm_visibility::alg6>(receiver, in, constants);
+    case rsm_visibility::alg6_ray: return gather_variant<rsm_pattern::radial, rsm_visibility::alg6_ray>(receiver, in, constants);
   }
   return glm::vec3(0.0f);
 }
@@ -69,17 +81,80 @@ std::vector<rsm_texel<float>> unpack_rsm(const rsm_pass_buffers& buffers, const 
   return texels;
 }
 
+std::array<image, 3> cpu_coarse_pass(const rsm_pass_buffers& buffers, const rsm_frame_constants& constants, int threads) {
+  const int blocks = constants.gather.coverage_blocks;
+  std::array<image, 3> out{image(blocks, blocks), image(blocks, blocks), image(blocks, blocks)};
+  const std::vector<rsm_texel<float>> rsm = unpack_rsm(buffers, constants);
+  const auto fetch = [&](glm::ivec2 texel) {
+    return rsm[static_cast<std::size_t>(texel.y) * static_cast<std::size_t>(buffers.rsm.width) + static_cast<std::size_t>(texel.x)];
+  };
+  parallel_for(blocks, threads, [&](int y) {
+    for (int x = 0; x < blocks; ++x) {
+      const coarse_light<float> light = reduce_rsm_block<float>(glm::ivec2(x, y), blocks, constants.gather.rsm_size, fetch);
+      out[0].at(x, y) = glm::vec4(light.position, light.extent);
+      out[1].at(x, y) = glm::vec4(light.normal, 0.0f);
+      out[2].at(x, y) = glm::vec4(light.flux, 0.0f);
+    }
+  });
+  return out;
+}
+
+std::vector<coarse_light<float>> coarse_lights_of(const rsm_pass_buffers& buffers) {
+  std::vector<coarse_light<float>> lights(buffers.coarse[0].texels.size());
+  for (std::size_t i = 0; i < lights.size(); ++i) {
+    const glm::vec4 position_extent = buffers.coarse[0].texels[i];
+    lights[i] = {glm::vec3(position_extent), glm::vec3(buffers.coarse[1].texels[i]), glm::vec3(buffers.coarse[2].texels[i]), position_extent.w};
+  }
+  return lights;
+}
+
 image cpu_gather_pass(const rsm_pass_buffers& buffers, const rsm_frame_constants& constants, int threads) {
   image out;
   out.width = constants.indirect_size.x;
   out.height = constants.indirect_size.y;
   out.texels.assign(static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height), glm::vec4(0.0f));
   const std::vector<rsm_texel<float>> rsm = unpack_rsm(buffers, constants);
+  const std::vector<coarse_light<float>> coarse = coarse_lights_of(buffers);
+  const gather_inputs in{rsm, buffers.rsm.width, coarse, buffers.coarse[0].width};
   parallel_tiles(out.width, out.height, threads, [&](int x, int y) {
     const glm::ivec2 texel(x, y);
     const std::optional<gather_receiver<float>> receiver = gather_receiver_at(texel, buffers, constants);
     if (!receiver) return;
-    out.at(texel) = glm::vec4(gather_dispatch(*receiver, rsm, buffers.rsm.width, constants), buffers.gbuffer[0].at(gbuffer_texel_of(texel, constants)).w);
+    out.at(texel) = glm::vec4(gather_dispatch(*receiver, in, constants), buffers.gbuffer[0].at(gbuffer_texel_of(texel, constants)).w);
+  });
+  return out;
+}
+
+image cpu_temporal_pass(const image& indirect, const image& history, const rsm_pipeline::temporal_inputs& inputs, const rsm_pass_buffers& buffers,
+                        const rsm_frame_constants& constants, int threads) {
+  image out(indirect.width, indirect.height);
+  const glm::ivec2 size = constants.indirect_size;
+  parallel_for(out.height, threads, [&](int y) {
+    for (int x = 0; x < out.width; ++x) {
+      const glm::vec4 current = indirect.at(x, y);
+      if (!(current.w < 0.0f)) continue;  // no surface here
+      neighbourhood_moments<float> moments;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const glm::ivec2 neighbour(x + dx, y + dy);
+          if (neighbour.x < 0 || neighbour.y < 0 || neighbour.x >= size.x || neighbour.y >= size.y) continue;
+          const glm::vec4 value = indirect.at(neighbour);
+          if (value.w < 0.0f) neighbourhood_add(moments, glm::vec3(value));
+        }
+      const glm::vec3 world(buffers.gbuffer[0].at(gbuffer_texel_of(glm::ivec2(x, y), constants)));
+      const float expected = transform_point(inputs.previous_view, world).z;
+      bool valid = false;
+      glm::vec3 previous_value(0.0f);
+      if (inputs.history_valid && expected < 0.0f) {
+        const glm::vec2 previous = map_coordinate(inputs.previous_view_projection, world, size);
+        if (previous.x >= 0.0f && previous.y >= 0.0f && previous.x < static_cast<float>(size.x) && previous.y < static_cast<float>(size.y)) {
+          const glm::vec4 stored = history.at(glm::ivec2(glm::floor(previous)));
+          valid = temporal_history_matches(expected, stored.w, constants.temporal);
+          previous_value = glm::vec3(stored);
+        }
+      }
+      out.at(x, y) = glm::vec4(temporal_resolve(glm::vec3(current), previous_value, valid, moments, constants.temporal), current.w);
+    }
   });
   return out;
 }

@@ -4,6 +4,7 @@
 // Rows are split across threads; every texel is computed exactly as in its shader.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <vector>
 
@@ -24,8 +25,23 @@ std::optional<gather_receiver<float>> gather_receiver_at(glm::ivec2 texel, const
 /// row-major like the target.
 std::vector<rsm_texel<float>> unpack_rsm(const rsm_pass_buffers& buffers, const rsm_frame_constants& constants);
 
-/// Pass 3 on the CPU: [irradiance | camera depth] at the indirect buffer's resolution.
+/// Pass 1b on the CPU (coverage): the coarse lights of the RSM, reduce_rsm_block per block, as
+/// rsm_coarse.frag writes them: [position | extent], [normal | 0], [flux | 0], C x C each.
+std::array<image, 3> cpu_coarse_pass(const rsm_pass_buffers& buffers, const rsm_frame_constants& constants, int threads);
+
+/// The coarse lights read back from the GL pipeline (buffers.coarse), block (x, y) at y * C + x;
+/// empty without coverage.
+std::vector<coarse_light<float>> coarse_lights_of(const rsm_pass_buffers& buffers);
+
+/// Pass 3 on the CPU: [irradiance | camera depth] at the indirect buffer's resolution, with the
+/// coverage's coarse lights read back in `buffers`.
 image cpu_gather_pass(const rsm_pass_buffers& buffers, const rsm_frame_constants& constants, int threads);
+
+/// Pass 3b on the CPU (temporal accumulation, rsm_pipeline::render_next): `indirect` (this frame's
+/// gather) blended with `history` (the previous accumulated buffer) as temporal.frag does, with
+/// the inputs the pipeline reports for the frame (last_temporal_inputs).
+image cpu_temporal_pass(const image& indirect, const image& history, const rsm_pipeline::temporal_inputs& inputs, const rsm_pass_buffers& buffers,
+                        const rsm_frame_constants& constants, int threads);
 
 /// Pass 4a on the CPU (separable filter): the x axis over `indirect`.
 image cpu_blur_x_pass(const image& indirect, const rsm_pass_buffers& buffers,

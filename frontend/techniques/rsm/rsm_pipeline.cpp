@@ -1,5 +1,6 @@
 #include "frontend/techniques/rsm/rsm_pipeline.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <tuple>
 #include <cmath>
@@ -7,6 +8,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <vplkit/hash.hpp>
 #include <vplkit/gl/settings_uniforms.hpp>
 
 #include "frontend/gl/debug_output.hpp"
@@ -23,6 +25,8 @@ const std::vector<rsm_technique>& rsm_techniques() {
       {"rsm-alg2", true, rsm_pattern::radial, rsm_visibility::alg2, "radial pattern, micro linear buffer Alg. 2"},
       {"rsm-alg3", true, rsm_pattern::radial, rsm_visibility::alg3, "radial pattern, micro linear buffer Alg. 3"},
       {"rsm-alg6", true, rsm_pattern::radial, rsm_visibility::alg6, "radial pattern, micro linear buffer Alg. 6 (the thesis)"},
+      {"rsm-alg6-ray", true, rsm_pattern::radial, rsm_visibility::alg6_ray,
+       "radial pattern, Alg. 6 with the elevation about the receiver's light ray and without the samples in its tangent plane (docs/errata.md RSMV-12)"},
   };
   return techniques;
 }
@@ -119,6 +123,19 @@ const std::vector<setting<rsm_pipeline_settings, rsm_technique>>& rsm_settings_t
       entry::number("disk-samples", [](auto& s) -> auto& { return s.disk.samples; }, describe_field(&disk_pattern_settings<float>::samples))
           .read_by(disk, "the original RSM's disk")
           .feeds("gather.frag: settings.disk.samples"),
+      entry::choice("disk-weights", [](auto& s) -> auto& { return s.disk.printed_weights; }, {{"unbiased", false}, {"printed", true}},
+                    "original RSM: unbiased (xi, the inverse of the samples' density) or printed (the original's xi^2, biased low; "
+                    "docs/errata.md RSMV-9)")
+          .read_by(disk, "the original RSM's disk")
+          .feeds("gather.frag: settings.disk.printed_weights"),
+      entry::number("coverage-blocks", [](auto& s) -> auto& { return s.coverage_blocks; },
+                    describe_field(&rsm_gather_settings<float>::coverage_blocks))
+          .read_by(gathers, gathering)
+          .feeds("gather.frag: settings.coverage_blocks; rsm_coarse.frag: coverage_blocks"),
+      entry::number("temporal-blend", [](auto& s) -> auto& { return s.temporal.blend; }, describe_field(&temporal_settings<float>::blend))
+          .read_by(gathers, gathering)
+          .not_live()
+          .feeds("temporal.frag: temporal.blend"),
       entry::custom("seed", setting_type::integer, "", "seed of the sampling patterns",
                     [](const rsm_pipeline_settings& s) { return std::to_string(s.radial.seed); },
                     [](rsm_pipeline_settings& s, const std::string& text) { s.radial.seed = s.disk.seed = static_cast<std::uint32_t>(*parse_integer(text)); })
@@ -170,8 +187,10 @@ std::string validate(const rsm_pipeline_settings& settings) {
   }
   if (const std::string problem = check_settings(rsm_settings_table(), settings); !problem.empty()) return problem;
   const auto [radial, disk] = patterns_in_texels(settings);
-  for (const setting_problem& problem : {validate(radial), validate(disk), validate(settings.irradiance), validate(settings.shadow), validate(settings.bilateral)})
+  for (const setting_problem& problem : {validate(radial), validate(disk), validate(settings.irradiance), validate(settings.shadow), validate(settings.bilateral),
+                                         validate(settings.temporal)})
     if (problem) return problem.message();
+  if (const char* problem = validate_coverage_blocks(settings.coverage_blocks)) return problem;
   return {};
 }
 
@@ -210,6 +229,8 @@ rsm_frame_constants make_frame_constants(const scene& source, const rsm_pipeline
   constants.primary = source.light;
   constants.gather = make_rsm_gather_settings(settings.radial, settings.disk, settings.radius, settings.slots, glm::ivec2(settings.rsm_size));
   constants.gather.irradiance = settings.irradiance;
+  constants.gather.coverage_blocks = settings.coverage_blocks;
+  constants.gather.perspective = source.light.kind == light_kind::spot ? 1 : 0;
   const bool spot = source.light.kind == light_kind::spot;
   constants.unprojection = make_rsm_unprojection(spot ? constants.light.tan_half_fov : constants.light.half_extent, spot, glm::ivec2(settings.rsm_size));
   constants.camera_view = camera_view_matrix(source.view);
@@ -218,6 +239,7 @@ rsm_frame_constants make_frame_constants(const scene& source, const rsm_pipeline
   constants.shadow = settings.shadow;
   constants.bilateral = settings.bilateral;
   constants.filter = settings.filter;
+  constants.temporal = settings.temporal;
   constants.image_size = glm::ivec2(settings.width, settings.height);
   constants.indirect_divisor = settings.indirect_divisor;
   constants.indirect_size = (constants.image_size + settings.indirect_divisor - 1) / settings.indirect_divisor;
@@ -229,6 +251,12 @@ namespace {
 const char* flag(bool value) { return value ? "1" : "0"; }
 
 bool is_directional(const scene& source) { return source.light.kind == light_kind::directional; }
+
+// Whether the frame reduces the RSM to coarse lights: a gathering technique with coverage.
+bool with_coverage(const rsm_frame_constants& constants) { return constants.technique.indirect && constants.gather.coverage_blocks > 0; }
+
+// Whether sequences accumulate: a gathering technique with a blend below 1.
+bool with_temporal(const rsm_frame_constants& constants) { return constants.technique.indirect && constants.temporal.blend < 1.0f; }
 
 void set_light_uniforms(const program& target, const rsm_frame_constants& constants) {
   if (constants.primary.kind == light_kind::spot) set_uniforms(target, "spot", constants.primary.spot);
@@ -245,8 +273,14 @@ rsm_pipeline::rsm_pipeline(const shader_library& shaders, const scene& source, c
       rsm_program_(load_program(shaders, "scene.vert", "rsm.frag", {{"VPLKIT_LIGHT_DIRECTIONAL", flag(is_directional(source))}})),
       gbuffer_program_(load_program(shaders, "scene.vert", "gbuffer.frag")),
       rsm_target_(settings.rsm_size, settings.rsm_size, {texel_format::rgba32ui}, true),
+      coarse_target_(std::max(constants_.gather.coverage_blocks, 1), std::max(constants_.gather.coverage_blocks, 1),
+                     {texel_format::rgba32f, texel_format::rgba32f, texel_format::rgba32f}, false),
       gbuffer_target_(settings.width, settings.height, {settings.format, settings.format, settings.format}, true),
       indirect_target_(constants_.indirect_size.x, constants_.indirect_size.y, {settings.format}, false),
+      history_targets_{framebuffer(with_temporal(constants_) ? constants_.indirect_size.x : 1, with_temporal(constants_) ? constants_.indirect_size.y : 1,
+                                   {settings.format}, false),
+                       framebuffer(with_temporal(constants_) ? constants_.indirect_size.x : 1, with_temporal(constants_) ? constants_.indirect_size.y : 1,
+                                   {settings.format}, false)},
       blur_x_target_(settings.filter == post_filter::separable ? constants_.indirect_size.x : 1,
                      settings.filter == post_filter::separable ? constants_.indirect_size.y : 1, {settings.format}, false),
       post_target_(settings.width, settings.height, {settings.format, settings.format}, false),
@@ -257,7 +291,10 @@ rsm_pipeline::rsm_pipeline(const shader_library& shaders, const scene& source, c
     gather_program_ = load_program(shaders, "fullscreen.vert", "gather.frag",
                                    {{"VPLKIT_RSM_PATTERN", std::to_string(static_cast<int>(technique.pattern))},
                                     {"VPLKIT_VISIBILITY", std::to_string(static_cast<int>(technique.visibility))},
-                                    {"VPLKIT_SLOT_COUNT", std::to_string(constants_.gather.slots.count)}});
+                                    {"VPLKIT_SLOT_COUNT", std::to_string(constants_.gather.slots.count)},
+                                    {"VPLKIT_RSM_COVERAGE", flag(with_coverage(constants_))}});
+    if (with_coverage(constants_)) coarse_program_ = load_program(shaders, "fullscreen.vert", "rsm_coarse.frag");
+    if (with_temporal(constants_)) temporal_program_ = load_program(shaders, "fullscreen.vert", "temporal.frag");
     if (separable) blur_x_program_ = load_program(shaders, "fullscreen.vert", "blur_x.frag");
   }
   post_program_ = load_program(shaders, "fullscreen.vert", "post.frag",
@@ -277,6 +314,20 @@ rsm_pipeline::rsm_pipeline(const shader_library& shaders, const scene& source, c
     gather_program_.set("gbuffer_size", constants_.image_size);
     int unit = 0;
     for (const char* name : {"rsm_packed", "gbuffer_position_depth", "gbuffer_normal"}) gather_program_.set(name, unit++);
+    if (with_coverage(constants_)) {
+      for (const char* name : {"coarse_position_extent", "coarse_normal", "coarse_flux"}) gather_program_.set(name, unit++);
+      coarse_program_.set("rsm_size", glm::ivec2(settings.rsm_size));
+      coarse_program_.set("coverage_blocks", constants_.gather.coverage_blocks);
+      coarse_program_.set("rsm_packed", 0);
+    }
+    if (with_temporal(constants_)) {
+      set_uniforms(temporal_program_, "temporal", constants_.temporal);
+      temporal_program_.set("indirect_divisor", constants_.indirect_divisor);
+      temporal_program_.set("indirect_size", constants_.indirect_size);
+      temporal_program_.set("gbuffer_size", constants_.image_size);
+      int temporal_unit = 0;
+      for (const char* name : {"indirect_buffer", "history_buffer", "gbuffer_position_depth"}) temporal_program_.set(name, temporal_unit++);
+    }
     if (separable) {
       set_uniforms(blur_x_program_, "bilateral", constants_.bilateral);
       blur_x_program_.set("indirect_divisor", constants_.indirect_divisor);
@@ -309,6 +360,7 @@ void rsm_pipeline::set_pose_uniforms() {
   gbuffer_program_.set("camera_view", constants_.camera_view);
   gbuffer_program_.set("light_view", light.view);
   gbuffer_program_.set("light_view_projection", light.view_projection);
+  if (with_coverage(constants_)) set_uniforms(coarse_program_, "unprojection", constants_.unprojection);
   gbuffer_program_.set("light_projection", light.view_projection * glm::inverse(light.view));
   if (constants_.technique.indirect) {
     set_uniforms(gather_program_, "unprojection", constants_.unprojection);
@@ -357,14 +409,44 @@ rsm_frame rsm_pipeline::render() {
   return frame;
 }
 
+bool rsm_pipeline::accumulates() const { return with_temporal(constants_); }
+
+void rsm_pipeline::set_pattern_frame(std::uint32_t frame) {
+  rsm_gather_settings<float> gather = constants_.gather;
+  if (frame > 0) {
+    gather.radial.seed = hash_combine(gather.radial.seed, frame);
+    gather.disk.seed = hash_combine(gather.disk.seed, frame);
+  }
+  set_uniforms(gather_program_, "settings", gather);
+}
+
+rsm_frame rsm_pipeline::render_next() {
+  if (!accumulates()) return render();
+  set_pattern_frame(sequence_frame_);
+  draw_passes(true, true);
+  ++sequence_frame_;
+  rsm_frame frame;
+  frame.radiance = post_target_.read_image(0);
+  frame.indirect = post_target_.read_image(1);
+  frame.pass_times = timer_.collect();
+  return frame;
+}
+
 void rsm_pipeline::draw() { draw_passes(true); }
 
 void rsm_pipeline::draw_changed() {
   if (!rsm_valid_ || !view_valid_) draw_passes(!rsm_valid_);
 }
 
-void rsm_pipeline::draw_passes(bool with_rsm) {
+void rsm_pipeline::draw_passes(bool with_rsm, bool accumulate) {
   const rsm_technique& technique = constants_.technique;
+  if (!accumulate && (history_valid_ || sequence_frame_ > 0)) {
+    // A frame outside a sequence: no history, and the settings' own pattern.
+    history_valid_ = false;
+    sequence_frame_ = 0;
+    if (technique.indirect) set_pattern_frame(0);
+  }
+  last_accumulated_ = accumulate;
   glClearColor(0.0f, 0.0f, 0.0f, 0.0f);  // depth 0 marks "no surface" in every buffer
   glDisable(GL_BLEND);
   glDisable(GL_CULL_FACE);
@@ -378,6 +460,18 @@ void rsm_pipeline::draw_passes(bool with_rsm) {
     glClear(GL_DEPTH_BUFFER_BIT);
     mesh_.draw(rsm_program_);
     timer_.end();
+    if (with_coverage(constants_)) {
+      timer_.begin("coverage lights");
+      glDisable(GL_DEPTH_TEST);
+      glBindVertexArray(empty_vertex_array_.get());
+      coarse_target_.bind();
+      rsm_target_.colour(0).bind(0);
+      coarse_program_.use();
+      glDrawArrays(GL_TRIANGLES, 0, 3);
+      glBindVertexArray(0);
+      glEnable(GL_DEPTH_TEST);
+      timer_.end();
+    }
     rsm_valid_ = true;
     ++rsm_draws_;
   }
@@ -397,22 +491,46 @@ void rsm_pipeline::draw_passes(bool with_rsm) {
     rsm_target_.colour(0).bind(0);
     gbuffer_target_.colour(0).bind(1);
     gbuffer_target_.colour(2).bind(2);
+    if (with_coverage(constants_))
+      for (int i = 0; i < 3; ++i) coarse_target_.colour(static_cast<std::size_t>(i)).bind(3 + i);
     gather_program_.use();
     glDrawArrays(GL_TRIANGLES, 0, 3);
     timer_.end();
+  }
+  // The filter's input: the gather, or (sequences) the gather accumulated over the frames.
+  const framebuffer* filter_input = &indirect_target_;
+  if (accumulate) {
+    timer_.begin("temporal accumulation");
+    const int written = 1 - history_index_;
+    history_targets_[written].bind();
+    indirect_target_.colour(0).bind(0);
+    history_targets_[history_index_].colour(0).bind(1);
+    gbuffer_target_.colour(0).bind(2);
+    last_temporal_inputs_ = {history_valid_, history_view_, history_view_projection_};
+    temporal_program_.set("history_valid", history_valid_ ? 1 : 0);
+    temporal_program_.set("previous_view", history_view_);
+    temporal_program_.set("previous_view_projection", history_view_projection_);
+    temporal_program_.use();
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    timer_.end();
+    history_index_ = written;
+    history_valid_ = true;
+    history_view_ = constants_.camera_view;
+    history_view_projection_ = constants_.camera_view_projection;
+    filter_input = &history_targets_[written];
   }
 
   timer_.begin("post processing");
   const bool separable = technique.indirect && settings_.filter == post_filter::separable;
   if (separable) {
     blur_x_target_.bind();
-    indirect_target_.colour(0).bind(0);
+    filter_input->colour(0).bind(0);
     gbuffer_target_.colour(2).bind(1);
     blur_x_program_.use();
     glDrawArrays(GL_TRIANGLES, 0, 3);
   }
   post_target_.bind();
-  (separable ? blur_x_target_ : indirect_target_).colour(0).bind(0);
+  (separable ? blur_x_target_ : *filter_input).colour(0).bind(0);
   for (int i = 0; i < 3; ++i) gbuffer_target_.colour(static_cast<std::size_t>(i)).bind(i + 1);
   post_program_.use();
   glDrawArrays(GL_TRIANGLES, 0, 3);
@@ -456,8 +574,14 @@ rsm_pass_buffers rsm_pipeline::read_buffers() const {
   buffers.rsm.texels.resize(words.size() / 4);
   std::memcpy(buffers.rsm.texels.data(), words.data(), words.size() * sizeof(std::uint32_t));
   for (std::size_t i = 0; i < 3; ++i) buffers.gbuffer[i] = gbuffer_target_.read_image(i);
+  if (with_coverage(constants_))
+    for (std::size_t i = 0; i < 3; ++i) buffers.coarse[i] = coarse_target_.read_image(i);
   if (constants_.technique.indirect) {
     buffers.indirect = indirect_target_.read_image(0);
+    if (last_accumulated_) {
+      buffers.accumulated = history_targets_[history_index_].read_image(0);
+      buffers.history = history_targets_[1 - history_index_].read_image(0);
+    }
     if (settings_.filter == post_filter::separable) buffers.blurred_x = blur_x_target_.read_image(0);
   }
   return buffers;

@@ -1,6 +1,8 @@
 // The four-pass deferred pipeline of [RSMV] (chapter 4): 1. RSM generation, 2. G-buffer
 // generation (with the shadow density of Alg. 4), 3. RSM sampling (the gather, at a reduced
-// resolution), 4. post processing (bilateral upsampling and blur, direct + indirect).
+// resolution), 4. post processing (bilateral upsampling and blur, direct + indirect). With
+// coverage (vplkit/rsm_coverage.hpp), a pass after the RSM reduces it to the coarse lights that the
+// gather adds for the receivers its pattern cannot reach.
 // Techniques: direct light only, the original RSM (disk pattern, 400 samples), and the radial
 // pattern without visibility or with Alg. 2, 3 or 6.
 #pragma once
@@ -15,6 +17,7 @@
 #include <vplkit/rsm_gather.hpp>
 #include <vplkit/rsm_packing.hpp>
 #include <vplkit/shadow.hpp>
+#include <vplkit/temporal_accumulation.hpp>
 #include <vplkit/gl/program.hpp>
 
 #include "frontend/core/setting.hpp"
@@ -57,12 +60,18 @@ struct rsm_pipeline_settings {
   radial_pattern_settings<float> radial = default_radial_settings();
   disk_pattern_settings<float> disk;            ///< 400 samples; max_radius is not read (see radius)
   int slots = default_rsm_gather_preset<float>().slots;  ///< micro linear buffer slots
+  /// Coarse lights per side of the RSM for the receivers the pattern cannot reach (behind the
+  /// light, off the map; vplkit/rsm_coverage.hpp); 0: none, as in the thesis.
+  int coverage_blocks = default_coverage_blocks;
   irradiance_settings<float> irradiance;
   shadow_density_settings<float> shadow;
   bilateral_settings<float> bilateral;          ///< kernel 17
   /// Separable by default: 2 x 17 taps instead of 17^2, 7x cheaper on llvmpipe for a few percent
   /// of difference in the filtered indirect light (bench/rsm-tables.sweep measures both).
   post_filter filter = post_filter::separable;
+  /// Temporal accumulation of the frames of a sequence (render_next; vplkit/temporal_accumulation.hpp);
+  /// blend 1 keeps no history (and the pattern does not turn between frames).
+  temporal_settings<float> temporal;
 
   static radial_pattern_settings<float> default_radial_settings() {
     radial_pattern_settings<float> radial;
@@ -111,6 +120,7 @@ struct rsm_frame_constants {
   shadow_density_settings<float> shadow;
   bilateral_settings<float> bilateral;
   post_filter filter = post_filter::full;
+  temporal_settings<float> temporal;
   glm::ivec2 image_size{0};
   glm::ivec2 indirect_size{0};
   int indirect_divisor = 2;
@@ -128,8 +138,11 @@ struct packed_rsm {
 /// The intermediate buffers of a frame, read back for the CPU mirror and for tests.
 struct rsm_pass_buffers {
   packed_rsm rsm;    ///< the RSM (RGBA32UI)
+  image coarse[3];   ///< the coverage's coarse lights: [position | extent], [normal | 0], [flux | 0] (empty without coverage)
   image gbuffer[3];  ///< [position | depth], [albedo | shadow density], [normal | -]
   image indirect;    ///< [irradiance | depth] (empty for direct light only)
+  image accumulated; ///< after temporal accumulation: [irradiance | depth] (empty unless the last frame was render_next's with a history)
+  image history;     ///< the accumulated buffer of the frame before, which pass 3b read (empty with `accumulated`)
   image blurred_x;   ///< the separable filter's x pass (empty for the full filter)
 };
 
@@ -145,6 +158,21 @@ class rsm_pipeline final : public pipeline {
   rsm_pipeline(const shader_library& shaders, const scene& source, const rsm_pipeline_settings& settings);
   /// draw(), then the images read back.
   rsm_frame render();
+  /// The next frame of a sequence (render --poses): with temporal accumulation (settings.temporal.blend
+  /// < 1) the gather's pattern turns (seed k for the k-th frame since the last render()) and its
+  /// output is blended with the previous frame's, reprojected (pass 3b); otherwise render(). The
+  /// first frame after render() or construction has no history.
+  rsm_frame render_next();
+  /// Whether render_next accumulates (settings.temporal.blend < 1 and a technique that gathers).
+  bool accumulates() const;
+  /// What pass 3b of the last frame read besides the buffers (read_buffers): whether it had a
+  /// history, and the camera of the frame the history was rendered with.
+  struct temporal_inputs {
+    bool history_valid = false;
+    glm::mat4 previous_view{1.0f};
+    glm::mat4 previous_view_projection{1.0f};
+  };
+  const temporal_inputs& last_temporal_inputs() const { return last_temporal_inputs_; }
   /// The four passes without reading anything back (a frame as Table 5.3 times it: the light
   /// may have moved, so the RSM is drawn as well).
   void draw() override;
@@ -189,7 +217,9 @@ class rsm_pipeline final : public pipeline {
   /// The camera and light of the next frame; leaves both as they were when the frame constants
   /// cannot be made.
   void move_to(const camera& view, const scene_light& light);
-  void draw_passes(bool with_rsm);
+  void draw_passes(bool with_rsm, bool accumulate = false);
+  /// The gather's pattern seeds for frame `frame` of a sequence (0: the settings' own).
+  void set_pattern_frame(std::uint32_t frame);
 
   scene scene_;
   rsm_pipeline_settings settings_;
@@ -197,12 +227,16 @@ class rsm_pipeline final : public pipeline {
   mesh_buffers mesh_;
   program rsm_program_;
   program gbuffer_program_;
+  program coarse_program_;
   program gather_program_;
+  program temporal_program_;
   program blur_x_program_;
   program post_program_;
   framebuffer rsm_target_;
+  framebuffer coarse_target_;
   framebuffer gbuffer_target_;
   framebuffer indirect_target_;
+  framebuffer history_targets_[2];  ///< temporal accumulation, ping-pong (1 x 1 when the pipeline does not accumulate)
   framebuffer blur_x_target_;
   framebuffer post_target_;
   gl_vertex_array empty_vertex_array_;
@@ -211,6 +245,15 @@ class rsm_pipeline final : public pipeline {
   bool view_valid_ = false;  ///< the G-buffer to post filter match the camera and the RSM
   int rsm_draws_ = 0;
   int view_draws_ = 0;
+  // Temporal accumulation: the frame index in the sequence, the target the last frame wrote, whether
+  // it holds a history, and the camera it was seen with.
+  std::uint32_t sequence_frame_ = 0;
+  int history_index_ = 0;
+  bool history_valid_ = false;
+  bool last_accumulated_ = false;
+  glm::mat4 history_view_{1.0f};
+  glm::mat4 history_view_projection_{1.0f};
+  temporal_inputs last_temporal_inputs_;
 };
 
 }  // namespace vplkit

@@ -25,6 +25,7 @@
 #include <vplkit/rsm_pattern.hpp>
 #include <vplkit/settings.hpp>
 #include <vplkit/shadow.hpp>
+#include <vplkit/temporal_accumulation.hpp>
 
 #include <vplkit/gl/program.hpp>
 #include <vplkit/gl/uniform_declarations.hpp>
@@ -50,6 +51,7 @@ std::string glsl_type_name() {
   else if constexpr (is_described_v<Value>) return settings_description<Value>::name;
   else if constexpr (std::is_same_v<Value, float>) return "float";
   else if constexpr (std::is_same_v<Value, int>) return "int";
+  else if constexpr (std::is_same_v<Value, bool>) return "bool";
   else if constexpr (std::is_same_v<Value, std::uint32_t>) return "uint";
   else if constexpr (std::is_same_v<Value, glm::vec2>) return "vec2";
   else if constexpr (std::is_same_v<Value, glm::vec3>) return "vec3";
@@ -89,6 +91,8 @@ void set_uniform_value(const program& target, const std::string& name, const Val
     for (std::size_t i = 0; i < std::extent_v<Value>; ++i) set_uniform_value(target, name + "[" + std::to_string(i) + "]", value[i]);
   } else if constexpr (std::is_same_v<Value, std::uint32_t>) {
     target.set(name, static_cast<unsigned>(value));
+  } else if constexpr (std::is_same_v<Value, bool>) {
+    target.set(name, value ? 1 : 0);  // a GLSL bool uniform is set as an int
   } else {
     target.set(name, value);
   }

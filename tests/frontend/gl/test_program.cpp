@@ -196,7 +196,8 @@ TEST_CASE("driver logs of Mesa, NVIDIA and AMD are mapped to file:line") {
 TEST_CASE("every shipped pass program compiles and links") {
   const shader_library& library = parity::test_shaders();
   for (const std::pair<std::string, std::string>& stages : std::vector<std::pair<std::string, std::string>>{
-           {"fullscreen.vert", "present.frag"}, {"fullscreen.vert", "blur_x.frag"}, {"scene.vert", "gbuffer.frag"}}) {
+           {"fullscreen.vert", "present.frag"}, {"fullscreen.vert", "blur_x.frag"}, {"scene.vert", "gbuffer.frag"},
+           {"fullscreen.vert", "rsm_coarse.frag"}, {"fullscreen.vert", "temporal.frag"}}) {
     const std::string& vertex = stages.first;
     const std::string& fragment = stages.second;
     CAPTURE(fragment);
@@ -210,9 +211,13 @@ TEST_CASE("every shipped pass program compiles and links") {
         CHECK_NOTHROW(load_program(library, "fullscreen.vert", "post.frag",
                                    {{"VPLKIT_INDIRECT", indirect}, {"VPLKIT_SEPARABLE", separable}, {"VPLKIT_LIGHT_DIRECTIONAL", light}}));
   }
-  for (const char* visibility : {"0", "2", "3", "6"})
-    CHECK_NOTHROW(load_program(library, "fullscreen.vert", "gather.frag", {{"VPLKIT_RSM_PATTERN", "0"}, {"VPLKIT_VISIBILITY", visibility}}));
-  CHECK_NOTHROW(load_program(library, "fullscreen.vert", "gather.frag", {{"VPLKIT_RSM_PATTERN", "1"}, {"VPLKIT_VISIBILITY", "0"}}));
+  for (const char* coverage : {"0", "1"}) {
+    for (const char* visibility : {"0", "2", "3", "6", "7"})
+      CHECK_NOTHROW(load_program(library, "fullscreen.vert", "gather.frag",
+                                 {{"VPLKIT_RSM_PATTERN", "0"}, {"VPLKIT_VISIBILITY", visibility}, {"VPLKIT_RSM_COVERAGE", coverage}}));
+    CHECK_NOTHROW(load_program(library, "fullscreen.vert", "gather.frag",
+                               {{"VPLKIT_RSM_PATTERN", "1"}, {"VPLKIT_VISIBILITY", "0"}, {"VPLKIT_RSM_COVERAGE", coverage}}));
+  }
   // The disk pattern has no paths: asking it for visibility is a compile error that says so.
   CHECK_THROWS_WITH_AS(load_program(library, "fullscreen.vert", "gather.frag", {{"VPLKIT_RSM_PATTERN", "1"}, {"VPLKIT_VISIBILITY", "6"}}),
                        doctest::Contains("the disk pattern has no paths"), vplkit::error);

@@ -1,8 +1,11 @@
 // frontend/scene/pose.hpp: the --camera/--light text reads back the floats it was written from,
-// bad text is refused with the reason, and a pose moves a camera and each kind of light.
+// bad text is refused with the reason, a pose moves a camera and each kind of light, and a pose
+// file (render --poses) reads line by line.
 #include <doctest/doctest.h>
 
 #include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <random>
 
 #include "frontend/core/error.hpp"
@@ -70,4 +73,55 @@ TEST_CASE("apply_pose moves a camera, a spot light and a directional light") {
   const pose sun_pose = pose_of(sun);
   CHECK(glm::length(sun_pose.target - sun_pose.position - sun.directional.direction) < 1e-6f);
   CHECK_THROWS_AS(apply_pose({{1, 1, 1}, {1, 1, 1}}, sun, "test"), error);
+}
+
+namespace {
+
+// A pose file in a fresh temporary folder, removed afterwards.
+struct pose_file {
+  std::filesystem::path folder = std::filesystem::temp_directory_path() / ("vplkit-poses-" + std::to_string(std::random_device{}()));
+  std::filesystem::path path = folder / "poses.txt";
+  explicit pose_file(const std::string& text) {
+    std::filesystem::create_directories(folder);
+    std::ofstream(path) << text;
+  }
+  ~pose_file() { std::filesystem::remove_all(folder); }
+};
+
+}  // namespace
+
+TEST_CASE("read_pose_file: a frame per line, comments and blank lines skipped, each pose as parse_pose reads it") {
+  const pose_file file("# header\n--camera 1,2,3,0,0,0\n\n  --light 0,5,0,1,0,0   # a comment\n--light 0,4,0,0,0,0\t--camera 1,1,1,0,1,0\r\n");
+  const std::vector<pose_frame> frames = read_pose_file(file.path, false);
+  REQUIRE(frames.size() == 3);
+  CHECK(frames[0].line == 2);
+  CHECK(frames[0].camera->position == glm::vec3(1, 2, 3));
+  CHECK(!frames[0].light);
+  CHECK(frames[1].line == 4);
+  CHECK(frames[1].light->target == glm::vec3(1, 0, 0));
+  CHECK(frames[1].comment == "a comment");
+  CHECK(frames[2].camera->target == glm::vec3(0, 1, 0));
+  CHECK(frames[2].light->position == glm::vec3(0, 4, 0));
+  const pose_file scenes("--scene cornell-box --light 0,5,0,1,0,0\n--scene a.gltf\n");
+  const std::vector<pose_frame> with_scenes = read_pose_file(scenes.path, true);
+  CHECK(with_scenes[0].scene == "cornell-box");
+  CHECK(with_scenes[1].scene == "a.gltf");
+}
+
+TEST_CASE("read_pose_file refuses what is not a pose, naming the file and the line") {
+  const auto refused = [](const std::string& text, const std::string& expected, bool with_scene = false) {
+    const pose_file file(text);
+    CAPTURE(text);
+    const std::string message = file.path.string() + expected;
+    CHECK_THROWS_WITH_AS(read_pose_file(file.path, with_scene), doctest::Contains(message.c_str()), error);
+  };
+  refused("--light 0,5,0,1,0,0\n--size 64\n", ":2: expected --camera or --light, got '--size'");
+  refused("--scene x.gltf\n", ":1: expected --camera or --light, got '--scene'");
+  refused("--scene x.gltf --size 3\n", ":1: expected --scene, --camera or --light, got '--size'", true);
+  refused("--camera 1,2,3,1,2,3\n", ":1: --camera: the position and the target are the same point");
+  refused("--camera 1,2,nan,0,0,0\n", ":1: --camera: expected x,y,z,tx,ty,tz");
+  refused("--light 1,2,3,0,0,0 --light 0,1,0,0,0,0\n", ":1: --light is given twice");
+  refused("--camera\n", ":1: --camera needs a value");
+  refused("# nothing\n\n", ": no frames");
+  CHECK_THROWS_WITH_AS(read_pose_file("/nonexistent/poses.txt", false), doctest::Contains("/nonexistent/poses.txt"), error);
 }

@@ -35,7 +35,7 @@ struct pass_parity {
 
 // Renders, reads back, runs the CPU mirror on the read-back inputs, compares.
 pass_parity check_pipeline(const scene& source, const rsm_pipeline_settings& settings, const tolerance& gather_bounds,
-                           const tolerance& post_bounds) {
+                           const tolerance& post_bounds, const tolerance& coarse_bounds) {
   const shader_library& shaders = test_shaders();
   rsm_pipeline pipeline(shaders, source, settings);
   const rsm_frame frame = pipeline.render();
@@ -44,6 +44,13 @@ pass_parity check_pipeline(const scene& source, const rsm_pipeline_settings& set
   pass_parity result;
   const std::string name = source.name + " " + settings.technique + (settings.filter == post_filter::separable ? " separable" : " full") +
                            (settings.format == texel_format::rgba16f ? " rgba16f" : "");
+  if (constants.technique.indirect && constants.gather.coverage_blocks > 0) {
+    // The coverage's coarse lights: sums of a block's texels in the same order on both sides.
+    const std::array<image, 3> coarse = cpu_coarse_pass(buffers, constants, 2);
+    const char* names[3] = {"coarse lights position | extent, ", "coarse lights normal, ", "coarse lights flux, "};
+    for (std::size_t i = 0; i < 3; ++i)
+      require_parity(compare(names[i] + name, buffers.coarse[i].texels, coarse[i].texels, coordinates_of(coarse[i]), coarse_bounds));
+  }
   if (constants.technique.indirect) {
     const image gathered = cpu_gather_pass(buffers, constants, 2);
     result.gather = compare("gather pass, " + name, buffers.indirect.texels, gathered.texels, coordinates_of(gathered), gather_bounds);
@@ -65,6 +72,10 @@ pass_parity check_pipeline(const scene& source, const rsm_pipeline_settings& set
 // Eq. 3.2 differs by a few ulp per term: measured at most 3.3e-7 relative; bound 4e-6, or 1e-7
 // absolute where the sum itself is tiny. No texel may differ in which samples it took.
 const tolerance gather_rgba32f{1e-7f, 4e-6f, 16, 0.0, "150-400 terms of a few-ulp Eq. 3.2; same samples"};
+// The coverage's coarse lights: weighted sums over a block of the RSM (16 texels in these frames,
+// 1024 at the defaults) in the same order; llvmpipe may fuse a multiply-add per term. The extent
+// is a mean square less a squared mean, so its error is relative to the mean square.
+const tolerance coarse_rgba32f{1e-6f, 1e-5f, 16, 0.0, "block sums in the same order; the extent a difference of two"};
 // The post pass: up to 81 bilateral taps with llvmpipe's exp, and the spot light term (sqrt, divides):
 // measured at most 1.3e-5 relative on values under 1e-6 and 3.4e-7 absolute; bound 1e-6
 // absolute or 2e-5 relative.
@@ -76,7 +87,7 @@ TEST_CASE("RSM pipeline matches the CPU mirror for every technique (Cornell box,
   for (const rsm_technique& technique : rsm_techniques()) {
     const std::string technique_name = technique.name;
     CAPTURE(technique_name);
-    const pass_parity result = check_pipeline(make_cornell_box(), small_settings(technique.name), gather_rgba32f, post_rgba32f);
+    const pass_parity result = check_pipeline(make_cornell_box(), small_settings(technique.name), gather_rgba32f, post_rgba32f, coarse_rgba32f);
     if (technique.indirect) require_parity(result.gather);
     require_parity(result.post_radiance);
     require_parity(result.post_indirect);
@@ -86,7 +97,7 @@ TEST_CASE("RSM pipeline matches the CPU mirror for every technique (Cornell box,
 TEST_CASE("RSM pipeline matches the CPU mirror with a directional light and the full 2D filter") {
   rsm_pipeline_settings settings = small_settings("rsm-alg6");
   settings.filter = post_filter::full;
-  const pass_parity result = check_pipeline(make_indirect_shadow_scene(), settings, gather_rgba32f, post_rgba32f);
+  const pass_parity result = check_pipeline(make_indirect_shadow_scene(), settings, gather_rgba32f, post_rgba32f, coarse_rgba32f);
   require_parity(result.gather);
   require_parity(result.post_radiance);
   require_parity(result.post_indirect);
@@ -99,7 +110,7 @@ TEST_CASE("RSM pipeline matches the CPU mirror in rgba16f, to half precision") {
   // rounds toward zero when it does (see test_render_target): one half ulp, 2^-10 = 9.8e-4
   // relative, or 1e-4 absolute for values near 0 (half denormals).
   const tolerance half{1e-4f, 1e-3f, 0, 0.0, "outputs truncated to half floats"};
-  const pass_parity result = check_pipeline(make_cornell_box(), settings, half, half);
+  const pass_parity result = check_pipeline(make_cornell_box(), settings, half, half, coarse_rgba32f);
   require_parity(result.gather);
   require_parity(result.post_radiance);
   require_parity(result.post_indirect);
@@ -144,8 +155,50 @@ TEST_CASE("RSM pipeline: direct light equals albedo / pi * E * shadow density; i
   // The ceiling (top rows) is unlit by the downward spot light but gets indirect light.
   CHECK(direct.radiance.at(32, 62).r == 0.0f);
   REQUIRE(direct.pass_times.size() == 3);  // no RSM sampling pass for direct light
-  REQUIRE(full.pass_times.size() == 4);
-  CHECK(full.pass_times[2].pass == "RSM sampling");
+  REQUIRE(full.pass_times.size() == 5);  // the RSM, the coverage's coarse lights, the G-buffer, the gather, the post filter
+  CHECK(full.pass_times[1].pass == "coverage lights");
+  CHECK(full.pass_times[3].pass == "RSM sampling");
+}
+
+TEST_CASE("RSM pipeline sequences: render_next's first frame is render()'s, pass 3b matches its CPU mirror, render() starts over") {
+  const shader_library& shaders = test_shaders();
+  const scene box = make_cornell_box();
+  rsm_pipeline_settings settings = small_settings("rsm-alg6");
+  settings.temporal.blend = 0.3f;
+  rsm_pipeline sequence(shaders, box, settings), single(shaders, box, settings);
+  REQUIRE(sequence.accumulates());
+  const rsm_frame first = sequence.render_next();
+  CHECK_FALSE(sequence.last_temporal_inputs().history_valid);
+  CHECK(first.indirect.texels == single.render().indirect.texels);  // no history, the settings' own pattern
+  // The second frame: the camera and the light moved a little; the history is reprojected.
+  camera moved = box.view;
+  moved.position += glm::vec3(0.05f, 0.02f, 0.0f);
+  scene_light light = box.light;
+  light.spot.position += glm::vec3(0.03f, 0.0f, 0.0f);
+  sequence.set_camera(moved);
+  sequence.set_light(light);
+  sequence.render_next();
+  const rsm_pass_buffers buffers = sequence.read_buffers();
+  REQUIRE(sequence.last_temporal_inputs().history_valid);
+  const image mirrored = cpu_temporal_pass(buffers.indirect, buffers.history, sequence.last_temporal_inputs(), buffers, sequence.constants(), 2);
+  // The same arithmetic on the same read-back inputs; a reprojection that lands within an ulp of
+  // a texel edge may pick the neighbouring history texel on one side: at most 0.5 % of the texels.
+  require_parity(compare("temporal pass, cornell-box rsm-alg6", buffers.accumulated.texels, mirrored.texels, coordinates_of(mirrored),
+                         {1e-6f, 1e-5f, 16, 0.005, "sums, a square root, a blend; reprojection near-ties"}));
+  std::size_t blended = 0, surfaces = 0;
+  for (std::size_t i = 0; i < buffers.indirect.texels.size(); ++i) {
+    surfaces += buffers.indirect.texels[i].w < 0.0f;
+    blended += buffers.accumulated.texels[i] != buffers.indirect.texels[i];
+  }
+  CHECK(blended > surfaces / 2);  // most receivers found their history
+  // The pattern turned: the raw gather is not a fresh render's at these poses; render() is again.
+  rsm_pipeline fresh(shaders, box, settings);
+  fresh.set_camera(moved);
+  fresh.set_light(light);
+  const rsm_frame reference = fresh.render();
+  fresh.read_buffers();
+  CHECK(buffers.indirect.texels != fresh.read_buffers().indirect.texels);
+  CHECK(sequence.render().indirect.texels == reference.indirect.texels);
 }
 
 TEST_CASE("RSM pipeline settings are validated with the setting's name") {

@@ -1,0 +1,134 @@
+// Properties of the coverage's coarse lights (include/vplkit/rsm_coverage.hpp): the reduction of a
+// block (closed forms of its centroid, normal, flux and extent), the coarse light's irradiance
+// against the sum of its texels' Eq. 3.2 far away and against a uniform square's closed form near
+// it. The gather's use of them is tested in test_rsm_gather.cpp.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <vector>
+
+#include <vplkit/rsm_coverage.hpp>
+#include <vplkit/rsm_gather.hpp>
+
+#include "tests/closed_forms.hpp"
+
+using namespace vplkit;
+
+namespace {
+
+constexpr double pi = 3.14159265358979323846;
+
+// A flat RSM in the light's eye space: texel (x, y) at (x h, y h, depth), facing the light, each
+// with the same flux; texels with x >= `empty_from` are empty (eye depth 0).
+struct flat_rsm {
+  double h = 0.01;
+  double depth = -3.0;
+  glm::dvec3 flux{0.5, 0.25, 1.0};
+  int empty_from = 1 << 30;
+  rsm_texel<double> operator()(glm::ivec2 t) const {
+    if (t.x >= empty_from) return {glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.0)};
+    return {glm::dvec3((t.x + 0.5) * h, (t.y + 0.5) * h, depth), glm::dvec3(0, 0, 1), flux};
+  }
+};
+
+}  // namespace
+
+TEST_CASE("reduce_rsm_block of a flat uniform block: its centroid, the plane's normal, the summed flux, a grid's mean squared radius") {
+  const flat_rsm rsm;
+  const glm::ivec2 size(64, 48);
+  const int blocks = 8;  // blocks of 8 x 6 texels
+  const glm::ivec2 side = coverage_block_side(size, blocks);
+  REQUIRE(side == glm::ivec2(8, 6));
+  for (const glm::ivec2 block : {glm::ivec2(0, 0), glm::ivec2(3, 5), glm::ivec2(7, 7)}) {
+    const coarse_light<double> light = reduce_rsm_block<double>(block, blocks, size, rsm);
+    const glm::dvec2 centre = (glm::dvec2(block * side) + 0.5 * glm::dvec2(side)) * rsm.h;
+    CHECK(light.position.x == doctest::Approx(centre.x).epsilon(1e-12));
+    CHECK(light.position.y == doctest::Approx(centre.y).epsilon(1e-12));
+    CHECK(light.position.z == doctest::Approx(rsm.depth).epsilon(1e-12));
+    CHECK(light.normal.z == doctest::Approx(1.0).epsilon(1e-12));
+    CHECK(light.flux.y == doctest::Approx(48 * rsm.flux.y).epsilon(1e-12));
+    // An n-point grid of spacing h has variance h^2 (n^2 - 1) / 12 per axis.
+    const double extent = rsm.h * rsm.h * ((8.0 * 8.0 - 1.0) + (6.0 * 6.0 - 1.0)) / 12.0;
+    CHECK(light.extent == doctest::Approx(extent).epsilon(1e-6));
+  }
+}
+
+TEST_CASE("reduce_rsm_block weighs by flux, leaves the mean normal unnormalised and skips empty texels") {
+  // Two lit texels of a block: one with flux 3 facing +z, one with flux 1 facing +x; the rest empty.
+  const auto two = [](glm::ivec2 t) -> rsm_texel<double> {
+    if (t == glm::ivec2(0, 0)) return {glm::dvec3(0.0, 0.0, -2.0), glm::dvec3(0, 0, 1), glm::dvec3(1.0)};
+    if (t == glm::ivec2(3, 1)) return {glm::dvec3(1.0, 0.0, -2.0), glm::dvec3(1, 0, 0), glm::dvec3(1.0 / 3.0)};
+    return {glm::dvec3(0.0), glm::dvec3(0.0), glm::dvec3(0.0)};
+  };
+  const coarse_light<double> light = reduce_rsm_block<double>(glm::ivec2(0), 1, glm::ivec2(4, 4), two);
+  CHECK(light.position.x == doctest::Approx(0.25));
+  CHECK(light.position.z == doctest::Approx(-2.0));
+  CHECK(light.normal.x == doctest::Approx(0.25));
+  CHECK(light.normal.z == doctest::Approx(0.75));
+  CHECK(glm::length(light.normal) < 1.0);
+  CHECK(light.flux.x == doctest::Approx(4.0 / 3.0));
+  CHECK(light.extent == doctest::Approx(0.75 * 0.25 * 0.25 + 0.25 * 0.75 * 0.75));  // weighted variance of x
+  // A block without light is all zeros, and lights nothing.
+  flat_rsm dark;
+  dark.empty_from = 0;
+  const coarse_light<double> none = reduce_rsm_block<double>(glm::ivec2(1, 1), 4, glm::ivec2(16), dark);
+  CHECK(none.flux == glm::dvec3(0.0));
+  CHECK(none.extent == 0.0);
+  CHECK(coarse_light_irradiance(glm::dvec3(0.0, 0.0, 1.0), glm::dvec3(0, 0, -1), none) == glm::dvec3(0.0));
+}
+
+TEST_CASE("a coarse light of one texel is Eq. 3.2; far from its block it is the sum of its texels' Eq. 3.2") {
+  const flat_rsm rsm;
+  const irradiance_settings<double> settings;
+  const glm::dvec3 x(0.3, -0.2, 1.0), n = glm::normalize(glm::dvec3(0.1, 0.2, -1.0));
+  const coarse_light<double> one = reduce_rsm_block<double>(glm::ivec2(5, 7), 64, glm::ivec2(64), rsm);
+  const rsm_texel<double> texel = rsm(glm::ivec2(5, 7));
+  CHECK(one.extent == doctest::Approx(0.0).epsilon(1e-12));
+  const glm::dvec3 single = pixel_light_irradiance(x, n, texel.position, texel.normal, texel.flux, settings);
+  CHECK(coarse_light_irradiance(x, n, one, settings).z == doctest::Approx(single.z).epsilon(1e-9));
+  // A 16 x 16 block 0.16 across, seen from 4 units: within 0.1 %.
+  for (const glm::dvec3 far : {glm::dvec3(0.1, 0.1, 1.0), glm::dvec3(2.0, -1.0, 0.5), glm::dvec3(-1.5, 0.5, 0.2)}) {
+    const glm::dvec3 normal = glm::normalize(glm::dvec3(0.05, 0.0, 0.0) - far);
+    const coarse_light<double> block = reduce_rsm_block<double>(glm::ivec2(0), 4, glm::ivec2(64), rsm);
+    double sum = 0.0;
+    for (int y = 0; y < 16; ++y)
+      for (int t = 0; t < 16; ++t) {
+        const rsm_texel<double> p = rsm(glm::ivec2(t, y));
+        sum += pixel_light_irradiance(far, normal, p.position, p.normal, p.flux, settings).x;
+      }
+    CAPTURE(far.x);
+    CHECK(coarse_light_irradiance(far, normal, block, settings).x == doctest::Approx(sum).epsilon(1e-3));
+  }
+}
+
+TEST_CASE("near its block a coarse light is a uniform square's, bounded, not a point's") {
+  // A receiver at height z above the centre of a uniform Lambertian square of side s and flux F
+  // gets the square's exitance F / s^2 times its form factor (Howell B-3, four quarters). The
+  // coarse light (with the gather's 1/pi) follows it within 5 % at every height and stays bounded
+  // as z -> 0, where a point light's Eq. 3.2 grows like 1 / z^2 (and is a third too bright at z = s).
+  flat_rsm rsm;
+  rsm.depth = -5.0;
+  rsm.h = 1.0 / 32.0;  // a 32 x 32 block of side 1
+  rsm.flux = glm::dvec3(1.0 / 1024.0);
+  const coarse_light<double> square = reduce_rsm_block<double>(glm::ivec2(0), 1, glm::ivec2(32), rsm);
+  irradiance_settings<double> settings;
+  settings.min_distance = 1e-4;
+  for (const double z : {0.01, 0.1, 0.3, 1.0, 3.0}) {
+    const glm::dvec3 x(0.5, 0.5, rsm.depth + z);
+    const double exact = 4.0 * closed_forms::parallel_rectangle(0.5, 0.5, z);  // F = 1 over area 1
+    const double coarse = coarse_light_irradiance(x, glm::dvec3(0, 0, -1), square, settings).x / pi;
+    CAPTURE(z);
+    CAPTURE(coarse / exact);
+    CHECK(std::fabs(coarse / exact - 1.0) < 0.05);
+    const double point = pixel_light_irradiance(x, glm::dvec3(0, 0, -1), square.position, square.normal, square.flux, settings).x / pi;
+    if (z <= 1.0) CHECK(point / exact > 1.25);
+  }
+}
+
+TEST_CASE("validate_coverage_blocks: 0 (off) to 64") {
+  CHECK(validate_coverage_blocks(0) == nullptr);
+  CHECK(validate_coverage_blocks(16) == nullptr);
+  CHECK(validate_coverage_blocks(64) == nullptr);
+  CHECK(validate_coverage_blocks(-1) != nullptr);
+  CHECK(validate_coverage_blocks(65) != nullptr);
+}
