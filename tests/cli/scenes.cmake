@@ -19,8 +19,9 @@ endfunction()
 
 set(small --size 48 --rsm-size 64)
 # --light-intensity: doubling it doubles the indirect PFM (relative bias 1 = twice the mean).
-# (Light Wave's thesis VPLs, Eq. 4.5, carry no light intensity: its indirect light is not in this loop.)
-foreach(technique rsm-alg6 finalgather-point)
+# Light Wave with its default flux energy too (the thesis's VPLs, --vpl-energy thesis, Eq. 4.5,
+# carry no light intensity).
+foreach(technique rsm-alg6 finalgather-point lightwave-accurate)
   expect_success("${technique} at intensity 3" "wrote" "${VPLKIT}" render --technique ${technique} --size 48 --light-intensity 3 --out "${WORK}/${technique}-3.png")
   expect_success("${technique} at intensity 6" "wrote" "${VPLKIT}" render --technique ${technique} --size 48 --light-intensity 6 --out "${WORK}/${technique}-6.png")
   relative_bias_between("${technique}: twice the intensity, twice the indirect light" "${WORK}/${technique}-6-indirect.pfm" "${WORK}/${technique}-3-indirect.pfm" 0.99 1.01)
