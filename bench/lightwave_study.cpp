@@ -32,6 +32,7 @@
 #include "frontend/core/error.hpp"
 #include "frontend/core/files.hpp"
 #include "frontend/core/parallel.hpp"
+#include "frontend/core/text.hpp"
 #include "frontend/gl/context.hpp"
 #include "frontend/image/image_files.hpp"
 #include "frontend/reference/reference.hpp"
@@ -44,12 +45,6 @@ namespace fs = std::filesystem;
 using namespace vplkit;
 
 namespace {
-
-std::string fixed(double value, int digits) {
-  std::ostringstream out;
-  out << std::fixed << std::setprecision(digits) << value;
-  return out.str();
-}
 
 std::vector<std::string> split(const std::string& text, char separator) {
   std::vector<std::string> items;

@@ -30,6 +30,7 @@
 #include "frontend/reference/rsm_measure.hpp"
 #include "frontend/cli/options.hpp"
 #include "frontend/core/error.hpp"
+#include "frontend/core/text.hpp"
 #include "frontend/core/files.hpp"
 #include "frontend/core/parallel.hpp"
 #include "frontend/gl/context.hpp"
@@ -43,12 +44,6 @@ namespace fs = std::filesystem;
 using namespace vplkit;
 
 namespace {
-
-std::string fixed(double value, int digits) {
-  std::ostringstream out;
-  out << std::fixed << std::setprecision(digits) << value;
-  return out.str();
-}
 
 std::string percent(double fraction) { return fixed(100.0 * fraction, 1); }
 

@@ -10,6 +10,7 @@
 
 #include "frontend/cli/sweep_report.hpp"
 #include "frontend/core/error.hpp"
+#include "frontend/core/text.hpp"
 #include "frontend/core/files.hpp"
 #include "frontend/core/parallel.hpp"
 #include "frontend/gl/context.hpp"
@@ -291,12 +292,6 @@ void write_table(const fs::path& path, sweep_table& table, const std::vector<std
 std::string cell(const std::map<std::string, std::string>& row, const std::string& column) {
   const auto found = row.find(column);
   return found == row.end() ? std::string() : found->second;
-}
-
-std::string fixed(double value, int digits) {
-  std::ostringstream out;
-  out << std::fixed << std::setprecision(digits) << value;
-  return out.str();
 }
 
 // The markdown report.
