@@ -166,8 +166,8 @@ std::string number_text(double value) {
 class accessor_view {
  public:
   accessor_view() = default;
-  accessor_view(const unsigned char* base, std::size_t count, std::size_t stride, int component_type, int components)
-      : base_(base), count_(count), stride_(stride), component_type_(component_type), components_(components) {}
+  accessor_view(const unsigned char* base, std::size_t count, std::size_t stride, int component_type)
+      : base_(base), count_(count), stride_(stride), component_type_(component_type) {}
   std::size_t count() const { return count_; }
   double get(std::size_t element, int component) const {
     const unsigned char* at = base_ + element * stride_;
@@ -184,7 +184,6 @@ class accessor_view {
   const unsigned char* base_ = nullptr;
   std::size_t count_ = 0, stride_ = 0;
   int component_type_ = TINYGLTF_COMPONENT_TYPE_FLOAT;
-  int components_ = 1;
 };
 
 // Source vertex -> mesh vertex of one primitive instance: a table when the primitive uses many
@@ -387,8 +386,7 @@ class reader {
     const std::uint64_t first = accessor.byteOffset;
     if (count > 0 && (first > view_length || (count - 1) > (view_length - first) / stride || (count - 1) * stride + element_bytes > view_length - first))
       fail(where + ": " + std::to_string(count) + " elements do not fit in its buffer view");
-    return accessor_view(data.data() + view_begin + first, static_cast<std::size_t>(count), static_cast<std::size_t>(stride), accessor.componentType,
-                         components);
+    return accessor_view(data.data() + view_begin + first, static_cast<std::size_t>(count), static_cast<std::size_t>(stride), accessor.componentType);
   }
 
   glm::vec3 albedo_of(int material) const {
