@@ -42,8 +42,13 @@ expect_success("expand -o with --define and --depfile" "wrote ${WORK}/out/main\\
 file(READ "${WORK}/out/main.frag" written)
 file(READ "${WORK}/out/main.frag.d" depfile)
 expect_match("the file has the define right after #version" written "^#version 330 core\n#define VALUE 0\\.5\n")
+# Make's syntax escapes a space in a path as "\ ": the paths as the depfile writes them (a
+# checkout's path may hold spaces), as regular expressions.
+foreach(folder WORK R SHADERS)
+  string(REPLACE " " "\\\\ " ${folder}_in_depfile "${${folder}}")
+endforeach()
 expect_match("the depfile names the output and each file read" depfile
-             "^${WORK}/out/main\\.frag: ${WORK}/main\\.frag ${R}/my/two_lights\\.glsl ${SHADERS}/lib/irradiance\\.glsl ${R}/my/helper\\.glsl\n$")
+             "^${WORK_in_depfile}/out/main\\.frag: ${WORK_in_depfile}/main\\.frag ${R_in_depfile}/my/two_lights\\.glsl ${SHADERS_in_depfile}/lib/irradiance\\.glsl ${R_in_depfile}/my/helper\\.glsl\n$")
 
 # A folder given with --root is searched before vplkit's shaders: its own lib/irradiance.glsl wins.
 file(WRITE "${WORK}/shadow/lib/irradiance.glsl" "float my_own_irradiance() { return 1.0; }\n")
