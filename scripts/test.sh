@@ -3,7 +3,7 @@
 #   1. the Release build (GCC), both tiers of tests (ctest -L fast, then -L slow);
 #   2. the sanitizer build (clang, -fsanitize=address,undefined,float-cast-overflow, with
 #      libFuzzer coverage), its fast tier;
-#   3. each fuzz target for FUZZ_SECONDS (default 20) in that same build (scripts/fuzz.sh).
+#   3. each fuzz target for FUZZ_SECONDS (default 10) in that same build (scripts/fuzz.sh).
 # Ends with a table of where the time went.
 #   scripts/test.sh          everything (what CI runs, .ci/run)
 #   scripts/test.sh --fast   the developer's loop: the Release build and its fast tier only
@@ -19,7 +19,7 @@ case "${1:-}" in
   --fast) fast=yes ;;
   *) echo "test.sh: unknown option '$1' (known: --fast)" >&2; exit 2 ;;
 esac
-fuzz_seconds=${FUZZ_SECONDS:-20}
+fuzz_seconds=${FUZZ_SECONDS:-10}
 if ! [[ "$fuzz_seconds" =~ ^[0-9]+$ ]] || [ "$fuzz_seconds" -lt 1 ] || [ "$fuzz_seconds" -gt 86400 ]; then
   echo "test.sh: FUZZ_SECONDS must be a whole number of seconds in [1, 86400], got '$fuzz_seconds'" >&2
   exit 2
