@@ -32,7 +32,8 @@ expect_failure("MTL: Kd 1e999" "kd-overflow\\.obj:1: mtllib kd\\.mtl: kd\\.mtl:2
                "${VPLKIT}" reference --scene "${H}/kd-overflow.obj" --size 16 --samples 1 --out "${H}/out.pfm")
 expect_failure("reference: coordinates of 1e10" "huge\\.obj:1: number '1e10' is larger than 1000000" "${H}/out*"
                "${VPLKIT}" reference --scene "${H}/huge.obj" --size 16 --samples 1 --out "${H}/out.pfm")
-expect_failure("MTL: mtllib names /dev/zero" "dev-zero\\.obj:1: mtllib .*dev/zero: .*dev/zero: not a regular file" "${H}/out*"
+# (The resolved path is echoed cut to 200 bytes, with its length, when the checkout is deep.)
+expect_failure("MTL: mtllib names /dev/zero" "dev-zero\\.obj:1: mtllib .*dev/zero: .*dev/zero( \\([0-9]+ bytes\\))?: not a regular file" "${H}/out*"
                "${VPLKIT}" render --scene "${H}/deep/er/still/dev-zero.obj" --size 16 --out "${H}/out.png")
 # Kd 0e999 is 0: it loads, and the reference it renders has no NaN (compare refuses non-finite pixels).
 file(WRITE "${H}/kd-zero.mtl" "newmtl m\nKd 0e999 0.5 0.5\n")
