@@ -141,8 +141,10 @@ int run_render(const session& io, const render_state& s) {
       // to the indirect image's exposure (Fig. 5.1c).
       std::unique_ptr<technique_settings> without = settings->clone();
       without->set_technique(baseline);
+      // The scene already loaded and posed is the baseline's too (the same family reads it).
       std::unique_ptr<scene> baseline_source;
-      const std::unique_ptr<pipeline> reference = make_posed_pipeline(gl.shaders, o.common, *without, baseline_source);
+      const std::unique_ptr<pipeline> reference = source ? family.make_pipeline(gl.shaders, source.get(), *without)
+                                                         : make_posed_pipeline(gl.shaders, o.common, *without, baseline_source);
       reference->draw();
       files.add_png(files.sibling("-visibility-difference", ".png"), luminance_difference(reference->indirect_output().read_image(), indirect, 8.0f * exposure));
     }
