@@ -2,7 +2,7 @@
 // stops before a GL context or a file is opened. The input is the arguments after `vplkit`,
 // separated by NUL bytes (at most 32). Every command line must end in exit code 0, 1 or 2, with
 // no exception escaping. One command_line serves every input (building its hundreds of options
-// cost ten times a parse); every 64th input is also run on a new one, and both must agree, so a
+// cost forty times a parse); every 256th input is also run on a new one, and both must agree, so a
 // state that leaked from one parse into the next would show.
 #include <cstdint>
 #include <cstdio>
@@ -30,7 +30,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   static unsigned runs = 0;
   std::ostringstream out, err;
   const int status = parser.run(static_cast<int>(argv.size()), argv.data(), out, err, vplkit::command_line_mode::check_only);
-  if (++runs % 64 == 0) {
+  if (++runs % 256 == 0) {
     std::ostringstream fresh_out, fresh_err;
     const int fresh = vplkit::run_command_line(static_cast<int>(argv.size()), argv.data(), fresh_out, fresh_err, vplkit::command_line_mode::check_only,
                                                      {vplkit::cli::add_view_command});

@@ -3,7 +3,10 @@
 // to 300 deep, whose lines are includes of each other (in every spelling the directive scanner
 // meets: spaces, comments, trailing words, missing or empty names, a name longer than a path),
 // #version lines in and out of place, CR line ends, code, and text of the input itself. The files
-// are written to a scratch folder (the expander reads files) and expanded from main.frag.
+// are written to a scratch folder (the expander reads files) and expanded from main.frag. The folder
+// is on tmpfs (/dev/shm) when there is one, and the files stay from one input to the next: each
+// input rewrites the files it has in place and removes the ones it has not, because creating and
+// deleting hundreds of files an input made the file system, not the expander, the fuzzer's cost.
 // A bad tree must end in vplkit::error naming a file; an expansion must name each file once, start
 // with main.frag, hold each file's code once, and stay within the depth and size limits.
 #include <unistd.h>
@@ -36,15 +39,23 @@ void require(bool condition, const char* what) {
 
 const fs::path& scratch() {
   static const fs::path folder = [] {
-    const fs::path root = fs::temp_directory_path() / ("vplkit-fuzz-includes-" + std::to_string(::getpid()));
+    std::error_code ignored;
+    const fs::path parent = fs::is_directory("/dev/shm", ignored) && ::access("/dev/shm", W_OK) == 0 ? fs::path("/dev/shm") : fs::temp_directory_path();
+    const fs::path root = parent / ("vplkit-fuzz-includes-" + std::to_string(::getpid()));
+    fs::remove_all(root, ignored);
+    fs::create_directories(root / "lib" / "deep");
+    static fs::path removed_at_exit = root;
     std::atexit([] {
-      std::error_code ignored;
-      fs::remove_all(fs::temp_directory_path() / ("vplkit-fuzz-includes-" + std::to_string(::getpid())), ignored);
+      std::error_code failed;
+      fs::remove_all(removed_at_exit, failed);
     });
     return root;
   }();
   return folder;
 }
+
+// How many files (main.frag, lib/f1.glsl, ...) the previous input left in the scratch folder.
+std::uint32_t files_on_disk = 0;
 
 std::string file_name(std::uint32_t index) { return index == 0 ? "main.frag" : (index % 5 == 0 ? "lib/deep/f" : "lib/f") + std::to_string(index) + ".glsl"; }
 
@@ -68,9 +79,6 @@ std::string include_line(fuzz_input& in, std::uint32_t target) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   fuzz_input in(data, size);
-  std::error_code ignored;
-  fs::remove_all(scratch(), ignored);
-  fs::create_directories(scratch() / "lib" / "deep");
   const bool chain = in.below(4) == 0;
   const std::uint32_t files = chain ? 2 + in.below(300) : 1 + in.below(40);
   std::vector<std::string> code_of(files);  // each file's one code line, to find in the expansion
@@ -98,8 +106,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         default: text += in.take(in.below(32)) + end; break;
       }
     }
-    std::ofstream(scratch() / file_name(f), std::ios::binary) << text;
+    std::ofstream(scratch() / file_name(f), std::ios::binary | std::ios::trunc) << text;
   }
+  for (std::uint32_t f = files; f < files_on_disk; ++f) fs::remove(scratch() / file_name(f));
+  files_on_disk = files;
   try {
     const vplkit::shader_library library(scratch());
     const vplkit::expanded_source source = library.expand_file("main.frag");
