@@ -200,9 +200,11 @@ int main(int argc, char** argv) {
       std::cerr << label << "\n";
       const std::string stem = label + "-" + std::to_string(width) + "x" + std::to_string(height);
       const fs::path references = fs::path(out) / "references";
-      const image reference = cached_reference(references / (stem + "-" + std::to_string(samples) + ".pfm"), source, width, height, samples, 1u);
-      const image quarter = cached_reference(references / (stem + "-" + std::to_string(samples / 4) + "-seed2.pfm"), source, width, height, samples / 4, 2u);
-      const image direct_only = cached_reference(references / (stem + "-direct.pfm"), source, width, height, 0, 1u);
+      const std::string revision = "-r" + std::to_string(monte_carlo_revision);
+      const image reference = cached_reference(references / (stem + "-" + std::to_string(samples) + revision + ".pfm"), source, width, height, samples, 1u);
+      const image quarter =
+          cached_reference(references / (stem + "-" + std::to_string(samples / 4) + "-seed2" + revision + ".pfm"), source, width, height, samples / 4, 2u);
+      const image direct_only = cached_reference(references / (stem + "-direct" + revision + ".pfm"), source, width, height, 0, 1u);
       const double noise = rmse(reference, quarter) / std::sqrt(5.0);
       const double reference_indirect = luminance_sum(difference(reference, direct_only));
       std::vector<row> rows;

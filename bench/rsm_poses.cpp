@@ -406,7 +406,7 @@ int main(int argc, char** argv) {
       const std::string key = cache.empty() ? std::string() : (fs::path(cache) / cache_key(identity)).string();
       const frame_reference reference = make_frame_reference(shaders, source, settings, stride, threads, key);
       image monte_carlo;
-      const std::string mc_file = key + "-mc" + std::to_string(mc_samples) + ".pfm";
+      const std::string mc_file = key + "-mc" + std::to_string(mc_samples) + "-r" + std::to_string(monte_carlo_revision) + ".pfm";
       if (!key.empty() && fs::exists(mc_file)) {
         monte_carlo = read_image_file(mc_file);
       } else {

@@ -9,6 +9,7 @@
 #include "frontend/cli/output.hpp"
 #include "frontend/cli/technique_options.hpp"
 #include "frontend/core/parallel.hpp"
+#include "frontend/core/text.hpp"
 #include "frontend/reference/reference.hpp"
 #include "frontend/techniques/rsm/rsm_cpu_mirror.hpp"
 
@@ -129,6 +130,12 @@ int run_monte_carlo(const session& io, const reference_state& s) {
   files.add_png(files.sibling("", ".png"), images.radiance, exposure_scale(s.common, images.radiance, io.out));
   io.out << "scene " << source.name << ", one-bounce Monte Carlo reference, " << w << "x" << h << ", " << s.options.samples << " bounce rays per pixel, seed "
          << s.options.seed << "\n";
+  if (images.back_facing_pixels > 0) {
+    const double share = 100.0 * static_cast<double>(images.back_facing_pixels) / (static_cast<double>(w) * static_cast<double>(h));
+    io.out << "note: " << images.back_facing_pixels << " pixels (" << fixed(share, 1)
+           << " %) see the back of a surface (its normal faces away from the camera); the reference, like every technique, lights a surface on "
+              "the side its normal faces, so these show only the light that side receives: reversed faces in the mesh if they are dark\n";
+  }
   files.write(io.out);
   return 0;
 }

@@ -5,6 +5,7 @@
 #include <embree3/rtcore.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstddef>
 #include <cstdio>
@@ -485,9 +486,11 @@ float camera_ray_lod(const mesh& geometry, const ray_scene::hit& hit, const glm:
   return rho > 0.0f && std::isfinite(rho) ? std::log2(rho) : 0.0f;
 }
 
-// One pixel of the Monte Carlo reference: [radiance, indirect irradiance], nothing for a miss.
+// One pixel of the Monte Carlo reference: [radiance, indirect irradiance], whether the camera
+// sees the back of the surface (its normal faces away), nothing for a miss.
 struct one_bounce_pixel {
   glm::vec3 radiance, indirect;
+  bool back_facing = false;
 };
 
 std::optional<one_bounce_pixel> trace_one_bounce_pixel(const ray_scene& rays, const scene& source, const camera_rays& primary, int x, int y, int width,
@@ -503,11 +506,16 @@ std::optional<one_bounce_pixel> trace_one_bounce_pixel(const ray_scene& rays, co
     const glm::vec3 origins[2] = {right.origin, down.origin}, directions[2] = {right.direction, down.direction};
     hit.albedo = glm::vec3(surface_albedo_alpha(source.geometry, hit.triangle, hit.barycentric, camera_ray_lod(source.geometry, hit, origins, directions)));
   }
-  const glm::vec3 n = glm::dot(hit.normal, ray.direction) < 0.0f ? hit.normal : -hit.normal;
+  // The surface is lit on the side its normal faces, wherever the camera is: as the GL techniques
+  // light it (their G-buffers, RSMs and Light Wave's receivers keep the mesh's normals), and as the
+  // bounce below treats the surfaces it meets. A reference that turned the normal towards the
+  // camera would light the back of a one-sided surface that no technique lights, and a scene
+  // with reversed faces would read as a technique's missing light.
+  const glm::vec3& n = hit.normal;
   const std::uint32_t key = static_cast<std::uint32_t>(y * width + x);
   const glm::vec3 direct = direct_irradiance(rays, source.light, irradiance, hit.position, n);
   const glm::vec3 bounce = samples > 0 ? one_bounce_irradiance(rays, source.light, irradiance, hit.position, n, samples, seed, key) : glm::vec3(0.0f);
-  return one_bounce_pixel{diffuse_radiance(hit.albedo, direct, 1.0f, bounce), bounce};
+  return one_bounce_pixel{diffuse_radiance(hit.albedo, direct, 1.0f, bounce), bounce, glm::dot(hit.normal, ray.direction) > 0.0f};
 }
 
 }  // namespace
@@ -520,6 +528,7 @@ one_bounce_images reference_one_bounce(const ray_scene& rays, const scene& sourc
   out.indirect = out.radiance;
   progress_monitor progress("one-bounce Monte Carlo reference", static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height), "pixels",
                             progress_to);
+  std::atomic<std::uint64_t> back_facing{0};
   // Rows counted from the top (the estimate's seed key is y * width + x), stored bottom-up.
   const scrambled_order order(static_cast<std::uint64_t>(height));
   parallel_for(height, threads, [&](int k) {
@@ -528,11 +537,13 @@ one_bounce_images reference_one_bounce(const ray_scene& rays, const scene& sourc
       if (const std::optional<one_bounce_pixel> pixel = trace_one_bounce_pixel(rays, source, primary, x, y, width, samples, seed)) {
         out.radiance.at(x, height - 1 - y) = glm::vec4(pixel->radiance, 1.0f);
         out.indirect.at(x, height - 1 - y) = glm::vec4(pixel->indirect, 1.0f);
+        if (pixel->back_facing) back_facing.fetch_add(1, std::memory_order_relaxed);
       }
       progress.advance();
     }
   });
   progress.finish();
+  out.back_facing_pixels = back_facing.load();
   return out;
 }
 

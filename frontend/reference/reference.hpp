@@ -148,7 +148,15 @@ std::vector<std::uint8_t> rsm_covered_receivers(const rsm_pass_buffers& buffers,
 struct one_bounce_images {
   image radiance;  ///< albedo / pi * (E_direct + E_one_bounce), what the camera sees
   image indirect;  ///< E_one_bounce at each pixel's surface
+  /// Pixels whose surface faces away from the camera (the normal points away from the eye). Every
+  /// surface is lit on the side its normal faces, by the reference as by the GL techniques, so
+  /// these see only what reaches that side: usually the sign of reversed faces in the mesh.
+  std::uint64_t back_facing_pixels = 0;
 };
+
+/// The revision of the Monte Carlo reference's results: tools that cache its images key them by it.
+/// 2: the surface the camera sees is lit on its normal's side (1 turned the normal to the camera).
+inline constexpr int monte_carlo_revision = 2;
 
 /// The one-bounce Monte Carlo reference of a scene seen by its camera (`rays` of its geometry).
 /// Throws vplkit::error when the progress deadline stops it.

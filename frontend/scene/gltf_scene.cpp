@@ -270,6 +270,8 @@ class reader {
       if (material.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0)
         note("metallicRoughnessTexture", "surfaces are diffuse: the base colour is their albedo");
       if (material.alphaMode == "BLEND") note("alphaMode BLEND", "blended surfaces are drawn opaque");
+      if (material.doubleSided)
+        note("doubleSided materials", "every surface is lit on the side its normal faces, the references' included; its back gets no light");
       for (const auto& [extension, value] : material.extensions)
         if (!extension_read(extension)) note("material extension " + extension, "the base colour alone is the albedo");
     }

@@ -212,3 +212,39 @@ TEST_CASE("the radial pattern's own samples with ray-cast visibility: no occlude
   const double hidden_share = parallel_rectangle(2 * b, 2 * b, h) / parallel_rectangle(a, a, h);
   CHECK(shadowed.texels[0].x / open.texels[0].x == doctest::Approx(1.0 - hidden_share).epsilon(0.15));
 }
+
+TEST_CASE("the Monte Carlo reference lights the surface the camera sees on its normal's side, as the GL techniques do, and counts back faces") {
+  // A square at z = 0 filling the view of a camera on +z. With its normal towards the camera and the
+  // spot on the camera's side it is lit; reversed (normal -z) the camera sees its back and the lit
+  // side is away from the light: black, every pixel counted. With the spot behind it, the reversed
+  // square is lit on its normal's side though the camera sees its back: the G-buffer and the
+  // direct light of every GL technique keep the normal, and so does the reference.
+  const auto square = [](float normal_z, float light_z) {
+    scene s;
+    s.name = "square";
+    if (normal_z > 0.0f) add_quad(s.geometry, {-2, -2, 0}, {2, -2, 0}, {2, 2, 0}, {-2, 2, 0}, {0, 0, 1}, glm::vec3(0.5f));
+    else add_quad(s.geometry, {-2, -2, 0}, {-2, 2, 0}, {2, 2, 0}, {2, -2, 0}, {0, 0, -1}, glm::vec3(0.5f));
+    s.view.position = {0.0f, 0.0f, 3.0f};
+    s.view.target = {0.0f, 0.0f, 0.0f};
+    s.light.spot.position = {0.0f, 0.0f, light_z};
+    s.light.spot.direction = {0.0f, 0.0f, light_z > 0.0f ? -1.0f : 1.0f};
+    s.light.spot.intensity = glm::vec3(4.0f);
+    s.light.spot.cos_inner = std::cos(glm::radians(70.0f));
+    s.light.spot.cos_outer = std::cos(glm::radians(80.0f));
+    return reference_one_bounce(s, 16, 16, 0, 1u, 1);
+  };
+  const one_bounce_images front = square(1.0f, 2.0f), back_dark = square(-1.0f, 2.0f), back_lit = square(-1.0f, -2.0f);
+  CHECK(front.back_facing_pixels == 0);
+  CHECK(back_dark.back_facing_pixels == 16 * 16);
+  CHECK(back_lit.back_facing_pixels == 16 * 16);
+  float front_sum = 0.0f, dark_max = 0.0f, lit_sum = 0.0f;
+  for (std::size_t i = 0; i < front.radiance.texels.size(); ++i) {
+    front_sum += front.radiance.texels[i].x;
+    dark_max = std::max(dark_max, back_dark.radiance.texels[i].x);
+    lit_sum += back_lit.radiance.texels[i].x;
+  }
+  CHECK(front_sum > 0.0f);
+  CHECK(dark_max == 0.0f);
+  // The spot 2 in front of the square's lit side either way: the same light, mirrored.
+  CHECK(lit_sum == doctest::Approx(front_sum).epsilon(1e-4));
+}
