@@ -25,6 +25,9 @@ layout(location = 4) in vec3 sample_position;  // where the vertex's light is ev
 #endif
 
 uniform mat4 view_projection;
+// The same position, bit for bit, in every program that draws the mesh: Light Wave's main pass
+// tests its depth EQUAL to a depth pre-pass drawn with scene.vert.
+invariant gl_Position;
 uniform vec3 eye;
 uniform sampler2D vpl_texture;
 uniform int vpl_count;

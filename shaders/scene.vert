@@ -6,6 +6,9 @@ layout(location = 1) in vec3 normal;
 layout(location = 2) in vec3 albedo;
 layout(location = 5) in vec2 texcoord;
 uniform mat4 view_projection;
+// The same position, bit for bit, in every program that draws the mesh: Light Wave's main pass
+// tests its depth EQUAL to a depth pre-pass drawn with scene.vert.
+invariant gl_Position;
 out vec3 world_position;
 out vec3 world_normal;
 out vec3 surface_albedo;

@@ -5,6 +5,10 @@
 // fragment below the cutoff is discarded in every pass that draws the scene, the shadow and depth
 // passes included, so that a cut-out is not seen, lit, reflected or cast as a shadow.
 // Included by every fragment shader that draws a mesh after shaders/scene.vert (or lightwave.vert).
+// VPLKIT_MATERIAL_NO_ALPHA_TEST: a pass without the alpha test, for a scene without cut-outs or a
+// pass drawn after a depth pre-pass that did it (depth test EQUAL: the pre-pass wrote no depth
+// where a cut-out is). A shader without discard has its depth tested before it runs, and a
+// depth-only one need not run at all: Light Wave's shadow maps and main pass.
 #ifndef VPLKIT_SURFACE_MATERIAL_GLSL
 #define VPLKIT_SURFACE_MATERIAL_GLSL
 
@@ -22,7 +26,9 @@ vec3 material_albedo(vec3 factor) {
   vec4 texel = vec4(1.0);
   if (material_textured != 0)
     texel = texture(material_texture, mat2(material_texture_matrix.xy, material_texture_matrix.zw) * surface_texcoord + material_texture_offset);
+#ifndef VPLKIT_MATERIAL_NO_ALPHA_TEST
   if (material_alpha_factor * texel.a < material_alpha_cutoff) discard;
+#endif
   return factor * texel.rgb;
 }
 

@@ -520,6 +520,13 @@ void check_mesh(const mesh& geometry, const std::string& name) {
   check_materials(geometry, name);
 }
 
+bool has_alpha_cutouts(const mesh& geometry) {
+  if (!geometry.materials) return false;
+  for (const surface_material& material : geometry.materials->materials)
+    if (material.alpha_mask) return true;
+  return false;
+}
+
 void check_materials(const mesh& geometry, const std::string& name) {
   const auto fail = [&](const std::string& what) { throw error(name + ": " + what); };
   if (geometry.material_ranges.empty()) return;

@@ -110,6 +110,9 @@ void check_mesh(const mesh& geometry, const std::string& name);
 /// materials and textures that exist, finite transforms, alpha values in [0, 1], texture levels
 /// whose pixels match their size.
 void check_materials(const mesh& geometry, const std::string& name);
+/// Whether a material of the mesh is alpha-tested (MASK): the passes that draw it need the alpha
+/// test; a mesh without cut-outs can be drawn by shaders without it (VPLKIT_MATERIAL_NO_ALPHA_TEST).
+bool has_alpha_cutouts(const mesh& geometry);
 
 /// Throws vplkit::error starting with `owner` when the camera has a non-finite value, bad near/far
 /// planes, a field of view outside (0, 180) degrees, its target at its position or its up vector

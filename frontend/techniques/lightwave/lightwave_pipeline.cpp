@@ -414,7 +414,8 @@ lightwave_pipeline::lightwave_pipeline(const shader_library& shaders, const scen
       settings_(checked(settings)),
       technique_(find_lightwave_technique(settings.technique)),
       mesh_(source.geometry),
-      depth_program_(load_program(shaders, "scene.vert", "depth_only.frag")),
+      depth_program_(load_program(shaders, "scene.vert", "depth_only.frag",
+                                  has_alpha_cutouts(source.geometry) ? shader_defines{} : shader_defines{{"VPLKIT_MATERIAL_NO_ALPHA_TEST", "1"}})),
       shadow_framebuffer_(generate_framebuffer()),
       target_(settings.width, settings.height, {settings.format, settings.format, settings.format}, true) {
   if (source.light.kind != light_kind::spot) throw error("Light Wave needs a spot light; scene " + source.name + " has a directional one");
@@ -430,7 +431,9 @@ lightwave_pipeline::lightwave_pipeline(const shader_library& shaders, const scen
                                   {"VPLKIT_LIGHTWAVE_ENERGY", energy},
                                   {"VPLKIT_LIGHTWAVE_INDIRECT", technique_.mode >= lightwave_mode::unshadowed ? "1" : "0"},
                                   {"VPLKIT_MAX_SHADOW_MAPS", std::to_string(lightwave_max_shadow_maps)}};
-  main_program_ = load_program(shaders, "lightwave.vert", "lightwave.frag", defines);
+  shader_defines main_defines = defines;
+  if (depth_prepass()) main_defines.emplace_back("VPLKIT_MATERIAL_NO_ALPHA_TEST", "1");
+  main_program_ = load_program(shaders, "lightwave.vert", "lightwave.frag", main_defines);
   capture_program_ = link_program(
       "lightwave.vert (transform feedback)",
       {{shader_stage::vertex,
@@ -824,7 +827,23 @@ void lightwave_pipeline::draw_main_pass() {
   glBindTexture(GL_TEXTURE_2D, vpl_texture_.get());
   glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_2D_ARRAY, shadow_maps_.get());
+  if (depth_prepass()) {
+    // The shadowed pass's fragments are the costly part of the frame: a depth pre-pass first, so
+    // that only the visible one of each pixel runs them (its shader has no discard, so its depth
+    // is tested before it runs; the pre-pass did the alpha test).
+    depth_program_.use();
+    depth_program_.set("view_projection", camera_projection_matrix(scene_.view, static_cast<float>(settings_.width) / static_cast<float>(settings_.height)) *
+                                              camera_view_matrix(scene_.view));
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    mesh_.draw(depth_program_);
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDepthFunc(GL_EQUAL);
+    glDepthMask(GL_FALSE);
+    main_program_.use();
+  }
   mesh_.draw(main_program_);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
   timer_.end();
   check_gl("rendering scene " + scene_.name + " with " + technique_.name);
   view_valid_ = true;

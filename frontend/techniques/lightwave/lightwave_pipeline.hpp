@@ -270,6 +270,9 @@ class lightwave_pipeline final : public pipeline {
   bool casters_follow_camera() const {
     return settings_.shadow_variant == lightwave_shadow_variant::importance && technique_.mode == lightwave_mode::accurate;
   }
+  /// Whether the main pass draws a depth pre-pass first: the shadowed modes, whose fragments look
+  /// up every indirect shadow map.
+  bool depth_prepass() const { return technique_.mode >= lightwave_mode::accurate; }
   void set_vertex_uniforms(const program& target) const;
 
   scene scene_;

@@ -769,3 +769,56 @@ TEST_CASE("lightwave_cluster_casters: groups of about equal importance that part
   CHECK(lightwave_cluster_casters(std::vector<lightwave_cluster_vpl>(vpls.begin(), vpls.begin() + 3), 20, 1.0f).size() == 2u);  // one has no importance
   CHECK(lightwave_cluster_casters({}, 20, 1.0f).empty());
 }
+
+TEST_CASE("Light Wave's shadowed main pass after its depth pre-pass: no pixel lost, and a cut-out is not drawn, lit or cast as a shadow") {
+  // The shadowed modes draw a depth pre-pass and then shade with the depth test EQUAL and no alpha
+  // test; the shadow maps of a scene without cut-outs are drawn without the alpha test. (1) Every
+  // pixel of the accurate image is at least the direct-only image's (which has no pre-pass): a
+  // position that differed between the two programs would leave black holes. (2) A panel under
+  // the light whose MASK material cuts it out entirely changes the image by a small fraction of
+  // what the same panel opaque does: it is neither drawn nor shadows the floor.
+  const auto render = [](const scene& s, const char* technique) { return lightwave_pipeline(test_shaders(), s, small(technique)).render().radiance; };
+  const auto with_panel = [](bool cut_out) {
+    scene s = room_scene(false);
+    mesh& m = s.geometry;
+    const auto first = static_cast<std::uint32_t>(m.indices.size());
+    add_quad(m, {0.2f, 1.2f, 0.8f}, {1.8f, 1.2f, 0.8f}, {1.8f, 1.2f, -0.8f}, {0.2f, 1.2f, -0.8f}, {0, 1, 0}, glm::vec3(0.1f, 0.8f, 0.1f));
+    if (cut_out) {
+      auto library = std::make_shared<material_library>();
+      surface_material material;
+      material.name = "cut out";
+      material.alpha_mask = true;
+      material.alpha_factor = 0.0f;
+      library->materials.push_back(material);
+      m.materials = library;
+      m.material_ranges.push_back({first, 6, 0});
+    }
+    return s;
+  };
+  const scene empty = room_scene(false), cut = with_panel(true), opaque = with_panel(false);
+  REQUIRE(has_alpha_cutouts(cut.geometry));
+  REQUIRE_FALSE(has_alpha_cutouts(opaque.geometry));
+  for (const scene* s : {&empty, &cut}) {
+    const image direct = render(*s, "lightwave-direct"), accurate = render(*s, "lightwave-accurate");
+    int darker = 0;
+    for (std::size_t i = 0; i < direct.texels.size(); ++i)
+      for (int c = 0; c < 3; ++c)
+        if (accurate.texels[i][c] < direct.texels[i][c] - 1e-6f) ++darker;
+    CAPTURE(s->name);
+    CHECK(darker == 0);
+  }
+  const auto difference = [](const image& a, const image& b) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < a.texels.size(); ++i) sum += glm::length(glm::dvec3(a.texels[i]) - glm::dvec3(b.texels[i]));
+    return sum;
+  };
+  for (const char* technique : {"lightwave-direct", "lightwave-unshadowed", "lightwave-accurate"}) {
+    const image base = render(empty, technique);
+    const double cut_change = difference(render(cut, technique), base), opaque_change = difference(render(opaque, technique), base);
+    CAPTURE(technique);
+    CAPTURE(cut_change);
+    CAPTURE(opaque_change);
+    CHECK(opaque_change > 0.0);
+    CHECK(cut_change <= 0.02 * opaque_change);
+  }
+}
