@@ -519,6 +519,50 @@ int lightwave_pipeline::lit_vpl_count() const {
   return static_cast<int>(settings_.energy == lightwave_energy::flux ? flux_vpls_.size() : vpls_.size());
 }
 
+int lightwave_pipeline::summed_vpl_count() const {
+  return static_cast<int>(settings_.energy == lightwave_energy::flux ? receiver_vpls_.size() : vpls_.size());
+}
+
+std::vector<lightwave_flux_vpl<float>> lightwave_merge_ray_samples(const std::vector<lightwave_flux_vpl<float>>& vpls, const std::vector<int>& layout_index,
+                                                                   int rays, float plane_tolerance) {
+  if (layout_index.size() != vpls.size() || rays < 1) throw error("lightwave_merge_ray_samples: one layout index per VPL and at least one ray");
+  struct merged {
+    glm::dvec3 weighted_position{0.0}, flux{0.0};
+    double weight = 0.0, radius_squared = 0.0;
+    glm::vec3 first_position{0.0f}, normal{0.0f};
+  };
+  std::vector<merged> out;
+  std::vector<std::vector<std::size_t>> of_ray(static_cast<std::size_t>(rays));  // indices into `out`
+  for (std::size_t i = 0; i < vpls.size(); ++i) {
+    const lightwave_flux_vpl<float>& v = vpls[i];
+    std::vector<std::size_t>& candidates = of_ray[static_cast<std::size_t>(layout_index[i] % rays)];
+    merged* target = nullptr;
+    for (std::size_t k : candidates)
+      if (glm::dot(out[k].normal, v.normal) > 0.999f && std::abs(glm::dot(v.position - out[k].first_position, out[k].normal)) <= plane_tolerance) {
+        target = &out[k];
+        break;
+      }
+    if (!target) {
+      candidates.push_back(out.size());
+      out.push_back({});
+      target = &out.back();
+      target->first_position = v.position;
+      target->normal = v.normal;
+    }
+    const double weight = static_cast<double>(v.flux.x) + v.flux.y + v.flux.z;
+    target->weighted_position += weight * glm::dvec3(v.position);
+    target->weight += weight;
+    target->flux += glm::dvec3(v.flux);
+    target->radius_squared += static_cast<double>(v.radius) * v.radius;
+  }
+  std::vector<lightwave_flux_vpl<float>> result;
+  result.reserve(out.size());
+  for (const merged& m : out)
+    result.push_back({m.weight > 0.0 ? glm::vec3(m.weighted_position / m.weight) : m.first_position, m.normal, glm::vec3(m.flux),
+                      static_cast<float>(std::sqrt(m.radius_squared))});
+  return result;
+}
+
 void lightwave_pipeline::build_flux_vpls(const glm::mat4& light_view_projection) {
   const spot_light<float>& light = scene_.light.spot;
   // What the light sees: world position (w = 1 where a surface is), normal and albedo per texel.
@@ -617,6 +661,7 @@ void lightwave_pipeline::build_vpls() {
   vpls_.clear();
   flux_vpls_.clear();
   flux_layout_index_.clear();
+  receiver_vpls_.clear();
   if (settings_.energy == lightwave_energy::thesis) {
     if (max_distance == 0.0f)
       for (int corner = 0; corner < 8; ++corner) {
@@ -629,24 +674,28 @@ void lightwave_pipeline::build_vpls() {
   } else {
     layout_ = {light.position, light.direction, settings_.angle_deg, settings_.per_ray, 0.0f};
     build_flux_vpls(glm::perspective(2.0f * spot_light_frustum_half_angle(light), 1.0f, g.near_plane, g.far_plane) * g.light_view);
+    // The receivers sum a ray's samples on one plane as one VPL (a thousandth of the scene's
+    // radius: one plane); the shadow casters keep every sample.
+    receiver_vpls_ = lightwave_merge_ray_samples(flux_vpls_, flux_layout_index_, lightwave_ray_count(settings_.angle_deg), 1e-3f * g.radius);
   }
   layout_.max_distance = max_distance;
-  const vpl_view view = view_of(settings_, vpls_, flux_vpls_);
 
-  // VPL texture, a row per VPL: thesis [position | attenuation], [normal | 0]; flux [position |
-  // radius], [normal | 0], [flux | 0]. At least one row (a light that meets nothing has none).
+  // VPL texture, a row per VPL the vertex stage sums: thesis [position | attenuation], [normal |
+  // 0]; flux (the receivers' VPLs) [position | radius], [normal | 0], [flux | 0]. At least one row
+  // (a light that meets nothing has none).
   const int columns = settings_.energy == lightwave_energy::thesis ? 2 : 3;
-  const std::size_t rows = std::max<std::size_t>(view.size(), 1);
+  const std::size_t rows = std::max<std::size_t>(static_cast<std::size_t>(summed_vpl_count()), 1);
   std::vector<glm::vec4> texels(rows * static_cast<std::size_t>(columns), glm::vec4(0.0f));
   for (std::size_t i = 0; i < vpls_.size(); ++i) {
     texels[2 * i] = glm::vec4(vpls_[i].position, vpls_[i].attenuation);
     texels[2 * i + 1] = glm::vec4(vpls_[i].normal, 0.0f);
   }
-  for (std::size_t i = 0; i < flux_vpls_.size(); ++i) {
-    texels[3 * i] = glm::vec4(flux_vpls_[i].position, flux_vpls_[i].radius);
-    texels[3 * i + 1] = glm::vec4(flux_vpls_[i].normal, 0.0f);
-    texels[3 * i + 2] = glm::vec4(flux_vpls_[i].flux, 0.0f);
-  }
+  if (settings_.energy == lightwave_energy::flux)
+    for (std::size_t i = 0; i < receiver_vpls_.size(); ++i) {
+      texels[3 * i] = glm::vec4(receiver_vpls_[i].position, receiver_vpls_[i].radius);
+      texels[3 * i + 1] = glm::vec4(receiver_vpls_[i].normal, 0.0f);
+      texels[3 * i + 2] = glm::vec4(receiver_vpls_[i].flux, 0.0f);
+    }
   check_texture_size(columns, static_cast<int>(rows), "the Light Wave VPL texture");
   vpl_texture_ = gl_texture(generate_texture());
   glBindTexture(GL_TEXTURE_2D, vpl_texture_.get());
@@ -855,7 +904,7 @@ void lightwave_pipeline::set_vertex_uniforms(const program& target) const {
                                     camera_view_matrix(scene_.view));
   target.set("eye", scene_.view.position);
   target.set("vpl_texture", 0);
-  target.set("vpl_count", lit_vpl_count());
+  target.set("vpl_count", summed_vpl_count());
   set_uniforms(target, "shading", settings_.shading);
   set_uniforms(target, "irradiance", settings_.irradiance);
 }

@@ -42,8 +42,9 @@ enum class lightwave_shadow_variant { importance = 0, thesis = 1 };
 enum class lightwave_energy { thesis = 0, flux = 1 };
 
 /// The side of the square map of what the spot light sees (position, normal, albedo) in which the
-/// flux layout looks its rays up.
-constexpr int lightwave_surface_map_size = 512;
+/// flux layout looks its rays up: under half a degree a texel for a cone 120 degrees across, finer than
+/// the layout's samples (the VPL sits where its ray meets the texel's plane, not at the texel).
+constexpr int lightwave_surface_map_size = 256;
 
 struct lightwave_technique {
   const char* name = "";
@@ -171,6 +172,17 @@ struct lightwave_cluster_vpl {
 /// group's. Deterministic: no seed, so the shadows do not depend on one.
 std::vector<lightwave_shadow_caster> lightwave_cluster_casters(const std::vector<lightwave_cluster_vpl>& vpls, int count, float normal_scale);
 
+/// The flux VPLs the receivers sum: the samples of one ray of the layout (layout index modulo
+/// `rays`) that met one plane (unit normals within 1e-3 of each other, positions within
+/// `plane_tolerance` of the first's plane) merged into one VPL: their flux summed, at their
+/// flux-weighted mean position, with the radius of their patches' total area (sqrt of the sum
+/// of the radii squared). Beyond a few patch radii the merged VPL gives the receivers the light
+/// of its samples (the same flux from the same patch of surface); closer, the exitance of their
+/// joint patch. Samples of a ray that met different surfaces stay apart. The order: by the first
+/// sample's place in `vpls`. The capture sums per_ray times fewer VPLs.
+std::vector<lightwave_flux_vpl<float>> lightwave_merge_ray_samples(const std::vector<lightwave_flux_vpl<float>>& vpls, const std::vector<int>& layout_index,
+                                                                   int rays, float plane_tolerance);
+
 /// The view-projection of a shadow map from `eye` that holds the points of weight > 0: looking at
 /// their weighted mean direction, with the field of view of the farthest of them plus a margin
 /// (at most 160 degrees; points beyond do not vote). Looks along `fallback_direction` with
@@ -230,8 +242,12 @@ class lightwave_pipeline final : public pipeline {
   const std::vector<lightwave_vpl<float>>& vpls() const { return vpls_; }
   const std::vector<lightwave_flux_vpl<float>>& flux_vpls() const { return flux_vpls_; }
   const std::vector<int>& flux_vpl_layout_index() const { return flux_layout_index_; }
-  /// The VPLs the vertex stage sums: vpls().size() or flux_vpls().size().
+  /// The VPLs that carry light: vpls().size() or flux_vpls().size().
   int lit_vpl_count() const;
+  /// Flux energy: the VPLs the receivers sum (lightwave_merge_ray_samples of flux_vpls()).
+  const std::vector<lightwave_flux_vpl<float>>& receiver_vpls() const { return receiver_vpls_; }
+  /// The VPLs the vertex stage sums: vpls().size() or receiver_vpls().size().
+  int summed_vpl_count() const;
   const lightwave_layout_settings<float>& layout() const { return layout_; }
   const lightwave_cone_settings<float>& cone() const { return cone_; }
   /// Each vertex's indirect colour from the main pass's vertex stage (transform feedback): the
@@ -282,6 +298,7 @@ class lightwave_pipeline final : public pipeline {
   lightwave_cone_settings<float> cone_;
   std::vector<lightwave_vpl<float>> vpls_;
   std::vector<lightwave_flux_vpl<float>> flux_vpls_;
+  std::vector<lightwave_flux_vpl<float>> receiver_vpls_;
   std::vector<int> flux_layout_index_;
   std::vector<glm::mat4> shadow_matrices_;
   std::vector<lightwave_shadow_caster> casters_;

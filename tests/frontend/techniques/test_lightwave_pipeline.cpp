@@ -61,15 +61,16 @@ TEST_CASE("Light Wave vertex stage equals the CPU sum of Eq. 4.5 over all 6485 V
   require_parity(compare("Light Wave vertex stage (transform feedback)", gpu4, cpu4, inputs, {1e-7f, 2e-5f, 128, 0.0, "6485 terms of Eq. 4.5"}, 3));
 }
 
-TEST_CASE("Light Wave flux energy: the captured indirect light equals the CPU sum over its VPLs at every receiver's sample point") {
+TEST_CASE("Light Wave flux energy: the captured indirect light equals the CPU sum over the receivers' VPLs at every receiver's sample point") {
   const scene boxes = make_boxes_scene();
   lightwave_pipeline pipeline(test_shaders(), boxes, small("lightwave-unshadowed"));
   const std::vector<glm::vec3> gpu = pipeline.capture_vertex_indirect();
   const mesh& receivers = pipeline.drawn_mesh();
   REQUIRE(gpu.size() == receivers.vertices.size());
   REQUIRE(receivers.triangle_count() > boxes.geometry.triangle_count());  // subdivided
-  const auto& vpls = pipeline.flux_vpls();
-  REQUIRE(vpls.size() > 1000u);
+  const auto& vpls = pipeline.receiver_vpls();
+  REQUIRE(vpls.size() > 500u);
+  REQUIRE(vpls.size() < pipeline.flux_vpls().size());  // a ray's samples on one plane merged
   kernel_inputs inputs;
   inputs.width = static_cast<int>(gpu.size());
   inputs.height = 1;
@@ -84,7 +85,7 @@ TEST_CASE("Light Wave flux energy: the captured indirect light equals the CPU su
                                                 pipeline.settings().irradiance),
                         0.0f);
   }
-  // Thousands of terms (two divides each) summed in the same order: 2e-5 relative, 1e-7 absolute.
+  // Hundreds of terms (two divides each) summed in the same order: 2e-5 relative, 1e-7 absolute.
   require_parity(compare("Light Wave flux vertex stage (transform feedback)", gpu4, cpu4, inputs, {1e-7f, 2e-5f, 128, 0.0, "flux VPLs of Eq. 3.2"}, 3));
 }
 
@@ -821,4 +822,47 @@ TEST_CASE("Light Wave's shadowed main pass after its depth pre-pass: no pixel lo
     CHECK(opaque_change > 0.0);
     CHECK(cut_change <= 0.02 * opaque_change);
   }
+}
+
+TEST_CASE("lightwave_merge_ray_samples: a ray's samples on one plane become one VPL of their flux; far away it lights as they do; planes stay apart") {
+  // Ray 0: five samples on the floor (y = 0), spread over a patch of 0.1; ray 1: three on the floor
+  // and two on a wall (x = 1). Layout index = sample * rays + ray with rays = 2.
+  std::vector<lightwave_flux_vpl<float>> vpls;
+  std::vector<int> layout;
+  const glm::vec3 up(0, 1, 0), wall(-1, 0, 0);
+  for (int sample = 0; sample < 5; ++sample) {
+    vpls.push_back({glm::vec3(0.02f * static_cast<float>(sample), 0.0f, 0.01f * static_cast<float>(sample % 3)), up,
+                    glm::vec3(0.1f + 0.05f * static_cast<float>(sample), 0.2f, 0.05f), 0.03f});
+    layout.push_back(sample * 2);
+    const bool on_wall = sample >= 3;
+    vpls.push_back({on_wall ? glm::vec3(1.0f, 0.3f + 0.02f * static_cast<float>(sample), 0.0f) : glm::vec3(0.5f + 0.02f * static_cast<float>(sample), 0.0f, 0.2f),
+                    on_wall ? wall : up, glm::vec3(0.3f), 0.04f});
+    layout.push_back(sample * 2 + 1);
+  }
+  const std::vector<lightwave_flux_vpl<float>> merged = lightwave_merge_ray_samples(vpls, layout, 2, 1e-3f);
+  REQUIRE(merged.size() == 3u);  // ray 0's floor, ray 1's floor, ray 1's wall
+  // Flux is conserved, per merged VPL and in total; the radius is the joint patch's.
+  glm::dvec3 total_in(0.0), total_out(0.0);
+  for (const auto& v : vpls) total_in += glm::dvec3(v.flux);
+  for (const auto& v : merged) total_out += glm::dvec3(v.flux);
+  CHECK(total_out.x == doctest::Approx(total_in.x).epsilon(1e-6));
+  CHECK(total_out.y == doctest::Approx(total_in.y).epsilon(1e-6));
+  CHECK(merged[0].radius == doctest::Approx(0.03 * std::sqrt(5.0)).epsilon(1e-6));
+  CHECK(merged[1].flux.x == doctest::Approx(0.9f));
+  CHECK(merged[2].normal == wall);
+  CHECK(merged[2].flux.x == doctest::Approx(0.6f));
+  CHECK(merged[2].radius == doctest::Approx(0.04 * std::sqrt(2.0)).epsilon(1e-6));
+  // Far from the patch (50x its size) the merged VPL gives the irradiance of its samples.
+  for (const glm::vec3& receiver : {glm::vec3(3.0f, 4.0f, 1.0f), glm::vec3(-4.0f, 2.0f, -3.0f), glm::vec3(0.5f, 5.0f, 0.0f)}) {
+    const glm::vec3 n = glm::normalize(-receiver);
+    glm::dvec3 separate(0.0);
+    for (int sample = 0; sample < 5; ++sample) separate += glm::dvec3(lightwave_bounce_irradiance(receiver, n, vpls[static_cast<std::size_t>(2 * sample)], 0.01f));
+    const glm::vec3 together = lightwave_bounce_irradiance(receiver, n, merged[0], 0.01f);
+    CAPTURE(receiver);
+    CHECK(together.x == doctest::Approx(separate.x).epsilon(2e-3));
+    CHECK(together.y == doctest::Approx(separate.y).epsilon(2e-3));
+  }
+  // A tolerance of 0 still merges samples exactly on one plane; mismatched inputs are refused.
+  CHECK(lightwave_merge_ray_samples(vpls, layout, 2, 0.0f).size() == 3u);
+  CHECK_THROWS_AS(lightwave_merge_ray_samples(vpls, std::vector<int>(3, 0), 2, 1e-3f), error);
 }
