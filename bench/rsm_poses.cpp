@@ -174,7 +174,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> sequence_techniques = {rsm_pipeline_settings().technique};
   float step = 0.5f, jump = 10.0f;
   std::vector<float> blends = {1.0f};
-  int timing = 0, timing_size = 512;
+  int timing = 0, timing_size = 512, coverage_blocks = default_coverage_blocks;
   app.add_option("--poses", poses, "pose file: one frame per line, --scene FILE --camera ... --light ...")->required();
   app.add_option("--size", size, "image side (the indirect buffer: half)")->check(CLI::Range(16, 2048))->capture_default_str();
   app.add_option("--rsm-size", rsm_size, "RSM side")->check(CLI::Range(16, 4096))->capture_default_str();
@@ -195,6 +195,9 @@ int main(int argc, char** argv) {
   app.add_option("--timing", timing, "timing mode: frames timed per configuration (median), the default technique with and without "
                                      "coverage, interleaved, on every --every-th frame; 0: the targets table instead")
       ->check(CLI::Range(0, 100))->capture_default_str();
+  app.add_option("--coverage-blocks", coverage_blocks, "the coverage's blocks per RSM side of every technique with coverage (targets) and of the "
+                                                     "timed configuration with it (timing)")
+      ->check(CLI::Range(1, rsm_coverage_max_blocks))->capture_default_str();
   app.add_option("--timing-size", timing_size, "timing mode: image side (the RSM: --rsm-size)")->check(CLI::Range(16, 4096))->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   try {
@@ -222,6 +225,7 @@ int main(int argc, char** argv) {
         rsm_pipeline_settings with, without;
         with.width = with.height = timing_size;
         with.rsm_size = rsm_size;
+        with.coverage_blocks = coverage_blocks;
         without = with;
         without.coverage_blocks = 0;
         const std::vector<double> ms = interleaved_frame_ms(shaders, source, {without, with}, timing);
@@ -351,12 +355,12 @@ int main(int argc, char** argv) {
       std::cout << md.str() << "\nwrote " << fs::absolute(fs::path(out) / "flicker.md").string() << "\n";
       return 0;
     }
-    const std::vector<technique_row> techniques = {{"radial", "rsm-radial"},
-                                                   {"alg6", "rsm-alg6"},
-                                                   {"alg6-ray", "rsm-alg6-ray"},
+    const std::vector<technique_row> techniques = {{"radial", "rsm-radial", false, coverage_blocks},
+                                                   {"alg6", "rsm-alg6", false, coverage_blocks},
+                                                   {"alg6-ray", "rsm-alg6-ray", false, coverage_blocks},
                                                    {"alg6-ray without coverage", "rsm-alg6-ray", false, 0},
-                                                   {"original", "rsm-original"},
-                                                   {"original (printed weights)", "rsm-original", true}};
+                                                   {"original", "rsm-original", false, coverage_blocks},
+                                                   {"original (printed weights)", "rsm-original", true, coverage_blocks}};
     // The targets of a candidate for the default technique, frame by frame.
     struct targets {
       spread rmse_ratio, leak_ratio, image_ratio;

@@ -16,6 +16,7 @@
 #include "frontend/gl/debug_output.hpp"
 #include "frontend/core/error.hpp"
 #include "frontend/core/named_table.hpp"
+#include "frontend/core/parallel.hpp"
 #include "frontend/scene/camera.hpp"
 
 namespace vplkit {
@@ -296,12 +297,12 @@ glm::mat4 look_along(const glm::vec3& position, const glm::vec3& direction) {
 }
 
 // Points spread over the scene's surface in proportion to area (systematic over the triangles'
-// cumulative areas, barycentric coordinates from the hash), kept when the camera can see them
-// (inside its frustum, facing it): what the shadow casters are chosen and aimed for. Vertices
-// alone would weigh a 36-triangle box scene by its corners, and without the camera test the
-// underside of the floor would draw VPLs below it.
-std::vector<lightwave_receiver_point> visible_surface_points(const mesh& geometry, const camera& view, float aspect, int count) {
-  const glm::mat4 view_projection = camera_projection_matrix(view, aspect) * camera_view_matrix(view);
+// cumulative areas, barycentric coordinates from the hash), with a camera kept when it can see
+// them (inside its frustum, facing it): what the shadow casters are chosen and aimed for. Vertices
+// alone would weigh a 36-triangle box scene by its corners; for the thesis energy, without the
+// camera test the underside of the floor would draw VPLs below it.
+std::vector<lightwave_receiver_point> surface_points(const mesh& geometry, const camera* view, float aspect, int count) {
+  const glm::mat4 view_projection = view ? camera_projection_matrix(*view, aspect) * camera_view_matrix(*view) : glm::mat4(1.0f);
   std::vector<double> cumulative;
   double total = 0.0;
   for (std::size_t t = 0; t + 2 < geometry.indices.size(); t += 3) {
@@ -325,9 +326,11 @@ std::vector<lightwave_receiver_point> visible_surface_points(const mesh& geometr
     const glm::vec3 normal = (1.0f - u - v) * a.normal + u * b.normal + v * c.normal;
     if (!(glm::length(normal) > 0.0f)) continue;
     const glm::vec3 position = (1.0f - u - v) * a.position + u * b.position + v * c.position;
-    const glm::vec4 clip = view_projection * glm::vec4(position, 1.0f);
-    const bool in_view = clip.w > 0.0f && std::abs(clip.x) <= clip.w && std::abs(clip.y) <= clip.w;
-    if (!in_view || !(glm::dot(normal, view.position - position) > 0.0f)) continue;
+    if (view) {
+      const glm::vec4 clip = view_projection * glm::vec4(position, 1.0f);
+      const bool in_view = clip.w > 0.0f && std::abs(clip.x) <= clip.w && std::abs(clip.y) <= clip.w;
+      if (!in_view || !(glm::dot(normal, view->position - position) > 0.0f)) continue;
+    }
     points.push_back({position, glm::normalize(normal)});
   }
   return points;
@@ -524,8 +527,9 @@ int lightwave_pipeline::summed_vpl_count() const {
 }
 
 std::vector<lightwave_flux_vpl<float>> lightwave_merge_ray_samples(const std::vector<lightwave_flux_vpl<float>>& vpls, const std::vector<int>& layout_index,
-                                                                   int rays, float plane_tolerance) {
+                                                                   int rays, float plane_tolerance, std::vector<int>* merged_index) {
   if (layout_index.size() != vpls.size() || rays < 1) throw error("lightwave_merge_ray_samples: one layout index per VPL and at least one ray");
+  if (merged_index) merged_index->assign(vpls.size(), 0);
   struct merged {
     glm::dvec3 weighted_position{0.0}, flux{0.0};
     double weight = 0.0, radius_squared = 0.0;
@@ -540,9 +544,11 @@ std::vector<lightwave_flux_vpl<float>> lightwave_merge_ray_samples(const std::ve
     for (std::size_t k : candidates)
       if (glm::dot(out[k].normal, v.normal) > 0.999f && std::abs(glm::dot(v.position - out[k].first_position, out[k].normal)) <= plane_tolerance) {
         target = &out[k];
+        if (merged_index) (*merged_index)[i] = static_cast<int>(k);
         break;
       }
     if (!target) {
+      if (merged_index) (*merged_index)[i] = static_cast<int>(out.size());
       candidates.push_back(out.size());
       out.push_back({});
       target = &out.back();
@@ -662,6 +668,7 @@ void lightwave_pipeline::build_vpls() {
   flux_vpls_.clear();
   flux_layout_index_.clear();
   receiver_vpls_.clear();
+  receiver_vpl_of_.clear();
   if (settings_.energy == lightwave_energy::thesis) {
     if (max_distance == 0.0f)
       for (int corner = 0; corner < 8; ++corner) {
@@ -676,7 +683,7 @@ void lightwave_pipeline::build_vpls() {
     build_flux_vpls(glm::perspective(2.0f * spot_light_frustum_half_angle(light), 1.0f, g.near_plane, g.far_plane) * g.light_view);
     // The receivers sum a ray's samples on one plane as one VPL (a thousandth of the scene's
     // radius: one plane); the shadow casters keep every sample.
-    receiver_vpls_ = lightwave_merge_ray_samples(flux_vpls_, flux_layout_index_, lightwave_ray_count(settings_.angle_deg), 1e-3f * g.radius);
+    receiver_vpls_ = lightwave_merge_ray_samples(flux_vpls_, flux_layout_index_, lightwave_ray_count(settings_.angle_deg), 1e-3f * g.radius, &receiver_vpl_of_);
   }
   layout_.max_distance = max_distance;
 
@@ -724,19 +731,46 @@ void lightwave_pipeline::build_shadow_maps() {
   // between two maps, which stands for an in-between light only when the maps share their
   // projection; aimed maps of different fields of view darkened an empty plane (lowest factor
   // 0.72, measured).
-  const bool importance = casters_follow_camera();
+  const bool importance = casters_by_importance();
   casters_.clear();
   // A flux VPL sits on its surface: its map's eye is lifted off it, so that the surface does not
   // shadow what it lights.
   const auto eye_of = [&](std::size_t i) { return view.position(i) + (view.thesis ? 0.0f : 1e-3f * radius) * view.normal(i); };
   if (importance) {
     const std::vector<lightwave_receiver_point> points =
-        visible_surface_points(scene_.geometry, scene_.view, static_cast<float>(settings_.width) / static_cast<float>(settings_.height), 4096);
+        surface_points(scene_.geometry, casters_follow_camera() ? &scene_.view : nullptr, static_cast<float>(settings_.width) / static_cast<float>(settings_.height),
+                       4096);
+    // A VPL's importance: its light on the points. Thousands of VPLs times thousands of points, on
+    // every core (each sum on its own, in the same order: the result does not depend on the
+    // threads). The flux energy sums it for the receivers' VPLs (a ray's samples on one plane
+    // merged) and gives each sample its share by flux: the samples of a patch light a distant
+    // point alike, and the sum costs per_ray times less.
+    const bool merged = view.flux && receiver_vpl_of_.size() == view.size();
+    const std::size_t sums = merged ? receiver_vpls_.size() : view.size();
+    std::vector<double> importance_of(sums, 0.0);
+    parallel_for(static_cast<int>(sums), hardware_threads(), [&](int k) {
+      const auto i = static_cast<std::size_t>(k);
+      double importance_sum = 0.0;
+      for (const lightwave_receiver_point& point : points) {
+        if (!merged) {
+          importance_sum += view.weight(i, point);
+          continue;
+        }
+        const lightwave_flux_vpl<float>& vpl = receiver_vpls_[i];
+        // Nothing for a point it does not face (its weight is exactly 0 there).
+        if (lightwave_flux_vpl_faces(point.position, point.normal, vpl.position, vpl.normal))
+          importance_sum += lightwave_bounce_weight(point.position, point.normal, vpl, view.min_distance);
+      }
+      importance_of[i] = importance_sum;
+    });
     std::vector<lightwave_cluster_vpl> candidates(view.size());
     for (std::size_t i = 0; i < view.size(); ++i) {
-      double importance_sum = 0.0;
-      for (const lightwave_receiver_point& point : points) importance_sum += view.weight(i, point);
-      candidates[i] = {view.position(i), view.normal(i), static_cast<float>(importance_sum), view.power(i), view.radius(i)};
+      double light_on_points = importance_of[merged ? static_cast<std::size_t>(receiver_vpl_of_[i]) : i];
+      if (merged) {
+        const glm::vec3& whole = receiver_vpls_[static_cast<std::size_t>(receiver_vpl_of_[i])].flux;
+        light_on_points *= static_cast<double>(view.power(i)) * 3.0 / std::max(static_cast<double>(whole.x) + whole.y + whole.z, 1e-30);
+      }
+      candidates[i] = {view.position(i), view.normal(i), static_cast<float>(light_on_points), view.power(i), view.radius(i)};
     }
     casters_ = lightwave_cluster_casters(candidates, settings_.accurate_maps, 0.25f * radius);
     std::vector<float> weights(points.size());

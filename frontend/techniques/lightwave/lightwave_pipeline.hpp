@@ -179,9 +179,10 @@ std::vector<lightwave_shadow_caster> lightwave_cluster_casters(const std::vector
 /// of the radii squared). Beyond a few patch radii the merged VPL gives the receivers the light
 /// of its samples (the same flux from the same patch of surface); closer, the exitance of their
 /// joint patch. Samples of a ray that met different surfaces stay apart. The order: by the first
-/// sample's place in `vpls`. The capture sums per_ray times fewer VPLs.
+/// sample's place in `vpls`. The capture sums per_ray times fewer VPLs. `merged_index`, when
+/// given, receives for each of `vpls` the merged VPL it went into.
 std::vector<lightwave_flux_vpl<float>> lightwave_merge_ray_samples(const std::vector<lightwave_flux_vpl<float>>& vpls, const std::vector<int>& layout_index,
-                                                                   int rays, float plane_tolerance);
+                                                                   int rays, float plane_tolerance, std::vector<int>* merged_index = nullptr);
 
 /// The view-projection of a shadow map from `eye` that holds the points of weight > 0: looking at
 /// their weighted mean direction, with the field of view of the farthest of them plus a margin
@@ -209,7 +210,8 @@ class lightwave_pipeline final : public pipeline {
   /// Every pass: the VPLs and shadow maps, then the main pass.
   void draw() override;
   /// What the moves since the last frame invalidated: the VPLs and shadow maps after set_light
-  /// (and after set_camera for the importance variant, whose casters follow the camera), the main
+  /// (and after set_camera for the importance variant with the thesis energy, whose casters follow
+  /// the camera; the flux energy's do not), the main
   /// pass after any move; nothing when nothing moved.
   void draw_changed() override;
   /// Moves the spot light: VPLs and shadow maps are rebuilt on the next frame. Throws
@@ -281,11 +283,17 @@ class lightwave_pipeline final : public pipeline {
   };
   frame_geometry geometry() const;
   void draw_main_pass();
-  /// The accurate shadows' importance variant: casters drawn and maps aimed for the visible
-  /// surface, so they depend on the camera.
-  bool casters_follow_camera() const {
+  /// The accurate shadows' importance variant: casters grouped by the light they bring to points
+  /// of the surface, and maps aimed at those points.
+  bool casters_by_importance() const {
     return settings_.shadow_variant == lightwave_shadow_variant::importance && technique_.mode == lightwave_mode::accurate;
   }
+  /// With the thesis energy those points are the ones the camera sees (its VPLs float off the
+  /// surfaces, many below the floor), so the maps follow the camera; the flux energy's VPLs lie on
+  /// the surfaces they light and its points cover the whole scene, so its maps depend on the light
+  /// alone and a camera move redraws the main pass only, as the thesis's maps do (the shadows'
+  /// distance to the one-bounce reference is the same either way on the study's scenes).
+  bool casters_follow_camera() const { return casters_by_importance() && settings_.energy == lightwave_energy::thesis; }
   /// Whether the main pass draws a depth pre-pass first: the shadowed modes, whose fragments look
   /// up every indirect shadow map.
   bool depth_prepass() const { return technique_.mode >= lightwave_mode::accurate; }
@@ -299,6 +307,7 @@ class lightwave_pipeline final : public pipeline {
   std::vector<lightwave_vpl<float>> vpls_;
   std::vector<lightwave_flux_vpl<float>> flux_vpls_;
   std::vector<lightwave_flux_vpl<float>> receiver_vpls_;
+  std::vector<int> receiver_vpl_of_;  ///< for each flux VPL, its receiver VPL
   std::vector<int> flux_layout_index_;
   std::vector<glm::mat4> shadow_matrices_;
   std::vector<lightwave_shadow_caster> casters_;

@@ -162,6 +162,20 @@ TEST_CASE("Light Wave redraws what a move invalidated: VPLs and shadow maps afte
   CHECK(pipeline.rebuilds() == 3);
   CHECK(every.pass_times.size() == 2);
   CHECK(pipeline.view_draws() == 4);
+  // The default accurate shadows (importance, flux energy) choose their casters for the whole
+  // scene: a camera move redraws the main pass alone; with the thesis energy they follow the camera.
+  for (const lightwave_energy energy : {lightwave_energy::flux, lightwave_energy::thesis}) {
+    lightwave_settings importance = small("lightwave-accurate");
+    importance.energy = energy;
+    lightwave_pipeline grouped(test_shaders(), make_boxes_scene(), importance);
+    grouped.draw_changed();
+    camera moved_camera = grouped.current_camera();
+    moved_camera.position.x += 0.5f;
+    grouped.set_camera(moved_camera);
+    grouped.draw_changed();
+    CAPTURE(static_cast<int>(energy));
+    CHECK(grouped.rebuilds() == (energy == lightwave_energy::flux ? 1 : 2));
+  }
   // A directional light is refused, and the light stays.
   scene_light sun;
   sun.kind = light_kind::directional;
