@@ -245,3 +245,20 @@ TEST_CASE("sizes are checked before anything is read or widened; meshes with nor
   CHECK(shared.geometry.vertices[0].normal == glm::vec3(0, 0, 1));
   check_scene(shared);
 }
+
+TEST_CASE("a doubleSided material is noted: every surface is lit on its normal's side") {
+  const auto notes_of = [](bool double_sided) {
+    std::string text = triangle_gltf(triangle_data_uri);
+    text.insert(text.size() - 1, std::string(R"(, "materials": [{"doubleSided": )") + (double_sided ? "true" : "false") + "}]");
+    const std::string primitive = R"("attributes": {"POSITION": 0}})";
+    text.replace(text.find(primitive), primitive.size(), R"("attributes": {"POSITION": 0}, "material": 0})");
+    return parse_gltf(text, false, "sided.gltf", {}).notes;
+  };
+  const auto mentions = [](const std::vector<std::string>& notes) {
+    for (const std::string& note : notes)
+      if (note.find("doubleSided") != std::string::npos && note.find("the side its normal faces") != std::string::npos) return true;
+    return false;
+  };
+  CHECK(mentions(notes_of(true)));
+  CHECK_FALSE(mentions(notes_of(false)));
+}
