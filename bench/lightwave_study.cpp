@@ -287,10 +287,10 @@ int main(int argc, char** argv) {
       // difference that the reference's noise leaves (its sign is not measured).
       std::string fewer;
       for (std::size_t k = 0; k < map_counts.size(); ++k) {
-        // The mean over the seeds against the unshadowed image's mean over as many (identical)
-        // values: an image equal to the unshadowed one compares equal, not one rounding above it.
+        // The mean over the seeds against the unshadowed image's mean over the same seeds: an image
+        // equal to the unshadowed one compares equal, not one rounding above it.
         const double m = mean_of(rmse_of["lightwave-accurate, " + std::to_string(map_counts[k]) + " maps"]);
-        const double none = mean_of(std::vector<double>(rmse_of["lightwave-accurate, " + std::to_string(map_counts[k]) + " maps"].size(), unshadowed));
+        const double none = mean_of(rmse_of["lightwave-unshadowed"]);
         const double error = standard_error_of(rows[2 + k]);
         const char* verdict = m <= none ? "yes" : m <= none + 2.0 * error ? "equal within noise" : "NO";
         fewer += std::to_string(map_counts[k]) + ": " + verdict + " (" + fixed(m - none, 7) + " +- " + fixed(error, 7) + ") ";

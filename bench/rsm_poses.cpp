@@ -109,6 +109,21 @@ struct technique_row {
   int coverage_blocks = default_coverage_blocks;
 };
 
+// A frame of the pose file: its scene with the frame's camera and light, and its label (the
+// line's comment, else the file and line).
+struct posed_frame {
+  scene source;
+  std::string label;
+};
+
+posed_frame load_frame(const pose_frame& frame, const std::string& poses) {
+  cli::common_options options;
+  options.scene = frame.scene;
+  options.camera_pose = frame.camera;
+  options.light_pose = frame.light;
+  return {cli::load_scene(options, frame.scene), frame.comment.empty() ? poses + ":" + std::to_string(frame.line) : frame.comment};
+}
+
 // Mean of the three channels over every pixel of an image.
 double image_mean(const image& values) {
   double sum = 0.0;
@@ -216,12 +231,9 @@ int main(int argc, char** argv) {
          << describe_current_context() << "\n```\n\n| frame | ms without coverage | ms with coverage | ratio |\n|---|---:|---:|---:|\n";
       spread ratios;
       for (std::size_t f = 0; f < frames.size(); f += static_cast<std::size_t>(every)) {
-        const pose_frame& frame = frames[f];
-        cli::common_options options;
-        options.scene = frame.scene;
-        options.camera_pose = frame.camera;
-        options.light_pose = frame.light;
-        const scene source = cli::load_scene(options, frame.scene);
+        const posed_frame posed = load_frame(frames[f], poses);
+        const scene& source = posed.source;
+        const std::string& label = posed.label;
         rsm_pipeline_settings with, without;
         with.width = with.height = timing_size;
         with.rsm_size = rsm_size;
@@ -229,7 +241,6 @@ int main(int argc, char** argv) {
         without = with;
         without.coverage_blocks = 0;
         const std::vector<double> ms = interleaved_frame_ms(shaders, source, {without, with}, timing);
-        const std::string label = frame.comment.empty() ? poses + ":" + std::to_string(frame.line) : frame.comment;
         ratios.add(ms[1] / ms[0]);
         md << "| " << label << " | " << fixed(ms[0], 1) << " | " << fixed(ms[1], 1) << " | " << fixed(ms[1] / ms[0], 3) << " |\n";
         std::cerr << label << ": " << fixed(ms[0], 1) << " / " << fixed(ms[1], 1) << " ms\n";
@@ -255,14 +266,10 @@ int main(int argc, char** argv) {
             "|---|---|---:|---:|---:|---:|---|---:|\n";
       std::map<std::pair<std::string, float>, spread> ratios, errors_at_rest, lags;
       for (std::size_t f = 0; f < frames.size(); f += static_cast<std::size_t>(every)) {
-        const pose_frame& frame = frames[f];
-        cli::common_options options;
-        options.scene = frame.scene;
-        options.camera_pose = frame.camera;
-        options.light_pose = frame.light;
-        const scene source = cli::load_scene(options, frame.scene);
+        const posed_frame posed = load_frame(frames[f], poses);
+        const scene& source = posed.source;
+        const std::string& label = posed.label;
         const ray_scene rays(source.geometry);
-        const std::string label = frame.comment.empty() ? poses + ":" + std::to_string(frame.line) : frame.comment;
         std::cerr << label << "\n";
         rsm_pipeline_settings settings;
         settings.width = settings.height = size;
@@ -393,12 +400,9 @@ int main(int argc, char** argv) {
           << " bias highest seed";
     csv << "\n";
     for (const pose_frame& frame : frames) {
-      cli::common_options options;
-      options.scene = frame.scene;
-      options.camera_pose = frame.camera;
-      options.light_pose = frame.light;
-      const scene source = cli::load_scene(options, frame.scene);
-      const std::string label = frame.comment.empty() ? poses + ":" + std::to_string(frame.line) : frame.comment;
+      const posed_frame posed = load_frame(frame, poses);
+      const scene& source = posed.source;
+      const std::string& label = posed.label;
       std::cerr << label << "\n";
       rsm_pipeline_settings settings;
       settings.width = settings.height = size;

@@ -915,8 +915,7 @@ void lightwave_pipeline::draw_main_pass() {
     // that only the visible one of each pixel runs them (its shader has no discard, so its depth
     // is tested before it runs; the pre-pass did the alpha test).
     depth_program_.use();
-    depth_program_.set("view_projection", camera_projection_matrix(scene_.view, static_cast<float>(settings_.width) / static_cast<float>(settings_.height)) *
-                                              camera_view_matrix(scene_.view));
+    depth_program_.set("view_projection", camera_view_projection());
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
     mesh_.draw(depth_program_);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
@@ -933,9 +932,12 @@ void lightwave_pipeline::draw_main_pass() {
   ++main_draws_;
 }
 
+glm::mat4 lightwave_pipeline::camera_view_projection() const {
+  return camera_projection_matrix(scene_.view, static_cast<float>(settings_.width) / static_cast<float>(settings_.height)) * camera_view_matrix(scene_.view);
+}
+
 void lightwave_pipeline::set_vertex_uniforms(const program& target) const {
-  target.set("view_projection", camera_projection_matrix(scene_.view, static_cast<float>(settings_.width) / static_cast<float>(settings_.height)) *
-                                    camera_view_matrix(scene_.view));
+  target.set("view_projection", camera_view_projection());
   target.set("eye", scene_.view.position);
   target.set("vpl_texture", 0);
   target.set("vpl_count", summed_vpl_count());

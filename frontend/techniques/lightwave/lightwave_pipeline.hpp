@@ -297,6 +297,9 @@ class lightwave_pipeline final : public pipeline {
   /// Whether the main pass draws a depth pre-pass first: the shadowed modes, whose fragments look
   /// up every indirect shadow map.
   bool depth_prepass() const { return technique_.mode >= lightwave_mode::accurate; }
+  /// The camera's view-projection: the same matrix for the depth pre-pass and the main pass, whose
+  /// depths must be equal.
+  glm::mat4 camera_view_projection() const;
   void set_vertex_uniforms(const program& target) const;
 
   scene scene_;
