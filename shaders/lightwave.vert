@@ -1,15 +1,12 @@
 #version 330 core
-// Light Wave main pass, vertex stage ([LW], section 4.2): the indirect colour of each vertex
-// from all VPLs, read from a float texture, a row per VPL (no [0, 1] encoding, Eq. 4.3, 4.4, is
-// needed with float textures). VPLKIT_LIGHTWAVE_ENERGY 0, the thesis's: Eq. 4.5, texel (0, i)
-// [position | attenuation], (1, i) [normal | -], every frame. 1, flux: albedo / pi times the
-// irradiance of every flux VPL (lib/lightwave.glsl), texel (0, i) [position | radius], (1, i)
-// [normal | -], (2, i) [flux | -]; it does not depend on the camera, so the pipeline sums it once
-// per light (VPLKIT_LIGHTWAVE_CAPTURE: the transform-feedback program) and the main pass reads
-// the result as attribute 3.
-#if VPLKIT_LIGHTWAVE_ENERGY == 1
-#define VPLKIT_LIGHTWAVE_FETCH_FLUX 1
-#else
+// Light Wave main pass, vertex stage ([LW], section 4.2). VPLKIT_LIGHTWAVE_ENERGY 0, the
+// thesis's: the indirect colour of each vertex from all VPLs (Eq. 4.5), read from a float
+// texture, a row per VPL, texel (0, i) [position | attenuation], (1, i) [normal | -] (no [0, 1]
+// encoding, Eq. 4.3, 4.4, is needed with float textures), every frame; VPLKIT_LIGHTWAVE_CAPTURE
+// makes it the transform-feedback program the parity test reads. 1, flux: the indirect light
+// does not depend on the camera, so the pipeline sums it once per light at the receivers
+// (lightwave_capture.frag) and this stage passes it on from attribute 3.
+#if VPLKIT_LIGHTWAVE_ENERGY != 1
 #define VPLKIT_LIGHTWAVE_FETCH 1
 #endif
 #include "lib/lightwave.glsl"
@@ -18,10 +15,8 @@ layout(location = 0) in vec3 position;
 layout(location = 1) in vec3 normal;
 layout(location = 2) in vec3 albedo;
 layout(location = 5) in vec2 texcoord;
-#if VPLKIT_LIGHTWAVE_ENERGY == 1 && !defined(VPLKIT_LIGHTWAVE_CAPTURE)
+#if VPLKIT_LIGHTWAVE_ENERGY == 1
 layout(location = 3) in vec3 captured_indirect;
-#elif VPLKIT_LIGHTWAVE_ENERGY == 1
-layout(location = 4) in vec3 sample_position;  // where the vertex's light is evaluated (lightwave_receiver_samples)
 #endif
 
 uniform mat4 view_projection;
@@ -40,13 +35,7 @@ out vec3 surface_albedo;
 out vec3 vertex_indirect;
 out vec2 surface_texcoord;
 
-#if VPLKIT_LIGHTWAVE_ENERGY == 1
-lightwave_flux_vpl lightwave_fetch_flux_vpl(int index) {
-  vec4 position_radius = texelFetch(vpl_texture, ivec2(0, index), 0);
-  return lightwave_flux_vpl(position_radius.xyz, texelFetch(vpl_texture, ivec2(1, index), 0).xyz, texelFetch(vpl_texture, ivec2(2, index), 0).xyz,
-                            position_radius.w);
-}
-#else
+#if VPLKIT_LIGHTWAVE_ENERGY != 1
 lightwave_vpl lightwave_fetch_vpl(int index) {
   vec4 position_attenuation = texelFetch(vpl_texture, ivec2(0, index), 0);
   return lightwave_vpl(position_attenuation.xyz, texelFetch(vpl_texture, ivec2(1, index), 0).xyz, position_attenuation.w);
@@ -55,9 +44,7 @@ lightwave_vpl lightwave_fetch_vpl(int index) {
 
 void main() {
   vec3 n = normalize(normal);
-#if VPLKIT_LIGHTWAVE_INDIRECT && VPLKIT_LIGHTWAVE_ENERGY == 1 && defined(VPLKIT_LIGHTWAVE_CAPTURE)
-  vertex_indirect = lightwave_vertex_bounce(sample_position, n, albedo, vpl_count, irradiance);
-#elif VPLKIT_LIGHTWAVE_INDIRECT && VPLKIT_LIGHTWAVE_ENERGY == 1
+#if VPLKIT_LIGHTWAVE_INDIRECT && VPLKIT_LIGHTWAVE_ENERGY == 1
   vertex_indirect = captured_indirect;
 #elif VPLKIT_LIGHTWAVE_INDIRECT
   vertex_indirect = lightwave_vertex_indirect(position, n, albedo, eye, vpl_count, shading);

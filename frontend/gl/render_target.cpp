@@ -111,16 +111,29 @@ void framebuffer::bind() const {
   else glDrawBuffers(static_cast<GLsizei>(buffers.size()), buffers.data());
 }
 
+void framebuffer::bind_for_reading(std::size_t index) const {
+  if (index >= colours_.size()) throw error("bind_for_reading: no colour attachment " + std::to_string(index));
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, name_.get());
+  glReadBuffer(static_cast<GLenum>(GL_COLOR_ATTACHMENT0 + index));
+}
+
 image texture_2d::read_image() const {
+  image texels;
+  read_image_into(texels);
+  return texels;
+}
+
+void texture_2d::read_image_into(image& texels) const {
   if (format_ != texel_format::rgba32f && format_ != texel_format::rgba16f) throw error(std::string("read_image on a ") + format_name(format_) + " texture");
-  image texels(width_, height_);
+  texels.width = width_;
+  texels.height = height_;
+  texels.texels.resize(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_));
   static_assert(sizeof(glm::vec4) == 4 * sizeof(float), "glGetTexImage writes packed RGBA floats");
   glBindTexture(GL_TEXTURE_2D, name_.get());
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
   glGetTexImage(GL_TEXTURE_2D, 0, GL_RGBA, GL_FLOAT, texels.texels.data());
   glBindTexture(GL_TEXTURE_2D, 0);
   check_gl(std::string("reading back a ") + format_name(format_) + " texture");
-  return texels;
 }
 
 image framebuffer::read_image(std::size_t index) const { return colours_.at(index).read_image(); }
@@ -129,8 +142,7 @@ std::vector<std::uint32_t> framebuffer::read_uint(std::size_t index) const {
   const texture_2d& texture = colours_.at(index);
   if (texture.format() != texel_format::rgba32ui) throw error("read_uint on a float attachment");
   std::vector<std::uint32_t> texels(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_) * 4);
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, name_.get());
-  glReadBuffer(static_cast<GLenum>(GL_COLOR_ATTACHMENT0 + index));
+  bind_for_reading(index);
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
   glReadPixels(0, 0, width_, height_, GL_RGBA_INTEGER, GL_UNSIGNED_INT, texels.data());
   check_gl("reading back colour attachment " + std::to_string(index));

@@ -34,6 +34,9 @@ class texture_2d {
   void enable_depth_compare() const;
   /// Reads a float colour texture (rows bottom-up, as vplkit::image keeps them).
   image read_image() const;
+  /// The same into `texels`, whose memory is reused when it has the size (a frame that reads back
+  /// each time then touches no new pages: a page fault costs microseconds on a virtual machine).
+  void read_image_into(image& texels) const;
 
  private:
   gl_texture name_;
@@ -47,6 +50,8 @@ class framebuffer {
  public:
   framebuffer(int width, int height, const std::vector<texel_format>& colour_formats, bool with_depth);
   void bind() const;  // binds for drawing, sets the viewport and the draw buffers
+  /// Binds as the read framebuffer with colour attachment `index` as the read buffer (glReadPixels).
+  void bind_for_reading(std::size_t index) const;
   int width() const { return width_; }
   int height() const { return height_; }
   const texture_2d& colour(std::size_t index) const { return colours_.at(index); }

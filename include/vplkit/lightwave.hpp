@@ -264,17 +264,25 @@ T lightwave_bounce_weight(const glm::vec<3, T>& x, const glm::vec<3, T>& n, cons
   return e.x + e.y + e.z;
 }
 
-/// The radiance one bounce sends to the camera from vertex (x, n) with albedo: albedo / pi times
-/// the irradiance of `count` flux VPLs from `fetch(int index) -> lightwave_flux_vpl<T>`, summed
-/// (diffuse_radiance). GLSL twin: lightwave_vertex_bounce, with the VPLs from the including
-/// shader's `lightwave_flux_vpl lightwave_fetch_flux_vpl(int index)` (define
+/// `sum` plus the irradiance at (x, n) of `count` flux VPLs from `fetch(int index) ->
+/// lightwave_flux_vpl<T>`, added in index order. A renderer that cannot hold every VPL at once
+/// adds them a part at a time, each part continuing from the last one's sum: the same additions in
+/// the same order, so the same result to the bit. GLSL twin: lightwave_bounce_sum, with the VPLs
+/// from the including shader's `lightwave_flux_vpl lightwave_fetch_flux_vpl(int index)` (define
 /// VPLKIT_LIGHTWAVE_FETCH_FLUX first).
+template <typename T, typename Fetch>
+glm::vec<3, T> lightwave_bounce_sum(const glm::vec<3, T>& x, const glm::vec<3, T>& n, Fetch&& fetch, int count, glm::vec<3, T> sum, T min_distance) {
+  for (int index = 0; index < count; ++index) sum += lightwave_bounce_irradiance(x, n, fetch(index), min_distance);
+  return sum;
+}
+
+/// The radiance one bounce sends to the camera from vertex (x, n) with albedo: albedo / pi times
+/// the irradiance of `count` flux VPLs from `fetch` summed (lightwave_bounce_sum from 0, then
+/// diffuse_radiance). GLSL twin: lightwave_vertex_bounce (VPLKIT_LIGHTWAVE_FETCH_FLUX as there).
 template <typename T, typename Fetch>
 glm::vec<3, T> lightwave_vertex_bounce(const glm::vec<3, T>& x, const glm::vec<3, T>& n, const glm::vec<3, T>& albedo, Fetch&& fetch, int count,
                                        const irradiance_settings<T>& settings) {
-  glm::vec<3, T> sum(0);
-  for (int index = 0; index < count; ++index) sum += lightwave_bounce_irradiance(x, n, fetch(index), settings.min_distance);
-  return diffuse_radiance(albedo, glm::vec<3, T>(0), T(0), sum);
+  return diffuse_radiance(albedo, glm::vec<3, T>(0), T(0), lightwave_bounce_sum(x, n, fetch, count, glm::vec<3, T>(0), settings.min_distance));
 }
 
 /// The shading parameters of Eq. 4.5. GLSL twin: struct lightwave_shading_settings.

@@ -125,10 +125,13 @@ float lightwave_bounce_weight(vec3 x, vec3 n, lightwave_flux_vpl vpl, float min_
 // Defined by the including shader: flux VPL number `index`.
 lightwave_flux_vpl lightwave_fetch_flux_vpl(int index);
 
+vec3 lightwave_bounce_sum(vec3 x, vec3 n, int count, vec3 sum, float min_distance) {
+  for (int index = 0; index < count; ++index) sum += lightwave_bounce_irradiance(x, n, lightwave_fetch_flux_vpl(index), min_distance);
+  return sum;
+}
+
 vec3 lightwave_vertex_bounce(vec3 x, vec3 n, vec3 albedo, int count, irradiance_settings settings) {
-  vec3 sum = vec3(0.0);
-  for (int index = 0; index < count; ++index) sum += lightwave_bounce_irradiance(x, n, lightwave_fetch_flux_vpl(index), settings.min_distance);
-  return diffuse_radiance(albedo, vec3(0.0), 0.0, sum);
+  return diffuse_radiance(albedo, vec3(0.0), 0.0, lightwave_bounce_sum(x, n, count, vec3(0.0), settings.min_distance));
 }
 #endif
 

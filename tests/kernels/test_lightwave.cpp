@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <vector>
 
 #include <vplkit/lightwave.hpp>
@@ -287,6 +288,37 @@ TEST_CASE("a flux VPL's light: Eq. 3.2 / pi, clamped at its patch's radius; over
   const auto fetch = [&](int index) { return index == 0 ? vpl : farther; };
   const glm::dvec3 radiance = lightwave_vertex_bounce(glm::dvec3(0.0), glm::dvec3(0, 1, 0), glm::dvec3(0.5), fetch, 2, irradiance_settings<double>{});
   CHECK(radiance.x == doctest::Approx(0.5 / pi * (e.x + e.x / 4.0)));
+}
+
+TEST_CASE("lightwave_bounce_sum in parts, each continuing the last one's sum, equals the sum in one loop to the bit") {
+  // 300 float VPLs scattered over a floor and a wall, summed at points of the room: the sum over
+  // all of them at once, and in parts of 1, 7, 64 and 299 (the pipeline's passes), the same floats.
+  std::mt19937 random(11);
+  std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
+  std::vector<lightwave_flux_vpl<float>> vpls;
+  for (int i = 0; i < 300; ++i) {
+    const bool floor = i % 3 != 0;
+    vpls.push_back({floor ? glm::vec3(uniform(random), 0.0f, uniform(random)) : glm::vec3(-1.0f, uniform(random) + 1.0f, uniform(random)),
+                    floor ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0), glm::vec3(0.002f, 0.001f, 0.0005f) * (uniform(random) + 1.5f), 0.03f});
+  }
+  const int count = static_cast<int>(vpls.size());
+  for (int point = 0; point < 20; ++point) {
+    const glm::vec3 x(0.9f * uniform(random), 0.5f * uniform(random) + 0.6f, uniform(random));
+    const glm::vec3 n = glm::normalize(glm::vec3(uniform(random), uniform(random), uniform(random)));
+    const glm::vec3 whole = lightwave_bounce_sum(x, n, [&](int index) { return vpls[static_cast<std::size_t>(index)]; }, count, glm::vec3(0.0f), 0.01f);
+    REQUIRE(whole.x + whole.y + whole.z > 0.0f);
+    for (const int part : {1, 7, 64, 299}) {
+      CAPTURE(part);
+      glm::vec3 sum(0.0f);
+      for (int first = 0; first < count; first += part)
+        sum = lightwave_bounce_sum(x, n, [&](int index) { return vpls[static_cast<std::size_t>(first + index)]; }, std::min(part, count - first), sum, 0.01f);
+      CHECK(sum == whole);
+    }
+    // lightwave_vertex_bounce is the sum from zero, as radiance.
+    const glm::vec3 albedo(0.3f, 0.5f, 0.7f);
+    CHECK(lightwave_vertex_bounce(x, n, albedo, [&](int index) { return vpls[static_cast<std::size_t>(index)]; }, count, irradiance_settings<float>{0.01f}) ==
+          diffuse_radiance(albedo, glm::vec3(0.0f), 0.0f, whole));
+  }
 }
 
 TEST_CASE("a patch's radius: the disk of the area the patch covers on the surface") {

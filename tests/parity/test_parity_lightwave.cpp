@@ -327,19 +327,25 @@ TEST_CASE("parity: the flux VPLs' light summed per vertex (lightwave_vertex_boun
                         "  return lightwave_flux_vpl(position_radius.xyz, texelFetch(vpl_texture, ivec2(1, index), 0).xyz,\n"
                         "                            texelFetch(vpl_texture, ivec2(2, index), 0).xyz, position_radius.w);\n"
                         "}\n";
-  source.body = "fout0 = vec4(lightwave_vertex_bounce(fin0.xyz, fin1.xyz, fin2.xyz, vpl_count, irradiance), 0.0);";
-  source.float_outputs = 1;
+  // Second output: the sum continued from a partial sum (fin2 as one), as each pass of
+  // lightwave_capture.frag continues the last one's.
+  source.body = "fout0 = vec4(lightwave_vertex_bounce(fin0.xyz, fin1.xyz, fin2.xyz, vpl_count, irradiance), 0.0);\n"
+                "fout1 = vec4(lightwave_bounce_sum(fin0.xyz, fin1.xyz, vpl_count, fin2.xyz, irradiance.min_distance), 0.0);";
+  source.float_outputs = 2;
   const kernel_outputs gpu = run_vertex(source, inputs, [&](const program& p) {
     p.set("vpl_texture", 0);
     vpl_texture.bind(0);
     p.set("vpl_count", count);
     set_uniforms(p, "irradiance", irradiance);
   });
-  std::vector<glm::vec4> cpu(inputs.size());
-  for (std::size_t i = 0; i < inputs.size(); ++i)
-    cpu[i] = glm::vec4(lightwave_vertex_bounce(glm::vec3(inputs.floats[0][i]), glm::vec3(inputs.floats[1][i]), glm::vec3(inputs.floats[2][i]),
-                                               [&](int index) { return vpls[static_cast<std::size_t>(index)]; }, count, irradiance),
-                       0.0f);
+  std::vector<glm::vec4> cpu(inputs.size()), continued(inputs.size());
+  const auto fetch = [&](int index) { return vpls[static_cast<std::size_t>(index)]; };
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const glm::vec3 x(inputs.floats[0][i]), n(inputs.floats[1][i]), third(inputs.floats[2][i]);
+    cpu[i] = glm::vec4(lightwave_vertex_bounce(x, n, third, fetch, count, irradiance), 0.0f);
+    continued[i] = glm::vec4(lightwave_bounce_sum(x, n, fetch, count, third, irradiance.min_distance), 0.0f);
+  }
   // 2000 terms of two divides each, summed in the same order: 1e-5 relative, 1e-7 absolute near 0.
   require_parity(compare("lightwave_vertex_bounce (vertex stage)", gpu.floats[0], cpu, inputs, {1e-7f, 1e-5f, 64, 0.0, "2000 terms of Eq. 3.2"}, 3));
+  require_parity(compare("lightwave_bounce_sum from a partial sum (vertex stage)", gpu.floats[1], continued, inputs, {1e-7f, 1e-5f, 64, 0.0, "2000 terms of Eq. 3.2"}, 3));
 }

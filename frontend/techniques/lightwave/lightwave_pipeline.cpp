@@ -160,6 +160,7 @@ std::string validate(const lightwave_settings& settings) {
            "meet the scene (leave vpl-max-distance at 0)";
   if (!(settings.receiver_spacing > 0.0f && settings.receiver_spacing <= 4.0f)) return "receiver spacing must be in (0, 4] (a fraction of the scene's bounding radius)";
   if (settings.receiver_triangles < 1 || settings.receiver_triangles > (1 << 22)) return "receiver triangles must be in [1, 4194304]";
+  if (settings.vpls_per_pass < 0 || settings.vpls_per_pass > 65535) return "VPLs per pass must be 0 (a uniform block's worth) or in [1, 65535]";
   if (settings.accurate_maps > vpls)
     return "more accurate shadow maps (" + std::to_string(settings.accurate_maps) + ") than VPLs (" + std::to_string(vpls) + ")";
   const int ring = 360 / settings.angle_deg;
@@ -376,6 +377,14 @@ mesh lightwave_receivers(const mesh& geometry, const lightwave_settings& setting
   return geometry;
 }
 
+glm::ivec2 lightwave_receiver_grid(std::size_t receivers) {
+  const std::size_t count = std::max<std::size_t>(receivers, 1);
+  constexpr std::size_t max_width = 1024;
+  const std::size_t rows = 4 * ((count + 4 * max_width - 1) / (4 * max_width));
+  const std::size_t width = ((count + rows - 1) / rows + 3) / 4 * 4;
+  return {static_cast<int>(width), static_cast<int>(rows)};
+}
+
 std::vector<glm::vec3> lightwave_receiver_samples(const mesh& receivers) {
   std::vector<glm::dvec3> sums(receivers.vertices.size(), glm::dvec3(0.0));
   std::vector<int> counts(receivers.vertices.size(), 0);
@@ -437,11 +446,11 @@ lightwave_pipeline::lightwave_pipeline(const shader_library& shaders, const scen
   shader_defines main_defines = defines;
   if (depth_prepass()) main_defines.emplace_back("VPLKIT_MATERIAL_NO_ALPHA_TEST", "1");
   main_program_ = load_program(shaders, "lightwave.vert", "lightwave.frag", main_defines);
-  capture_program_ = link_program(
-      "lightwave.vert (transform feedback)",
-      {{shader_stage::vertex,
-        shaders.expand_file("lightwave.vert", {{"VPLKIT_LIGHTWAVE_INDIRECT", "1"}, {"VPLKIT_LIGHTWAVE_ENERGY", energy}, {"VPLKIT_LIGHTWAVE_CAPTURE", "1"}})}},
-      {"vertex_indirect"});
+  if (settings_.energy == lightwave_energy::thesis)
+    capture_program_ = link_program(
+        "lightwave.vert (transform feedback)",
+        {{shader_stage::vertex, shaders.expand_file("lightwave.vert", {{"VPLKIT_LIGHTWAVE_INDIRECT", "1"}, {"VPLKIT_LIGHTWAVE_ENERGY", "0"}, {"VPLKIT_LIGHTWAVE_CAPTURE", "1"}})}},
+        {"vertex_indirect"});
   // Direct light alone and the faked indirect light use no VPLs.
   if (settings_.energy == lightwave_energy::flux && technique_.mode >= lightwave_mode::unshadowed) {
     surface_program_ = load_program(shaders, "scene.vert", "lightwave_surfaces.frag");
@@ -450,19 +459,56 @@ lightwave_pipeline::lightwave_pipeline(const shader_library& shaders, const scen
     receivers_ = lightwave_receivers(source.geometry, settings_);
     receiver_samples_ = lightwave_receiver_samples(receivers_);
     receiver_buffers_.emplace(receivers_);
-    const auto bytes = static_cast<GLsizeiptr>(receivers_.vertices.size() * sizeof(glm::vec3));
-    sample_buffer_ = gl_buffer(generate_buffer());
-    glBindBuffer(GL_ARRAY_BUFFER, sample_buffer_.get());
-    glBufferData(GL_ARRAY_BUFFER, bytes, receiver_samples_.data(), GL_STATIC_DRAW);
     indirect_buffer_ = gl_buffer(generate_buffer());
     glBindBuffer(GL_ARRAY_BUFFER, indirect_buffer_.get());
-    glBufferData(GL_ARRAY_BUFFER, bytes, nullptr, GL_DYNAMIC_COPY);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(receivers_.vertices.size() * sizeof(glm::vec3)), nullptr, GL_DYNAMIC_COPY);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
     receiver_buffers_->attach_vec3_attribute(3, indirect_buffer_.get());
-    receiver_buffers_->attach_vec3_attribute(4, sample_buffer_.get());
+    // The sum at the receivers: receiver i at texel (i % width, i / width), its sample point,
+    // normal and albedo in three bands of rows.
+    const std::size_t count = receivers_.vertices.size();
+    const glm::ivec2 grid = lightwave_receiver_grid(count);
+    const int width = grid.x, rows = grid.y;
+    check_texture_size(width, 3 * rows, "the Light Wave receiver texture (" + std::to_string(count) + " receivers)");
+    std::vector<glm::vec4> receiver_texels(static_cast<std::size_t>(width) * static_cast<std::size_t>(3 * rows), glm::vec4(0.0f));
+    const std::size_t band = static_cast<std::size_t>(width) * static_cast<std::size_t>(rows);
+    for (std::size_t i = 0; i < count; ++i) {
+      const vertex& v = receivers_.vertices[i];
+      receiver_texels[i] = glm::vec4(receiver_samples_[i], 0.0f);
+      receiver_texels[band + i] = glm::vec4(v.normal, 0.0f);
+      receiver_texels[2 * band + i] = glm::vec4(v.albedo, 0.0f);
+    }
+    receiver_texture_.emplace(width, 3 * rows, texel_format::rgba32f, receiver_texels.data());
+    for (int k = 0; k < 2; ++k) receiver_sum_targets_.emplace_back(width, rows, std::vector<texel_format>{texel_format::rgba32f}, false);
+    // The VPLs of a pass in one uniform block: three vec4 each (std140), the blocks of successive
+    // passes at offsets the GL accepts.
+    GLint block_bytes = 0, offset_alignment = 0;
+    glGetIntegerv(GL_MAX_UNIFORM_BLOCK_SIZE, &block_bytes);
+    glGetIntegerv(GL_UNIFORM_BUFFER_OFFSET_ALIGNMENT, &offset_alignment);
+    constexpr int bytes_per_vpl = 3 * static_cast<int>(sizeof(glm::vec4));
+    const int block_vpls = block_bytes / bytes_per_vpl;
+    // By default a 64 KiB block's worth (GL 3.3 guarantees 16 KiB; some drivers report blocks far
+    // larger than a shader should declare).
+    vpls_per_pass_ = settings_.vpls_per_pass == 0 ? std::min(block_vpls, 65536 / bytes_per_vpl) : settings_.vpls_per_pass;
+    if (vpls_per_pass_ < 1 || vpls_per_pass_ > block_vpls)
+      throw error("Light Wave: " + std::to_string(vpls_per_pass_) + " VPLs per pass need a uniform block of " + std::to_string(vpls_per_pass_ * bytes_per_vpl) +
+                  " bytes; this GL allows " + std::to_string(block_bytes) + " (at most " + std::to_string(block_vpls) + " VPLs per pass)");
+    const std::size_t alignment = static_cast<std::size_t>(std::max(offset_alignment, 1));
+    const std::size_t block_size = static_cast<std::size_t>(vpls_per_pass_) * bytes_per_vpl;
+    vpl_block_stride_ = (block_size + alignment - 1) / alignment * alignment;
+    vpl_block_buffer_ = gl_buffer(generate_buffer());
+    receiver_sum_program_ = load_program(shaders, "fullscreen.vert", "lightwave_capture.frag", {{"VPLKIT_LIGHTWAVE_PASS_VPLS", std::to_string(vpls_per_pass_)}});
+    glUniformBlockBinding(receiver_sum_program_.id(), glGetUniformBlockIndex(receiver_sum_program_.id(), "lightwave_pass_vpls"), 0);
+    empty_vertex_array_ = gl_vertex_array(generate_vertex_array());
     if (indirect_buffer) {
-      indirect_program_ = load_program(shaders, "lightwave.vert", "lightwave_indirect.frag", defines);
-      indirect_target_.emplace(settings_.width, settings_.height, std::vector<texel_format>{texel_format::rgba32f}, true);
+      // Without cut-outs its fragments need no material (no discard: the depth is tested first).
+      shader_defines indirect_defines = defines;
+      if (!has_alpha_cutouts(source.geometry)) indirect_defines.emplace_back("VPLKIT_MATERIAL_NO_ALPHA_TEST", "1");
+      indirect_program_ = load_program(shaders, "lightwave.vert", "lightwave_indirect.frag", indirect_defines);
+      // In the output's format (half floats by default): the main pass adds it to the direct light
+      // at that precision anyway, and half the bytes to clear and write cost a software rasteriser
+      // about 2 ms of the boxes' 1280x720 frame.
+      indirect_target_.emplace(settings_.width, settings_.height, std::vector<texel_format>{settings_.format}, true);
     }
   }
 
@@ -580,7 +626,11 @@ void lightwave_pipeline::build_flux_vpls(const glm::mat4& light_view_projection)
   surface_program_.use();
   surface_program_.set("view_projection", light_view_projection);
   mesh_.draw(surface_program_);
-  const image positions = surfaces_->read_image(0), normals = surfaces_->read_image(1), albedos = surfaces_->read_image(2);
+  // Into the same host memory at every light move.
+  surfaces_->colour(0).read_image_into(surface_texels_[0]);
+  surfaces_->colour(1).read_image_into(surface_texels_[1]);
+  surfaces_->colour(2).read_image_into(surface_texels_[2]);
+  const image &positions = surface_texels_[0], &normals = surface_texels_[1], &albedos = surface_texels_[2];
   // The rays cover the cone up to its outer edge, inside the map's frustum (2 degrees of margin).
   cone_.light_direction = light.direction;
   cone_.angle_deg = settings_.angle_deg;
@@ -687,31 +737,39 @@ void lightwave_pipeline::build_vpls() {
   }
   layout_.max_distance = max_distance;
 
-  // VPL texture, a row per VPL the vertex stage sums: thesis [position | attenuation], [normal |
-  // 0]; flux (the receivers' VPLs) [position | radius], [normal | 0], [flux | 0]. At least one row
-  // (a light that meets nothing has none).
-  const int columns = settings_.energy == lightwave_energy::thesis ? 2 : 3;
-  const std::size_t rows = std::max<std::size_t>(static_cast<std::size_t>(summed_vpl_count()), 1);
-  std::vector<glm::vec4> texels(rows * static_cast<std::size_t>(columns), glm::vec4(0.0f));
-  for (std::size_t i = 0; i < vpls_.size(); ++i) {
-    texels[2 * i] = glm::vec4(vpls_[i].position, vpls_[i].attenuation);
-    texels[2 * i + 1] = glm::vec4(vpls_[i].normal, 0.0f);
-  }
-  if (settings_.energy == lightwave_energy::flux)
-    for (std::size_t i = 0; i < receiver_vpls_.size(); ++i) {
-      texels[3 * i] = glm::vec4(receiver_vpls_[i].position, receiver_vpls_[i].radius);
-      texels[3 * i + 1] = glm::vec4(receiver_vpls_[i].normal, 0.0f);
-      texels[3 * i + 2] = glm::vec4(receiver_vpls_[i].flux, 0.0f);
+  if (settings_.energy == lightwave_energy::thesis) {
+    // The VPL texture the vertex stage reads every frame, a row per VPL: [position | attenuation],
+    // [normal | 0]. At least one row.
+    const std::size_t rows = std::max<std::size_t>(vpls_.size(), 1);
+    std::vector<glm::vec4> texels(2 * rows, glm::vec4(0.0f));
+    for (std::size_t i = 0; i < vpls_.size(); ++i) {
+      texels[2 * i] = glm::vec4(vpls_[i].position, vpls_[i].attenuation);
+      texels[2 * i + 1] = glm::vec4(vpls_[i].normal, 0.0f);
     }
-  check_texture_size(columns, static_cast<int>(rows), "the Light Wave VPL texture");
-  vpl_texture_ = gl_texture(generate_texture());
-  glBindTexture(GL_TEXTURE_2D, vpl_texture_.get());
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, columns, static_cast<GLsizei>(rows), 0, GL_RGBA, GL_FLOAT, texels.data());
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  // The flux energy's indirect light does not depend on the camera: summed once per light, at
-  // the receivers' vertices, into the buffer the main pass reads.
-  if (receiver_buffers_) capture_into(indirect_buffer_.get(), *receiver_buffers_);
+    check_texture_size(2, static_cast<int>(rows), "the Light Wave VPL texture");
+    vpl_texture_ = gl_texture(generate_texture());
+    glBindTexture(GL_TEXTURE_2D, vpl_texture_.get());
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, 2, static_cast<GLsizei>(rows), 0, GL_RGBA, GL_FLOAT, texels.data());
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  } else if (receiver_buffers_) {
+    // The receivers' VPLs, a uniform block per pass: [position | radius], [normal | 0], [flux | 0].
+    // The flux energy's indirect light does not depend on the camera: summed once per light, at
+    // the receivers' vertices, into the buffer the main pass reads.
+    const int passes = vpl_pass_count();
+    std::vector<glm::vec4> rows(static_cast<std::size_t>(passes) * vpl_block_stride_ / sizeof(glm::vec4), glm::vec4(0.0f));
+    for (std::size_t i = 0; i < receiver_vpls_.size(); ++i) {
+      const std::size_t pass = i / static_cast<std::size_t>(vpls_per_pass_), in_pass = i % static_cast<std::size_t>(vpls_per_pass_);
+      glm::vec4* row = &rows[pass * vpl_block_stride_ / sizeof(glm::vec4) + 3 * in_pass];
+      row[0] = glm::vec4(receiver_vpls_[i].position, receiver_vpls_[i].radius);
+      row[1] = glm::vec4(receiver_vpls_[i].normal, 0.0f);
+      row[2] = glm::vec4(receiver_vpls_[i].flux, 0.0f);
+    }
+    glBindBuffer(GL_UNIFORM_BUFFER, vpl_block_buffer_.get());
+    glBufferData(GL_UNIFORM_BUFFER, static_cast<GLsizeiptr>(rows.size() * sizeof(glm::vec4)), rows.data(), GL_DYNAMIC_DRAW);
+    glBindBuffer(GL_UNIFORM_BUFFER, 0);
+    sum_at_receivers();
+  }
   check_gl("building the Light Wave VPLs");
 }
 
@@ -834,8 +892,16 @@ void lightwave_pipeline::build_shadow_maps() {
 }
 
 void lightwave_pipeline::rebuild() {
-  if (vpls_dirty_ && technique_.mode >= lightwave_mode::unshadowed) build_vpls();
-  if (shadows_dirty_) build_shadow_maps();
+  if (vpls_dirty_ && technique_.mode >= lightwave_mode::unshadowed) {
+    timer_.begin("VPLs");
+    build_vpls();
+    timer_.end();
+  }
+  if (shadows_dirty_) {
+    timer_.begin("shadow maps");
+    build_shadow_maps();
+    timer_.end();
+  }
   vpls_dirty_ = shadows_dirty_ = false;
   ++rebuilds_;
 }
@@ -864,19 +930,17 @@ void lightwave_pipeline::draw() {
 
 void lightwave_pipeline::draw_changed() {
   if (vpls_dirty_ || shadows_dirty_) {
-    timer_.begin("VPLs and shadow maps");
     rebuild();
-    timer_.end();
     view_valid_ = false;
   }
   if (!view_valid_) draw_main_pass();
 }
 
 void lightwave_pipeline::draw_main_pass() {
-  timer_.begin("main pass");
   glEnable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
   if (indirect_target_) {
+    timer_.begin("indirect buffer");
     // Flux energy: the receivers' indirect light into the screen buffer the main pass reads.
     indirect_target_->bind();
     glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
@@ -887,7 +951,9 @@ void lightwave_pipeline::draw_main_pass() {
     main_program_.set("indirect_buffer", 2);
     glActiveTexture(GL_TEXTURE2);
     glBindTexture(GL_TEXTURE_2D, indirect_target_->colour(0).id());
+    timer_.end();
   }
+  timer_.begin("main pass");
   target_.bind();
   glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -963,8 +1029,64 @@ void lightwave_pipeline::capture_into(GLuint buffer, const mesh_buffers& vertice
   check_gl("capturing the Light Wave vertex stage");
 }
 
+int lightwave_pipeline::vpl_pass_count() const {
+  const auto count = static_cast<int>(receiver_vpls_.size());
+  return std::max(1, (count + vpls_per_pass_ - 1) / vpls_per_pass_);
+}
+
+void lightwave_pipeline::sum_at_receivers() {
+  // The first pass continues from zero.
+  receiver_sum_targets_[1].bind();
+  glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+  glClear(GL_COLOR_BUFFER_BIT);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  const program& p = receiver_sum_program_;
+  p.use();
+  p.set("receiver_texture", 0);
+  p.set("partial_sum", 1);
+  p.set("receiver_count", static_cast<int>(receivers_.vertices.size()));
+  p.set("receiver_rows", receiver_sum_targets_[0].height());
+  set_uniforms(p, "irradiance", settings_.irradiance);
+  receiver_texture_->bind(0);
+  glBindVertexArray(empty_vertex_array_.get());
+  const int passes = vpl_pass_count(), count = static_cast<int>(receiver_vpls_.size());
+  for (int pass = 0; pass < passes; ++pass) {
+    const framebuffer& target = receiver_sum_targets_[static_cast<std::size_t>(pass % 2)];
+    target.bind();
+    receiver_sum_targets_[static_cast<std::size_t>((pass + 1) % 2)].colour(0).bind(1);
+    glBindBufferRange(GL_UNIFORM_BUFFER, 0, vpl_block_buffer_.get(), static_cast<GLintptr>(static_cast<std::size_t>(pass) * vpl_block_stride_),
+                      static_cast<GLsizeiptr>(static_cast<std::size_t>(vpls_per_pass_) * 3 * sizeof(glm::vec4)));
+    p.set("pass_vpl_count", std::min(vpls_per_pass_, count - pass * vpls_per_pass_));
+    p.set("last_pass", pass + 1 == passes ? 1 : 0);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+  }
+  glBindVertexArray(0);
+  glBindBufferBase(GL_UNIFORM_BUFFER, 0, 0);
+  // Into the main pass's attribute buffer without a trip through host memory: the full rows,
+  // then the part of the last one that holds receivers (RGB floats, rows packed: 12 bytes a texel).
+  const framebuffer& result = receiver_sum_targets_[static_cast<std::size_t>((passes - 1) % 2)];
+  const std::size_t receivers = receivers_.vertices.size();
+  const auto width = static_cast<std::size_t>(result.width());
+  const std::size_t full_rows = receivers / width, rest = receivers % width;
+  result.bind_for_reading(0);
+  glPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, indirect_buffer_.get());
+  if (full_rows > 0) glReadPixels(0, 0, static_cast<GLsizei>(width), static_cast<GLsizei>(full_rows), GL_RGB, GL_FLOAT, nullptr);
+  if (rest > 0)
+    glReadPixels(0, static_cast<GLint>(full_rows), static_cast<GLsizei>(rest), 1, GL_RGB, GL_FLOAT,
+                 reinterpret_cast<void*>(full_rows * width * sizeof(glm::vec3)));
+  glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
+  check_gl("summing the Light Wave VPLs at the receivers");
+}
+
 std::vector<glm::vec3> lightwave_pipeline::capture_vertex_indirect() {
-  if (vpls_dirty_ || shadows_dirty_) rebuild();
+  if (settings_.energy == lightwave_energy::flux && !receiver_buffers_)
+    throw error(std::string("Light Wave technique ") + technique_.name + " sums no VPLs: no vertex indirect light to capture");
+  if (vpls_dirty_ || shadows_dirty_) {
+    rebuild();
+    timer_.collect();  // not a frame's passes
+  }
   // Flux energy: the buffer the main pass reads, captured at the last build.
   const std::size_t count = receiver_buffers_ ? receivers_.vertices.size() : scene_.geometry.vertices.size();
   gl_buffer captured(generate_buffer());

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -45,6 +46,13 @@ enum class lightwave_energy { thesis = 0, flux = 1 };
 /// flux layout looks its rays up: under half a degree a texel for a cone 120 degrees across, finer than
 /// the layout's samples (the VPL sits where its ray meets the texel's plane, not at the texel).
 constexpr int lightwave_surface_map_size = 256;
+
+/// The flux energy sums the VPLs at the receivers one fragment each, receiver i at texel (i %
+/// width, i / width) of a grid of width x rows texels: rows a multiple of 4 (a software
+/// rasteriser shades 4x4 blocks; a 2-row grid left half of each block's lanes idle, +40 % on the
+/// boxes) and as few as rows of at most 1024 allow, so that the grid spans many of its 64-texel
+/// tiles and every core gets some; the width a multiple of 4 too.
+glm::ivec2 lightwave_receiver_grid(std::size_t receivers);
 
 struct lightwave_technique {
   const char* name = "";
@@ -96,6 +104,10 @@ struct lightwave_settings {
   /// diffuse bounce does not depend on the camera, and the main pass reads it as a vertex attribute.
   float receiver_spacing = 1.0f / 8.0f;
   int receiver_triangles = 32768;
+  /// Flux energy: the VPLs the receivers sum in one pass (lightwave_capture.frag); 0: as many as
+  /// one uniform block of the GL holds (GL_MAX_UNIFORM_BLOCK_SIZE / 48 bytes), at most 1365 (64 KiB).
+  /// Any count gives the same sums to the bit; fewer a pass means more passes.
+  int vpls_per_pass = 0;
   std::uint32_t seed = 1;         ///< draws the VPLs of the accurate shadow maps of the thesis variant
   lightwave_shading_settings<float> shading;  ///< thesis energy (Eq. 4.5's specular term)
   irradiance_settings<float> irradiance;      ///< the direct light's and the flux VPLs' distance clamp
@@ -252,9 +264,9 @@ class lightwave_pipeline final : public pipeline {
   int summed_vpl_count() const;
   const lightwave_layout_settings<float>& layout() const { return layout_; }
   const lightwave_cone_settings<float>& cone() const { return cone_; }
-  /// Each vertex's indirect colour from the main pass's vertex stage (transform feedback): the
-  /// thesis energy at the scene's vertices, the flux energy at the receivers' (the buffer the main
-  /// pass reads). The parity test compares it with the CPU sum.
+  /// Each vertex's indirect colour: the thesis energy's from the main pass's vertex stage at the
+  /// scene's vertices (transform feedback), the flux energy's summed at the receivers' (the buffer
+  /// the main pass reads, lightwave_capture.frag). The parity test compares it with the CPU sum.
   std::vector<glm::vec3> capture_vertex_indirect();
   /// The mesh whose vertices carry the indirect light: the scene's, or the flux energy's receivers.
   const mesh& drawn_mesh() const { return receiver_buffers_ ? receivers_ : scene_.geometry; }
@@ -274,8 +286,12 @@ class lightwave_pipeline final : public pipeline {
   /// The flux energy's VPLs: each ray of the cone looked up in a map of what the light sees.
   void build_flux_vpls(const glm::mat4& light_view_projection);
   void build_shadow_maps();
-  /// The vertex stage's indirect colour of every vertex of `vertices` into `buffer` (transform feedback).
+  /// Thesis energy: the vertex stage's indirect colour of every vertex of `vertices` into `buffer` (transform feedback).
   void capture_into(GLuint buffer, const mesh_buffers& vertices);
+  /// Flux energy: every receiver's indirect light (lightwave_capture.frag) into indirect_buffer_.
+  void sum_at_receivers();
+  /// Flux energy: the passes the receivers sum the VPLs in (at least one).
+  int vpl_pass_count() const;
   /// The scene's size and the light's frustum, for the maps and the VPLs.
   struct frame_geometry {
     float radius = 1.0f, near_plane = 0.01f, far_plane = 1.0f;
@@ -317,11 +333,18 @@ class lightwave_pipeline final : public pipeline {
   mesh_buffers mesh_;
   mesh receivers_;                              ///< flux energy: lightwave_receivers
   std::optional<mesh_buffers> receiver_buffers_;  ///< flux energy: drawn, with the indirect at attribute 3
-  std::vector<glm::vec3> receiver_samples_;     ///< flux energy: lightwave_receiver_samples, attribute 4 of the capture
-  gl_buffer sample_buffer_;
+  std::vector<glm::vec3> receiver_samples_;     ///< flux energy: lightwave_receiver_samples
+  std::optional<texture_2d> receiver_texture_;  ///< flux energy: sample points, normals, albedos (lightwave_capture.frag)
+  std::vector<framebuffer> receiver_sum_targets_;  ///< flux energy: a texel per receiver, the passes' sums in turn
+  program receiver_sum_program_;
+  int vpls_per_pass_ = 0;                       ///< flux energy: settings.vpls_per_pass, or a uniform block's worth
+  std::size_t vpl_block_stride_ = 0;            ///< bytes from one pass's VPLs to the next's in vpl_block_buffer_
+  gl_buffer vpl_block_buffer_;                  ///< flux energy: the receivers' VPLs, a uniform block per pass
+  gl_vertex_array empty_vertex_array_;          ///< the full-screen triangle has no vertex data
   gl_buffer indirect_buffer_;                   ///< flux energy: a vec3 per receiver vertex
   program depth_program_;
   program surface_program_;  ///< flux energy: what the light sees
+  std::array<image, 3> surface_texels_;  ///< flux energy: its positions, normals and albedos read back
   program main_program_;
   program capture_program_;
   program indirect_program_;                    ///< flux energy: the receivers' indirect light into indirect_target_

@@ -61,16 +61,14 @@ TEST_CASE("Light Wave vertex stage equals the CPU sum of Eq. 4.5 over all 6485 V
   require_parity(compare("Light Wave vertex stage (transform feedback)", gpu4, cpu4, inputs, {1e-7f, 2e-5f, 128, 0.0, "6485 terms of Eq. 4.5"}, 3));
 }
 
-TEST_CASE("Light Wave flux energy: the captured indirect light equals the CPU sum over the receivers' VPLs at every receiver's sample point") {
-  const scene boxes = make_boxes_scene();
-  lightwave_pipeline pipeline(test_shaders(), boxes, small("lightwave-unshadowed"));
-  const std::vector<glm::vec3> gpu = pipeline.capture_vertex_indirect();
+namespace {
+
+// The flux energy's indirect light at every receiver (lightwave_capture.frag) against the CPU sum
+// over the receivers' VPLs at every receiver's sample point.
+void check_receiver_sums(lightwave_pipeline& pipeline, const std::vector<glm::vec3>& gpu) {
   const mesh& receivers = pipeline.drawn_mesh();
   REQUIRE(gpu.size() == receivers.vertices.size());
-  REQUIRE(receivers.triangle_count() > boxes.geometry.triangle_count());  // subdivided
   const auto& vpls = pipeline.receiver_vpls();
-  REQUIRE(vpls.size() > 500u);
-  REQUIRE(vpls.size() < pipeline.flux_vpls().size());  // a ray's samples on one plane merged
   kernel_inputs inputs;
   inputs.width = static_cast<int>(gpu.size());
   inputs.height = 1;
@@ -86,7 +84,80 @@ TEST_CASE("Light Wave flux energy: the captured indirect light equals the CPU su
                         0.0f);
   }
   // Hundreds of terms (two divides each) summed in the same order: 2e-5 relative, 1e-7 absolute.
-  require_parity(compare("Light Wave flux vertex stage (transform feedback)", gpu4, cpu4, inputs, {1e-7f, 2e-5f, 128, 0.0, "flux VPLs of Eq. 3.2"}, 3));
+  require_parity(compare("Light Wave receiver sums (lightwave_capture.frag)", gpu4, cpu4, inputs, {1e-7f, 2e-5f, 128, 0.0, "flux VPLs of Eq. 3.2"}, 3));
+}
+
+}  // namespace
+
+TEST_CASE("Light Wave flux energy: the indirect light summed at the receivers equals the CPU sum over the receivers' VPLs at every receiver's sample point") {
+  const scene boxes = make_boxes_scene();
+  lightwave_pipeline pipeline(test_shaders(), boxes, small("lightwave-unshadowed"));
+  const std::vector<glm::vec3> gpu = pipeline.capture_vertex_indirect();
+  REQUIRE(pipeline.drawn_mesh().triangle_count() > boxes.geometry.triangle_count());  // subdivided
+  // Rows of receivers and a part of one: both copies into the main pass's buffer.
+  const auto width = static_cast<std::size_t>(lightwave_receiver_grid(gpu.size()).x);
+  REQUIRE(gpu.size() > width);
+  REQUIRE(gpu.size() % width != 0);
+  const auto& vpls = pipeline.receiver_vpls();
+  REQUIRE(vpls.size() > 500u);
+  REQUIRE(vpls.size() < pipeline.flux_vpls().size());  // a ray's samples on one plane merged
+  check_receiver_sums(pipeline, gpu);
+
+  SUBCASE("the VPLs in passes of 97: each pass continues the last one's sum, the same result to the bit") {
+    lightwave_settings settings = small("lightwave-unshadowed");
+    settings.vpls_per_pass = 97;
+    lightwave_pipeline in_passes(test_shaders(), boxes, settings);
+    const std::vector<glm::vec3> passes = in_passes.capture_vertex_indirect();
+    REQUIRE(in_passes.receiver_vpls().size() > 5u * 97u);
+    REQUIRE(passes.size() == gpu.size());
+    std::size_t different = 0, first_different = gpu.size();
+    for (std::size_t i = 0; i < gpu.size(); ++i)
+      if (passes[i] != gpu[i]) {
+        ++different;
+        first_different = std::min(first_different, i);
+      }
+    CAPTURE(first_different);
+    CHECK(different == 0);
+  }
+  SUBCASE("the scene's own vertices as receivers: another grid") {
+    lightwave_settings settings = small("lightwave-unshadowed");
+    settings.receiver_spacing = 4.0f;  // the scene as it is
+    lightwave_pipeline coarse(test_shaders(), boxes, settings);
+    const std::vector<glm::vec3> sums = coarse.capture_vertex_indirect();
+    REQUIRE(sums.size() < gpu.size() / 2);
+    check_receiver_sums(coarse, sums);
+  }
+}
+
+TEST_CASE("Light Wave flux energy: the receivers' grid holds every receiver in rows of a multiple of 4, at most 1024 wide") {
+  for (const std::size_t count : {std::size_t{1}, std::size_t{3}, std::size_t{4}, std::size_t{1202}, std::size_t{4096}, std::size_t{4097},
+                                  std::size_t{5279}, std::size_t{100000}, std::size_t{1} << 22}) {
+    CAPTURE(count);
+    const glm::ivec2 grid = lightwave_receiver_grid(count);
+    CHECK(grid.y % 4 == 0);
+    CHECK(grid.x % 4 == 0);
+    CHECK(grid.x <= 1024);
+    const auto cells = static_cast<std::size_t>(grid.x) * static_cast<std::size_t>(grid.y);
+    CHECK(cells >= count);
+    // The fewest rows of 4 that hold them: 4 rows fewer would not.
+    CHECK((grid.y == 4 || static_cast<std::size_t>(grid.y - 4) * 1024 < count));
+    // No empty row of 4 blocks: the last block row holds a receiver.
+    CHECK(cells - count < 4 * static_cast<std::size_t>(grid.y));
+  }
+}
+
+TEST_CASE("Light Wave flux energy: more VPLs per pass than a uniform block holds is refused, naming the limit") {
+  lightwave_settings settings = small("lightwave-unshadowed");
+  settings.vpls_per_pass = 65535;  // 3 MiB: more than any GL's uniform block
+  try {
+    lightwave_pipeline pipeline(test_shaders(), make_boxes_scene(), settings);
+    FAIL("no error");
+  } catch (const error& e) {
+    CHECK(std::string(e.what()).find("65535 VPLs per pass need a uniform block of 3145680 bytes") != std::string::npos);
+    CHECK(std::string(e.what()).find("VPLs per pass)") != std::string::npos);
+  }
+  settings.vpls_per_pass = -1;
+  CHECK(validate(settings).find("VPLs per pass") != std::string::npos);
 }
 
 TEST_CASE("Light Wave modes, both energies: finite images; shadows only remove indirect light; direct <= everything") {
@@ -144,23 +215,25 @@ TEST_CASE("Light Wave redraws what a move invalidated: VPLs and shadow maps afte
   };
   pipeline.draw_changed();
   CHECK(pipeline.rebuilds() == 1);
-  CHECK(passes() == std::vector<std::string>{"VPLs and shadow maps", "main pass"});
+  // The flux energy sums the VPLs at the receivers and draws their light into the indirect buffer
+  // the main pass reads.
+  CHECK(passes() == std::vector<std::string>{"VPLs", "shadow maps", "indirect buffer", "main pass"});
   pipeline.draw_changed();  // nothing moved
   CHECK(passes().empty());
   pipeline.set_camera(pipeline.current_camera());
   pipeline.draw_changed();
   CHECK(pipeline.rebuilds() == 1);
-  CHECK(passes() == std::vector<std::string>{"main pass"});
+  CHECK(passes() == std::vector<std::string>{"indirect buffer", "main pass"});
   scene_light moved = make_boxes_scene().light;
   moved.spot.position.x += 0.3f;
   pipeline.set_light(moved);
   pipeline.draw_changed();
   CHECK(pipeline.rebuilds() == 2);
   CHECK(pipeline.layout().light_position.x == doctest::Approx(moved.spot.position.x));
-  CHECK(passes().size() == 2);
+  CHECK(passes().size() == 4);
   const lightwave_frame every = pipeline.render();  // draw(): every pass
   CHECK(pipeline.rebuilds() == 3);
-  CHECK(every.pass_times.size() == 2);
+  CHECK(every.pass_times.size() == 4);
   CHECK(pipeline.view_draws() == 4);
   // The default accurate shadows (importance, flux energy) choose their casters for the whole
   // scene: a camera move redraws the main pass alone; with the thesis energy they follow the camera.
