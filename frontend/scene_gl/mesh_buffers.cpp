@@ -121,11 +121,11 @@ void mesh_buffers::draw_points() const {
   glBindVertexArray(0);
 }
 
-void mesh_buffers::attach_vec3_attribute(GLuint location, GLuint buffer) const {
+void mesh_buffers::attach_vec4_attribute(GLuint location, GLuint buffer) const {
   glBindVertexArray(vertex_array_.get());
   glBindBuffer(GL_ARRAY_BUFFER, buffer);
   glEnableVertexAttribArray(location);
-  glVertexAttribPointer(location, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
+  glVertexAttribPointer(location, 4, GL_FLOAT, GL_FALSE, 4 * sizeof(float), nullptr);
   glBindVertexArray(0);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
   check_gl("attaching vertex attribute " + std::to_string(location));

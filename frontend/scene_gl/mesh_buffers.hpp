@@ -28,9 +28,9 @@ class mesh_buffers {
   void draw(const program& target) const;
   /// Every vertex once, as points (for transform feedback over the vertex stage).
   void draw_points() const;
-  /// Binds `buffer`, one vec3 of floats per vertex, to attribute `location` of the vertex array
-  /// (a per-vertex result computed on the GPU, e.g. captured by transform feedback).
-  void attach_vec3_attribute(GLuint location, GLuint buffer) const;
+  /// Binds `buffer`, one vec4 of floats per vertex, to attribute `location` of the vertex array
+  /// (a per-vertex result computed on the GPU, e.g. copied from a render target's RGBA texels).
+  void attach_vec4_attribute(GLuint location, GLuint buffer) const;
   GLsizei vertex_count() const { return vertex_count_; }
 
  private:

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <iomanip>
 #include <limits>
+#include <numeric>
 #include <sstream>
 #include <tuple>
 
@@ -72,7 +73,7 @@ const std::vector<setting<lightwave_settings, lightwave_technique>>& lightwave_s
       entry::choice("format", [](auto& s) -> auto& { return s.format; }, {{"rgba16f", texel_format::rgba16f}, {"rgba32f", texel_format::rgba32f}},
                     "float format of the render targets"),
       entry::number("min-distance", [](auto& s) -> auto& { return s.irradiance.min_distance; }, describe_field(&irradiance_settings<float>::min_distance))
-          .feeds("lightwave.frag: irradiance.min_distance"),
+          .feeds("lightwave.frag: irradiance.min_distance; lightwave_capture.frag: irradiance.min_distance"),
       entry::number("seed", [](auto& s) -> auto& { return s.seed; }, closed_range(0, 4294967295.0), "",
                     "seed of the VPL draw of the accurate shadows' thesis variant (the importance variant has none)")
           .read_by(modes({lightwave_mode::accurate}), "the accurate shadows"),
@@ -84,10 +85,10 @@ const std::vector<setting<lightwave_settings, lightwave_technique>>& lightwave_s
       entry::number("ray-angle", [](auto& s) -> auto& { return s.angle_deg; }, describe_field(&lightwave_layout_settings<float>::angle_deg))
           .allowing(ray_angles)
           .read_by(vpl_light, "the VPL light")
-          .feeds("lightwave.vert: vpl_texture; lightwave.vert: vpl_count"),
+          .feeds("lightwave.vert: vpl_texture; lightwave.vert: vpl_count; lightwave_capture.frag: pass_vpl_count"),
       entry::number("vpls-per-ray", [](auto& s) -> auto& { return s.per_ray; }, describe_field(&lightwave_layout_settings<float>::per_ray))
           .read_by(vpl_light, "the VPL light")
-          .feeds("lightwave.vert: vpl_texture; lightwave.vert: vpl_count"),
+          .feeds("lightwave.vert: vpl_texture; lightwave.vert: vpl_count; lightwave_capture.frag: pass_vpl_count"),
       entry::number("vpl-max-distance", [](auto& s) -> auto& { return s.max_distance; }, closed_range(0, max_scene_coordinate), "scene units",
                     "thesis energy: the distance the hemispheres approach (0: from the scene's size)")
           .read_by(vpl_light, "the VPL light")
@@ -152,7 +153,8 @@ std::string validate(const lightwave_settings& settings) {
            std::to_string(max_image_side);
   }
   const int vpls = lightwave_vpl_count(settings.angle_deg, settings.per_ray);
-  // The vertex stage loops over every VPL, and llvmpipe ends a loop after 65535 iterations.
+  // The thesis energy's vertex stage loops over every VPL (the flux energy's passes over at most
+  // vpls_per_pass), and llvmpipe ends a loop after 65535 iterations.
   if (vpls > 65535) return "at most 65535 VPLs (the per-vertex loop; llvmpipe stops loops there), got " + std::to_string(vpls);
   // The flux energy puts its VPLs where its rays meet the scene: no hemispheres to place.
   if (settings.energy == lightwave_energy::flux && settings.max_distance != 0.0f)
@@ -377,12 +379,29 @@ mesh lightwave_receivers(const mesh& geometry, const lightwave_settings& setting
   return geometry;
 }
 
-glm::ivec2 lightwave_receiver_grid(std::size_t receivers) {
+glm::ivec2 lightwave_receiver_grid(std::size_t receivers, int max_side) {
   const std::size_t count = std::max<std::size_t>(receivers, 1);
-  constexpr std::size_t max_width = 1024;
-  const std::size_t rows = 4 * ((count + 4 * max_width - 1) / (4 * max_width));
-  const std::size_t width = ((count + rows - 1) / rows + 3) / 4 * 4;
-  return {static_cast<int>(width), static_cast<int>(rows)};
+  const auto up4 = [](std::size_t n) { return (n + 3) / 4 * 4; };
+  const std::size_t max_rows = std::max<std::size_t>(4, static_cast<std::size_t>(std::max(max_side, 0)) / 4 * 4);
+  // As few rows of up to 1024 as hold them, or wider rows where that many would not fit.
+  const std::size_t rows = std::min(up4((count + 1023) / 1024), max_rows);
+  const std::size_t width = up4((count + rows - 1) / rows);
+  return {static_cast<int>(std::min<std::size_t>(width, std::size_t{1} << 30)), static_cast<int>(rows)};
+}
+
+std::vector<glm::vec4> lightwave_vpl_blocks(const std::vector<lightwave_flux_vpl<float>>& vpls, int per_pass, std::size_t stride_bytes) {
+  const auto per = static_cast<std::size_t>(std::max(per_pass, 1));
+  if (stride_bytes % sizeof(glm::vec4) != 0 || stride_bytes < per * 3 * sizeof(glm::vec4))
+    throw error("lightwave_vpl_blocks: a stride of " + std::to_string(stride_bytes) + " bytes cannot hold " + std::to_string(per) + " VPLs in 16-byte rows");
+  const std::size_t blocks = std::max<std::size_t>(1, (vpls.size() + per - 1) / per), stride = stride_bytes / sizeof(glm::vec4);
+  std::vector<glm::vec4> rows(blocks * stride, glm::vec4(0.0f));
+  for (std::size_t i = 0; i < vpls.size(); ++i) {
+    glm::vec4* row = &rows[i / per * stride + 3 * (i % per)];
+    row[0] = glm::vec4(vpls[i].position, vpls[i].radius);
+    row[1] = glm::vec4(vpls[i].normal, 0.0f);
+    row[2] = glm::vec4(vpls[i].flux, 0.0f);
+  }
+  return rows;
 }
 
 std::vector<glm::vec3> lightwave_receiver_samples(const mesh& receivers) {
@@ -459,27 +478,29 @@ lightwave_pipeline::lightwave_pipeline(const shader_library& shaders, const scen
     receivers_ = lightwave_receivers(source.geometry, settings_);
     receiver_samples_ = lightwave_receiver_samples(receivers_);
     receiver_buffers_.emplace(receivers_);
+    // The sum at the receivers: receiver i at texel (i % width, i / width) of three textures, its
+    // sample point, normal and albedo.
+    const std::size_t count = receivers_.vertices.size();
+    GLint max_side = 0;
+    glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_side);
+    const glm::ivec2 grid = lightwave_receiver_grid(count, max_side);
+    check_texture_size(grid.x, grid.y, "the Light Wave receivers' grid (" + std::to_string(count) + " receivers)");
+    const std::size_t cells = static_cast<std::size_t>(grid.x) * static_cast<std::size_t>(grid.y);
+    std::vector<glm::vec4> points(cells, glm::vec4(0.0f)), normals(cells, glm::vec4(0.0f)), albedos(cells, glm::vec4(0.0f));
+    for (std::size_t i = 0; i < count; ++i) {
+      points[i] = glm::vec4(receiver_samples_[i], 0.0f);
+      normals[i] = glm::vec4(receivers_.vertices[i].normal, 0.0f);
+      albedos[i] = glm::vec4(receivers_.vertices[i].albedo, 0.0f);
+    }
+    for (const std::vector<glm::vec4>* texels : {&points, &normals, &albedos}) receiver_textures_.emplace_back(grid.x, grid.y, texel_format::rgba32f, texels->data());
+    // The sums land in the main pass's attribute buffer as the grid's texels, RGBA floats (the
+    // copy a plain memcpy on any GL), read as a vec3 attribute.
     indirect_buffer_ = gl_buffer(generate_buffer());
     glBindBuffer(GL_ARRAY_BUFFER, indirect_buffer_.get());
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(receivers_.vertices.size() * sizeof(glm::vec3)), nullptr, GL_DYNAMIC_COPY);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(cells * sizeof(glm::vec4)), nullptr, GL_DYNAMIC_COPY);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
-    receiver_buffers_->attach_vec3_attribute(3, indirect_buffer_.get());
-    // The sum at the receivers: receiver i at texel (i % width, i / width), its sample point,
-    // normal and albedo in three bands of rows.
-    const std::size_t count = receivers_.vertices.size();
-    const glm::ivec2 grid = lightwave_receiver_grid(count);
-    const int width = grid.x, rows = grid.y;
-    check_texture_size(width, 3 * rows, "the Light Wave receiver texture (" + std::to_string(count) + " receivers)");
-    std::vector<glm::vec4> receiver_texels(static_cast<std::size_t>(width) * static_cast<std::size_t>(3 * rows), glm::vec4(0.0f));
-    const std::size_t band = static_cast<std::size_t>(width) * static_cast<std::size_t>(rows);
-    for (std::size_t i = 0; i < count; ++i) {
-      const vertex& v = receivers_.vertices[i];
-      receiver_texels[i] = glm::vec4(receiver_samples_[i], 0.0f);
-      receiver_texels[band + i] = glm::vec4(v.normal, 0.0f);
-      receiver_texels[2 * band + i] = glm::vec4(v.albedo, 0.0f);
-    }
-    receiver_texture_.emplace(width, 3 * rows, texel_format::rgba32f, receiver_texels.data());
-    for (int k = 0; k < 2; ++k) receiver_sum_targets_.emplace_back(width, rows, std::vector<texel_format>{texel_format::rgba32f}, false);
+    receiver_buffers_->attach_vec4_attribute(3, indirect_buffer_.get());
+    for (int k = 0; k < 2; ++k) receiver_sum_targets_.emplace_back(grid.x, grid.y, std::vector<texel_format>{texel_format::rgba32f}, false);
     // The VPLs of a pass in one uniform block: three vec4 each (std140), the blocks of successive
     // passes at offsets the GL accepts.
     GLint block_bytes = 0, offset_alignment = 0;
@@ -493,7 +514,7 @@ lightwave_pipeline::lightwave_pipeline(const shader_library& shaders, const scen
     if (vpls_per_pass_ < 1 || vpls_per_pass_ > block_vpls)
       throw error("Light Wave: " + std::to_string(vpls_per_pass_) + " VPLs per pass need a uniform block of " + std::to_string(vpls_per_pass_ * bytes_per_vpl) +
                   " bytes; this GL allows " + std::to_string(block_bytes) + " (at most " + std::to_string(block_vpls) + " VPLs per pass)");
-    const std::size_t alignment = static_cast<std::size_t>(std::max(offset_alignment, 1));
+    const std::size_t alignment = std::lcm(static_cast<std::size_t>(std::max(offset_alignment, 1)), sizeof(glm::vec4));
     const std::size_t block_size = static_cast<std::size_t>(vpls_per_pass_) * bytes_per_vpl;
     vpl_block_stride_ = (block_size + alignment - 1) / alignment * alignment;
     vpl_block_buffer_ = gl_buffer(generate_buffer());
@@ -505,9 +526,9 @@ lightwave_pipeline::lightwave_pipeline(const shader_library& shaders, const scen
       shader_defines indirect_defines = defines;
       if (!has_alpha_cutouts(source.geometry)) indirect_defines.emplace_back("VPLKIT_MATERIAL_NO_ALPHA_TEST", "1");
       indirect_program_ = load_program(shaders, "lightwave.vert", "lightwave_indirect.frag", indirect_defines);
-      // In the output's format (half floats by default): the main pass adds it to the direct light
-      // at that precision anyway, and half the bytes to clear and write cost a software rasteriser
-      // about 2 ms of the boxes' 1280x720 frame.
+      // In the output's format (half floats by default, a relative step of 2^-11, as the image's):
+      // half the bytes to clear and write cost a software rasteriser about 2 ms less of the boxes'
+      // 1280x720 frame.
       indirect_target_.emplace(settings_.width, settings_.height, std::vector<texel_format>{settings_.format}, true);
     }
   }
@@ -756,15 +777,7 @@ void lightwave_pipeline::build_vpls() {
     // The receivers' VPLs, a uniform block per pass: [position | radius], [normal | 0], [flux | 0].
     // The flux energy's indirect light does not depend on the camera: summed once per light, at
     // the receivers' vertices, into the buffer the main pass reads.
-    const int passes = vpl_pass_count();
-    std::vector<glm::vec4> rows(static_cast<std::size_t>(passes) * vpl_block_stride_ / sizeof(glm::vec4), glm::vec4(0.0f));
-    for (std::size_t i = 0; i < receiver_vpls_.size(); ++i) {
-      const std::size_t pass = i / static_cast<std::size_t>(vpls_per_pass_), in_pass = i % static_cast<std::size_t>(vpls_per_pass_);
-      glm::vec4* row = &rows[pass * vpl_block_stride_ / sizeof(glm::vec4) + 3 * in_pass];
-      row[0] = glm::vec4(receiver_vpls_[i].position, receiver_vpls_[i].radius);
-      row[1] = glm::vec4(receiver_vpls_[i].normal, 0.0f);
-      row[2] = glm::vec4(receiver_vpls_[i].flux, 0.0f);
-    }
+    const std::vector<glm::vec4> rows = lightwave_vpl_blocks(receiver_vpls_, vpls_per_pass_, vpl_block_stride_);
     glBindBuffer(GL_UNIFORM_BUFFER, vpl_block_buffer_.get());
     glBufferData(GL_UNIFORM_BUFFER, static_cast<GLsizeiptr>(rows.size() * sizeof(glm::vec4)), rows.data(), GL_DYNAMIC_DRAW);
     glBindBuffer(GL_UNIFORM_BUFFER, 0);
@@ -1043,18 +1056,19 @@ void lightwave_pipeline::sum_at_receivers() {
   glDisable(GL_BLEND);
   const program& p = receiver_sum_program_;
   p.use();
-  p.set("receiver_texture", 0);
-  p.set("partial_sum", 1);
+  p.set("receiver_points", 0);
+  p.set("receiver_normals", 1);
+  p.set("receiver_albedos", 2);
+  p.set("partial_sum", 3);
   p.set("receiver_count", static_cast<int>(receivers_.vertices.size()));
-  p.set("receiver_rows", receiver_sum_targets_[0].height());
   set_uniforms(p, "irradiance", settings_.irradiance);
-  receiver_texture_->bind(0);
+  for (std::size_t k = 0; k < receiver_textures_.size(); ++k) receiver_textures_[k].bind(static_cast<int>(k));
   glBindVertexArray(empty_vertex_array_.get());
   const int passes = vpl_pass_count(), count = static_cast<int>(receiver_vpls_.size());
   for (int pass = 0; pass < passes; ++pass) {
     const framebuffer& target = receiver_sum_targets_[static_cast<std::size_t>(pass % 2)];
     target.bind();
-    receiver_sum_targets_[static_cast<std::size_t>((pass + 1) % 2)].colour(0).bind(1);
+    receiver_sum_targets_[static_cast<std::size_t>((pass + 1) % 2)].colour(0).bind(3);
     glBindBufferRange(GL_UNIFORM_BUFFER, 0, vpl_block_buffer_.get(), static_cast<GLintptr>(static_cast<std::size_t>(pass) * vpl_block_stride_),
                       static_cast<GLsizeiptr>(static_cast<std::size_t>(vpls_per_pass_) * 3 * sizeof(glm::vec4)));
     p.set("pass_vpl_count", std::min(vpls_per_pass_, count - pass * vpls_per_pass_));
@@ -1063,19 +1077,12 @@ void lightwave_pipeline::sum_at_receivers() {
   }
   glBindVertexArray(0);
   glBindBufferBase(GL_UNIFORM_BUFFER, 0, 0);
-  // Into the main pass's attribute buffer without a trip through host memory: the full rows,
-  // then the part of the last one that holds receivers (RGB floats, rows packed: 12 bytes a texel).
+  // Into the main pass's attribute buffer without a trip through host memory.
   const framebuffer& result = receiver_sum_targets_[static_cast<std::size_t>((passes - 1) % 2)];
-  const std::size_t receivers = receivers_.vertices.size();
-  const auto width = static_cast<std::size_t>(result.width());
-  const std::size_t full_rows = receivers / width, rest = receivers % width;
   result.bind_for_reading(0);
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
   glBindBuffer(GL_PIXEL_PACK_BUFFER, indirect_buffer_.get());
-  if (full_rows > 0) glReadPixels(0, 0, static_cast<GLsizei>(width), static_cast<GLsizei>(full_rows), GL_RGB, GL_FLOAT, nullptr);
-  if (rest > 0)
-    glReadPixels(0, static_cast<GLint>(full_rows), static_cast<GLsizei>(rest), 1, GL_RGB, GL_FLOAT,
-                 reinterpret_cast<void*>(full_rows * width * sizeof(glm::vec3)));
+  glReadPixels(0, 0, result.width(), result.height(), GL_RGBA, GL_FLOAT, nullptr);
   glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
   check_gl("summing the Light Wave VPLs at the receivers");
 }
@@ -1096,9 +1103,17 @@ std::vector<glm::vec3> lightwave_pipeline::capture_vertex_indirect() {
     capture_into(captured.get(), mesh_);
   }
   std::vector<glm::vec3> result(count);
-  glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, receiver_buffers_ ? indirect_buffer_.get() : captured.get());
-  glGetBufferSubData(GL_TRANSFORM_FEEDBACK_BUFFER, 0, static_cast<GLsizeiptr>(count * sizeof(glm::vec3)), result.data());
-  glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, 0);
+  if (receiver_buffers_) {
+    std::vector<glm::vec4> texels(count);
+    glBindBuffer(GL_ARRAY_BUFFER, indirect_buffer_.get());
+    glGetBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(count * sizeof(glm::vec4)), texels.data());
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+    for (std::size_t i = 0; i < count; ++i) result[i] = glm::vec3(texels[i]);
+  } else {
+    glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, captured.get());
+    glGetBufferSubData(GL_TRANSFORM_FEEDBACK_BUFFER, 0, static_cast<GLsizeiptr>(count * sizeof(glm::vec3)), result.data());
+    glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, 0);
+  }
   check_gl("reading the Light Wave vertex stage back");
   return result;
 }

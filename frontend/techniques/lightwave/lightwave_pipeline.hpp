@@ -1,11 +1,13 @@
 // The Light Wave pipeline of [LW] (chapter 4): VPLs laid out on the CPU by the lightwave
-// kernels and uploaded to a float texture, shadow maps for the light and for some VPLs in one
-// depth texture array, and one main pass whose vertex stage sums the VPLs' light at every vertex
-// and whose fragment stage combines direct and indirect light with their shadows (Eq. 4.9). VPLs
-// and shadow maps are rebuilt only when the light or the scene moves, as in the thesis.
-// Two energies (lightwave_energy): the thesis's VPLs floating on hemispheres with Eq. 4.5, or
-// (the default) VPLs where the rays of the spot's cone meet the scene, found in a map of what the
-// light sees, each reflecting the flux its patch of the cone brings (docs/lightwave-shadows.md).
+// kernels, shadow maps for the light and for some VPLs in one depth texture array, and a main
+// pass whose fragment stage combines direct and indirect light with their shadows (Eq. 4.9).
+// VPLs and shadow maps are rebuilt only when the light or the scene moves, as in the thesis.
+// Two energies (lightwave_energy): the thesis's VPLs floating on hemispheres with Eq. 4.5, read
+// from a float texture and summed by the main pass's vertex stage at every vertex, every frame;
+// or (the default) VPLs where the rays of the spot's cone meet the scene, found in a map of what
+// the light sees, each reflecting the flux its patch of the cone brings, summed once per light at
+// the vertices of the scene subdivided (lightwave_capture.frag) and drawn into a screen buffer
+// the main pass reads (docs/lightwave-shadows.md).
 #pragma once
 
 #include <cstdint>
@@ -51,8 +53,15 @@ constexpr int lightwave_surface_map_size = 256;
 /// width, i / width) of a grid of width x rows texels: rows a multiple of 4 (a software
 /// rasteriser shades 4x4 blocks; a 2-row grid left half of each block's lanes idle, +40 % on the
 /// boxes) and as few as rows of at most 1024 allow, so that the grid spans many of its 64-texel
-/// tiles and every core gets some; the width a multiple of 4 too.
-glm::ivec2 lightwave_receiver_grid(std::size_t receivers);
+/// tiles and every core gets some; the width a multiple of 4 too, wider than 1024 where the rows
+/// would pass `max_side` (the GL's largest texture; the caller checks the width against it).
+glm::ivec2 lightwave_receiver_grid(std::size_t receivers, int max_side);
+
+/// The receivers' VPLs as the uniform blocks of lightwave_capture.frag's passes: per_pass VPLs a
+/// block (the last one's tail zero), three vec4 each, [position | radius], [normal | 0], [flux | 0];
+/// block k at byte k x stride_bytes (a multiple of 16 and of the GL's offset alignment, at least
+/// 48 x per_pass). At least one block.
+std::vector<glm::vec4> lightwave_vpl_blocks(const std::vector<lightwave_flux_vpl<float>>& vpls, int per_pass, std::size_t stride_bytes);
 
 struct lightwave_technique {
   const char* name = "";
@@ -219,7 +228,7 @@ class lightwave_pipeline final : public pipeline {
   lightwave_pipeline(const shader_library& shaders, const scene& source, const lightwave_settings& settings);
   /// draw(), then the images read back.
   lightwave_frame render();
-  /// Every pass: the VPLs and shadow maps, then the main pass.
+  /// Every pass: the VPLs, the shadow maps, the indirect buffer (flux energy), the main pass.
   void draw() override;
   /// What the moves since the last frame invalidated: the VPLs and shadow maps after set_light
   /// (and after set_camera for the importance variant with the thesis energy, whose casters follow
@@ -267,6 +276,7 @@ class lightwave_pipeline final : public pipeline {
   /// Each vertex's indirect colour: the thesis energy's from the main pass's vertex stage at the
   /// scene's vertices (transform feedback), the flux energy's summed at the receivers' (the buffer
   /// the main pass reads, lightwave_capture.frag). The parity test compares it with the CPU sum.
+  /// Rebuilds what a move invalidated first, untimed (pass times not yet collected are dropped).
   std::vector<glm::vec3> capture_vertex_indirect();
   /// The mesh whose vertices carry the indirect light: the scene's, or the flux energy's receivers.
   const mesh& drawn_mesh() const { return receiver_buffers_ ? receivers_ : scene_.geometry; }
@@ -334,14 +344,14 @@ class lightwave_pipeline final : public pipeline {
   mesh receivers_;                              ///< flux energy: lightwave_receivers
   std::optional<mesh_buffers> receiver_buffers_;  ///< flux energy: drawn, with the indirect at attribute 3
   std::vector<glm::vec3> receiver_samples_;     ///< flux energy: lightwave_receiver_samples
-  std::optional<texture_2d> receiver_texture_;  ///< flux energy: sample points, normals, albedos (lightwave_capture.frag)
+  std::vector<texture_2d> receiver_textures_;   ///< flux energy: sample points, normals, albedos (lightwave_capture.frag)
   std::vector<framebuffer> receiver_sum_targets_;  ///< flux energy: a texel per receiver, the passes' sums in turn
   program receiver_sum_program_;
   int vpls_per_pass_ = 0;                       ///< flux energy: settings.vpls_per_pass, or a uniform block's worth
   std::size_t vpl_block_stride_ = 0;            ///< bytes from one pass's VPLs to the next's in vpl_block_buffer_
   gl_buffer vpl_block_buffer_;                  ///< flux energy: the receivers' VPLs, a uniform block per pass
   gl_vertex_array empty_vertex_array_;          ///< the full-screen triangle has no vertex data
-  gl_buffer indirect_buffer_;                   ///< flux energy: a vec3 per receiver vertex
+  gl_buffer indirect_buffer_;                   ///< flux energy: a vec4 per texel of the receivers' grid, receiver i's at i
   program depth_program_;
   program surface_program_;  ///< flux energy: what the light sees
   std::array<image, 3> surface_texels_;  ///< flux energy: its positions, normals and albedos read back

@@ -94,8 +94,8 @@ TEST_CASE("Light Wave flux energy: the indirect light summed at the receivers eq
   lightwave_pipeline pipeline(test_shaders(), boxes, small("lightwave-unshadowed"));
   const std::vector<glm::vec3> gpu = pipeline.capture_vertex_indirect();
   REQUIRE(pipeline.drawn_mesh().triangle_count() > boxes.geometry.triangle_count());  // subdivided
-  // Rows of receivers and a part of one: both copies into the main pass's buffer.
-  const auto width = static_cast<std::size_t>(lightwave_receiver_grid(gpu.size()).x);
+  // Rows of receivers and a part of one, then empty texels: receiver i's sum read from texel i.
+  const auto width = static_cast<std::size_t>(lightwave_receiver_grid(gpu.size(), 16384).x);
   REQUIRE(gpu.size() > width);
   REQUIRE(gpu.size() % width != 0);
   const auto& vpls = pipeline.receiver_vpls();
@@ -118,6 +118,17 @@ TEST_CASE("Light Wave flux energy: the indirect light summed at the receivers eq
       }
     CAPTURE(first_different);
     CHECK(different == 0);
+    // A light move: each pass starts again from zero (not from the last light's sums), the
+    // passes still equal to one pass, and both the CPU sum for the new light.
+    scene_light moved = boxes.light;
+    moved.spot.position.x += 0.4f;
+    moved.spot.direction = glm::normalize(moved.spot.direction + glm::vec3(0.1f, 0.0f, 0.0f));
+    pipeline.set_light(moved);
+    in_passes.set_light(moved);
+    const std::vector<glm::vec3> moved_one = pipeline.capture_vertex_indirect(), moved_passes = in_passes.capture_vertex_indirect();
+    REQUIRE(moved_one != gpu);
+    CHECK(moved_passes == moved_one);
+    check_receiver_sums(in_passes, moved_passes);
   }
   SUBCASE("the scene's own vertices as receivers: another grid") {
     lightwave_settings settings = small("lightwave-unshadowed");
@@ -129,34 +140,78 @@ TEST_CASE("Light Wave flux energy: the indirect light summed at the receivers eq
   }
 }
 
-TEST_CASE("Light Wave flux energy: the receivers' grid holds every receiver in rows of a multiple of 4, at most 1024 wide") {
-  for (const std::size_t count : {std::size_t{1}, std::size_t{3}, std::size_t{4}, std::size_t{1202}, std::size_t{4096}, std::size_t{4097},
-                                  std::size_t{5279}, std::size_t{100000}, std::size_t{1} << 22}) {
-    CAPTURE(count);
-    const glm::ivec2 grid = lightwave_receiver_grid(count);
-    CHECK(grid.y % 4 == 0);
-    CHECK(grid.x % 4 == 0);
-    CHECK(grid.x <= 1024);
-    const auto cells = static_cast<std::size_t>(grid.x) * static_cast<std::size_t>(grid.y);
-    CHECK(cells >= count);
-    // The fewest rows of 4 that hold them: 4 rows fewer would not.
-    CHECK((grid.y == 4 || static_cast<std::size_t>(grid.y - 4) * 1024 < count));
-    // No empty row of 4 blocks: the last block row holds a receiver.
-    CHECK(cells - count < 4 * static_cast<std::size_t>(grid.y));
+TEST_CASE("Light Wave flux energy: the receivers' grid holds every receiver in rows of a multiple of 4, at most 1024 wide where they fit") {
+  for (const int max_side : {16384, 64}) {
+    for (const std::size_t count : {std::size_t{1}, std::size_t{3}, std::size_t{4}, std::size_t{1202}, std::size_t{4096}, std::size_t{4097},
+                                    std::size_t{5279}, std::size_t{100000}, std::size_t{1} << 22}) {
+      CAPTURE(max_side);
+      CAPTURE(count);
+      const glm::ivec2 grid = lightwave_receiver_grid(count, max_side);
+      CHECK(grid.y % 4 == 0);
+      CHECK(grid.x % 4 == 0);
+      CHECK(grid.y <= max_side);
+      const auto cells = static_cast<std::size_t>(grid.x) * static_cast<std::size_t>(grid.y);
+      CHECK(cells >= count);
+      if (static_cast<std::size_t>(max_side) * 1024 >= count) {
+        CHECK(grid.x <= 1024);
+        // The fewest rows of 4 that hold them: 4 rows fewer would not.
+        CHECK((grid.y == 4 || static_cast<std::size_t>(grid.y - 4) * 1024 < count));
+      } else {
+        CHECK(grid.y == max_side);  // as many rows as a texture has, each wider
+      }
+      // No empty row of 4 blocks: the last block row holds a receiver.
+      CHECK(cells - count < 4 * static_cast<std::size_t>(grid.y));
+    }
   }
 }
 
+TEST_CASE("Light Wave flux energy: the VPLs' uniform blocks at a stride the GL's offset alignment asks for") {
+  // 12 VPLs, 5 a pass, blocks of 240 bytes at a stride of 256 (an alignment of 256, as NVIDIA's):
+  // VPL i in block i / 5, rows 3 (i % 5) .. +2; the padding and the last block's tail zero.
+  std::vector<lightwave_flux_vpl<float>> vpls;
+  for (int i = 0; i < 12; ++i) {
+    const float f = static_cast<float>(i);
+    vpls.push_back({glm::vec3(f, 1.0f, 2.0f), glm::vec3(0.0f, 1.0f, 0.0f), glm::vec3(0.1f * f, 0.2f, 0.3f), 0.01f + f});
+  }
+  const std::vector<glm::vec4> rows = lightwave_vpl_blocks(vpls, 5, 256);
+  REQUIRE(rows.size() == 3 * 16);
+  std::vector<bool> written(rows.size(), false);
+  for (std::size_t i = 0; i < vpls.size(); ++i) {
+    const std::size_t row = i / 5 * 16 + 3 * (i % 5);
+    CHECK(rows[row] == glm::vec4(vpls[i].position, vpls[i].radius));
+    CHECK(rows[row + 1] == glm::vec4(vpls[i].normal, 0.0f));
+    CHECK(rows[row + 2] == glm::vec4(vpls[i].flux, 0.0f));
+    written[row] = written[row + 1] = written[row + 2] = true;
+  }
+  for (std::size_t k = 0; k < rows.size(); ++k)
+    if (!written[k]) CHECK(rows[k] == glm::vec4(0.0f));
+  // No VPL: one block of zeros; a stride too small for a block: refused.
+  CHECK(lightwave_vpl_blocks({}, 5, 256).size() == 16);
+  CHECK_THROWS_AS(lightwave_vpl_blocks(vpls, 6, 256), error);
+  CHECK_THROWS_AS(lightwave_vpl_blocks(vpls, 5, 250), error);
+}
+
 TEST_CASE("Light Wave flux energy: more VPLs per pass than a uniform block holds is refused, naming the limit") {
+  // One more than this GL's block holds (test_shaders() makes the context current).
+  test_shaders();
+  GLint block_bytes = 0;
+  glGetIntegerv(GL_MAX_UNIFORM_BLOCK_SIZE, &block_bytes);
+  const int too_many = block_bytes / 48 + 1;
   lightwave_settings settings = small("lightwave-unshadowed");
-  settings.vpls_per_pass = 65535;  // 3 MiB: more than any GL's uniform block
-  try {
-    lightwave_pipeline pipeline(test_shaders(), make_boxes_scene(), settings);
-    FAIL("no error");
-  } catch (const error& e) {
-    CHECK(std::string(e.what()).find("65535 VPLs per pass need a uniform block of 3145680 bytes") != std::string::npos);
-    CHECK(std::string(e.what()).find("VPLs per pass)") != std::string::npos);
+  settings.vpls_per_pass = too_many;
+  if (too_many <= 65535) {
+    try {
+      lightwave_pipeline pipeline(test_shaders(), make_boxes_scene(), settings);
+      FAIL("no error");
+    } catch (const error& e) {
+      CHECK(std::string(e.what()).find(std::to_string(too_many) + " VPLs per pass need a uniform block of " + std::to_string(48 * too_many) + " bytes") !=
+            std::string::npos);
+      CHECK(std::string(e.what()).find("at most " + std::to_string(too_many - 1) + " VPLs per pass") != std::string::npos);
+    }
   }
   settings.vpls_per_pass = -1;
+  CHECK(validate(settings).find("VPLs per pass") != std::string::npos);
+  settings.vpls_per_pass = 65536;
   CHECK(validate(settings).find("VPLs per pass") != std::string::npos);
 }
 
