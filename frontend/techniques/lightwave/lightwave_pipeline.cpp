@@ -389,11 +389,17 @@ glm::ivec2 lightwave_receiver_grid(std::size_t receivers, int max_side) {
   return {static_cast<int>(std::min<std::size_t>(width, std::size_t{1} << 30)), static_cast<int>(rows)};
 }
 
+int lightwave_vpl_pass_count(std::size_t vpls, int per_pass) {
+  const auto per = static_cast<std::size_t>(std::max(per_pass, 1));
+  return static_cast<int>(std::max<std::size_t>(1, (vpls + per - 1) / per));
+}
+
 std::vector<glm::vec4> lightwave_vpl_blocks(const std::vector<lightwave_flux_vpl<float>>& vpls, int per_pass, std::size_t stride_bytes) {
   const auto per = static_cast<std::size_t>(std::max(per_pass, 1));
   if (stride_bytes % sizeof(glm::vec4) != 0 || stride_bytes < per * 3 * sizeof(glm::vec4))
     throw error("lightwave_vpl_blocks: a stride of " + std::to_string(stride_bytes) + " bytes cannot hold " + std::to_string(per) + " VPLs in 16-byte rows");
-  const std::size_t blocks = std::max<std::size_t>(1, (vpls.size() + per - 1) / per), stride = stride_bytes / sizeof(glm::vec4);
+  const auto blocks = static_cast<std::size_t>(lightwave_vpl_pass_count(vpls.size(), per_pass));
+  const std::size_t stride = stride_bytes / sizeof(glm::vec4);
   std::vector<glm::vec4> rows(blocks * stride, glm::vec4(0.0f));
   for (std::size_t i = 0; i < vpls.size(); ++i) {
     glm::vec4* row = &rows[i / per * stride + 3 * (i % per)];
@@ -1042,11 +1048,6 @@ void lightwave_pipeline::capture_into(GLuint buffer, const mesh_buffers& vertice
   check_gl("capturing the Light Wave vertex stage");
 }
 
-int lightwave_pipeline::vpl_pass_count() const {
-  const auto count = static_cast<int>(receiver_vpls_.size());
-  return std::max(1, (count + vpls_per_pass_ - 1) / vpls_per_pass_);
-}
-
 void lightwave_pipeline::sum_at_receivers() {
   // The first pass continues from zero.
   receiver_sum_targets_[1].bind();
@@ -1064,7 +1065,7 @@ void lightwave_pipeline::sum_at_receivers() {
   set_uniforms(p, "irradiance", settings_.irradiance);
   for (std::size_t k = 0; k < receiver_textures_.size(); ++k) receiver_textures_[k].bind(static_cast<int>(k));
   glBindVertexArray(empty_vertex_array_.get());
-  const int passes = vpl_pass_count(), count = static_cast<int>(receiver_vpls_.size());
+  const int passes = lightwave_vpl_pass_count(receiver_vpls_.size(), vpls_per_pass_), count = static_cast<int>(receiver_vpls_.size());
   for (int pass = 0; pass < passes; ++pass) {
     const framebuffer& target = receiver_sum_targets_[static_cast<std::size_t>(pass % 2)];
     target.bind();

@@ -57,6 +57,9 @@ constexpr int lightwave_surface_map_size = 256;
 /// would pass `max_side` (the GL's largest texture; the caller checks the width against it).
 glm::ivec2 lightwave_receiver_grid(std::size_t receivers, int max_side);
 
+/// The passes (uniform blocks) that sum `vpls` VPLs per_pass at a time: at least one.
+int lightwave_vpl_pass_count(std::size_t vpls, int per_pass);
+
 /// The receivers' VPLs as the uniform blocks of lightwave_capture.frag's passes: per_pass VPLs a
 /// block (the last one's tail zero), three vec4 each, [position | radius], [normal | 0], [flux | 0];
 /// block k at byte k x stride_bytes (a multiple of 16 and of the GL's offset alignment, at least
@@ -300,8 +303,6 @@ class lightwave_pipeline final : public pipeline {
   void capture_into(GLuint buffer, const mesh_buffers& vertices);
   /// Flux energy: every receiver's indirect light (lightwave_capture.frag) into indirect_buffer_.
   void sum_at_receivers();
-  /// Flux energy: the passes the receivers sum the VPLs in (at least one).
-  int vpl_pass_count() const;
   /// The scene's size and the light's frustum, for the maps and the VPLs.
   struct frame_geometry {
     float radius = 1.0f, near_plane = 0.01f, far_plane = 1.0f;
