@@ -36,6 +36,7 @@
 // GLSL twin: shaders/lib/lightwave.glsl.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -274,6 +275,29 @@ template <typename T, typename Fetch>
 glm::vec<3, T> lightwave_bounce_sum(const glm::vec<3, T>& x, const glm::vec<3, T>& n, Fetch&& fetch, int count, glm::vec<3, T> sum, T min_distance) {
   for (int index = 0; index < count; ++index) sum += lightwave_bounce_irradiance(x, n, fetch(index), min_distance);
   return sum;
+}
+
+/// The receivers lightwave_bounce_sums sums at once: lightwave_capture.frag's receivers per
+/// fragment. GLSL twin: VPLKIT_LIGHTWAVE_SUM_RECEIVERS (its default; the pipeline defines it from
+/// this). A software rasteriser reads a uniform block per fragment lane, which costs more than the
+/// arithmetic of Eq. 3.2 (three vec4 reads cost about three times the terms on llvmpipe); four
+/// receivers share each read: the boxes' sums about 40 % cheaper. More starve small scenes of lanes.
+inline constexpr int lightwave_sum_receivers = 4;
+
+/// lightwave_bounce_sum for lightwave_sum_receivers receivers at once: sums[k] plus the irradiance
+/// at (x[k], n[k]) of `count` flux VPLs from `fetch`, each VPL fetched once for all of them. Each
+/// receiver's sum is the same additions in the same order as lightwave_bounce_sum's, so the same
+/// result to the bit. GLSL twin: lightwave_bounce_sums (VPLKIT_LIGHTWAVE_FETCH_FLUX as there).
+template <typename T, typename Fetch>
+std::array<glm::vec<3, T>, lightwave_sum_receivers> lightwave_bounce_sums(const std::array<glm::vec<3, T>, lightwave_sum_receivers>& x,
+                                                                        const std::array<glm::vec<3, T>, lightwave_sum_receivers>& n, Fetch&& fetch,
+                                                                        int count, std::array<glm::vec<3, T>, lightwave_sum_receivers> sums,
+                                                                        T min_distance) {
+  for (int index = 0; index < count; ++index) {
+    const lightwave_flux_vpl<T> vpl = fetch(index);
+    for (int k = 0; k < lightwave_sum_receivers; ++k) sums[k] += lightwave_bounce_irradiance(x[k], n[k], vpl, min_distance);
+  }
+  return sums;
 }
 
 /// The radiance one bounce sends to the camera from vertex (x, n) with albedo: albedo / pi times

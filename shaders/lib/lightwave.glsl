@@ -130,6 +130,22 @@ vec3 lightwave_bounce_sum(vec3 x, vec3 n, int count, vec3 sum, float min_distanc
   return sum;
 }
 
+// The receivers lightwave_bounce_sums sums at once (C++: lightwave_sum_receivers, from which the
+// pipeline defines it).
+#ifndef VPLKIT_LIGHTWAVE_SUM_RECEIVERS
+#define VPLKIT_LIGHTWAVE_SUM_RECEIVERS 4
+#endif
+
+// lightwave_bounce_sum for VPLKIT_LIGHTWAVE_SUM_RECEIVERS receivers at once, each VPL fetched once
+// for all of them: each sum the same additions in the same order.
+void lightwave_bounce_sums(vec3 x[VPLKIT_LIGHTWAVE_SUM_RECEIVERS], vec3 n[VPLKIT_LIGHTWAVE_SUM_RECEIVERS], int count,
+                           inout vec3 sums[VPLKIT_LIGHTWAVE_SUM_RECEIVERS], float min_distance) {
+  for (int index = 0; index < count; ++index) {
+    lightwave_flux_vpl vpl = lightwave_fetch_flux_vpl(index);
+    for (int k = 0; k < VPLKIT_LIGHTWAVE_SUM_RECEIVERS; ++k) sums[k] += lightwave_bounce_irradiance(x[k], n[k], vpl, min_distance);
+  }
+}
+
 vec3 lightwave_vertex_bounce(vec3 x, vec3 n, vec3 albedo, int count, irradiance_settings settings) {
   return diffuse_radiance(albedo, vec3(0.0), 0.0, lightwave_bounce_sum(x, n, count, vec3(0.0), settings.min_distance));
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <iomanip>
 #include <limits>
 #include <numeric>
@@ -484,29 +485,35 @@ lightwave_pipeline::lightwave_pipeline(const shader_library& shaders, const scen
     receivers_ = lightwave_receivers(source.geometry, settings_);
     receiver_samples_ = lightwave_receiver_samples(receivers_);
     receiver_buffers_.emplace(receivers_);
-    // The sum at the receivers: receiver i at texel (i % width, i / width) of three textures, its
-    // sample point, normal and albedo.
+    // The sum at the receivers, lightwave_sum_receivers per texel of a grid (lightwave_capture.frag):
+    // receiver r is cell t = r % cells of band k = r / cells, read at texel (t % width, k x rows +
+    // t / width) of three textures (its sample point, normal and albedo), its sum written to
+    // attachment k of the sums' target at texel (t % width, t / width).
+    constexpr auto bands = static_cast<std::size_t>(lightwave_sum_receivers);
     const std::size_t count = receivers_.vertices.size();
     GLint max_side = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_side);
-    const glm::ivec2 grid = lightwave_receiver_grid(count, max_side);
-    check_texture_size(grid.x, grid.y, "the Light Wave receivers' grid (" + std::to_string(count) + " receivers)");
+    const glm::ivec2 grid = lightwave_receiver_grid((count + bands - 1) / bands, max_side / lightwave_sum_receivers);
+    check_texture_size(grid.x, grid.y * lightwave_sum_receivers, "the Light Wave receivers' grid (" + std::to_string(count) + " receivers)");
     const std::size_t cells = static_cast<std::size_t>(grid.x) * static_cast<std::size_t>(grid.y);
-    std::vector<glm::vec4> points(cells, glm::vec4(0.0f)), normals(cells, glm::vec4(0.0f)), albedos(cells, glm::vec4(0.0f));
+    // Empty texels get a unit normal: their sums (written as zero) stay finite.
+    std::vector<glm::vec4> points(bands * cells, glm::vec4(0.0f)), normals(bands * cells, glm::vec4(0.0f, 0.0f, 1.0f, 0.0f)),
+        albedos(bands * cells, glm::vec4(0.0f));
     for (std::size_t i = 0; i < count; ++i) {
       points[i] = glm::vec4(receiver_samples_[i], 0.0f);
       normals[i] = glm::vec4(receivers_.vertices[i].normal, 0.0f);
       albedos[i] = glm::vec4(receivers_.vertices[i].albedo, 0.0f);
     }
-    for (const std::vector<glm::vec4>* texels : {&points, &normals, &albedos}) receiver_textures_.emplace_back(grid.x, grid.y, texel_format::rgba32f, texels->data());
-    // The sums land in the main pass's attribute buffer as the grid's texels, RGBA floats (the
-    // copy a plain memcpy on any GL), read as a vec3 attribute.
+    for (const std::vector<glm::vec4>* texels : {&points, &normals, &albedos})
+      receiver_textures_.emplace_back(grid.x, grid.y * lightwave_sum_receivers, texel_format::rgba32f, texels->data());
+    // The sums land in the main pass's attribute buffer band after band, each the grid's texels in
+    // RGBA floats (the copy a plain memcpy on any GL), read as a vec3 attribute.
     indirect_buffer_ = gl_buffer(generate_buffer());
     glBindBuffer(GL_ARRAY_BUFFER, indirect_buffer_.get());
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(cells * sizeof(glm::vec4)), nullptr, GL_DYNAMIC_COPY);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(bands * cells * sizeof(glm::vec4)), nullptr, GL_DYNAMIC_COPY);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
     receiver_buffers_->attach_vec4_attribute(3, indirect_buffer_.get());
-    for (int k = 0; k < 2; ++k) receiver_sum_targets_.emplace_back(grid.x, grid.y, std::vector<texel_format>{texel_format::rgba32f}, false);
+    for (int k = 0; k < 2; ++k) receiver_sum_targets_.emplace_back(grid.x, grid.y, std::vector<texel_format>(bands, texel_format::rgba32f), false);
     // The VPLs of a pass in one uniform block: three vec4 each (std140), the blocks of successive
     // passes at offsets the GL accepts.
     GLint block_bytes = 0, offset_alignment = 0;
@@ -524,7 +531,9 @@ lightwave_pipeline::lightwave_pipeline(const shader_library& shaders, const scen
     const std::size_t block_size = static_cast<std::size_t>(vpls_per_pass_) * bytes_per_vpl;
     vpl_block_stride_ = (block_size + alignment - 1) / alignment * alignment;
     vpl_block_buffer_ = gl_buffer(generate_buffer());
-    receiver_sum_program_ = load_program(shaders, "fullscreen.vert", "lightwave_capture.frag", {{"VPLKIT_LIGHTWAVE_PASS_VPLS", std::to_string(vpls_per_pass_)}});
+    receiver_sum_program_ = load_program(shaders, "fullscreen.vert", "lightwave_capture.frag",
+                                         {{"VPLKIT_LIGHTWAVE_PASS_VPLS", std::to_string(vpls_per_pass_)},
+                                          {"VPLKIT_LIGHTWAVE_SUM_RECEIVERS", std::to_string(lightwave_sum_receivers)}});
     glUniformBlockBinding(receiver_sum_program_.id(), glGetUniformBlockIndex(receiver_sum_program_.id(), "lightwave_pass_vpls"), 0);
     empty_vertex_array_ = gl_vertex_array(generate_vertex_array());
     if (indirect_buffer) {
@@ -1060,7 +1069,7 @@ void lightwave_pipeline::sum_at_receivers() {
   p.set("receiver_points", 0);
   p.set("receiver_normals", 1);
   p.set("receiver_albedos", 2);
-  p.set("partial_sum", 3);
+  for (int k = 0; k < lightwave_sum_receivers; ++k) p.set("partial_sum" + std::to_string(k), 3 + k);
   p.set("receiver_count", static_cast<int>(receivers_.vertices.size()));
   set_uniforms(p, "irradiance", settings_.irradiance);
   for (std::size_t k = 0; k < receiver_textures_.size(); ++k) receiver_textures_[k].bind(static_cast<int>(k));
@@ -1069,7 +1078,8 @@ void lightwave_pipeline::sum_at_receivers() {
   for (int pass = 0; pass < passes; ++pass) {
     const framebuffer& target = receiver_sum_targets_[static_cast<std::size_t>(pass % 2)];
     target.bind();
-    receiver_sum_targets_[static_cast<std::size_t>((pass + 1) % 2)].colour(0).bind(3);
+    const framebuffer& previous = receiver_sum_targets_[static_cast<std::size_t>((pass + 1) % 2)];
+    for (int k = 0; k < lightwave_sum_receivers; ++k) previous.colour(static_cast<std::size_t>(k)).bind(3 + k);
     glBindBufferRange(GL_UNIFORM_BUFFER, 0, vpl_block_buffer_.get(), static_cast<GLintptr>(static_cast<std::size_t>(pass) * vpl_block_stride_),
                       static_cast<GLsizeiptr>(static_cast<std::size_t>(vpls_per_pass_) * 3 * sizeof(glm::vec4)));
     p.set("pass_vpl_count", std::min(vpls_per_pass_, count - pass * vpls_per_pass_));
@@ -1078,12 +1088,15 @@ void lightwave_pipeline::sum_at_receivers() {
   }
   glBindVertexArray(0);
   glBindBufferBase(GL_UNIFORM_BUFFER, 0, 0);
-  // Into the main pass's attribute buffer without a trip through host memory.
+  // Into the main pass's attribute buffer without a trip through host memory, band after band.
   const framebuffer& result = receiver_sum_targets_[static_cast<std::size_t>((passes - 1) % 2)];
-  result.bind_for_reading(0);
+  const std::size_t band_bytes = static_cast<std::size_t>(result.width()) * static_cast<std::size_t>(result.height()) * sizeof(glm::vec4);
   glPixelStorei(GL_PACK_ALIGNMENT, 4);
   glBindBuffer(GL_PIXEL_PACK_BUFFER, indirect_buffer_.get());
-  glReadPixels(0, 0, result.width(), result.height(), GL_RGBA, GL_FLOAT, nullptr);
+  for (int k = 0; k < lightwave_sum_receivers; ++k) {
+    result.bind_for_reading(static_cast<std::size_t>(k));
+    glReadPixels(0, 0, result.width(), result.height(), GL_RGBA, GL_FLOAT, reinterpret_cast<void*>(static_cast<std::uintptr_t>(k) * band_bytes));
+  }
   glBindBuffer(GL_PIXEL_PACK_BUFFER, 0);
   check_gl("summing the Light Wave VPLs at the receivers");
 }

@@ -49,12 +49,13 @@ enum class lightwave_energy { thesis = 0, flux = 1 };
 /// the layout's samples (the VPL sits where its ray meets the texel's plane, not at the texel).
 constexpr int lightwave_surface_map_size = 256;
 
-/// The flux energy sums the VPLs at the receivers one fragment each, receiver i at texel (i %
-/// width, i / width) of a grid of width x rows texels: rows a multiple of 4 (a software
+/// The flux energy sums the VPLs at the receivers lightwave_sum_receivers to a fragment: the
+/// grid holds `cells` >= ceil(receivers / lightwave_sum_receivers) texels, cell t of band k holding
+/// receiver k x cells + t at texel (t % width, t / width). Rows a multiple of 4 (a software
 /// rasteriser shades 4x4 blocks; a 2-row grid left half of each block's lanes idle, +40 % on the
-/// boxes) and as few as rows of at most 1024 allow, so that the grid spans many of its 64-texel
-/// tiles and every core gets some; the width a multiple of 4 too, wider than 1024 where the rows
-/// would pass `max_side` (the GL's largest texture; the caller checks the width against it).
+/// boxes) and as few as rows of at most 1024 allow, so that the grid spans several of its
+/// 64-texel tiles; the width a multiple of 4 too, wider than 1024 where the rows would pass
+/// `max_side` (the caller checks the width against the GL's largest texture).
 glm::ivec2 lightwave_receiver_grid(std::size_t receivers, int max_side);
 
 /// The passes (uniform blocks) that sum `vpls` VPLs per_pass at a time: at least one.
@@ -346,7 +347,7 @@ class lightwave_pipeline final : public pipeline {
   std::optional<mesh_buffers> receiver_buffers_;  ///< flux energy: drawn, with the indirect at attribute 3
   std::vector<glm::vec3> receiver_samples_;     ///< flux energy: lightwave_receiver_samples
   std::vector<texture_2d> receiver_textures_;   ///< flux energy: sample points, normals, albedos (lightwave_capture.frag)
-  std::vector<framebuffer> receiver_sum_targets_;  ///< flux energy: a texel per receiver, the passes' sums in turn
+  std::vector<framebuffer> receiver_sum_targets_;  ///< flux energy: a band per attachment, the passes' sums in turn
   program receiver_sum_program_;
   int vpls_per_pass_ = 0;                       ///< flux energy: settings.vpls_per_pass, or a uniform block's worth
   std::size_t vpl_block_stride_ = 0;            ///< bytes from one pass's VPLs to the next's in vpl_block_buffer_

@@ -94,10 +94,14 @@ TEST_CASE("Light Wave flux energy: the indirect light summed at the receivers eq
   lightwave_pipeline pipeline(test_shaders(), boxes, small("lightwave-unshadowed"));
   const std::vector<glm::vec3> gpu = pipeline.capture_vertex_indirect();
   REQUIRE(pipeline.drawn_mesh().triangle_count() > boxes.geometry.triangle_count());  // subdivided
-  // Rows of receivers and a part of one, then empty texels: receiver i's sum read from texel i.
-  const auto width = static_cast<std::size_t>(lightwave_receiver_grid(gpu.size(), 16384).x);
-  REQUIRE(gpu.size() > width);
-  REQUIRE(gpu.size() % width != 0);
+  // Bands of lightwave_sum_receivers and a part of one, then empty texels: receiver i's sum read
+  // from band i / cells, texel i % cells (each band's rows and a part of one).
+  const std::size_t bands = lightwave_sum_receivers;
+  const glm::ivec2 grid = lightwave_receiver_grid((gpu.size() + bands - 1) / bands, 16384 / lightwave_sum_receivers);
+  const auto cells = static_cast<std::size_t>(grid.x) * static_cast<std::size_t>(grid.y);
+  REQUIRE(gpu.size() > (bands - 1) * cells);
+  REQUIRE(gpu.size() % cells != 0);
+  REQUIRE(gpu.size() % static_cast<std::size_t>(grid.x) != 0);
   const auto& vpls = pipeline.receiver_vpls();
   REQUIRE(vpls.size() > 500u);
   REQUIRE(vpls.size() < pipeline.flux_vpls().size());  // a ray's samples on one plane merged
