@@ -3,7 +3,7 @@
 // irradiance of every receiver VPL (lightwave_bounce_sums, lib/lightwave.glsl), summed once per
 // light. Four receivers per fragment (VPLKIT_LIGHTWAVE_SUM_RECEIVERS): a software rasteriser reads
 // the uniform block per fragment lane, and four receivers sharing each VPL's read cost the boxes'
-// sum about 40 % less than one each. Receiver r is number t = r % cells of band k = r / cells
+// sum about half as much as one each (llvmpipe, 2 cores). Receiver r is number t = r % cells of band k = r / cells
 // (cells = the grid's width x rows): it is read at texel (t % width, k x rows + t / width) of the
 // receiver textures, its sum written to attachment k at texel (t % width, t / width). A software
 // rasteriser shades fragments on every core and its vertex stage on one (as a transform-feedback

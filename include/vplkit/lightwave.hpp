@@ -281,7 +281,9 @@ glm::vec<3, T> lightwave_bounce_sum(const glm::vec<3, T>& x, const glm::vec<3, T
 /// fragment. GLSL twin: VPLKIT_LIGHTWAVE_SUM_RECEIVERS (its default; the pipeline defines it from
 /// this). A software rasteriser reads a uniform block per fragment lane, which costs more than the
 /// arithmetic of Eq. 3.2 (three vec4 reads cost about three times the terms on llvmpipe); four
-/// receivers share each read: the boxes' sums about 40 % cheaper. More starve small scenes of lanes.
+/// receivers share each read: the boxes' sums about half as dear on llvmpipe with 2 cores. More
+/// would leave a small scene's few fragments to fewer cores (and a GPU, which broadcasts such
+/// reads, with fewer threads).
 inline constexpr int lightwave_sum_receivers = 4;
 
 /// lightwave_bounce_sum for lightwave_sum_receivers receivers at once: sums[k] plus the irradiance

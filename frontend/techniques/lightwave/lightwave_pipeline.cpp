@@ -496,7 +496,7 @@ lightwave_pipeline::lightwave_pipeline(const shader_library& shaders, const scen
     const glm::ivec2 grid = lightwave_receiver_grid((count + bands - 1) / bands, max_side / lightwave_sum_receivers);
     check_texture_size(grid.x, grid.y * lightwave_sum_receivers, "the Light Wave receivers' grid (" + std::to_string(count) + " receivers)");
     const std::size_t cells = static_cast<std::size_t>(grid.x) * static_cast<std::size_t>(grid.y);
-    // Empty texels get a unit normal: their sums (written as zero) stay finite.
+    // Empty texels get a unit normal, so that their lanes compute no NaN (their sums are written as zero anyway).
     std::vector<glm::vec4> points(bands * cells, glm::vec4(0.0f)), normals(bands * cells, glm::vec4(0.0f, 0.0f, 1.0f, 0.0f)),
         albedos(bands * cells, glm::vec4(0.0f));
     for (std::size_t i = 0; i < count; ++i) {
@@ -1058,6 +1058,7 @@ void lightwave_pipeline::capture_into(GLuint buffer, const mesh_buffers& vertice
 }
 
 void lightwave_pipeline::sum_at_receivers() {
+  static_assert(lightwave_sum_receivers == 4, "lightwave_capture.frag reads the previous pass's sums from four samplers, partial_sum0..3");
   // The first pass continues from zero.
   receiver_sum_targets_[1].bind();
   glClearColor(0.0f, 0.0f, 0.0f, 0.0f);

@@ -49,13 +49,13 @@ enum class lightwave_energy { thesis = 0, flux = 1 };
 /// the layout's samples (the VPL sits where its ray meets the texel's plane, not at the texel).
 constexpr int lightwave_surface_map_size = 256;
 
-/// The flux energy sums the VPLs at the receivers lightwave_sum_receivers to a fragment: the
-/// grid holds `cells` >= ceil(receivers / lightwave_sum_receivers) texels, cell t of band k holding
-/// receiver k x cells + t at texel (t % width, t / width). Rows a multiple of 4 (a software
+/// A grid of width x rows >= `receivers` texels, receiver i at texel (i % width, i / width), for
+/// the fragment pass that sums the flux energy's VPLs: rows a multiple of 4 (a software
 /// rasteriser shades 4x4 blocks; a 2-row grid left half of each block's lanes idle, +40 % on the
-/// boxes) and as few as rows of at most 1024 allow, so that the grid spans several of its
-/// 64-texel tiles; the width a multiple of 4 too, wider than 1024 where the rows would pass
-/// `max_side` (the caller checks the width against the GL's largest texture).
+/// boxes) and as few as rows of at most 1024 allow; the width a multiple of 4 too, wider than 1024
+/// where the rows would pass `max_side` (the caller checks the width against the GL's largest
+/// texture). The pipeline asks for ceil(n / lightwave_sum_receivers) texels of at most
+/// GL_MAX_TEXTURE_SIZE / lightwave_sum_receivers rows: the receivers' bands stacked in one texture.
 glm::ivec2 lightwave_receiver_grid(std::size_t receivers, int max_side);
 
 /// The passes (uniform blocks) that sum `vpls` VPLs per_pass at a time: at least one.
@@ -353,7 +353,7 @@ class lightwave_pipeline final : public pipeline {
   std::size_t vpl_block_stride_ = 0;            ///< bytes from one pass's VPLs to the next's in vpl_block_buffer_
   gl_buffer vpl_block_buffer_;                  ///< flux energy: the receivers' VPLs, a uniform block per pass
   gl_vertex_array empty_vertex_array_;          ///< the full-screen triangle has no vertex data
-  gl_buffer indirect_buffer_;                   ///< flux energy: a vec4 per texel of the receivers' grid, receiver i's at i
+  gl_buffer indirect_buffer_;                   ///< flux energy: the bands' grids of vec4 one after the other, receiver i's at i
   program depth_program_;
   program surface_program_;  ///< flux energy: what the light sees
   std::array<image, 3> surface_texels_;  ///< flux energy: its positions, normals and albedos read back

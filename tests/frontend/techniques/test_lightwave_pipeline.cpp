@@ -165,6 +165,13 @@ TEST_CASE("Light Wave flux energy: the receivers' grid holds every receiver in r
       }
       // No empty row of 4 blocks: the last block row holds a receiver.
       CHECK(cells - count < 4 * static_cast<std::size_t>(grid.y));
+      // The pipeline's call: lightwave_sum_receivers bands of the grid stacked in one texture of
+      // at most max_side rows hold every receiver.
+      const std::size_t bands = lightwave_sum_receivers;
+      const glm::ivec2 banded = lightwave_receiver_grid((count + bands - 1) / bands, max_side / lightwave_sum_receivers);
+      CHECK(static_cast<std::size_t>(banded.y) * bands <= static_cast<std::size_t>(max_side));
+      CHECK(static_cast<std::size_t>(banded.x) * static_cast<std::size_t>(banded.y) * bands >= count);
+      CHECK(banded.y % 4 == 0);
     }
   }
 }
