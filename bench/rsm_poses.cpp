@@ -189,7 +189,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> sequence_techniques = {rsm_pipeline_settings().technique};
   float step = 0.5f, jump = 10.0f;
   std::vector<float> blends = {1.0f};
-  int timing = 0, timing_size = 512, coverage_blocks = default_coverage_blocks;
+  int timing = 0, timing_size = 512, coverage_blocks = default_coverage_blocks, coverage_interleave = default_coverage_interleave;
   app.add_option("--poses", poses, "pose file: one frame per line, --scene FILE --camera ... --light ...")->required();
   app.add_option("--size", size, "image side (the indirect buffer: half)")->check(CLI::Range(16, 2048))->capture_default_str();
   app.add_option("--rsm-size", rsm_size, "RSM side")->check(CLI::Range(16, 4096))->capture_default_str();
@@ -213,6 +213,8 @@ int main(int argc, char** argv) {
   app.add_option("--coverage-blocks", coverage_blocks, "the coverage's blocks per RSM side of every technique with coverage (targets) and of the "
                                                      "timed configuration with it (timing)")
       ->check(CLI::Range(1, rsm_coverage_max_blocks))->capture_default_str();
+  app.add_option("--coverage-interleave", coverage_interleave, "the coverage's interleave side of every configuration with coverage (all modes)")
+      ->check(CLI::Range(1, rsm_coverage_max_interleave))->capture_default_str();
   app.add_option("--timing-size", timing_size, "timing mode: image side (the RSM: --rsm-size)")->check(CLI::Range(16, 4096))->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   try {
@@ -238,6 +240,7 @@ int main(int argc, char** argv) {
         with.width = with.height = timing_size;
         with.rsm_size = rsm_size;
         with.coverage_blocks = coverage_blocks;
+        with.coverage_interleave = coverage_interleave;
         without = with;
         without.coverage_blocks = 0;
         const std::vector<double> ms = interleaved_frame_ms(shaders, source, {without, with}, timing);
@@ -272,6 +275,7 @@ int main(int argc, char** argv) {
         const ray_scene rays(source.geometry);
         std::cerr << label << "\n";
         rsm_pipeline_settings settings;
+        settings.coverage_interleave = coverage_interleave;
         settings.width = settings.height = size;
         settings.rsm_size = rsm_size;
         const int measured_end = warmup + flicker, total = measured_end + after_jump;
@@ -405,6 +409,7 @@ int main(int argc, char** argv) {
       const std::string& label = posed.label;
       std::cerr << label << "\n";
       rsm_pipeline_settings settings;
+      settings.coverage_interleave = coverage_interleave;
       settings.width = settings.height = size;
       settings.rsm_size = rsm_size;
       // The cache key: the scene's bytes (a file) or name, the poses and the frame.

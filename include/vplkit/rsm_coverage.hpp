@@ -44,6 +44,25 @@ constexpr const char* validate_coverage_blocks(int blocks) {
   return nullptr;
 }
 
+/// Largest interleave side s (rsm_gather_settings::coverage_interleave).
+inline constexpr int rsm_coverage_max_interleave = 8;
+
+/// Returns nullptr when the interleave side s is usable (1: every receiver gathers every block).
+constexpr const char* validate_coverage_interleave(int side) {
+  if (side < 1 || side > rsm_coverage_max_interleave) return "coverage interleave must be in [1, 8] (1: every receiver gathers every block)";
+  return nullptr;
+}
+
+/// Interleaved coverage (Keller and Heidrich's interleaved sampling): with side s the receiver at
+/// pixel p gathers only the blocks b with b % s == p % s (per axis), each weighted s^2, so that
+/// the s x s receivers of a pixel tile together gather every block once and the post filter,
+/// which averages many more texels than s^2, restores the whole sum; the gather costs s^2 times
+/// less. The first block of pixel p's lattice. GLSL twin: coverage_interleave_phase.
+inline glm::ivec2 coverage_interleave_phase(glm::uvec2 pixel, int side) {
+  const auto s = static_cast<unsigned>(side > 0 ? side : 1);
+  return glm::ivec2(static_cast<int>(pixel.x % s), static_cast<int>(pixel.y % s));
+}
+
 /// One coarse pixel light, in the light's eye space like the RSM's. GLSL twin: struct coarse_light.
 template <typename T>
 struct coarse_light {

@@ -89,6 +89,10 @@ struct rsm_gather_settings {
   /// C, the coarse lights' blocks per side of the RSM (vplkit/rsm_coverage.hpp); 0: no coverage, as
   /// in the thesis. Read only by the gathers given a coarse-light fetch.
   int coverage_blocks = 0;
+  /// s, the side of the pixel tile over which the coverage's blocks are interleaved
+  /// (coverage_interleave_phase): each receiver gathers every s-th block per axis, weighted s^2.
+  /// 1: every receiver gathers every block.
+  int coverage_interleave = 1;
   /// 1: the RSM is a perspective (spot) light's, the light at the eye-space origin; 0: an
   /// orthographic (directional) one, shining along -z. alg6_ray's `up` is the direction to the
   /// light: -position / |position|, or +z.
@@ -97,6 +101,8 @@ struct rsm_gather_settings {
 
 /// The coverage the defaults use: 16 x 16 coarse lights (docs/rsm-study.md, "Any frame").
 inline constexpr int default_coverage_blocks = 16;
+/// The interleave the defaults use (docs/rsm-study.md, "The coverage's cost").
+inline constexpr int default_coverage_interleave = 3;
 
 template <typename T>
 struct settings_description<rsm_gather_settings<T>> {
@@ -111,6 +117,8 @@ struct settings_description<rsm_gather_settings<T>> {
                            field(&S::rsm_size, "rsm_size", at_least(1), "texels", "the RSM's width and height"),
                            field(&S::coverage_blocks, "coverage_blocks", closed_range(0, rsm_coverage_max_blocks), "per RSM side",
                                  "coarse pixel lights that light the receivers the pattern cannot reach; 0: none"),
+                           field(&S::coverage_interleave, "coverage_interleave", closed_range(1, rsm_coverage_max_interleave), "pixels",
+                                 "side of the pixel tile the coverage's blocks are interleaved over (each receiver gathers 1 / side^2 of them); 1: none"),
                            field(&S::perspective, "perspective", closed_range(0, 1), "", "1: a spot light (perspective RSM), 0: a directional one"));
   }
   static setting_problem rules(const S& settings) { return no_rules(settings); }
@@ -316,15 +324,20 @@ glm::vec<3, T> gather_rsm_with(const gather_receiver<T>& receiver, Fetch&& fetch
     if (!(outside_squared > T(0))) return irradiance * T(0.318309886183790671538);  // on the map: the pattern alone
   }
   if constexpr (with_coverage) {
-    // Behind the light every block; off the map the blocks beyond the pattern's reach.
+    // Behind the light every block; off the map the blocks beyond the pattern's reach; of those,
+    // the receiver's lattice of the interleave, weighted by its size.
     const int blocks = settings.coverage_blocks;
     const glm::ivec2 side = coverage_block_side(settings.rsm_size, glm::max(blocks, 1));
-    for (int y = 0; y < blocks; ++y)
-      for (int x = 0; x < blocks; ++x) {
+    const int stride = glm::max(settings.coverage_interleave, 1);
+    const glm::ivec2 phase = coverage_interleave_phase(receiver.pixel, stride);
+    glm::vec<3, T> coverage(0);
+    for (int y = phase.y; y < blocks; y += stride)
+      for (int x = phase.x; x < blocks; x += stride) {
         const glm::vec<2, T> offset = coverage_block_centre<T>(glm::ivec2(x, y), side) - receiver.rsm_coordinate;
         if (in_front && !(glm::dot(offset, offset) > reach * reach)) continue;
-        irradiance += coarse_light_irradiance(receiver.position, receiver.normal, coarse_fetch(glm::ivec2(x, y)), settings.irradiance);
+        coverage += coarse_light_irradiance(receiver.position, receiver.normal, coarse_fetch(glm::ivec2(x, y)), settings.irradiance);
       }
+    irradiance += coverage * T(stride * stride);
   } else {
     (void)coarse_fetch;
   }

@@ -12,6 +12,11 @@
 
 #define VPLKIT_MAX_COVERAGE_BLOCKS 64
 
+ivec2 coverage_interleave_phase(uvec2 pixel, int side) {
+  uint s = uint(max(side, 1));
+  return ivec2(int(pixel.x % s), int(pixel.y % s));
+}
+
 struct coarse_light {
   vec3 position;
   vec3 normal;

@@ -46,6 +46,7 @@ struct rsm_gather_settings {
   elevation_slots slots;
   ivec2 rsm_size;
   int coverage_blocks;
+  int coverage_interleave;
   int perspective;
 };
 
@@ -136,15 +137,20 @@ vec3 gather_rsm(gather_receiver receiver, rsm_gather_settings settings) {
     if (!(outside_squared > 0.0)) return irradiance * 0.318309886183790671538;  // on the map: the pattern alone
   }
 #if VPLKIT_RSM_COVERAGE
-  // Behind the light every block; off the map the blocks beyond the pattern's reach (see the C++ twin).
+  // Behind the light every block; off the map the blocks beyond the pattern's reach; of those, the
+  // receiver's lattice of the interleave, weighted by its size (see the C++ twin).
   int blocks = settings.coverage_blocks;
   ivec2 side = coverage_block_side(settings.rsm_size, max(blocks, 1));
-  for (int y = 0; y < blocks; ++y)
-    for (int x = 0; x < blocks; ++x) {
+  int stride = max(settings.coverage_interleave, 1);
+  ivec2 phase = coverage_interleave_phase(receiver.pixel, stride);
+  vec3 coverage = vec3(0.0);
+  for (int y = phase.y; y < blocks; y += stride)
+    for (int x = phase.x; x < blocks; x += stride) {
       vec2 offset = coverage_block_centre(ivec2(x, y), side) - receiver.rsm_coordinate;
       if (in_front && !(dot(offset, offset) > reach * reach)) continue;
-      irradiance += coarse_light_irradiance(receiver.position, receiver.normal, rsm_coarse_fetch(ivec2(x, y)), settings.irradiance);
+      coverage += coarse_light_irradiance(receiver.position, receiver.normal, rsm_coarse_fetch(ivec2(x, y)), settings.irradiance);
     }
+  irradiance += coverage * float(stride * stride);
 #endif
   return irradiance * 0.318309886183790671538;
 }

@@ -129,6 +129,39 @@ TEST_CASE("with coverage a receiver behind the light gets the light of the whole
   }
 }
 
+TEST_CASE("the coverage interleaved over s x s pixels: the tile's mean is the whole coverage, each pixel a part of it") {
+  // A receiver behind the light (the coverage alone) at every pixel of an s x s tile: each gathers
+  // the blocks of its lattice times s^2, and the s^2 of them together every block once.
+  const synthetic_rsm floor;
+  const coverage_of coarse(floor);
+  rsm_gather_settings<double> settings = gather_settings();
+  settings.coverage_blocks = coarse.blocks;
+  const glm::dvec3 where(0.2, light_height + 1.0, 0.1);
+  const double whole = gather_rsm<rsm_pattern::radial, rsm_visibility::alg6>(receiver_at(where, glm::uvec2(5, 7)), floor, coarse, settings).x;
+  REQUIRE(whole > 0.0);
+  for (const int side : {2, 3, 4}) {
+    CAPTURE(side);
+    settings.coverage_interleave = side;
+    double mean = 0.0, farthest = 0.0;
+    for (unsigned y = 0; y < static_cast<unsigned>(side); ++y)
+      for (unsigned x = 0; x < static_cast<unsigned>(side); ++x) {
+        // Pixels of a tile far from the origin: the phase is the pixel modulo the side.
+        const glm::uvec2 pixel(40u * static_cast<unsigned>(side) + x, 9u * static_cast<unsigned>(side) + y);
+        const double part = gather_rsm<rsm_pattern::radial, rsm_visibility::alg6>(receiver_at(where, pixel), floor, coarse, settings).x;
+        mean += part / static_cast<double>(side * side);
+        farthest = std::max(farthest, std::abs(part - whole) / whole);
+      }
+    CHECK(mean == doctest::Approx(whole).epsilon(1e-12));
+    CHECK(farthest > 1e-3);  // a pixel gathers a part, not the whole
+  }
+  settings.coverage_interleave = 1;
+  CHECK(gather_rsm<rsm_pattern::radial, rsm_visibility::alg6>(receiver_at(where, glm::uvec2(1, 2)), floor, coarse, settings).x == whole);
+  CHECK(validate_coverage_interleave(1) == nullptr);
+  CHECK(validate_coverage_interleave(8) == nullptr);
+  CHECK(validate_coverage_interleave(0) != nullptr);
+  CHECK(validate_coverage_interleave(9) != nullptr);
+}
+
 TEST_CASE("with coverage a receiver off the map gets what the pattern reaches plus the blocks beyond it: the whole RSM's light") {
   // Receivers beside the RSM (eye x beyond its edge), facing it, at 0.4 above the floor: the
   // pattern reaches the near part of the map, the blocks beyond its radius add the rest. The mean

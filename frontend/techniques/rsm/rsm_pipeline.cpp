@@ -132,6 +132,10 @@ const std::vector<setting<rsm_pipeline_settings, rsm_technique>>& rsm_settings_t
                     describe_field(&rsm_gather_settings<float>::coverage_blocks))
           .read_by(gathers, gathering)
           .feeds("gather.frag: settings.coverage_blocks; rsm_coarse.frag: coverage_blocks"),
+      entry::number("coverage-interleave", [](auto& s) -> auto& { return s.coverage_interleave; },
+                    describe_field(&rsm_gather_settings<float>::coverage_interleave))
+          .read_by(gathers, gathering)
+          .feeds("gather.frag: settings.coverage_interleave"),
       entry::number("temporal-blend", [](auto& s) -> auto& { return s.temporal.blend; }, describe_field(&temporal_settings<float>::blend))
           .read_by(gathers, gathering)
           .not_live()
@@ -191,6 +195,7 @@ std::string validate(const rsm_pipeline_settings& settings) {
                                          validate(settings.temporal)})
     if (problem) return problem.message();
   if (const char* problem = validate_coverage_blocks(settings.coverage_blocks)) return problem;
+  if (const char* problem = validate_coverage_interleave(settings.coverage_interleave)) return problem;
   return {};
 }
 
@@ -230,6 +235,7 @@ rsm_frame_constants make_frame_constants(const scene& source, const rsm_pipeline
   constants.gather = make_rsm_gather_settings(settings.radial, settings.disk, settings.radius, settings.slots, glm::ivec2(settings.rsm_size));
   constants.gather.irradiance = settings.irradiance;
   constants.gather.coverage_blocks = settings.coverage_blocks;
+  constants.gather.coverage_interleave = settings.coverage_interleave;
   constants.gather.perspective = source.light.kind == light_kind::spot ? 1 : 0;
   const bool spot = source.light.kind == light_kind::spot;
   constants.unprojection = make_rsm_unprojection(spot ? constants.light.tan_half_fov : constants.light.half_extent, spot, glm::ivec2(settings.rsm_size));

@@ -63,6 +63,9 @@ struct rsm_pipeline_settings {
   /// Coarse lights per side of the RSM for the receivers the pattern cannot reach (behind the
   /// light, off the map; vplkit/rsm_coverage.hpp); 0: none, as in the thesis.
   int coverage_blocks = default_coverage_blocks;
+  /// Side of the pixel tile the coverage's blocks are interleaved over (each receiver gathers
+  /// 1 / side^2 of them, the post filter averages the tile); 1: every receiver every block.
+  int coverage_interleave = default_coverage_interleave;
   irradiance_settings<float> irradiance;
   shadow_density_settings<float> shadow;
   bilateral_settings<float> bilateral;          ///< kernel 17
