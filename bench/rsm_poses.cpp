@@ -228,7 +228,8 @@ int main(int argc, char** argv) {
       // Timing mode: the cost of the coverage, the default technique with and without it, frames
       // interleaved (A B A B ...), wall clock around glFinish, median.
       std::ostringstream md;
-      md << "# The coverage's cost on " << poses << "\n\n" << timing_size << "^2 image, RSM " << rsm_size << "^2, the default technique; wall clock "
+      md << "# The coverage's cost on " << poses << "\n\n" << timing_size << "^2 image, RSM " << rsm_size << "^2, the default technique, coverage "
+         << coverage_blocks << " x " << coverage_blocks << " blocks interleaved over " << coverage_interleave << " x " << coverage_interleave << " pixels; wall clock "
          << "around glFinish of one whole frame, median of " << timing << ", the two configurations interleaved, on:\n\n```\n"
          << describe_current_context() << "\n```\n\n| frame | ms without coverage | ms with coverage | ratio |\n|---|---:|---:|---:|\n";
       spread ratios;
@@ -504,7 +505,8 @@ int main(int argc, char** argv) {
     std::ostringstream md;
     md << "# RSM techniques on " << poses << "\n\n" << n << " frames, " << size << "^2 image, RSM " << rsm_size << "^2, brute force at every " << stride
        << "th receiver per axis (every receiver with a surface, covered by the pattern or not), seeds 1-" << seeds << ", Monte Carlo " << mc_samples
-       << " bounce rays per pixel, on:\n\n```\n" << describe_current_context() << "\n```\n\n## Targets (min / median / max over the frames)\n\n"
+       << " bounce rays per pixel, coverage " << coverage_blocks << " x " << coverage_blocks << " blocks interleaved over " << coverage_interleave << " x "
+       << coverage_interleave << " pixels, on:\n\n```\n" << describe_current_context() << "\n```\n\n## Targets (min / median / max over the frames)\n\n"
        << "| target | technique | frames met | min / median / max |\n|---|---|---:|---:|\n";
     for (const auto& [name, t] : candidates)
       md << "| rel. RMSE vs exact / radial's < 1 (visibility removes >= 2 %) | " << name << " | " << t.rmse_met << " / " << t.rmse_counted << " | "

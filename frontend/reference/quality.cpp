@@ -55,7 +55,8 @@ scene_references::~scene_references() = default;
 
 const frame_reference& scene_references::brute_force(const technique_settings& settings) {
   std::string key;
-  for (const char* name : {"size", "rsm-size", "indirect-divisor", "format", "min-distance"}) key += settings.get(name) + "|";
+  // coverage-blocks too: the reference keeps the frame's coarse lights, C x C of them.
+  for (const char* name : {"size", "rsm-size", "indirect-divisor", "format", "min-distance", "coverage-blocks"}) key += settings.get(name) + "|";
   std::unique_ptr<frame_reference>& cached = brute_forces_[key];
   if (!cached) {
     if (!source_) throw error("the brute-force RSM reference needs a scene");

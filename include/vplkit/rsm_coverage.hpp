@@ -13,8 +13,9 @@
 // position. The gather (rsm_gather.hpp) adds, for a receiver the pattern cannot reach, every coarse
 // light whose block the pattern does not reach: behind the light every block; off the map the
 // blocks whose centre lies beyond the pattern's outer radius from the projection (the pattern
-// gathers the others, with its visibility). No visibility for the coarse lights: the micro linear
-// buffer needs a path from a projection.
+// gathers the others, with its visibility); with an interleave of side s, only those on the
+// receiver's lattice of stride s, weighted s^2 (coverage_interleave_phase). No visibility for the
+// coarse lights: the micro linear buffer needs a path from a projection.
 //
 // A coarse light's irradiance (coarse_light_irradiance) is Eq. 3.2 with twice the extent added to
 // the squared distance of its second factor:
@@ -56,8 +57,10 @@ constexpr const char* validate_coverage_interleave(int side) {
 /// Interleaved coverage (Keller and Heidrich's interleaved sampling): with side s the receiver at
 /// pixel p gathers only the blocks b with b % s == p % s (per axis), each weighted s^2, so that
 /// the s x s receivers of a pixel tile together gather every block once and the post filter,
-/// which averages many more texels than s^2, restores the whole sum; the gather costs s^2 times
-/// less. The first block of pixel p's lattice. GLSL twin: coverage_interleave_phase.
+/// which averages many more texels than s^2, restores the whole sum. The gather costs up to s^2
+/// times less: the receivers shaded together pay for the largest lattice, ceil(C / s)^2 blocks
+/// (C = 16, s = 3: 36 of 256, 7x). The first block of pixel p's lattice. GLSL twin:
+/// coverage_interleave_phase.
 inline glm::ivec2 coverage_interleave_phase(glm::uvec2 pixel, int side) {
   const auto s = static_cast<unsigned>(side > 0 ? side : 1);
   return glm::ivec2(static_cast<int>(pixel.x % s), static_cast<int>(pixel.y % s));

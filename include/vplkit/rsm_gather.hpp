@@ -217,8 +217,10 @@ rsm_gather_settings<T> rsm_gather_settings_from(const rsm_gather_preset<T>& pres
   return make_rsm_gather_settings(radial, disk_pattern_settings<T>{}, preset.radius_fraction, preset.slots, rsm_size);
 }
 
-/// The settings `vplkit render` uses for an RSM of `rsm_size` texels: the default preset with
-/// coverage.
+/// The gather settings of `vplkit render` for an RSM of `rsm_size` texels: the default preset with
+/// coverage, every receiver gathering every coarse light. `vplkit render` also interleaves them
+/// (coverage_interleave = default_coverage_interleave), which needs the post filter after the
+/// gather to average each tile: set it only where such a filter follows.
 template <typename T>
 rsm_gather_settings<T> default_rsm_gather_settings(glm::ivec2 rsm_size) {
   rsm_gather_settings<T> settings = rsm_gather_settings_from(default_rsm_gather_preset<T>(), rsm_size);

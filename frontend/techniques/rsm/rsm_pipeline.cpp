@@ -196,6 +196,15 @@ std::string validate(const rsm_pipeline_settings& settings) {
     if (problem) return problem.message();
   if (const char* problem = validate_coverage_blocks(settings.coverage_blocks)) return problem;
   if (const char* problem = validate_coverage_interleave(settings.coverage_interleave)) return problem;
+  // The interleave's lattices are averaged back by the post filter: it must span a tile (2s + 1
+  // taps), and a lattice must hold a block.
+  const int side = settings.coverage_interleave;
+  if (side > 1 && settings.coverage_blocks > 0 && side > settings.coverage_blocks)
+    return "coverage-interleave " + std::to_string(side) + " exceeds coverage-blocks " + std::to_string(settings.coverage_blocks) +
+           ": a receiver's lattice would hold no block";
+  if (side > 1 && settings.coverage_blocks > 0 && settings.bilateral.kernel_size < 2 * side + 1)
+    return "coverage-interleave " + std::to_string(side) + " needs a post filter of at least " + std::to_string(2 * side + 1) +
+           " taps to average its tiles (filter-kernel-size is " + std::to_string(settings.bilateral.kernel_size) + "; or coverage-interleave 1)";
   return {};
 }
 

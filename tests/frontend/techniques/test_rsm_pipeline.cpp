@@ -107,6 +107,7 @@ TEST_CASE("RSM pipeline with the coverage interleaved: the gather matches the CP
   const shader_library& shaders = test_shaders();
   rsm_pipeline_settings whole_settings = small_settings("rsm-alg6");
   whole_settings.coverage_interleave = 1;
+  require_parity(check_pipeline(make_cornell_box(), whole_settings, gather_rgba32f, post_rgba32f, coarse_rgba32f).gather);
   rsm_pipeline whole(shaders, make_cornell_box(), whole_settings);
   rsm_pipeline interleaved(shaders, make_cornell_box(), settings);
   const rsm_frame whole_frame = whole.render(), interleaved_frame = interleaved.render();
@@ -247,6 +248,14 @@ TEST_CASE("RSM pipeline settings are validated with the setting's name") {
   CHECK_THROWS_WITH_AS(rsm_pipeline(shaders, make_cornell_box(), settings), doctest::Contains("coverage-interleave"), vplkit::error);
   settings.coverage_interleave = rsm_coverage_max_interleave + 1;
   CHECK_THROWS_WITH_AS(rsm_pipeline(shaders, make_cornell_box(), settings), doctest::Contains("coverage-interleave"), vplkit::error);
+  settings = small_settings("rsm-alg6");  // a 9-tap filter
+  settings.coverage_interleave = 5;
+  CHECK_THROWS_WITH_AS(rsm_pipeline(shaders, make_cornell_box(), settings), doctest::Contains("needs a post filter of at least 11 taps"), vplkit::error);
+  settings.coverage_interleave = 4;
+  settings.coverage_blocks = 2;
+  CHECK_THROWS_WITH_AS(rsm_pipeline(shaders, make_cornell_box(), settings), doctest::Contains("exceeds coverage-blocks 2"), vplkit::error);
+  settings.coverage_blocks = 0;  // no coverage: nothing to interleave
+  CHECK_NOTHROW(rsm_pipeline(shaders, make_cornell_box(), settings));
   settings = small_settings("rsm-alg6");
   settings.indirect_divisor = 3;
   CHECK_THROWS_WITH_AS(rsm_pipeline(shaders, make_cornell_box(), settings), doctest::Contains("divisor"), vplkit::error);
