@@ -50,6 +50,7 @@ void main() {
   ivec2 texel = ivec2(gl_FragCoord.xy);
   ivec2 grid = textureSize(partial_sum0, 0);
   int cell = texel.y * grid.x + texel.x, cells = grid.x * grid.y;
+  ivec2 band_texels[VPLKIT_LIGHTWAVE_SUM_RECEIVERS];
   vec3 sample_points[VPLKIT_LIGHTWAVE_SUM_RECEIVERS], normals[VPLKIT_LIGHTWAVE_SUM_RECEIVERS];
   vec3 sums[VPLKIT_LIGHTWAVE_SUM_RECEIVERS];
   sums[0] = texelFetch(partial_sum0, texel, 0).xyz;
@@ -57,15 +58,15 @@ void main() {
   sums[2] = texelFetch(partial_sum2, texel, 0).xyz;
   sums[3] = texelFetch(partial_sum3, texel, 0).xyz;
   for (int k = 0; k < VPLKIT_LIGHTWAVE_SUM_RECEIVERS; ++k) {
-    ivec2 band_texel = texel + ivec2(0, k * grid.y);
-    sample_points[k] = texelFetch(receiver_points, band_texel, 0).xyz;
-    normals[k] = normalize(texelFetch(receiver_normals, band_texel, 0).xyz);  // the pipeline gives empty texels a unit normal
+    band_texels[k] = texel + ivec2(0, k * grid.y);
+    sample_points[k] = texelFetch(receiver_points, band_texels[k], 0).xyz;
+    normals[k] = normalize(texelFetch(receiver_normals, band_texels[k], 0).xyz);  // the pipeline gives empty texels a unit normal
   }
   // A fragment past the last receiver sums nothing (the first band's receivers come first).
   lightwave_bounce_sums(sample_points, normals, cell < receiver_count ? pass_vpl_count : 0, sums, irradiance.min_distance);
   for (int k = 0; k < VPLKIT_LIGHTWAVE_SUM_RECEIVERS; ++k) {
     vec3 sum = sums[k];
-    if (last_pass != 0) sum = diffuse_radiance(texelFetch(receiver_albedos, texel + ivec2(0, k * grid.y), 0).xyz, vec3(0.0), 0.0, sum);
+    if (last_pass != 0) sum = diffuse_radiance(texelFetch(receiver_albedos, band_texels[k], 0).xyz, vec3(0.0), 0.0, sum);
     sums_out[k] = vec4(k * cells + cell < receiver_count ? sum : vec3(0.0), 1.0);
   }
 }

@@ -390,6 +390,11 @@ glm::ivec2 lightwave_receiver_grid(std::size_t receivers, int max_side) {
   return {static_cast<int>(std::min<std::size_t>(width, std::size_t{1} << 30)), static_cast<int>(rows)};
 }
 
+glm::ivec2 lightwave_sum_grid(std::size_t receivers, int max_texture_side) {
+  constexpr auto bands = static_cast<std::size_t>(lightwave_sum_receivers);
+  return lightwave_receiver_grid((receivers + bands - 1) / bands, max_texture_side / lightwave_sum_receivers);
+}
+
 int lightwave_vpl_pass_count(std::size_t vpls, int per_pass) {
   const auto per = static_cast<std::size_t>(std::max(per_pass, 1));
   return static_cast<int>(std::max<std::size_t>(1, (vpls + per - 1) / per));
@@ -493,7 +498,7 @@ lightwave_pipeline::lightwave_pipeline(const shader_library& shaders, const scen
     const std::size_t count = receivers_.vertices.size();
     GLint max_side = 0;
     glGetIntegerv(GL_MAX_TEXTURE_SIZE, &max_side);
-    const glm::ivec2 grid = lightwave_receiver_grid((count + bands - 1) / bands, max_side / lightwave_sum_receivers);
+    const glm::ivec2 grid = lightwave_sum_grid(count, max_side);
     check_texture_size(grid.x, grid.y * lightwave_sum_receivers, "the Light Wave receivers' grid (" + std::to_string(count) + " receivers)");
     const std::size_t cells = static_cast<std::size_t>(grid.x) * static_cast<std::size_t>(grid.y);
     // Empty texels get a unit normal, so that their lanes compute no NaN (their sums are written as zero anyway).

@@ -54,9 +54,14 @@ constexpr int lightwave_surface_map_size = 256;
 /// rasteriser shades 4x4 blocks; a 2-row grid left half of each block's lanes idle, +40 % on the
 /// boxes) and as few as rows of at most 1024 allow; the width a multiple of 4 too, wider than 1024
 /// where the rows would pass `max_side` (the caller checks the width against the GL's largest
-/// texture). The pipeline asks for ceil(n / lightwave_sum_receivers) texels of at most
-/// GL_MAX_TEXTURE_SIZE / lightwave_sum_receivers rows: the receivers' bands stacked in one texture.
+/// texture).
 glm::ivec2 lightwave_receiver_grid(std::size_t receivers, int max_side);
+
+/// The grid of one band of lightwave_capture.frag, which sums lightwave_sum_receivers receivers
+/// per fragment: lightwave_receiver_grid of ceil(receivers / lightwave_sum_receivers) texels with
+/// at most max_texture_side / lightwave_sum_receivers rows, so that the bands stacked hold every
+/// receiver in one texture of at most max_texture_side rows.
+glm::ivec2 lightwave_sum_grid(std::size_t receivers, int max_texture_side);
 
 /// The passes (uniform blocks) that sum `vpls` VPLs per_pass at a time: at least one.
 int lightwave_vpl_pass_count(std::size_t vpls, int per_pass);

@@ -97,7 +97,7 @@ TEST_CASE("Light Wave flux energy: the indirect light summed at the receivers eq
   // Bands of lightwave_sum_receivers and a part of one, then empty texels: receiver i's sum read
   // from band i / cells, texel i % cells (each band's rows and a part of one).
   const std::size_t bands = lightwave_sum_receivers;
-  const glm::ivec2 grid = lightwave_receiver_grid((gpu.size() + bands - 1) / bands, 16384 / lightwave_sum_receivers);
+  const glm::ivec2 grid = lightwave_sum_grid(gpu.size(), 16384);
   const auto cells = static_cast<std::size_t>(grid.x) * static_cast<std::size_t>(grid.y);
   REQUIRE(gpu.size() > (bands - 1) * cells);
   REQUIRE(gpu.size() % cells != 0);
@@ -165,10 +165,10 @@ TEST_CASE("Light Wave flux energy: the receivers' grid holds every receiver in r
       }
       // No empty row of 4 blocks: the last block row holds a receiver.
       CHECK(cells - count < 4 * static_cast<std::size_t>(grid.y));
-      // The pipeline's call: lightwave_sum_receivers bands of the grid stacked in one texture of
+      // lightwave_sum_grid, the pipeline's: lightwave_sum_receivers bands of its grid stacked in one texture of
       // at most max_side rows hold every receiver.
       const std::size_t bands = lightwave_sum_receivers;
-      const glm::ivec2 banded = lightwave_receiver_grid((count + bands - 1) / bands, max_side / lightwave_sum_receivers);
+      const glm::ivec2 banded = lightwave_sum_grid(count, max_side);
       CHECK(static_cast<std::size_t>(banded.y) * bands <= static_cast<std::size_t>(max_side));
       CHECK(static_cast<std::size_t>(banded.x) * static_cast<std::size_t>(banded.y) * bands >= count);
       CHECK(banded.y % 4 == 0);
