@@ -320,7 +320,8 @@ glm::vec<3, T> gather_rsm_with(const gather_receiver<T>& receiver, Fetch&& fetch
     } else {
       if (outside_squared <= (reach + T(1)) * (reach + T(1))) {
         visibility.begin_path();
-        for (int sample = 0; sample < settings.disk.samples; ++sample) accumulate(rsm_disk_sample(sample, settings.disk));
+        const glm::vec<2, T> shift = rsm_disk_pixel_shift(receiver.pixel, settings.disk);
+        for (int sample = 0; sample < settings.disk.samples; ++sample) accumulate(rsm_disk_sample(sample, shift, settings.disk));
       }
     }
     if (!(outside_squared > T(0))) return irradiance * T(0.318309886183790671538);  // on the map: the pattern alone

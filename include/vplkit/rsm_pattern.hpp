@@ -17,7 +17,14 @@
 // The thesis gives no amounts: they are settings. Randomness comes from hash.hpp and angles go
 // through direction_from_turns, so the GLSL twin computes the same offsets to the bit.
 //
-// Disk pattern: offset = r_max * xi1 * (sin 2 pi xi2, cos 2 pi xi2), the same for every pixel.
+// Disk pattern: offset = r_max * xi1 * (sin 2 pi xi2, cos 2 pi xi2). The original draws the same
+// (xi1, xi2) for every pixel, so every receiver makes the same error: a bright patch that the N
+// samples hit or miss is over- or under-counted across the whole image at once (the image's mean
+// off by up to +-25 % on the frames of docs/rsm-study.md, "The disk shifted per pixel"). By default
+// each pixel shifts its pattern on the unit square (xi + u mod 1, u a hash of the pixel: a
+// Cranley-Patterson rotation), which leaves every receiver's estimate unbiased and makes the
+// receivers' errors independent, so the image's mean converges and the post filter averages the
+// noise; `per_pixel_shift = false` is the original's fixed pattern, bit for bit (u = 0).
 // Uniform xi1 puts the samples' area density at 1 / (2 pi r_max r): dense near the receiver, as
 // the original RSM intends. The weight that makes the sum an unbiased estimate is the inverse of
 // that density over N, xi1 * 2 pi r_max^2 / N (weights ~ r; they sum to the disk's area in
@@ -182,6 +189,7 @@ struct disk_pattern_settings {
   T max_radius = T(64);      ///< r_max in RSM texels (> 0)
   std::uint32_t seed = 0;
   bool printed_weights = false;  ///< the original's xi1^2 weights (biased) instead of the unbiased xi1
+  bool per_pixel_shift = true;   ///< each pixel shifts the pattern (rsm_disk_pixel_shift); false: the original's, the same everywhere
 };
 
 template <typename T>
@@ -193,17 +201,29 @@ struct settings_description<disk_pattern_settings<T>> {
     return std::make_tuple(field(&S::samples, "samples", closed_range(1, 65536), "", "N: samples of the original RSM's disk"),
                            field(&S::max_radius, "max_radius", above(0.0), "RSM texels", "r_max: the disk's radius"),
                            field(&S::seed, "seed", closed_range(0, 4294967295.0), "", "changes every sample"),
-                           field(&S::printed_weights, "printed_weights", closed_range(0, 1), "", "the original's xi1^2 weights (biased) instead of xi1"));
+                           field(&S::printed_weights, "printed_weights", closed_range(0, 1), "", "the original's xi1^2 weights (biased) instead of xi1"),
+                           field(&S::per_pixel_shift, "per_pixel_shift", closed_range(0, 1), "",
+                                 "each pixel shifts the pattern (its errors independent of its neighbours'); 0: the original's fixed pattern"));
   }
   static setting_problem rules(const S& settings) { return no_rules(settings); }
 };
 
-/// Sample `sample` of the disk pattern: the same for every receiver.
+/// The pixel's shift of the disk pattern's (xi1, xi2), each in [0, 1): a hash of the pixel, or 0
+/// without per_pixel_shift.
 template <typename T>
-pattern_sample<T> rsm_disk_sample(int sample, const disk_pattern_settings<T>& settings) {
+glm::vec<2, T> rsm_disk_pixel_shift(glm::uvec2 pixel, const disk_pattern_settings<T>& settings) {
+  if (!settings.per_pixel_shift) return glm::vec<2, T>(0);
+  const std::uint32_t pixel_hash = hash_combine(hash_combine(settings.seed ^ 0x27d4eb2fu, pixel.x), pixel.y);
+  return glm::vec<2, T>(T(uniform_float_from_bits(hash_combine(pixel_hash, 0u))), T(uniform_float_from_bits(hash_combine(pixel_hash, 1u))));
+}
+
+/// Sample `sample` of the disk pattern for a pixel whose shift is `shift` (rsm_disk_pixel_shift;
+/// 0: the original's pattern, the same for every receiver).
+template <typename T>
+pattern_sample<T> rsm_disk_sample(int sample, glm::vec<2, T> shift, const disk_pattern_settings<T>& settings) {
   const std::uint32_t sample_hash = hash_combine(settings.seed ^ 0x5bd1e995u, static_cast<std::uint32_t>(sample));
-  const T xi1 = T(uniform_float_from_bits(sample_hash));
-  const T xi2 = T(uniform_float_from_bits(hash_uint32(sample_hash)));
+  const T xi1 = glm::fract(T(uniform_float_from_bits(sample_hash)) + shift.x);
+  const T xi2 = glm::fract(T(uniform_float_from_bits(hash_uint32(sample_hash))) + shift.y);
   const glm::vec<2, T> direction = direction_from_turns(xi2);
   const T radius = settings.max_radius * xi1;
   // (sin, cos) as printed in the RSM paper.

@@ -130,8 +130,9 @@ vec3 gather_rsm(gather_receiver receiver, rsm_gather_settings settings) {
 #else
     if (outside_squared <= (reach + 1.0) * (reach + 1.0)) {
       micro_linear_buffer_reset(buffer, settings.slots.count);  // unused without paths, but defined
+      vec2 shift = rsm_disk_pixel_shift(receiver.pixel, settings.disk);
       for (int sample = 0; sample < settings.disk.samples; ++sample)
-        rsm_gather_accumulate(receiver, rsm_disk_sample(sample, settings.disk), settings, up, buffer, irradiance);
+        rsm_gather_accumulate(receiver, rsm_disk_sample(sample, shift, settings.disk), settings, up, buffer, irradiance);
     }
 #endif
     if (!(outside_squared > 0.0)) return irradiance * 0.318309886183790671538;  // on the map: the pattern alone

@@ -60,12 +60,19 @@ struct disk_pattern_settings {
   float max_radius;
   uint seed;
   bool printed_weights;
+  bool per_pixel_shift;
 };
 
-pattern_sample rsm_disk_sample(int sample, disk_pattern_settings settings) {
+vec2 rsm_disk_pixel_shift(uvec2 pixel, disk_pattern_settings settings) {
+  if (!settings.per_pixel_shift) return vec2(0.0);
+  uint pixel_hash = hash_combine(hash_combine(settings.seed ^ 0x27d4eb2fu, pixel.x), pixel.y);
+  return vec2(uniform_float_from_bits(hash_combine(pixel_hash, 0u)), uniform_float_from_bits(hash_combine(pixel_hash, 1u)));
+}
+
+pattern_sample rsm_disk_sample(int sample, vec2 shift, disk_pattern_settings settings) {
   uint sample_hash = hash_combine(settings.seed ^ 0x5bd1e995u, uint(sample));
-  float xi1 = uniform_float_from_bits(sample_hash);
-  float xi2 = uniform_float_from_bits(hash_uint32(sample_hash));
+  float xi1 = fract(uniform_float_from_bits(sample_hash) + shift.x);
+  float xi2 = fract(uniform_float_from_bits(hash_uint32(sample_hash)) + shift.y);
   vec2 direction = direction_from_turns(xi2);
   float radius = settings.max_radius * xi1;
   vec2 offset = vec2(direction.y, direction.x) * radius;

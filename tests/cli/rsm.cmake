@@ -63,6 +63,10 @@ expect_success("render --coverage-blocks 0 (the pattern alone) and --disk-weight
                "${VPLKIT}" render --technique rsm-original --disk-weights printed --coverage-blocks 0 --size 16 --rsm-size 32 --out "${WORK}/printed.png")
 expect_failure("--coverage-interleave beyond the post filter's reach" "coverage-interleave 8 needs a post filter of at least 17 taps" ""
                "${VPLKIT}" render --coverage-interleave 8 --filter-kernel-size 9 --size 16 --out "${WORK}/nothing.png")
+expect_success("--disk-pattern fixed (the original's samples for every pixel)" "technique rsm-original"
+               "${VPLKIT}" render --technique rsm-original --disk-pattern fixed --size 16 --rsm-size 32 --out "${WORK}/fixed.png")
+expect_failure("--disk-pattern is rsm-original's" "--disk-pattern is read by rsm-original \\(the original RSM.s disk\\), not by technique rsm-radial" ""
+               "${VPLKIT}" render --technique rsm-radial --disk-pattern fixed --size 16 --out "${WORK}/nothing.png")
 expect_failure("--disk-weights is rsm-original's" "--disk-weights is read by rsm-original \\(the original RSM.s disk\\), not by technique rsm-alg6" ""
                "${VPLKIT}" render --disk-weights printed --size 16 --out "${WORK}/nothing.png")
 expect_success("reference --receivers all counts every receiver with a surface, covered marks the pattern's"

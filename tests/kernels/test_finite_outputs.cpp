@@ -189,7 +189,7 @@ TEST_CASE_TEMPLATE("the sampling kernels (radial and disk patterns, cube-map dir
     const glm::uvec2 pixel(static_cast<unsigned>(in.engine()), static_cast<unsigned>(in.engine()));
     const pattern_sample<T> sample = radial_pattern_sample(i % 20, (i / 20) % 15, pixel, radial);
     if (!finite(sample.offset) || !finite(sample.weight) || !(sample.weight >= T(0))) found.add("radial_pattern_sample at pixel " + text(glm::vec<2, T>(pixel)));
-    const pattern_sample<T> from_disk = rsm_disk_sample(i % 400, disk);
+    const pattern_sample<T> from_disk = rsm_disk_sample(i % 400, rsm_disk_pixel_shift(pixel, disk), disk);
     if (!finite(from_disk.offset) || !finite(from_disk.weight)) found.add("rsm_disk_sample " + std::to_string(i % 400));
     VPLKIT_EXPECT_FINITE("direction_from_turns", direction_from_turns(in.magnitude()), "");
     const glm::vec<3, T> direction = i % 17 == 0 ? glm::vec<3, T>(0) : in.point();

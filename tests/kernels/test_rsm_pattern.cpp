@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
+#include <utility>
 #include <vector>
 
 #include <vplkit/polynomial_math.hpp>
@@ -143,7 +145,7 @@ TEST_CASE("radial pattern integrates a smooth function, and its error falls as t
   CHECK(previous_rms < 0.01);  // 15 x 40 samples: under 1% per receiver
 }
 
-TEST_CASE("disk pattern: the same for every receiver, inside r_max, weights sum to the disk's area in expectation") {
+TEST_CASE("disk pattern: unshifted (the original's, the same for every receiver), inside r_max, weights sum to the disk's area in expectation") {
   for (const bool printed : {false, true}) {
     CAPTURE(printed);
     disk_pattern_settings<double> settings;
@@ -151,7 +153,7 @@ TEST_CASE("disk pattern: the same for every receiver, inside r_max, weights sum 
     settings.printed_weights = printed;
     double weight_sum = 0.0;
     for (int sample = 0; sample < settings.samples; ++sample) {
-      const auto s = rsm_disk_sample(sample, settings);
+      const auto s = rsm_disk_sample(sample, glm::dvec2(0.0), settings);
       REQUIRE(glm::length(s.offset) <= settings.max_radius);
       // Unbiased: xi1 * 2 pi r_max^2 / N; printed: xi1^2 * 3 pi r_max^2 / N; xi1 = |offset| / r_max.
       const double xi1 = glm::length(s.offset) / settings.max_radius, area = pi * settings.max_radius * settings.max_radius;
@@ -175,7 +177,7 @@ TEST_CASE("disk pattern: the default weights integrate 1/r without bias, the pri
     settings.printed_weights = printed;
     double estimate = 0.0;
     for (int sample = 0; sample < settings.samples; ++sample) {
-      const auto s = rsm_disk_sample(sample, settings);
+      const auto s = rsm_disk_sample(sample, glm::dvec2(0.0), settings);
       estimate += s.weight * inverse_r(s.offset);
     }
     const double exact = 2 * pi * settings.max_radius;
@@ -188,10 +190,79 @@ TEST_CASE("disk pattern: the default weights integrate 1/r without bias, the pri
   settings.samples = 40000;
   double estimate = 0.0;
   for (int sample = 0; sample < settings.samples; ++sample) {
-    const auto s = rsm_disk_sample(sample, settings);
+    const auto s = rsm_disk_sample(sample, glm::dvec2(0.0), settings);
     estimate += s.weight * std::exp(-glm::length(s.offset) / 20.0);
   }
   const double exact = 2 * pi * 400.0 * (1.0 - (1.0 + 64.0 / 20.0) * std::exp(-64.0 / 20.0));
   CAPTURE(estimate / exact);
   CHECK(estimate / exact == doctest::Approx(1.0).epsilon(0.02));
+}
+
+TEST_CASE("disk pattern: the pixel shift, in [0, 1)^2, differs between pixels and seeds, 0 without per_pixel_shift") {
+  disk_pattern_settings<double> settings, other_seed, fixed;
+  other_seed.seed = 7;
+  fixed.per_pixel_shift = false;
+  std::set<std::pair<double, double>> shifts;
+  for (unsigned y = 0; y < 32; ++y)
+    for (unsigned x = 0; x < 32; ++x) {
+      const glm::dvec2 shift = rsm_disk_pixel_shift(glm::uvec2(x, y), settings);
+      REQUIRE(shift.x >= 0.0);
+      REQUIRE(shift.x < 1.0);
+      REQUIRE(shift.y >= 0.0);
+      REQUIRE(shift.y < 1.0);
+      REQUIRE(shift != rsm_disk_pixel_shift(glm::uvec2(x, y), other_seed));
+      REQUIRE(rsm_disk_pixel_shift(glm::uvec2(x, y), fixed) == glm::dvec2(0.0));
+      shifts.insert({shift.x, shift.y});
+    }
+  CHECK(shifts.size() == 32 * 32);
+  // Unshifted, a sample is the original's to the bit (fract(xi + 0) = xi for xi in [0, 1)).
+  disk_pattern_settings<float> original;
+  original.per_pixel_shift = false;
+  for (int sample = 0; sample < 400; ++sample) {
+    const std::uint32_t sample_hash = hash_combine(original.seed ^ 0x5bd1e995u, static_cast<std::uint32_t>(sample));
+    const float xi1 = uniform_float_from_bits(sample_hash);
+    const pattern_sample<float> s = rsm_disk_sample(sample, rsm_disk_pixel_shift(glm::uvec2(3, 5), original), original);
+    REQUIRE(glm::length(s.offset) == doctest::Approx(original.max_radius * xi1).epsilon(1e-6));
+    REQUIRE(s.weight == xi1 * (2.0f * 3.14159265358979323846f * original.max_radius * original.max_radius / float(original.samples)));
+  }
+}
+
+TEST_CASE("disk pattern: every shift keeps a receiver's estimate unbiased, and shifting per pixel makes the image's mean converge") {
+  // 1/r: with the unbiased weights each sample's estimate is exactly 2 pi r_max, whatever the shift.
+  disk_pattern_settings<double> settings;
+  settings.samples = 64;
+  for (unsigned pixel = 0; pixel < 16; ++pixel) {
+    const glm::dvec2 shift = rsm_disk_pixel_shift(glm::uvec2(pixel, 2 * pixel), settings);
+    double estimate = 0.0;
+    for (int sample = 0; sample < settings.samples; ++sample) {
+      const auto s = rsm_disk_sample(sample, shift, settings);
+      REQUIRE(glm::length(s.offset) <= settings.max_radius);
+      estimate += s.weight / std::max(glm::length(s.offset), 1e-12);
+    }
+    CHECK(estimate == doctest::Approx(2 * pi * settings.max_radius).epsilon(1e-9));
+  }
+  // A bright patch: the disc of radius 6 centred 40 texels from the receiver (area 36 pi). With
+  // the same 64 samples everywhere, every pixel makes the same error, so the mean over 4096
+  // pixels is one pattern's estimate; shifted per pixel, the mean converges to the area.
+  const auto patch = [](const glm::dvec2& offset) { return glm::length(offset - glm::dvec2(40.0, 0.0)) < 6.0 ? 1.0 : 0.0; };
+  const double exact = pi * 36.0;
+  const auto image_mean = [&](const disk_pattern_settings<double>& s) {
+    double sum = 0.0;
+    for (unsigned y = 0; y < 64; ++y)
+      for (unsigned x = 0; x < 64; ++x) {
+        const glm::dvec2 shift = rsm_disk_pixel_shift(glm::uvec2(x, y), s);
+        for (int sample = 0; sample < s.samples; ++sample) {
+          const auto d = rsm_disk_sample(sample, shift, s);
+          sum += d.weight * patch(d.offset);
+        }
+      }
+    return sum / 4096.0;
+  };
+  disk_pattern_settings<double> fixed = settings;
+  fixed.per_pixel_shift = false;
+  const double shifted_mean = image_mean(settings), fixed_mean = image_mean(fixed);
+  CAPTURE(shifted_mean / exact);
+  CAPTURE(fixed_mean / exact);
+  CHECK(shifted_mean / exact == doctest::Approx(1.0).epsilon(0.03));  // 4096 x 64 samples
+  CHECK(std::fabs(fixed_mean / exact - 1.0) > 0.2);                   // one pattern of 64: hit or miss
 }

@@ -17,7 +17,7 @@
 using namespace vplkit;
 using namespace vplkit::parity;
 
-TEST_CASE("parity: radial_pattern_sample and rsm_disk_sample, offsets and weights") {
+TEST_CASE("parity: radial_pattern_sample, rsm_disk_pixel_shift and rsm_disk_sample, offsets and weights") {
   // Texel (x, y) evaluates path x % 16, sample y % 16 for receiver pixel (x, y): 4096 samples.
   const kernel_inputs inputs = grid_of(64, 64, 0, 1);
   kernel_inputs indexed = inputs;
@@ -31,35 +31,41 @@ TEST_CASE("parity: radial_pattern_sample and rsm_disk_sample, offsets and weight
   disk_pattern_settings<float> disk, printed;
   disk.seed = printed.seed = 5;
   printed.printed_weights = true;
+  printed.per_pixel_shift = false;  // and the original's fixed pattern: both branches of rsm_disk_pixel_shift
   kernel_source source;
   source.name = "patterns";
   source.includes = {"lib/rsm_pattern.glsl"};
   source.declarations = "uniform radial_pattern_constants radial;\nuniform disk_pattern_settings disk;\nuniform disk_pattern_settings printed;\n";
   source.body = R"(
     pattern_sample r = radial_pattern_sample(int(uin0.x % 16u), int(uin0.y % 16u), uin0.xy, radial);
-    pattern_sample d = rsm_disk_sample(int(uin0.x + 64u * uin0.y), disk);
-    pattern_sample q = rsm_disk_sample(int(uin0.x + 64u * uin0.y), printed);
+    vec2 shift = rsm_disk_pixel_shift(uin0.xy, disk);
+    pattern_sample d = rsm_disk_sample(int(uin0.x + 64u * uin0.y), shift, disk);
+    pattern_sample q = rsm_disk_sample(int(uin0.x + 64u * uin0.y), rsm_disk_pixel_shift(uin0.xy, printed), printed);
     fout0 = vec4(r.offset, r.weight, 0.0);
     fout1 = vec4(d.offset, d.weight, 0.0);
-    fout2 = vec4(q.offset, q.weight, 0.0);)";
-  source.float_outputs = 3;
+    fout2 = vec4(q.offset, q.weight, 0.0);
+    fout3 = vec4(shift, 0.0, 0.0);)";
+  source.float_outputs = 4;
   const kernel_outputs gpu = run_fragment(source, indexed, [&](const program& p) {
     set_uniforms(p, "radial", constants);
     set_uniforms(p, "disk", disk);
     set_uniforms(p, "printed", printed);
   });
-  std::vector<glm::vec4> cpu_radial(indexed.size()), cpu_disk(indexed.size()), cpu_printed(indexed.size());
+  std::vector<glm::vec4> cpu_radial(indexed.size()), cpu_disk(indexed.size()), cpu_printed(indexed.size()), cpu_shift(indexed.size());
   for (std::size_t i = 0; i < indexed.size(); ++i) {
     const glm::uvec2 pixel(indexed.uints[0][i]);
     const auto r = radial_pattern_sample(static_cast<int>(pixel.x % 16), static_cast<int>(pixel.y % 16), pixel, constants);
-    const auto d = rsm_disk_sample(static_cast<int>(pixel.x + 64 * pixel.y), disk);
-    const auto q = rsm_disk_sample(static_cast<int>(pixel.x + 64 * pixel.y), printed);
+    const glm::vec2 shift = rsm_disk_pixel_shift(pixel, disk);
+    const auto d = rsm_disk_sample(static_cast<int>(pixel.x + 64 * pixel.y), shift, disk);
+    const auto q = rsm_disk_sample(static_cast<int>(pixel.x + 64 * pixel.y), rsm_disk_pixel_shift(pixel, printed), printed);
     cpu_radial[i] = glm::vec4(r.offset, r.weight, 0.0f);
     cpu_disk[i] = glm::vec4(d.offset, d.weight, 0.0f);
     cpu_printed[i] = glm::vec4(q.offset, q.weight, 0.0f);
+    cpu_shift[i] = glm::vec4(shift, 0.0f, 0.0f);
   }
   // Hash bits, exact float-from-bits, +,* and the polynomial: bit-identical unless llvmpipe
   // contracts multiply-adds; offsets decide which texel is fetched, so allow 2 ulp at most.
+  require_parity(compare("rsm_disk_pixel_shift", gpu.floats[3], cpu_shift, indexed, {0.0f, 0.0f, 0, 0.0, "hash bits to float"}, 2));
   require_parity(compare("radial_pattern_sample", gpu.floats[0], cpu_radial, indexed, {0.0f, 0.0f, 2, 0.0, "+,* only"}, 3));
   // The disk weight divides by N (llvmpipe's divide need not be correctly rounded): 4 ulp.
   require_parity(compare("rsm_disk_sample", gpu.floats[1], cpu_disk, indexed, {0.0f, 0.0f, 4, 0.0, "+,*, one divide"}, 3));
