@@ -215,6 +215,10 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, rsm_coverage_max_blocks))->capture_default_str();
   app.add_option("--coverage-interleave", coverage_interleave, "the coverage's interleave side of every configuration with coverage (all modes)")
       ->check(CLI::Range(1, rsm_coverage_max_interleave))->capture_default_str();
+  std::string disk_pattern = "per-pixel";
+  app.add_option("--disk-pattern", disk_pattern, "targets: rsm-original's disk pattern (render's --disk-pattern); the \"as printed\" column keeps "
+                                                 "the original's fixed pattern and weights")
+      ->check(CLI::IsMember({"per-pixel", "fixed"}))->capture_default_str();
   app.add_option("--timing-size", timing_size, "timing mode: image side (the RSM: --rsm-size)")->check(CLI::Range(16, 4096))->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   try {
@@ -439,7 +443,7 @@ int main(int argc, char** argv) {
         rsm_pipeline_settings s = settings;
         s.technique = t.technique;
         s.disk.printed_weights = t.as_printed;
-        s.disk.per_pixel_shift = !t.as_printed;
+        s.disk.per_pixel_shift = !t.as_printed && disk_pattern == "per-pixel";
         s.coverage_blocks = t.coverage_blocks;
         errors[t.label] = measure_technique(shaders, source, s, reference, seeds);
       }

@@ -20,7 +20,7 @@
 // Disk pattern: offset = r_max * xi1 * (sin 2 pi xi2, cos 2 pi xi2). The original draws the same
 // (xi1, xi2) for every pixel, so every receiver makes the same error: a bright patch that the N
 // samples hit or miss is over- or under-counted across the whole image at once (the image's mean
-// off by up to +-25 % on the frames of docs/rsm-study.md, "The disk shifted per pixel"). By default
+// off by -21 to +28 % on the frames of docs/rsm-study.md, "The disk shifted per pixel"). By default
 // each pixel shifts its pattern on the unit square (xi + u mod 1, u a hash of the pixel: a
 // Cranley-Patterson rotation), which leaves every receiver's estimate unbiased and makes the
 // receivers' errors independent, so the image's mean converges and the post filter averages the
@@ -150,9 +150,13 @@ struct radial_pixel {
   T scale;     ///< of every radius
 };
 
+/// The hash of a receiver's pixel under a pattern's seed: where each pattern's per-pixel
+/// randomness starts.
+inline std::uint32_t pattern_pixel_hash(std::uint32_t seed, const glm::uvec2& pixel) { return hash_combine(hash_combine(seed, pixel.x), pixel.y); }
+
 template <typename T>
 radial_pixel<T> radial_pattern_pixel(const glm::uvec2& pixel, const radial_pattern_constants<T>& constants) {
-  const std::uint32_t pixel_hash = hash_combine(hash_combine(constants.seed, pixel.x), pixel.y);
+  const std::uint32_t pixel_hash = pattern_pixel_hash(constants.seed, pixel);
   const T rotation = constants.rotation_jitter * T(uniform_float_from_bits(hash_combine(pixel_hash, 0u)));
   const T scale = T(1) + constants.scale_jitter * (T(uniform_float_from_bits(hash_combine(pixel_hash, 1u))) - T(0.5));
   return {pixel_hash, rotation, scale};
@@ -211,9 +215,12 @@ struct settings_description<disk_pattern_settings<T>> {
 /// The pixel's shift of the disk pattern's (xi1, xi2), each in [0, 1): a hash of the pixel, or 0
 /// without per_pixel_shift.
 template <typename T>
-glm::vec<2, T> rsm_disk_pixel_shift(glm::uvec2 pixel, const disk_pattern_settings<T>& settings) {
+glm::vec<2, T> rsm_disk_pixel_shift(const glm::uvec2& pixel, const disk_pattern_settings<T>& settings) {
   if (!settings.per_pixel_shift) return glm::vec<2, T>(0);
-  const std::uint32_t pixel_hash = hash_combine(hash_combine(settings.seed ^ 0x27d4eb2fu, pixel.x), pixel.y);
+  // The seed is salted (with another constant than the samples' 0x5bd1e995) so that a disk and a
+  // radial pattern given the same seed draw unrelated numbers, and the shift is unrelated to the
+  // samples it shifts.
+  const std::uint32_t pixel_hash = pattern_pixel_hash(settings.seed ^ 0x27d4eb2fu, pixel);
   return glm::vec<2, T>(T(uniform_float_from_bits(hash_combine(pixel_hash, 0u))), T(uniform_float_from_bits(hash_combine(pixel_hash, 1u))));
 }
 

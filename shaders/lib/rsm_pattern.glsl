@@ -31,8 +31,10 @@ struct radial_pixel {
   float scale;
 };
 
+uint pattern_pixel_hash(uint seed, uvec2 pixel) { return hash_combine(hash_combine(seed, pixel.x), pixel.y); }
+
 radial_pixel radial_pattern_pixel(uvec2 pixel, radial_pattern_constants constants) {
-  uint pixel_hash = hash_combine(hash_combine(constants.seed, pixel.x), pixel.y);
+  uint pixel_hash = pattern_pixel_hash(constants.seed, pixel);
   float rotation = constants.rotation_jitter * uniform_float_from_bits(hash_combine(pixel_hash, 0u));
   float scale = 1.0 + constants.scale_jitter * (uniform_float_from_bits(hash_combine(pixel_hash, 1u)) - 0.5);
   return radial_pixel(pixel_hash, rotation, scale);
@@ -65,7 +67,7 @@ struct disk_pattern_settings {
 
 vec2 rsm_disk_pixel_shift(uvec2 pixel, disk_pattern_settings settings) {
   if (!settings.per_pixel_shift) return vec2(0.0);
-  uint pixel_hash = hash_combine(hash_combine(settings.seed ^ 0x27d4eb2fu, pixel.x), pixel.y);
+  uint pixel_hash = pattern_pixel_hash(settings.seed ^ 0x27d4eb2fu, pixel);  // salted: see the C++ twin
   return vec2(uniform_float_from_bits(hash_combine(pixel_hash, 0u)), uniform_float_from_bits(hash_combine(pixel_hash, 1u)));
 }
 

@@ -63,8 +63,23 @@ expect_success("render --coverage-blocks 0 (the pattern alone) and --disk-weight
                "${VPLKIT}" render --technique rsm-original --disk-weights printed --coverage-blocks 0 --size 16 --rsm-size 32 --out "${WORK}/printed.png")
 expect_failure("--coverage-interleave beyond the post filter's reach" "coverage-interleave 8 needs a post filter of at least 17 taps" ""
                "${VPLKIT}" render --coverage-interleave 8 --filter-kernel-size 9 --size 16 --out "${WORK}/nothing.png")
-expect_success("--disk-pattern fixed (the original's samples for every pixel)" "technique rsm-original"
-               "${VPLKIT}" render --technique rsm-original --disk-pattern fixed --size 16 --rsm-size 32 --out "${WORK}/fixed.png")
+# --disk-pattern: the setting in effect says which, and the two patterns gather differently.
+foreach(pattern fixed per-pixel)
+  expect_success("--disk-pattern ${pattern}" "technique rsm-original"
+                 "${VPLKIT}" render --technique rsm-original --disk-pattern ${pattern} --scene cornell-box --size 32 --rsm-size 32
+                 --stats "${WORK}/disk-${pattern}.json" --out "${WORK}/disk-${pattern}.png")
+  file(READ "${WORK}/disk-${pattern}.json" disk_stats)
+  if(NOT disk_stats MATCHES "\"disk-pattern\": \"${pattern}\"")
+    message(SEND_ERROR "FAILED --disk-pattern ${pattern}: the stats' settings do not say \"disk-pattern\": \"${pattern}\"")
+    math(EXPR failures "${failures} + 1")
+  endif()
+endforeach()
+file(SHA256 "${WORK}/disk-fixed-indirect.pfm" fixed_hash)
+file(SHA256 "${WORK}/disk-per-pixel-indirect.pfm" per_pixel_hash)
+if(fixed_hash STREQUAL per_pixel_hash)
+  message(SEND_ERROR "FAILED --disk-pattern: fixed and per-pixel wrote the same indirect light")
+  math(EXPR failures "${failures} + 1")
+endif()
 expect_failure("--disk-pattern is rsm-original's" "--disk-pattern is read by rsm-original \\(the original RSM.s disk\\), not by technique rsm-radial" ""
                "${VPLKIT}" render --technique rsm-radial --disk-pattern fixed --size 16 --out "${WORK}/nothing.png")
 expect_failure("--disk-weights is rsm-original's" "--disk-weights is read by rsm-original \\(the original RSM.s disk\\), not by technique rsm-alg6" ""

@@ -190,7 +190,9 @@ TEST_CASE_TEMPLATE("the sampling kernels (radial and disk patterns, cube-map dir
     const pattern_sample<T> sample = radial_pattern_sample(i % 20, (i / 20) % 15, pixel, radial);
     if (!finite(sample.offset) || !finite(sample.weight) || !(sample.weight >= T(0))) found.add("radial_pattern_sample at pixel " + text(glm::vec<2, T>(pixel)));
     const pattern_sample<T> from_disk = rsm_disk_sample(i % 400, rsm_disk_pixel_shift(pixel, disk), disk);
-    if (!finite(from_disk.offset) || !finite(from_disk.weight)) found.add("rsm_disk_sample " + std::to_string(i % 400));
+    if (!finite(from_disk.offset) || !finite(from_disk.weight) || !(from_disk.weight >= T(0)) ||
+        !(glm::length(from_disk.offset) <= disk.max_radius * T(1.0001)))
+      found.add("rsm_disk_sample " + std::to_string(i % 400) + " at pixel " + text(glm::vec<2, T>(pixel)));
     VPLKIT_EXPECT_FINITE("direction_from_turns", direction_from_turns(in.magnitude()), "");
     const glm::vec<3, T> direction = i % 17 == 0 ? glm::vec<3, T>(0) : in.point();
     const glm::ivec3 texel = cube_texel_of(direction, 4);

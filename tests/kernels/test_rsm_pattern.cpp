@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <set>
 #include <utility>
@@ -215,31 +216,46 @@ TEST_CASE("disk pattern: the pixel shift, in [0, 1)^2, differs between pixels an
       shifts.insert({shift.x, shift.y});
     }
   CHECK(shifts.size() == 32 * 32);
-  // Unshifted, a sample is the original's to the bit (fract(xi + 0) = xi for xi in [0, 1)).
+  // Unshifted, a sample is the original's to the bit: fract(xi + 0) = xi for xi in [0, 1), then the
+  // original's offset r_max xi1 (sin 2 pi xi2, cos 2 pi xi2) and weight.
   disk_pattern_settings<float> original;
   original.per_pixel_shift = false;
   for (int sample = 0; sample < 400; ++sample) {
     const std::uint32_t sample_hash = hash_combine(original.seed ^ 0x5bd1e995u, static_cast<std::uint32_t>(sample));
     const float xi1 = uniform_float_from_bits(sample_hash);
+    const float xi2 = uniform_float_from_bits(hash_uint32(sample_hash));
+    const glm::vec2 direction = direction_from_turns(xi2);
     const pattern_sample<float> s = rsm_disk_sample(sample, rsm_disk_pixel_shift(glm::uvec2(3, 5), original), original);
-    REQUIRE(glm::length(s.offset) == doctest::Approx(original.max_radius * xi1).epsilon(1e-6));
+    REQUIRE(s.offset == glm::vec2(direction.y, direction.x) * (original.max_radius * xi1));
     REQUIRE(s.weight == xi1 * (2.0f * 3.14159265358979323846f * original.max_radius * original.max_radius / float(original.samples)));
   }
 }
 
-TEST_CASE("disk pattern: every shift keeps a receiver's estimate unbiased, and shifting per pixel makes the image's mean converge") {
-  // 1/r: with the unbiased weights each sample's estimate is exactly 2 pi r_max, whatever the shift.
+TEST_CASE("disk pattern: across pixels a sample's radius and angle are uniform, and shifting per pixel makes the image's mean converge") {
+  // Each pixel's sample k is the original's sample k moved by the pixel's shift mod 1: over many
+  // pixels its xi1 (radius / r_max) and xi2 (angle / 2 pi) must each be uniform on [0, 1), which
+  // is what keeps every receiver's estimate unbiased with the same weights. A shift left out, or
+  // applied to one of the two only, puts every pixel in one bin.
   disk_pattern_settings<double> settings;
   settings.samples = 64;
-  for (unsigned pixel = 0; pixel < 16; ++pixel) {
-    const glm::dvec2 shift = rsm_disk_pixel_shift(glm::uvec2(pixel, 2 * pixel), settings);
-    double estimate = 0.0;
-    for (int sample = 0; sample < settings.samples; ++sample) {
-      const auto s = rsm_disk_sample(sample, shift, settings);
-      REQUIRE(glm::length(s.offset) <= settings.max_radius);
-      estimate += s.weight / std::max(glm::length(s.offset), 1e-12);
+  for (const int sample : {0, 17, 63}) {
+    CAPTURE(sample);
+    std::array<int, 10> radius_bins{}, angle_bins{};
+    for (unsigned y = 0; y < 64; ++y)
+      for (unsigned x = 0; x < 64; ++x) {
+        const auto s = rsm_disk_sample(sample, rsm_disk_pixel_shift(glm::uvec2(x, y), settings), settings);
+        const double xi1 = glm::length(s.offset) / settings.max_radius;
+        const double xi2 = std::fmod(std::atan2(s.offset.x, s.offset.y) / (2 * pi) + 1.0, 1.0);  // offset = r (sin, cos)
+        REQUIRE(xi1 < 1.0);
+        REQUIRE(s.weight == doctest::Approx(xi1 * 2 * pi * settings.max_radius * settings.max_radius / settings.samples).epsilon(1e-6));
+        ++radius_bins[static_cast<std::size_t>(std::min(xi1 * 10.0, 9.0))];
+        ++angle_bins[static_cast<std::size_t>(std::min(xi2 * 10.0, 9.0))];
+      }
+    for (std::size_t bin = 0; bin < 10; ++bin) {
+      CAPTURE(bin);
+      CHECK(std::abs(radius_bins[bin] - 410) < 80);  // 4096 pixels in 10 bins: 410 +- 20 (one sd); 80 is four
+      CHECK(std::abs(angle_bins[bin] - 410) < 80);
     }
-    CHECK(estimate == doctest::Approx(2 * pi * settings.max_radius).epsilon(1e-9));
   }
   // A bright patch: the disc of radius 6 centred 40 texels from the receiver (area 36 pi). With
   // the same 64 samples everywhere, every pixel makes the same error, so the mean over 4096
@@ -263,6 +279,6 @@ TEST_CASE("disk pattern: every shift keeps a receiver's estimate unbiased, and s
   const double shifted_mean = image_mean(settings), fixed_mean = image_mean(fixed);
   CAPTURE(shifted_mean / exact);
   CAPTURE(fixed_mean / exact);
-  CHECK(shifted_mean / exact == doctest::Approx(1.0).epsilon(0.03));  // 4096 x 64 samples
-  CHECK(std::fabs(fixed_mean / exact - 1.0) > 0.2);                   // one pattern of 64: hit or miss
+  CHECK(std::fabs(shifted_mean / exact - 1.0) < 0.03);  // 4096 x 64 samples (measured: 2.0 % under)
+  CHECK(std::fabs(fixed_mean / exact - 1.0) > 0.2);     // one pattern of 64 samples: hit or miss (measured: missed)
 }

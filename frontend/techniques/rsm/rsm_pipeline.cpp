@@ -130,7 +130,7 @@ const std::vector<setting<rsm_pipeline_settings, rsm_technique>>& rsm_settings_t
           .feeds("gather.frag: settings.disk.printed_weights"),
       entry::choice("disk-pattern", [](auto& s) -> auto& { return s.disk.per_pixel_shift; }, {{"per-pixel", true}, {"fixed", false}},
                     "original RSM: per-pixel (each pixel shifts the samples, so the receivers' errors are independent and average out) "
-                    "or fixed (the original's: the same samples for every pixel, one error across the image; docs/errata.md RSMV-9)")
+                    "or fixed (the original's: the same samples for every pixel of a frame, one error across the image; docs/errata.md RSMV-9)")
           .read_by(disk, "the original RSM's disk")
           .feeds("gather.frag: settings.disk.per_pixel_shift"),
       entry::number("coverage-blocks", [](auto& s) -> auto& { return s.coverage_blocks; },
