@@ -149,7 +149,9 @@ glm::vec<3, T> coarse_light_irradiance(const glm::vec<3, T>& x, const glm::vec<3
   const T spread_squared = distance_squared + T(2) * light.extent;
   const T emit = glm::max(T(0), glm::dot(light.normal, light_to_receiver));
   const T receive = glm::max(T(0), -glm::dot(n, light_to_receiver));
-  return light.flux * ((emit / distance_squared) * (receive / spread_squared));
+  // One division for both factors: the gather evaluates this for every coarse light of every
+  // uncovered receiver, where a second division measured about 5 % of loft 3's frame (docs/rsm-study.md).
+  return light.flux * ((emit * receive) / (distance_squared * spread_squared));
 }
 
 /// The centre of block `block` in RSM texels (continuous coordinates, like a receiver's projection).

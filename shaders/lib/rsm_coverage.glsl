@@ -83,7 +83,7 @@ vec3 coarse_light_irradiance(vec3 x, vec3 n, coarse_light light, irradiance_sett
   float spread_squared = distance_squared + 2.0 * light.extent;
   float emit = max(0.0, dot(light.normal, light_to_receiver));
   float receive = max(0.0, -dot(n, light_to_receiver));
-  return light.flux * ((emit / distance_squared) * (receive / spread_squared));
+  return light.flux * ((emit * receive) / (distance_squared * spread_squared));  // one division: see the C++ twin
 }
 
 vec2 coverage_block_centre(ivec2 block, ivec2 side) { return (vec2(block) + 0.5) * vec2(side); }
