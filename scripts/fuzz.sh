@@ -3,7 +3,8 @@
 # sanitizers): the OBJ/MTL parser, the PFM and PNG decoders, the comparison metrics, the command
 # line's option checks and the glTF reader (tests/fuzz/; tinygltf itself is Debian's build, not
 # instrumented: crashes in it are caught, its coverage does not guide the fuzzer).
-#   scripts/fuzz.sh [seconds] [target...]   each target for `seconds` (default 60); all by default
+#   scripts/fuzz.sh [seconds] [target...]   each target for `seconds` (default 60); all by default,
+#                                           as many side by side as there are cores
 # The fuzz targets build in the sanitizer build, build-sanitize/ (scripts/setup.sh --sanitize:
 # clang, address and undefined-behaviour sanitizers, libFuzzer coverage), the tree whose tests
 # the sanitizer pass runs. The working corpora live in build-sanitize/fuzz/corpus/<target>,
@@ -86,34 +87,56 @@ seed_gltf() {
     printf "},%s,\"nodes\":[{\"mesh\":0}]}", triangle }' > "$folder/extras-200000"
 }
 
-status=0
-summary=()
-for target in "${targets[@]}"; do
-  corpus=$build/fuzz/corpus/$target crashes=$build/fuzz/crashes/$target
+# The targets run side by side, one per core (each fuzzer is one process on one core, so each still
+# gets its whole time); each writes its summary line to $results/<target>, read back in order.
+results=$build/fuzz/results
+mkdir -p "$results"
+fuzz_target() {
+  local target=$1 corpus=$build/fuzz/corpus/$1 crashes=$build/fuzz/crashes/$1 log=$build/fuzz/fuzz-$1.log
   mkdir -p "$corpus" "$crashes"
   cp tests/fuzz/corpus/"$target"/* tests/fuzz/regressions/"$target"/* "$corpus"/ 2>/dev/null || true
   [ "$target" = obj ] && seed_obj
   [ "$target" = png ] && seed_png
   [ "$target" = gltf ] && seed_gltf
-  log=$build/fuzz/fuzz-$target.log
   echo "== fuzzing $target for ${seconds} s (corpus $corpus)"
-  options=(-max_len=65536)
+  local options=(-max_len=65536)
   [ "$target" = gltf ] && options=(-max_len=1048576 -dict=tests/fuzz/gltf.dict)
-  set +e
+  local result=0
   "$build/tests/fuzz/vplkit_fuzz_$target" "$corpus" -max_total_time="$seconds" -print_final_stats=1 -timeout=10 -rss_limit_mb=2048 \
-    "${options[@]}" -artifact_prefix="$crashes/" >"$log" 2>&1
-  result=$?
-  set -e
+    "${options[@]}" -artifact_prefix="$crashes/" >"$log" 2>&1 || result=$?
+  local executions rate
   executions=$(awk '/stat::number_of_executed_units/ { print $2 }' "$log")
   rate=$(awk '/stat::average_exec_per_sec/ { print $2 }' "$log")
   if [ "$result" -eq 0 ]; then
-    summary+=("$(printf '%-16s %12s executions %8s/s  no crash' "$target" "${executions:-?}" "${rate:-?}")")
+    printf '%-16s %12s executions %8s/s  no crash\n' "$target" "${executions:-?}" "${rate:-?}" > "$results/$target"
   else
-    status=1
-    summary+=("$(printf '%-16s %12s executions %8s/s  FAILED (rc %d): see %s, inputs in %s' "$target" "${executions:-?}" "${rate:-?}" "$result" "$log" "$crashes")")
+    printf '%-16s %12s executions %8s/s  FAILED (rc %d): see %s, inputs in %s\n' "$target" "${executions:-?}" "${rate:-?}" "$result" "$log" \
+      "$crashes" > "$results/$target"
     grep -E "ERROR|SUMMARY|fuzz_" "$log" | head -5 >&2 || true
   fi
+}
+cores=$(nproc 2>/dev/null || echo 2)
+running=0
+for target in "${targets[@]}"; do
+  rm -f "$results/$target"
+  fuzz_target "$target" &
+  running=$((running + 1))
+  if [ "$running" -ge "$cores" ]; then
+    wait -n || true
+    running=$((running - 1))
+  fi
 done
+wait || true
+
+status=0
 echo "== fuzz summary (${seconds} s per target)"
-printf '%s\n' "${summary[@]}"
+for target in "${targets[@]}"; do
+  if [ -s "$results/$target" ]; then
+    cat "$results/$target"
+    grep -q "no crash" "$results/$target" || status=1
+  else
+    printf '%-16s did not finish: see %s\n' "$target" "$build/fuzz/fuzz-$target.log"
+    status=1
+  fi
+done
 exit $status
