@@ -54,6 +54,10 @@ constexpr const char* validate_coverage_interleave(int side) {
   return nullptr;
 }
 
+/// Whether every receiver's lattice of the interleave holds a block: s <= C (or no coverage, or no
+/// interleave). Past it a receiver whose pixel modulo s is >= C gathers no coarse light at all.
+constexpr bool coverage_lattice_holds_a_block(int blocks, int side) { return blocks <= 0 || side <= 1 || side <= blocks; }
+
 /// Interleaved coverage (Keller and Heidrich's interleaved sampling): with side s the receiver at
 /// pixel p gathers only the blocks b with b % s == p % s (per axis), each weighted s^2, so that
 /// the s x s receivers of a pixel tile together gather every block once and the post filter,

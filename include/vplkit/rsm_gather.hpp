@@ -121,7 +121,11 @@ struct settings_description<rsm_gather_settings<T>> {
                                  "side of the pixel tile the coverage's blocks are interleaved over (each receiver gathers 1 / side^2 of them); 1: none"),
                            field(&S::perspective, "perspective", closed_range(0, 1), "", "1: a spot light (perspective RSM), 0: a directional one"));
   }
-  static setting_problem rules(const S& settings) { return no_rules(settings); }
+  static setting_problem rules(const S& settings) {
+    if (!coverage_lattice_holds_a_block(settings.coverage_blocks, settings.coverage_interleave))
+      return setting_problem("rsm_gather_settings::coverage_interleave must not exceed coverage_blocks: a receiver's lattice would hold no block");
+    return {};
+  }
 };
 
 /// The few numbers that shape the gather, with the radius relative to the RSM so that it scales

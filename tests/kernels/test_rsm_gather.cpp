@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -160,6 +161,15 @@ TEST_CASE("the coverage interleaved over s x s pixels: the tile's mean is the wh
   CHECK(validate_coverage_interleave(8) == nullptr);
   CHECK(validate_coverage_interleave(0) != nullptr);
   CHECK(validate_coverage_interleave(9) != nullptr);
+  // An interleave wider than the blocks leaves some receivers' lattices empty: the settings refuse it.
+  settings.coverage_blocks = 4;
+  settings.coverage_interleave = 5;
+  CHECK(std::string(validate(settings).message()).find("coverage_interleave must not exceed coverage_blocks") != std::string::npos);
+  settings.coverage_interleave = 4;
+  CHECK(!validate(settings));
+  settings.coverage_blocks = 0;  // no coverage: no lattice to fill
+  settings.coverage_interleave = 8;
+  CHECK(!validate(settings));
 }
 
 TEST_CASE("with coverage a receiver off the map gets what the pattern reaches plus the blocks beyond it: the whole RSM's light") {

@@ -204,7 +204,7 @@ std::string validate(const rsm_pipeline_settings& settings) {
   // The interleave's lattices are averaged back by the post filter: it must span a tile (2s + 1
   // taps), and a lattice must hold a block.
   const int side = settings.coverage_interleave;
-  if (side > 1 && settings.coverage_blocks > 0 && side > settings.coverage_blocks)
+  if (!coverage_lattice_holds_a_block(settings.coverage_blocks, side))
     return "coverage-interleave " + std::to_string(side) + " exceeds coverage-blocks " + std::to_string(settings.coverage_blocks) +
            ": a receiver's lattice would hold no block";
   if (side > 1 && settings.coverage_blocks > 0 && settings.bilateral.kernel_size < 2 * side + 1)
