@@ -147,8 +147,10 @@ vec3 gather_rsm(gather_receiver receiver, rsm_gather_settings settings) {
   vec3 coverage = vec3(0.0);
   for (int y = phase.y; y < blocks; y += stride)
     for (int x = phase.x; x < blocks; x += stride) {
-      vec2 offset = coverage_block_centre(ivec2(x, y), side) - receiver.rsm_coordinate;
-      if (in_front && !(dot(offset, offset) > reach * reach)) continue;
+      if (in_front) {  // behind the light every block counts (see the C++ twin)
+        vec2 offset = coverage_block_centre(ivec2(x, y), side) - receiver.rsm_coordinate;
+        if (!(dot(offset, offset) > reach * reach)) continue;
+      }
       coverage += coarse_light_irradiance(receiver.position, receiver.normal, rsm_coarse_fetch(ivec2(x, y)), settings.irradiance);
     }
   irradiance += coverage * float(stride * stride);
