@@ -210,9 +210,9 @@ int main(int argc, char** argv) {
   app.add_option("--timing", timing, "timing mode: frames timed per configuration (median), the default technique with and without "
                                      "coverage, interleaved, on every --every-th frame; 0: the targets table instead")
       ->check(CLI::Range(0, 100))->capture_default_str();
-  app.add_option("--coverage-blocks", coverage_blocks, "the coverage's blocks per RSM side of every technique with coverage (targets) and of the "
-                                                     "timed configuration with it (timing)")
-      ->check(CLI::Range(1, rsm_coverage_max_blocks))->capture_default_str();
+  app.add_option("--coverage-blocks", coverage_blocks, "the coverage's blocks per RSM side of every technique with coverage (targets), of every "
+                                                     "sequence (sequence mode; 0: no coverage) and of the timed configuration with it (timing)")
+      ->check(CLI::Range(0, rsm_coverage_max_blocks))->capture_default_str();
   app.add_option("--coverage-interleave", coverage_interleave, "the coverage's interleave side of every configuration with coverage (all modes)")
       ->check(CLI::Range(1, rsm_coverage_max_interleave))->capture_default_str();
   std::string disk_pattern = "per-pixel";
@@ -221,6 +221,11 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"per-pixel", "fixed"}))->capture_default_str();
   app.add_option("--timing-size", timing_size, "timing mode: image side (the RSM: --rsm-size)")->check(CLI::Range(16, 4096))->capture_default_str();
   CLI11_PARSE(app, argc, argv);
+  if (coverage_blocks == 0 && flicker == 0) {
+    // The targets and the timing compare techniques with the coverage against those without it.
+    std::cerr << "vplkit_rsm_poses: error: --coverage-blocks 0 (no coverage) is for sequence mode (--flicker N) only\n";
+    return 2;
+  }
   try {
     const std::vector<pose_frame> frames = read_pose_file(poses, true);
     fs::create_directories(out);
@@ -263,7 +268,11 @@ int main(int argc, char** argv) {
       // per frame: --warmup frames (no reference: the history settles), then --flicker measured
       // frames, then it jumps by --jump degrees and stays for --after-jump frames.
       std::ostringstream md;
-      md << "# Flicker on " << poses << "\n\n" << size << "^2 image, RSM " << rsm_size << "^2; the light tilts by " << step
+      md << "# Flicker on " << poses << "\n\n" << size << "^2 image, RSM " << rsm_size << "^2, "
+         << (coverage_blocks > 0 ? "coverage " + std::to_string(coverage_blocks) + " x " + std::to_string(coverage_blocks) + " blocks interleaved over " +
+                                       std::to_string(coverage_interleave) + " x " + std::to_string(coverage_interleave) + " pixels"
+                                 : std::string("no coverage"))
+         << "; the light tilts by " << step
          << " degrees per frame: " << warmup << " frames to settle, " << flicker << " measured, then it jumps by " << jump << " degrees and stays for "
          << after_jump << " frames. Flicker ratio: the mean absolute frame-to-frame change of the filtered indirect irradiance over the image (what "
          << "the user sees of the indirect light), divided by that of the exact brute force at every receiver after the same post filter; raw: the "
@@ -280,6 +289,7 @@ int main(int argc, char** argv) {
         const ray_scene rays(source.geometry);
         std::cerr << label << "\n";
         rsm_pipeline_settings settings;
+        settings.coverage_blocks = coverage_blocks;
         settings.coverage_interleave = coverage_interleave;
         settings.width = settings.height = size;
         settings.rsm_size = rsm_size;
