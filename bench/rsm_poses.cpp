@@ -103,6 +103,13 @@ technique_errors measure_technique(const shader_library& shaders, const scene& s
   return errors;
 }
 
+// The coverage's settings as the reports name them.
+std::string describe_coverage(int blocks, int interleave) {
+  if (blocks <= 0) return "no coverage";
+  return "coverage " + std::to_string(blocks) + " x " + std::to_string(blocks) + " blocks interleaved over " + std::to_string(interleave) + " x " +
+         std::to_string(interleave) + " pixels";
+}
+
 struct technique_row {
   std::string label, technique;
   bool as_printed = false;  ///< rsm-original as printed: the xi1^2 weights and the same samples for every pixel
@@ -237,8 +244,8 @@ int main(int argc, char** argv) {
       // Timing mode: the cost of the coverage, the default technique with and without it, frames
       // interleaved (A B A B ...), wall clock around glFinish, median.
       std::ostringstream md;
-      md << "# The coverage's cost on " << poses << "\n\n" << timing_size << "^2 image, RSM " << rsm_size << "^2, the default technique, coverage "
-         << coverage_blocks << " x " << coverage_blocks << " blocks interleaved over " << coverage_interleave << " x " << coverage_interleave << " pixels; wall clock "
+      md << "# The coverage's cost on " << poses << "\n\n" << timing_size << "^2 image, RSM " << rsm_size << "^2, the default technique, "
+         << describe_coverage(coverage_blocks, coverage_interleave) << "; wall clock "
          << "around glFinish of one whole frame, median of " << timing << ", the two configurations interleaved, on:\n\n```\n"
          << describe_current_context() << "\n```\n\n| frame | ms without coverage | ms with coverage | ratio |\n|---|---:|---:|---:|\n";
       spread ratios;
@@ -269,10 +276,7 @@ int main(int argc, char** argv) {
       // frames, then it jumps by --jump degrees and stays for --after-jump frames.
       std::ostringstream md;
       md << "# Flicker on " << poses << "\n\n" << size << "^2 image, RSM " << rsm_size << "^2, "
-         << (coverage_blocks > 0 ? "coverage " + std::to_string(coverage_blocks) + " x " + std::to_string(coverage_blocks) + " blocks interleaved over " +
-                                       std::to_string(coverage_interleave) + " x " + std::to_string(coverage_interleave) + " pixels"
-                                 : std::string("no coverage"))
-         << "; the light tilts by " << step
+         << describe_coverage(coverage_blocks, coverage_interleave) << "; the light tilts by " << step
          << " degrees per frame: " << warmup << " frames to settle, " << flicker << " measured, then it jumps by " << jump << " degrees and stays for "
          << after_jump << " frames. Flicker ratio: the mean absolute frame-to-frame change of the filtered indirect irradiance over the image (what "
          << "the user sees of the indirect light), divided by that of the exact brute force at every receiver after the same post filter; raw: the "
@@ -522,8 +526,7 @@ int main(int argc, char** argv) {
     std::ostringstream md;
     md << "# RSM techniques on " << poses << "\n\n" << n << " frames, " << size << "^2 image, RSM " << rsm_size << "^2, brute force at every " << stride
        << "th receiver per axis (every receiver with a surface, covered by the pattern or not), seeds 1-" << seeds << ", Monte Carlo " << mc_samples
-       << " bounce rays per pixel, coverage " << coverage_blocks << " x " << coverage_blocks << " blocks interleaved over " << coverage_interleave << " x "
-       << coverage_interleave << " pixels, on:\n\n```\n" << describe_current_context() << "\n```\n\n## Targets (min / median / max over the frames)\n\n"
+       << " bounce rays per pixel, " << describe_coverage(coverage_blocks, coverage_interleave) << ", on:\n\n```\n" << describe_current_context() << "\n```\n\n## Targets (min / median / max over the frames)\n\n"
        << "| target | technique | frames met | min / median / max |\n|---|---|---:|---:|\n";
     for (const auto& [name, t] : candidates)
       md << "| rel. RMSE vs exact / radial's < 1 (visibility removes >= 2 %) | " << name << " | " << t.rmse_met << " / " << t.rmse_counted << " | "
