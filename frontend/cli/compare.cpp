@@ -6,6 +6,7 @@
 #include "frontend/cli/commands.hpp"
 #include "frontend/cli/output.hpp"
 #include "frontend/core/error.hpp"
+#include "frontend/core/files.hpp"
 #include "frontend/image/image_files.hpp"
 #include "frontend/image/metrics.hpp"
 
@@ -19,13 +20,6 @@ struct compare_state {
   std::string image, reference, mask, error_image;
   float error_scale = 0.0f;
 };
-
-// The same file, whether or not it exists yet (so --error-image cannot overwrite an input).
-bool same_file(const fs::path& a, const fs::path& b) {
-  std::error_code code;
-  if (fs::equivalent(a, b, code)) return true;
-  return fs::weakly_canonical(a, code) == fs::weakly_canonical(b, code) && !code;
-}
 
 std::string size_of(const image& i) { return std::to_string(i.width) + "x" + std::to_string(i.height); }
 

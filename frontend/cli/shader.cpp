@@ -43,13 +43,6 @@ std::pair<std::string, std::string> parse_define(const std::string& text) {
   return {name, value};
 }
 
-// The same file, whether or not it exists yet (so -o cannot overwrite the input).
-bool same_file(const fs::path& a, const fs::path& b) {
-  std::error_code code;
-  if (fs::equivalent(a, b, code)) return true;
-  return fs::weakly_canonical(a, code) == fs::weakly_canonical(b, code) && !code;
-}
-
 // A path in a Makefile rule: spaces, '#' and '$' escaped.
 std::string make_escaped(const fs::path& path) {
   std::string escaped;

@@ -278,4 +278,10 @@ void write_all_or_nothing(const std::vector<output_file>& files, const write_opt
     if (entry.previous) ::unlink(entry.previous->c_str());
 }
 
+bool same_file(const fs::path& a, const fs::path& b) {
+  std::error_code code;
+  if (fs::equivalent(a, b, code)) return true;
+  return fs::weakly_canonical(a, code) == fs::weakly_canonical(b, code) && !code;
+}
+
 }  // namespace vplkit

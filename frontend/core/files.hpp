@@ -59,4 +59,8 @@ void write_all_or_nothing(const std::vector<output_file>& files, const write_opt
 /// at most 1 + 64 + 1 + tag + 1 + 16 bytes, in the target's folder.
 std::filesystem::path sibling_temporary_name(const std::filesystem::path& target, const std::string& tag);
 
+/// Whether `a` and `b` name the same file, whether or not it exists yet: what a command checks so
+/// that an output cannot overwrite one of its inputs (through a link or "dir/../name" included).
+bool same_file(const std::filesystem::path& a, const std::filesystem::path& b);
+
 }  // namespace vplkit

@@ -1,6 +1,7 @@
 // Whole-file reads and all-or-nothing writes (frontend/core/files.hpp): a failed rename at any
 // step leaves the previous set in place, temporaries have bounded names, the output lock keeps
-// two writers from mixing their sets, and every message keeps the system's reason.
+// two writers from mixing their sets, every message keeps the system's reason, and same_file
+// sees one file under two names.
 #include <doctest/doctest.h>
 
 #include <fcntl.h>
@@ -205,4 +206,20 @@ TEST_CASE("the output lock: writers to one folder install one after the other, a
   ::close(held);
   CHECK(contents(a) != "third");
   CHECK(names_in(folder.path) == std::vector<std::string>{".vplkit-output.lock", "a-indirect.pfm", "a.png"});  // no temporary left
+}
+
+TEST_CASE("same_file: one file under two names is the same, existing or not; two names are not") {
+  scratch_folder scratch;
+  const fs::path file = scratch.path / "input.pfm";
+  std::ofstream(file) << "x";
+  fs::create_directories(scratch.path / "sub");
+  fs::create_symlink(file, scratch.path / "link.pfm");
+
+  CHECK(same_file(file, file));
+  CHECK(same_file(file, scratch.path / "sub" / ".." / "input.pfm"));
+  CHECK(same_file(file, scratch.path / "link.pfm"));
+  CHECK_FALSE(same_file(file, scratch.path / "other.pfm"));
+  // Neither exists yet: the same name still is the same file, two names are not.
+  CHECK(same_file(scratch.path / "new.pfm", scratch.path / "sub" / ".." / "new.pfm"));
+  CHECK_FALSE(same_file(scratch.path / "new.pfm", scratch.path / "new2.pfm"));
 }
