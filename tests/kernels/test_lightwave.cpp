@@ -10,6 +10,8 @@
 
 #include <vplkit/lightwave.hpp>
 
+#include "tests/closed_forms.hpp"
+
 using namespace vplkit;
 
 TEST_CASE("Eq. 5.1 gives the VPL counts of Tables 5.1 and 5.2") {
@@ -173,7 +175,7 @@ lightwave_cone_settings<double> cone_settings(int angle, int per_ray, double hal
   return settings;
 }
 
-constexpr double pi = 3.14159265358979323846;
+constexpr double pi = closed_forms::pi;
 
 }  // namespace
 

@@ -11,11 +11,13 @@
 
 #include <vplkit/micro_linear_buffer.hpp>
 
+#include "tests/closed_forms.hpp"
+
 using namespace vplkit;
 
 namespace {
 
-constexpr double pi = 3.14159265358979323846;
+constexpr double pi = closed_forms::pi;
 
 // The definition of section 3.3, with atan: slot = floor((phi + pi/2) / pi * B).
 int bucket_by_angle(const glm::dvec3& x, const glm::dvec3& xp, int slots) {

@@ -12,10 +12,12 @@
 #include <vplkit/polynomial_math.hpp>
 #include <vplkit/rsm_pattern.hpp>
 
+#include "tests/closed_forms.hpp"
+
 using namespace vplkit;
 
 namespace {
-constexpr double pi = 3.14159265358979323846;
+constexpr double pi = closed_forms::pi;
 
 // Mean and RMS error, over `pixels` receivers, of the radial pattern's estimate of the
 // integral of f over its annulus.
