@@ -1,3 +1,4 @@
-// doctest's main for every vplkit test binary.
-#define DOCTEST_CONFIG_IMPLEMENT_WITH_MAIN
+// The main of the test binaries without GL (doctest's implementation: doctest_implementation.cpp).
 #include <doctest/doctest.h>
+
+int main(int argc, char** argv) { return doctest::Context(argc, argv).run(); }

@@ -1,7 +1,6 @@
 // Real meshes: the npm `bunny` and `teapot` packages (converted to OBJ by scripts/setup.sh into
 // meshes/) and Debian's assimp-testmodels. They are fetched, never committed; without them this
 // test prints why and exits 77, which ctest reports as skipped.
-#define DOCTEST_CONFIG_IMPLEMENT
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -11,7 +10,7 @@
 
 #include <vplkit/parity/parity.hpp>
 
-#include "frontend/gl/debug_output.hpp"
+#include "tests/gl_test_run.hpp"
 #include "frontend/techniques/final_gather/final_gather_cpu_mirror.hpp"
 #include "frontend/techniques/lightwave/lightwave_pipeline.hpp"
 #include "frontend/scene/obj_loader.hpp"
@@ -122,11 +121,5 @@ int main(int argc, char** argv) {
       return 77;
     }
   }
-  doctest::Context context(argc, argv);
-  const int result = context.run();
-  if (const std::size_t unchecked = vplkit::unchecked_gl_error_count(); unchecked > 0 && !context.shouldExit()) {
-    std::cout << "FAILED: the GL driver reported " << unchecked << " error(s) through KHR_debug that no check_gl saw\n";
-    return result != 0 ? result : 1;
-  }
-  return result;
+  return vplkit::testing::run_tests_then_check_gl_errors(argc, argv);
 }

@@ -2,7 +2,6 @@
 // change when the camera, the light or the object moves, and each move redraws only what it
 // invalidates; the panel covers its own rectangle and nothing else; every technique and each of
 // its layers can be shown; screenshots are written whole or not at all.
-#define DOCTEST_CONFIG_IMPLEMENT
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -12,7 +11,7 @@
 
 #include "frontend/core/error.hpp"
 #include "frontend/window/window_context.hpp"
-#include "frontend/gl/debug_output.hpp"
+#include "tests/gl_test_run.hpp"
 #include "frontend/image/image.hpp"
 #include "frontend/image/image_files.hpp"
 #include "frontend/viewer/pose_controls.hpp"
@@ -293,13 +292,4 @@ TEST_CASE("a screenshot writes the window PNG and the indirect PFM, or nothing")
   std::filesystem::remove_all(folder);
 }
 
-int main(int argc, char** argv) {
-  doctest::Context context(argc, argv);
-  const int result = context.run();
-  if (context.shouldExit()) return result;
-  if (const std::size_t unchecked = unchecked_gl_error_count(); unchecked > 0) {
-    std::fprintf(stderr, "FAILED: the GL driver reported %zu error(s) through KHR_debug that no check_gl saw\n", unchecked);
-    return result != 0 ? result : 1;
-  }
-  return result;
-}
+int main(int argc, char** argv) { return vplkit::testing::run_tests_then_check_gl_errors(argc, argv); }
