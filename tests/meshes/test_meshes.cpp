@@ -10,11 +10,11 @@
 
 #include <vplkit/parity/parity.hpp>
 
-#include "tests/gl_test_run.hpp"
 #include "frontend/techniques/final_gather/final_gather_cpu_mirror.hpp"
 #include "frontend/techniques/lightwave/lightwave_pipeline.hpp"
 #include "frontend/scene/obj_loader.hpp"
 #include "frontend/techniques/rsm/rsm_pipeline.hpp"
+#include "tests/gl_test_run.hpp"
 
 namespace fs = std::filesystem;
 using namespace vplkit;

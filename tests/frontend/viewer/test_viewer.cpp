@@ -11,11 +11,11 @@
 
 #include "frontend/core/error.hpp"
 #include "frontend/window/window_context.hpp"
-#include "tests/gl_test_run.hpp"
 #include "frontend/image/image.hpp"
 #include "frontend/image/image_files.hpp"
 #include "frontend/viewer/pose_controls.hpp"
 #include "frontend/viewer/viewer.hpp"
+#include "tests/gl_test_run.hpp"
 
 using namespace vplkit;
 
