@@ -8,9 +8,11 @@
 #include <cstdlib>
 #include <cstring>
 #include <iomanip>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <sstream>
+#include <thread>
 
 #include "frontend/core/error.hpp"
 #include "frontend/gl/context.hpp"
@@ -29,17 +31,46 @@ std::string environment_text(const char* name) {
 }
 
 // The process's headless context, made on first use as the CLI makes it (VPLKIT_CONTEXT,
-// VPLKIT_EGL_DEVICE); a failure is thrown again on the next use, which tries again.
-const gl_context& test_context() {
-  static const std::unique_ptr<gl_context> context = [] {
+// VPLKIT_EGL_DEVICE); a failure is thrown again on the next use, which tries again. A context is
+// current on one thread, the one that made it: the thread is kept so that a call from another
+// one says so, instead of running GL calls without a context (they fail one by one and the first
+// error a user sees is an empty "GLSL compile error").
+struct owned_context {
+  std::unique_ptr<gl_context> context;
+  std::thread::id thread;
+};
+
+const owned_context& made_context() {
+  static const owned_context made = [] {
     try {
-      return create_headless_context();
+      return owned_context{create_headless_context(), std::this_thread::get_id()};
     } catch (const error& failure) {
       throw error("vplkit::parity needs a headless GL context and could not make one (" + environment_text("VPLKIT_CONTEXT") + ", " +
                   environment_text("VPLKIT_EGL_DEVICE") + "): " + failure.what());
     }
   }();
-  return *context;
+  return made;
+}
+
+std::string thread_name(std::thread::id thread) {
+  std::ostringstream text;
+  text << thread;
+  return text.str();
+}
+
+void check_owner_thread(const owned_context& made, const std::string& call) {
+  if (std::this_thread::get_id() == made.thread) return;
+  throw error("vplkit::parity: " + call + " was called on thread " + thread_name(std::this_thread::get_id()) +
+              ", but the headless GL context is current on thread " + thread_name(made.thread) +
+              " (the thread of the first parity call, which made it): a GL context is current on one thread, so make every "
+              "parity call on that one");
+}
+
+// The context, current on this thread; `call` names the function for the error when it is not.
+const gl_context& test_context(const std::string& call) {
+  const owned_context& made = made_context();
+  check_owner_thread(made, call);
+  return *made.context;
 }
 
 // Where vplkit's shaders are when $VPLKIT_SHADER_DIR does not say: recorded by the header
@@ -81,12 +112,19 @@ void add_shader_root(const fs::path& folder) {
   if (!fs::is_directory(folder, ignored))
     throw error("vplkit::parity::add_shader_root: " + folder.string() + " is not a folder");
   shader_search& state = search();
-  if (state.library) state.library->add_root(folder);
-  else state.pending_roots.push_back(folder);
+  // Once made, the library is the context thread's (test_shaders hands it out there).
+  if (state.library) {
+    check_owner_thread(made_context(), "add_shader_root");
+    state.library->add_root(folder);
+  } else {
+    state.pending_roots.push_back(folder);
+  }
 }
 
-const shader_library& test_shaders() {
-  test_context();
+namespace {
+
+const shader_library& shaders_for(const std::string& call) {
+  test_context(call);
   shader_search& state = search();
   if (!state.library) {
     auto library = std::make_unique<shader_library>(vplkit_shader_dir());
@@ -97,7 +135,12 @@ const shader_library& test_shaders() {
   return *state.library;
 }
 
-std::string test_context_kind() { return test_context().kind(); }
+}  // namespace
+
+const shader_library& test_shaders() { return shaders_for("test_shaders"); }
+
+// The kind is a fact about the process, not a GL call: any thread may ask.
+std::string test_context_kind() { return made_context().context->kind(); }
 
 namespace {
 
@@ -108,14 +151,64 @@ std::string include_lines(const kernel_source& source) {
   return text;
 }
 
-void check_inputs(const kernel_source& source, const kernel_inputs& inputs) {
-  const std::string what = "parity " + source.name + ": ";
-  if (inputs.width < 1 || inputs.height < 1) throw error(what + "empty input grid");
-  for (const auto& input : inputs.floats)
-    if (input.size() != inputs.size()) throw error(what + "a float input does not have width * height values");
-  for (const auto& input : inputs.uints)
-    if (input.size() != inputs.size()) throw error(what + "a uint input does not have width * height values");
-  if (source.float_outputs < 0 || source.uint_outputs < 0) throw error(what + "a negative number of outputs");
+// The grid and every input's size, for the runs and for compare: a grid of 0 texels would
+// compare nothing and pass, and an input shorter than the grid would be read past its end (by the
+// upload, and by the report that lists a texel's inputs).
+void check_grid(const std::string& what, const kernel_inputs& inputs) {
+  if (inputs.width < 1 || inputs.height < 1)
+    throw error(what + "the input grid is " + std::to_string(inputs.width) + "x" + std::to_string(inputs.height) +
+                "; it must be at least 1x1");
+  const auto check_size = [&](const char* kind, std::size_t index, std::size_t size) {
+    if (size != inputs.size())
+      throw error(what + kind + " input " + std::to_string(index) + " has " + std::to_string(size) + " values for a " +
+                  std::to_string(inputs.width) + "x" + std::to_string(inputs.height) + " grid (" + std::to_string(inputs.size()) +
+                  " texels)");
+  };
+  for (std::size_t i = 0; i < inputs.floats.size(); ++i) check_size("float", i, inputs.floats[i].size());
+  for (std::size_t i = 0; i < inputs.uints.size(); ++i) check_size("uint", i, inputs.uints[i].size());
+}
+
+GLint gl_limit(GLenum name) {
+  GLint value = 0;
+  glGetIntegerv(name, &value);
+  return value;
+}
+
+// What a run asks of its stage, checked against this context's limits before anything is made,
+// so that too many inputs or outputs are named as such rather than surfacing as a list of GL
+// errors from the texture uploads or the link. GL 3.3 guarantees 16 texture units per stage, 16
+// vertex attributes, 8 draw buffers and 4 separate transform feedback outputs.
+void check_run(const kernel_source& source, const kernel_inputs& inputs, shader_stage stage) {
+  const bool fragment = stage == shader_stage::fragment;
+  const std::string what = std::string("parity ") + (fragment ? "run_fragment " : "run_vertex ") + source.name + ": ";
+  check_grid(what, inputs);
+  if (source.float_outputs < 0 || source.uint_outputs < 0)
+    throw error(what + "float_outputs " + std::to_string(source.float_outputs) + " and uint_outputs " + std::to_string(source.uint_outputs) +
+                ": an output count cannot be negative");
+  if (source.float_outputs + source.uint_outputs == 0) throw error(what + "the kernel has no outputs: set float_outputs or uint_outputs");
+  const auto check_limit = [&](std::size_t count, const std::string& things, GLenum limit_name, const char* limit_text, const std::string& advice) {
+    const GLint limit = gl_limit(limit_name);
+    if (count > static_cast<std::size_t>(std::max(limit, 0)))
+      throw error(what + std::to_string(count) + " " + things + ", but " + (fragment ? "a fragment" : "a vertex") + " shader has at most " +
+                  std::to_string(limit) + " (" + limit_text + " of this context): " + advice);
+  };
+  const std::size_t input_count = inputs.floats.size() + inputs.uints.size();
+  const std::string inputs_text = "inputs (" + std::to_string(inputs.floats.size()) + " float, " + std::to_string(inputs.uints.size()) + " uint)";
+  const std::size_t output_count = static_cast<std::size_t>(source.float_outputs) + static_cast<std::size_t>(source.uint_outputs);
+  const std::string outputs_text = "outputs (" + std::to_string(source.float_outputs) + " float, " + std::to_string(source.uint_outputs) + " uint)";
+  const std::string split = "split the kernel into runs with fewer, or pack more values into each vec4";
+  if (fragment) {
+    check_limit(input_count, inputs_text + ", each a texture", GL_MAX_TEXTURE_IMAGE_UNITS, "GL_MAX_TEXTURE_IMAGE_UNITS", split);
+    check_limit(output_count, outputs_text + ", each a render target", GL_MAX_DRAW_BUFFERS, "GL_MAX_DRAW_BUFFERS", split);
+  } else {
+    check_limit(input_count, inputs_text + ", each a vertex attribute", GL_MAX_VERTEX_ATTRIBS, "GL_MAX_VERTEX_ATTRIBS", split);
+    check_limit(output_count, outputs_text + ", each captured by transform feedback", GL_MAX_TRANSFORM_FEEDBACK_SEPARATE_ATTRIBS,
+                "GL_MAX_TRANSFORM_FEEDBACK_SEPARATE_ATTRIBS", split);
+    // One vertex per texel, drawn with a GLsizei count.
+    if (inputs.size() > static_cast<std::size_t>(std::numeric_limits<GLsizei>::max()))
+      throw error(what + "a " + std::to_string(inputs.width) + "x" + std::to_string(inputs.height) + " grid is more vertices than one draw takes (" +
+                  std::to_string(std::numeric_limits<GLsizei>::max()) + ")");
+  }
 }
 
 std::string fragment_source(const kernel_source& source, const kernel_inputs& inputs) {
@@ -156,8 +249,8 @@ std::string vertex_source(const kernel_source& source, const kernel_inputs& inpu
 }  // namespace
 
 kernel_outputs run_fragment(const kernel_source& source, const kernel_inputs& inputs, const uniform_setter& uniforms) {
-  const shader_library& shaders = test_shaders();
-  check_inputs(source, inputs);
+  const shader_library& shaders = shaders_for("run_fragment of " + source.name);
+  check_run(source, inputs, shader_stage::fragment);
   static const char* const full_screen_triangle =
       "#version 330 core\nvoid main() {\n  vec2 corner = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));\n"
       "  gl_Position = vec4(corner * 4.0 - 1.0, 0.0, 1.0);\n}\n";
@@ -199,8 +292,8 @@ kernel_outputs run_fragment(const kernel_source& source, const kernel_inputs& in
 }
 
 kernel_outputs run_vertex(const kernel_source& source, const kernel_inputs& inputs, const uniform_setter& uniforms) {
-  const shader_library& shaders = test_shaders();
-  check_inputs(source, inputs);
+  const shader_library& shaders = shaders_for("run_vertex of " + source.name);
+  check_run(source, inputs, shader_stage::vertex);
   std::vector<std::string> varyings;
   for (int i = 0; i < source.float_outputs; ++i) varyings.push_back("fout" + std::to_string(i));
   for (int i = 0; i < source.uint_outputs; ++i) varyings.push_back("uout" + std::to_string(i));
@@ -299,10 +392,44 @@ std::string texel_name(const kernel_inputs& inputs, std::size_t index, int chann
          std::to_string(index / static_cast<std::size_t>(inputs.width)) + ")." + channels[channel];
 }
 
-void check_sizes(const std::string& kernel, std::size_t gpu, std::size_t cpu, const kernel_inputs& inputs) {
-  if (gpu != cpu || gpu != inputs.size())
-    throw error("parity compare " + kernel + ": output sizes differ (gpu " + std::to_string(gpu) + ", cpu " + std::to_string(cpu) +
-                " values, a " + std::to_string(inputs.width) + "x" + std::to_string(inputs.height) + " grid)");
+std::string number_text(double value) {
+  std::ostringstream text;
+  text << std::setprecision(9) << value;
+  return text.str();
+}
+
+// What every comparison needs before it counts anything. Each misuse here made compare() pass,
+// or read out of bounds, rather than fail: a NaN, negative or above-1 allowed fraction (cast to a
+// huge or arbitrary count of allowed mismatches), 0 or negative channels (nothing compared), 5 or
+// more channels (past w), an empty grid, outputs or inputs shorter than the grid.
+void check_comparison(const std::string& kernel, std::size_t gpu, std::size_t cpu, const kernel_inputs& inputs, int channels,
+                      double allowed_mismatch_fraction) {
+  const std::string what = "parity compare " + kernel + ": ";
+  if (channels < 1 || channels > 4)
+    throw error(what + "channels is " + std::to_string(channels) + "; it must be 1 to 4 (x, xy, xyz or xyzw)");
+  if (!(allowed_mismatch_fraction >= 0.0 && allowed_mismatch_fraction <= 1.0))
+    throw error(what + "allowed_mismatch_fraction is " + number_text(allowed_mismatch_fraction) + "; it must be in [0, 1]");
+  check_grid(what, inputs);
+  if (gpu != inputs.size() || cpu != inputs.size())
+    throw error(what + "the outputs have gpu " + std::to_string(gpu) + " and cpu " + std::to_string(cpu) + " values for a " +
+                std::to_string(inputs.width) + "x" + std::to_string(inputs.height) + " grid (" + std::to_string(inputs.size()) + " texels)");
+}
+
+// A tolerance that is NaN, infinite or negative passes everything, nothing, or depends on the
+// comparison's direction; it is refused with the field that holds it.
+void check_tolerance(const std::string& kernel, const tolerance& bounds, const kernel_inputs& inputs) {
+  const std::string what = "parity compare " + kernel + ": the tolerance's ";
+  const std::string rule = "; bounds must be finite and non-negative";
+  if (!(std::isfinite(bounds.max_abs) && bounds.max_abs >= 0.0f)) throw error(what + "max_abs is " + number_text(bounds.max_abs) + rule);
+  if (!(std::isfinite(bounds.max_rel) && bounds.max_rel >= 0.0f)) throw error(what + "max_rel is " + number_text(bounds.max_rel) + rule);
+  if (bounds.max_ulp < 0) throw error(what + "max_ulp is " + std::to_string(bounds.max_ulp) + rule);
+  if (bounds.abs_scale.empty()) return;
+  if (bounds.abs_scale.size() != inputs.size())
+    throw error(what + "abs_scale has " + std::to_string(bounds.abs_scale.size()) + " values for " + std::to_string(inputs.size()) + " texels");
+  for (std::size_t index = 0; index < bounds.abs_scale.size(); ++index)
+    for (int c = 0; c < 4; ++c)
+      if (const float scale = bounds.abs_scale[index][c]; !(std::isfinite(scale) && scale >= 0.0f))
+        throw error(what + "abs_scale of " + texel_name(inputs, index, c) + " is " + number_text(scale) + rule);
 }
 
 std::size_t allowed(std::size_t values, double fraction) {
@@ -313,14 +440,12 @@ std::size_t allowed(std::size_t values, double fraction) {
 
 comparison compare(const std::string& kernel, const std::vector<glm::vec4>& gpu, const std::vector<glm::vec4>& cpu,
                    const kernel_inputs& inputs, const tolerance& bounds, int channels) {
+  check_comparison(kernel, gpu.size(), cpu.size(), inputs, channels, bounds.allowed_mismatch_fraction);
+  check_tolerance(kernel, bounds, inputs);
   comparison result;
   result.kernel = kernel;
   result.bounds = bounds;
-  check_sizes(kernel, gpu.size(), cpu.size(), inputs);
   const bool scaled = !bounds.abs_scale.empty();
-  if (scaled && bounds.abs_scale.size() != gpu.size())
-    throw error("parity compare " + kernel + ": the tolerance's abs_scale has " + std::to_string(bounds.abs_scale.size()) +
-                " values for " + std::to_string(gpu.size()) + " texels");
   double worst_score = -1.0;
   std::size_t listed = 0;
   std::ostringstream list;
@@ -372,10 +497,10 @@ comparison compare(const std::string& kernel, const std::vector<glm::vec4>& gpu,
 
 comparison compare_exact(const std::string& kernel, const std::vector<glm::uvec4>& gpu, const std::vector<glm::uvec4>& cpu,
                          const kernel_inputs& inputs, double allowed_mismatch_fraction, int channels) {
+  check_comparison(kernel, gpu.size(), cpu.size(), inputs, channels, allowed_mismatch_fraction);
   comparison result;
   result.kernel = kernel;
   result.bounds = {0.0f, 0.0f, 0, allowed_mismatch_fraction, "integers: exact"};
-  check_sizes(kernel, gpu.size(), cpu.size(), inputs);
   std::size_t listed = 0;
   std::ostringstream list;
   for (std::size_t index = 0; index < gpu.size(); ++index) {

@@ -14,8 +14,14 @@
 //
 // The core depends on no test framework: vplkit/parity/doctest.hpp and vplkit/parity/gtest.hpp
 // turn a comparison into an assertion. Errors (a GLSL file that does not compile, an include
-// that is not found, no GL context) are thrown as std::runtime_error (vplkit::error) with a
-// message naming the file and line, or every context that was tried and why it failed.
+// that is not found, no GL context, a call from a thread other than the context's, more inputs or
+// outputs than the stage has, a tolerance or grid that would let a comparison pass without
+// comparing) are thrown as std::runtime_error (vplkit::error) with a message naming the file and
+// line, every context that was tried and why it failed, the threads, the limit, or the argument.
+//
+// The headless context is current on the thread that made it (the first call that needs it), and
+// the shader roots belong to that thread too: a GL call from another thread would run without a
+// context, so a run or test_shaders() there throws, naming both threads.
 #pragma once
 
 #include <cstdint>
@@ -80,16 +86,22 @@ struct kernel_outputs {
 using uniform_setter = std::function<void(const program&)>;
 
 /// Evaluates the kernel in a fragment shader (#version 330 core), one fragment per grid texel,
-/// into RGBA32F / RGBA32UI render targets.
+/// into RGBA32F / RGBA32UI render targets. Throws, before making anything, for an empty grid, an
+/// input whose size is not width * height, no outputs, or more inputs than
+/// GL_MAX_TEXTURE_IMAGE_UNITS or outputs than GL_MAX_DRAW_BUFFERS (at least 16 and 8 in GL 3.3).
 kernel_outputs run_fragment(const kernel_source& source, const kernel_inputs& inputs, const uniform_setter& uniforms = {});
 
 /// Evaluates the kernel in a vertex shader (#version 330 core), one vertex per grid texel,
-/// captured by transform feedback with rasterisation discarded.
+/// captured by transform feedback with rasterisation discarded. Throws as run_fragment does, with
+/// the vertex stage's limits: GL_MAX_VERTEX_ATTRIBS inputs (16 in GL 3.3, also llvmpipe's) and
+/// GL_MAX_TRANSFORM_FEEDBACK_SEPARATE_ATTRIBS outputs (at least 4).
 kernel_outputs run_vertex(const kernel_source& source, const kernel_inputs& inputs, const uniform_setter& uniforms = {});
 
 /// A test's tolerance. A value passes when any of the bounds holds: |gpu - cpu| <= max_abs (times
 /// the texel's abs_scale where given), or |gpu - cpu| <= max_rel * max(|gpu|, |cpu|), or the two
-/// are at most max_ulp floats apart. A non-finite value on either side always fails.
+/// are at most max_ulp floats apart. A non-finite value on either side always fails. Every bound
+/// (and every abs_scale value) must be finite and non-negative, and the fraction in [0, 1]:
+/// compare() throws otherwise.
 struct tolerance {
   float max_abs = 0.0f;
   float max_rel = 0.0f;
@@ -130,12 +142,15 @@ struct comparison {
 /// ULP distance between two finite floats (0 for equal values, including +0 and -0).
 std::int64_t ulp_distance(float a, float b);
 
-/// Compares float outputs channel by channel (`channels` of the 4, from x). Throws when the
-/// sizes of gpu, cpu and the inputs' grid differ.
+/// Compares float outputs channel by channel (`channels` of the 4, from x: 1 to 4). Throws when
+/// the grid is empty, when gpu, cpu or any input does not have one value per texel, when
+/// `channels` is outside 1..4, or when the tolerance is not finite and non-negative with a
+/// fraction in [0, 1]: each of these would otherwise pass without comparing, or read past the end.
 comparison compare(const std::string& kernel, const std::vector<glm::vec4>& gpu, const std::vector<glm::vec4>& cpu,
                    const kernel_inputs& inputs, const tolerance& bounds, int channels = 4);
 
-/// Compares integer outputs: exact, except the stated fraction of flipped values.
+/// Compares integer outputs: exact, except the stated fraction of flipped values. Throws as
+/// compare() does.
 comparison compare_exact(const std::string& kernel, const std::vector<glm::uvec4>& gpu,
                          const std::vector<glm::uvec4>& cpu, const kernel_inputs& inputs,
                          double allowed_mismatch_fraction = 0.0, int channels = 4);
