@@ -1,0 +1,129 @@
+# Runs docs/testing-your-shaders.md as a reader would: takes the tutorial's files from the page
+# itself, builds them against an installed vplkit, and checks both outcomes the page shows.
+#   cmake -DDOC=<the .md> -DPREFIX=<install prefix> -DWORK=<scratch folder> -DGENERATOR=<generator>
+#         [-DCXX=<compiler>] [-DLAUNCHER=<compiler launcher>] -P run_tutorial.cmake
+#
+# A file of the tutorial is every fenced code block that follows a line `<!-- tutorial: FILE -->`,
+# the blocks of one FILE joined in the page's order. The project is the page's CMakeLists.txt,
+# verbatim: it may find vplkit and doctest and nothing else, so that a dependency vplkit's
+# package forgot (Threads::Threads, once) fails here as it fails for a reader, instead of being
+# found by another package's config. The test as written must fail with a report naming the
+# worst texel (step 4: the GLSL has a `* 1.001`), and pass once `* 1.001` is removed (step 5).
+cmake_minimum_required(VERSION 3.20)
+foreach(variable DOC PREFIX WORK GENERATOR)
+  if(NOT DEFINED ${variable})
+    message(FATAL_ERROR "run_tutorial.cmake needs -D${variable}=...")
+  endif()
+endforeach()
+
+file(READ "${DOC}" page)
+# The marker starts a line: the page's prose may quote it.
+set(marker "\n<!-- tutorial: ")
+set(files "")
+set(rest "\n${page}")
+while(TRUE)
+  string(FIND "${rest}" "${marker}" at)
+  if(at EQUAL -1)
+    break()
+  endif()
+  string(LENGTH "${marker}" marker_length)
+  math(EXPR name_start "${at} + ${marker_length}")
+  string(SUBSTRING "${rest}" ${name_start} -1 rest)
+  string(FIND "${rest}" " -->\n" name_end)
+  if(name_end EQUAL -1)
+    message(FATAL_ERROR "${DOC}: a '<!-- tutorial: ' line does not end with ' -->'")
+  endif()
+  string(SUBSTRING "${rest}" 0 ${name_end} name)
+  if(NOT name MATCHES "^[A-Za-z0-9_./-]+$" OR name MATCHES "(^|/)\\.\\.(/|$)" OR name MATCHES "^/")
+    message(FATAL_ERROR "${DOC}: '${name}' is not a relative file name for the tutorial")
+  endif()
+  math(EXPR after "${name_end} + 5")
+  string(SUBSTRING "${rest}" ${after} -1 rest)
+  # The marker's next line opens the block: ``` and a language, then the code up to a line ```.
+  string(SUBSTRING "${rest}" 0 3 fence)
+  if(NOT fence STREQUAL "```")
+    message(FATAL_ERROR "${DOC}: the line after '<!-- tutorial: ${name} -->' is not a code fence")
+  endif()
+  string(FIND "${rest}" "\n" code_start)
+  math(EXPR code_start "${code_start} + 1")
+  string(SUBSTRING "${rest}" ${code_start} -1 rest)
+  string(FIND "${rest}" "\n```" code_end)
+  if(code_end EQUAL -1)
+    message(FATAL_ERROR "${DOC}: the code block of ${name} is not closed")
+  endif()
+  math(EXPR code_length "${code_end} + 1")
+  string(SUBSTRING "${rest}" 0 ${code_length} code)
+  string(SUBSTRING "${rest}" ${code_length} -1 rest)
+  string(MAKE_C_IDENTIFIER "${name}" key)
+  if(NOT name IN_LIST files)
+    list(APPEND files "${name}")
+    set(text_${key} "")
+  endif()
+  string(APPEND text_${key} "${code}")
+endwhile()
+
+# The files the page's project layout names: each must come from the page.
+set(expected CMakeLists.txt shaders/my/two_lights.glsl two_lights.hpp test_two_lights.cpp)
+foreach(name ${expected})
+  if(NOT name IN_LIST files)
+    message(FATAL_ERROR "${DOC} has no code block marked '<!-- tutorial: ${name} -->' (found: ${files})")
+  endif()
+endforeach()
+
+set(source "${WORK}/two_lights")
+set(build "${WORK}/build")
+file(REMOVE_RECURSE "${WORK}")
+foreach(name ${files})
+  string(MAKE_C_IDENTIFIER "${name}" key)
+  file(WRITE "${source}/${name}" "${text_${key}}")
+endforeach()
+message(STATUS "the tutorial's files, from ${DOC}: ${files}")
+
+# What the page's project finds: vplkit and doctest only.
+string(REGEX MATCHALL "find_package\\([A-Za-z0-9_]+" found "${text_CMakeLists_txt}")
+string(REPLACE "find_package(" "" found "${found}")
+if(NOT found STREQUAL "vplkit;doctest")
+  message(FATAL_ERROR "the tutorial's CMakeLists.txt finds ${found}; a reader's project finds vplkit and doctest, nothing else")
+endif()
+
+function(run description expected_result)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE out)
+  if((expected_result STREQUAL "pass" AND NOT code EQUAL 0) OR (expected_result STREQUAL "fail" AND code EQUAL 0))
+    message(FATAL_ERROR "${description}: exit ${code}, expected to ${expected_result}:\n${out}")
+  endif()
+  set(output "${out}" PARENT_SCOPE)
+endfunction()
+
+# Configured as the page says (-DCMAKE_PREFIX_PATH=<prefix>), with the suite's compiler.
+set(configure "${CMAKE_COMMAND}" -S "${source}" -B "${build}" -G "${GENERATOR}" "-DCMAKE_PREFIX_PATH=${PREFIX}" -DCMAKE_BUILD_TYPE=Release)
+if(CXX)
+  list(APPEND configure "-DCMAKE_CXX_COMPILER=${CXX}")
+endif()
+if(LAUNCHER)
+  list(APPEND configure "-DCMAKE_CXX_COMPILER_LAUNCHER=${LAUNCHER}")
+endif()
+run("configuring the tutorial's project" pass ${configure})
+run("building the tutorial's project" pass "${CMAKE_COMMAND}" --build "${build}")
+
+# Step 4: the bug in the GLSL is reported, with its worst texel.
+run("step 4, ctest with '* 1.001' in the GLSL" fail "${CMAKE_CTEST_COMMAND}" --test-dir "${build}" --output-on-failure)
+foreach(expected "ERROR: parity of two_lights_irradiance failed: [0-9]+ values outside tolerance, 0 allowed"
+                 "worst texel \\([0-9]+, [0-9]+\\)\\.[xyz]: gpu=[^ ]+ cpu=[^ ]+ \\(abs [^ ]+ of [^ ]+ allowed" " fin5=\\("
+                 "tolerance: abs <= 6e-06 x the texel's abs_scale")
+  if(NOT output MATCHES "${expected}")
+    message(FATAL_ERROR "step 4's report has no '${expected}':\n${output}")
+  endif()
+endforeach()
+
+# Step 5: "Remove `* 1.001` and run again".
+file(READ "${source}/shaders/my/two_lights.glsl" glsl)
+string(REPLACE " * 1.001" "" fixed "${glsl}")
+if(fixed STREQUAL glsl)
+  message(FATAL_ERROR "the tutorial's two_lights.glsl has no ' * 1.001' for step 5 to remove")
+endif()
+file(WRITE "${source}/shaders/my/two_lights.glsl" "${fixed}")
+run("step 5, ctest without '* 1.001'" pass "${CMAKE_CTEST_COMMAND}" --test-dir "${build}" -V)
+if(NOT output MATCHES "MESSAGE: parity two_lights_irradiance: 30000 values, 0 outside tolerance \\(allowed 0\\)")
+  message(FATAL_ERROR "step 5's summary line is missing:\n${output}")
+endif()
+message(STATUS "the tutorial fails at step 4 and passes at step 5, as the page says")
