@@ -10,8 +10,10 @@
 // The per-file defines come from the docs table, the one table users read: every macro a lib
 // file tests in #if/#ifdef/#ifndef (its include guard aside) must be in its row, and every
 // function it leaves to the including shader must be named in the row's "including shader
-// defines" cell. The measured matrix (file x target) is printed, written to
-// glsl-targets.md in the working folder, and must equal the one in docs/glsl-twins.md.
+// defines" cell. Every function a lib file defines has a C++ function of the same name in the
+// header the file is the twin of (its first line names it), or a comment above it that says what
+// its C++ twin is. The measured matrix (file x target) is printed, written to glsl-targets.md in
+// the working folder, and must equal the one in docs/glsl-twins.md.
 //
 // glslang (glslangValidator, Debian glslang-tools) and spirv-val (spirv-tools) are found by
 // CMake; scripts/setup.sh installs both. The GL and ES shaders of every variant compile in one
@@ -362,6 +364,33 @@ struct scratch_folder {
 };
 
 
+// The C++ header a lib file is the twin of: its first line names it ("GLSL twin of
+// include/vplkit/irradiance.hpp: ...").
+std::string twin_header_of(const std::string& text) {
+  const std::string first = text.substr(0, text.find('\n'));
+  const std::size_t at = first.find("include/vplkit/");
+  if (at == std::string::npos) return "";
+  std::size_t end = at + 15;
+  while (end < first.size() && (std::isalnum(static_cast<unsigned char>(first[end])) || first[end] == '_' || first[end] == '.')) ++end;
+  return first.substr(at, end - at);
+}
+
+// Whether `name` is defined at the top of `text` ("type name(" starting a line, this project's
+// style) with "C++ twin is" in the comment right above it: a GLSL function whose C++ twin has
+// another form (a lambda), which the comment names.
+bool names_its_cpp_twin(const std::string& text, const std::string& name) {
+  std::vector<std::string> lines = split(text, '\n');
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    const std::size_t at = lines[i].find(" " + name + "(");
+    if (at == std::string::npos || lines[i].empty() || !std::isalpha(static_cast<unsigned char>(lines[i][0])) ||
+        lines[i].find(' ') != at)
+      continue;
+    for (std::size_t k = i; k > 0 && trim(lines[k - 1]).rfind("//", 0) == 0; --k)
+      if (lines[k - 1].find("C++ twin is") != std::string::npos) return true;
+  }
+  return false;
+}
+
 using define_list = std::vector<std::pair<std::string, std::string>>;
 
 // One lib file with one set of defines, and what became of it.
@@ -475,6 +504,7 @@ TEST_CASE("every lib file compiles for GLSL 3.30, 4.50 and 4.60 core, GLSL ES 3.
   // Every variant's including shader for every target; the GL and ES ones compiled in one run.
   std::vector<std::string> compile_gl = {glslang};
   std::set<std::string> gl_paths;
+  std::map<std::string, int> paired;  // "lib file: function" paired with its C++ twin
   for (std::size_t k = 0; k < variants.size(); ++k) {
     variant& v = variants[k];
     if (!v.errors.empty()) continue;
@@ -487,6 +517,26 @@ TEST_CASE("every lib file compiles for GLSL 3.30, 4.50 and 4.60 core, GLSL ES 3.
       if (!f.defined && !defined.count(f.name))
         CHECK_MESSAGE(rows.at(v.file).includer_cell.find(f.name + "(") != std::string::npos,
                       v.file << v.shown << " leaves " << f.name << " to the including shader; its row in docs/glsl-twins.md does not say so");
+    // The mirror rule by name: every function the file itself defines (not its includes') has a
+    // C++ function of the same name in the header it is the twin of, or says in a comment what
+    // its C++ twin is.
+    const std::string own_text = read_file(shaders / v.file, std::uintmax_t{1} << 20, "shader file");
+    const std::string header = twin_header_of(own_text);
+    REQUIRE_MESSAGE(!header.empty(), v.file << ": its first line names no include/vplkit/ header it is the twin of");
+    const std::string header_text = read_file(source_dir() / header, std::uintmax_t{1} << 20, "C++ header");
+    for (const std::string& name : defined) {
+      const std::string definition = " " + name + "(";
+      bool own = false;
+      for (const std::string& line : split(own_text, '\n'))
+        own = own || (!line.empty() && std::isalpha(static_cast<unsigned char>(line[0])) && line.find(' ') == line.find(definition) &&
+                      line.find(definition) != std::string::npos && trim(line).back() != ';');  // not a prototype
+      if (!own || paired[v.file + ": " + name]++ > 0) continue;  // once per function, not per variant
+      bool in_header = false;
+      for (std::size_t at = header_text.find(name + "("); at != std::string::npos && !in_header; at = header_text.find(name + "(", at + 1))
+        in_header = at == 0 || !(std::isalnum(static_cast<unsigned char>(header_text[at - 1])) || header_text[at - 1] == '_');
+      CHECK_MESSAGE((in_header || names_its_cpp_twin(own_text, name)),
+                    v.file << " defines " << name << ", which " << header << " does not (and no comment above it names its C++ twin)");
+    }
     v.errors.assign(targets().size(), "");
     for (std::size_t t = 0; t < targets().size(); ++t) {
       v.sources.push_back(library.expand_text(including_shader(targets()[t], v.file, v.defines, v.functions), "main.frag"));
@@ -558,6 +608,20 @@ TEST_CASE("every lib file compiles for GLSL 3.30, 4.50 and 4.60 core, GLSL ES 3.
     for (const std::string& cell : cells) table += " " + cell + " |";
     table += "\n";
   }
+  // Every function definition in a lib file's text ("type name(" starting a line, not a
+  // prototype) was seen by the parse of some variant, so main() called it on every target: a
+  // function the parse missed would have escaped both the pairing and the compilation.
+  for (const std::string& file : files)
+    for (const std::string& line : split(read_file(shaders / file, std::uintmax_t{1} << 20, "shader file"), '\n')) {
+      const std::size_t space = line.find(' '), open = line.find('(');
+      if (line.empty() || !std::isalpha(static_cast<unsigned char>(line[0])) || space == std::string::npos || open == std::string::npos ||
+          open < space || trim(line).back() == ';' || line.rfind("struct", 0) == 0)
+        continue;
+      const std::string name = line.substr(space + 1, open - space - 1);
+      if (is_identifier(name) && name.find(' ') == std::string::npos)
+        CHECK_MESSAGE(paired.count(file + ": " + name) == 1, file << " defines " << name << ", which no variant's main() called");
+    }
+  std::cout << paired.size() << " GLSL functions paired with their C++ twins by name\n";
   std::cout << "compiled " << compiled << " shaders (" << variants.size() << " variants of " << files.size()
             << " lib files); the matrix (file x target):\n" << table;
   std::ofstream("glsl-targets.md") << table;
