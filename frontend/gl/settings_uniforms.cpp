@@ -6,14 +6,17 @@
 
 namespace vplkit {
 
+namespace {
+
+template <typename... Settings>
+std::vector<glsl_twin> twins_of(settings_list<Settings...>) {
+  return {glsl_twin_of<Settings>()...};
+}
+
+}  // namespace
+
 const std::vector<glsl_twin>& glsl_twins() {
-  static const std::vector<glsl_twin> twins = {
-      glsl_twin_of<irradiance_settings<float>>(),  glsl_twin_of<radial_pattern_constants<float>>(), glsl_twin_of<disk_pattern_settings<float>>(),
-      glsl_twin_of<elevation_slots<float>>(),      glsl_twin_of<rsm_gather_settings<float>>(),      glsl_twin_of<rsm_unprojection<float>>(),
-      glsl_twin_of<shadow_density_settings<float>>(), glsl_twin_of<bilateral_settings<float>>(),    glsl_twin_of<spot_light<float>>(),
-      glsl_twin_of<directional_light<float>>(),    glsl_twin_of<lightwave_layout_settings<float>>(), glsl_twin_of<lightwave_shading_settings<float>>(),
-      glsl_twin_of<temporal_settings<float>>(),
-  };
+  static const std::vector<glsl_twin> twins = twins_of(glsl_twin_settings{});
   return twins;
 }
 

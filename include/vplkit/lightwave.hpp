@@ -182,7 +182,7 @@ struct lightwave_cone_settings {
   T half_angle_deg = T(50);  ///< the cone's half-angle the rings reach, in (0, 90]
 };
 
-/// Sample `index` (0 .. lightwave_vpl_count - 1; index = sample * rays + ray, ray 0 the axis) of
+/// Sample `index` (0 .. lightwave_vpl_count - 1; index = sample_index * rays + ray, ray 0 the axis) of
 /// the flux layout: (unit direction, solid angle). The axis ray's patch is the cap of polar
 /// angles [0, d/2], ring e's (e = 1 .. 90 / angle) the band [(e - 1/2) d, (e + 1/2) d] cut into
 /// 360 / angle equal sectors, d = half_angle / (90 / angle + 1/2), so that the patches tile the
@@ -194,15 +194,15 @@ glm::vec<4, T> lightwave_cone_sample(int index, const lightwave_cone_settings<T>
   const int rays = lightwave_ray_count(settings.angle_deg);
   const int rings = 90 / settings.angle_deg;
   const int azimuths = 360 / settings.angle_deg;
-  const int sample = index / rays;
-  const int ray = index - sample * rays;
+  const int sample_index = index / rays;
+  const int ray = index - sample_index * rays;
   const int ring = ray == 0 ? 0 : (ray - 1) / azimuths + 1;
   const int sector = ray == 0 ? 0 : (ray - 1) - (ring - 1) * azimuths;
   const T band_turns = settings.half_angle_deg / (T(360) * (T(rings) + T(0.5)));  // d in turns
   const T lower = direction_from_turns(ray == 0 ? T(0) : (T(ring) - T(0.5)) * band_turns).x;  // cos of the patch's polar bounds
   const T upper = direction_from_turns((T(ring) + T(0.5)) * band_turns).x;
-  const T u = (T(sample) + T(0.5)) / T(settings.per_ray);
-  const T lattice = T(0.5) + T(sample) * T(0.618033988749894848);
+  const T u = (T(sample_index) + T(0.5)) / T(settings.per_ray);
+  const T lattice = T(0.5) + T(sample_index) * T(0.618033988749894848);
   const T v = lattice - std::floor(lattice);
   const T cos_polar = lower + (upper - lower) * u;
   const T sin_polar = std::sqrt(glm::max(T(0), T(1) - cos_polar * cos_polar));

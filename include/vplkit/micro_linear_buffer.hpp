@@ -162,57 +162,57 @@ struct micro_linear_buffer {
 /// Start a new path: every slot visible, no predecessor. (The buffer is reset for every path.)
 /// Every slot starts visible; `slot_count` is the number in use (indices are below it).
 template <typename T>
-void micro_linear_buffer_reset(micro_linear_buffer<T>& buffer, int slot_count) {
+void micro_linear_buffer_reset(micro_linear_buffer<T>& linear_buffer, int slot_count) {
   (void)slot_count;
-  buffer.claims = glm::uvec4(0u);
-  buffer.occluded = 0u;
-  buffer.previous_index = -1;
-  buffer.previous_visibility = T(1);
-  buffer.previous_position = glm::vec<3, T>(T(0));
-  buffer.previous_normal = glm::vec<3, T>(T(0));
+  linear_buffer.claims = glm::uvec4(0u);
+  linear_buffer.occluded = 0u;
+  linear_buffer.previous_index = -1;
+  linear_buffer.previous_visibility = T(1);
+  linear_buffer.previous_position = glm::vec<3, T>(T(0));
+  linear_buffer.previous_normal = glm::vec<3, T>(T(0));
 }
 
 /// Alg. 2: returns 1 (visible) or 0 (occluded).
 template <typename T>
-T micro_linear_buffer_alg2(micro_linear_buffer<T>& buffer, int index) {
+T micro_linear_buffer_alg2(micro_linear_buffer<T>& linear_buffer, int index) {
   const std::uint32_t bit = 1u << static_cast<std::uint32_t>(index);
-  const T visibility = (buffer.occluded & bit) == 0u ? T(1) : T(0);
-  buffer.occluded |= bit;
-  buffer.previous_index = index;
-  buffer.previous_visibility = visibility;
+  const T visibility = (linear_buffer.occluded & bit) == 0u ? T(1) : T(0);
+  linear_buffer.occluded |= bit;
+  linear_buffer.previous_index = index;
+  linear_buffer.previous_visibility = visibility;
   return visibility;
 }
 
 /// Alg. 3: returns 1 (visible) or 0 (occluded).
 template <typename T>
-T micro_linear_buffer_alg3(micro_linear_buffer<T>& buffer, int index) {
-  T visibility = buffer.previous_visibility;
-  if (index != buffer.previous_index) {
+T micro_linear_buffer_alg3(micro_linear_buffer<T>& linear_buffer, int index) {
+  T visibility = linear_buffer.previous_visibility;
+  if (index != linear_buffer.previous_index) {
     const std::uint32_t bit = 1u << static_cast<std::uint32_t>(index);
-    visibility = (buffer.occluded & bit) == 0u ? T(1) : T(0);
-    buffer.occluded |= bit;
+    visibility = (linear_buffer.occluded & bit) == 0u ? T(1) : T(0);
+    linear_buffer.occluded |= bit;
   }
-  buffer.previous_index = index;
-  buffer.previous_visibility = visibility;
+  linear_buffer.previous_index = index;
+  linear_buffer.previous_visibility = visibility;
   return visibility;
 }
 
 /// Alg. 6: returns nu unclamped (1, 0, -1, ...); the caller applies clamp(nu, 0, 1) (Alg. 5).
 template <typename T>
-T micro_linear_buffer_alg6(micro_linear_buffer<T>& buffer, int index) {
+T micro_linear_buffer_alg6(micro_linear_buffer<T>& linear_buffer, int index) {
   // The thesis keeps this one branch (Alg. 6, line 3); a select compiles to the same on GPUs.
-  const bool same_as_previous = index == buffer.previous_index;
+  const bool same_as_previous = index == linear_buffer.previous_index;
   const std::uint32_t word = static_cast<std::uint32_t>(index) >> 2u;
   const std::uint32_t shift = (static_cast<std::uint32_t>(index) & 3u) * 8u;
   const glm::uvec4 in_word(word == 0u ? 1u : 0u, word == 1u ? 1u : 0u, word == 2u ? 1u : 0u, word == 3u ? 1u : 0u);
-  const std::uint32_t claims_word = word == 0u ? buffer.claims.x : word == 1u ? buffer.claims.y : word == 2u ? buffer.claims.z : buffer.claims.w;
+  const std::uint32_t claims_word = word == 0u ? linear_buffer.claims.x : word == 1u ? linear_buffer.claims.y : word == 2u ? linear_buffer.claims.z : linear_buffer.claims.w;
   const std::uint32_t count = (claims_word >> shift) & 255u;
   const T slot_value = T(1) - T(count);
-  const T visibility = same_as_previous ? buffer.previous_visibility : slot_value;
+  const T visibility = same_as_previous ? linear_buffer.previous_visibility : slot_value;
   const std::uint32_t claim = same_as_previous || count == 255u ? 0u : 1u;  // value -= 1, saturating
-  buffer.claims += in_word * (claim << shift);
-  buffer.previous_index = index;
-  buffer.previous_visibility = visibility;
+  linear_buffer.claims += in_word * (claim << shift);
+  linear_buffer.previous_index = index;
+  linear_buffer.previous_visibility = visibility;
   return visibility;
 }
 
@@ -242,17 +242,17 @@ bool alg6_ray_in_front(const glm::vec<3, T, Q>& x, const glm::vec<3, T, Q>& n, c
 /// same-slot rule) only when the predecessor faces the receiver and the sample does not lie behind
 /// the predecessor's surface; otherwise the slot decides. Returns nu unclamped, like Alg. 6.
 template <typename T>
-T micro_linear_buffer_alg6_ray(micro_linear_buffer<T>& buffer, int index, const glm::vec<3, T>& receiver, const glm::vec<3, T>& position,
+T micro_linear_buffer_alg6_ray(micro_linear_buffer<T>& linear_buffer, int index, const glm::vec<3, T>& receiver, const glm::vec<3, T>& position,
                                const glm::vec<3, T>& normal) {
-  const glm::vec<3, T> to_receiver = receiver - buffer.previous_position;
-  const glm::vec<3, T> step = position - buffer.previous_position;
-  const T faces = buffer.previous_normal.x * to_receiver.x + buffer.previous_normal.y * to_receiver.y + buffer.previous_normal.z * to_receiver.z;
-  const T ahead = buffer.previous_normal.x * step.x + buffer.previous_normal.y * step.y + buffer.previous_normal.z * step.z;
+  const glm::vec<3, T> to_receiver = receiver - linear_buffer.previous_position;
+  const glm::vec<3, T> step = position - linear_buffer.previous_position;
+  const T faces = linear_buffer.previous_normal.x * to_receiver.x + linear_buffer.previous_normal.y * to_receiver.y + linear_buffer.previous_normal.z * to_receiver.z;
+  const T ahead = linear_buffer.previous_normal.x * step.x + linear_buffer.previous_normal.y * step.y + linear_buffer.previous_normal.z * step.z;
   const T step_length = std::sqrt(step.x * step.x + step.y * step.y + step.z * step.z);
-  if (!(faces > T(0)) || ahead < -T(alg6_ray_behind_slope) * step_length) buffer.previous_index = -1;
-  const T visibility = micro_linear_buffer_alg6(buffer, index);
-  buffer.previous_position = position;
-  buffer.previous_normal = normal;
+  if (!(faces > T(0)) || ahead < -T(alg6_ray_behind_slope) * step_length) linear_buffer.previous_index = -1;
+  const T visibility = micro_linear_buffer_alg6(linear_buffer, index);
+  linear_buffer.previous_position = position;
+  linear_buffer.previous_normal = normal;
   return visibility;
 }
 

@@ -254,8 +254,8 @@ struct micro_linear_buffer_visibility {
   const elevation_slots<T>& slots;
   glm::vec<3, T> up{T(0), T(0), T(1)};  ///< alg6_ray: towards the light
   T min_distance = T(0);                ///< alg6_ray: the tangent-plane tolerance's distance
-  micro_linear_buffer<T> buffer{};
-  void begin_path() { micro_linear_buffer_reset(buffer, slots.count); }
+  micro_linear_buffer<T> linear_buffer{};
+  void begin_path() { micro_linear_buffer_reset(linear_buffer, slots.count); }
   T operator()(const gather_receiver<T>& receiver, const rsm_texel<T>& light) {
     if constexpr (Visibility == rsm_visibility::none) {
       (void)receiver, (void)light;
@@ -263,12 +263,12 @@ struct micro_linear_buffer_visibility {
     } else if constexpr (Visibility == rsm_visibility::alg6_ray) {
       if (!alg6_ray_in_front(receiver.position, receiver.normal, light.position, min_distance)) return T(1);  // no claim
       const int index = elevation_bucket_about(receiver.position, light.position, up, slots);
-      return glm::clamp(micro_linear_buffer_alg6_ray(buffer, index, receiver.position, light.position, light.normal), T(0), T(1));
+      return glm::clamp(micro_linear_buffer_alg6_ray(linear_buffer, index, receiver.position, light.position, light.normal), T(0), T(1));
     } else {
       const int index = elevation_bucket(receiver.position, light.position, slots);
-      if constexpr (Visibility == rsm_visibility::alg2) return micro_linear_buffer_alg2(buffer, index);
-      else if constexpr (Visibility == rsm_visibility::alg3) return micro_linear_buffer_alg3(buffer, index);
-      else return glm::clamp(micro_linear_buffer_alg6(buffer, index), T(0), T(1));
+      if constexpr (Visibility == rsm_visibility::alg2) return micro_linear_buffer_alg2(linear_buffer, index);
+      else if constexpr (Visibility == rsm_visibility::alg3) return micro_linear_buffer_alg3(linear_buffer, index);
+      else return glm::clamp(micro_linear_buffer_alg6(linear_buffer, index), T(0), T(1));
     }
   }
 };
@@ -294,15 +294,15 @@ glm::vec<3, T> gather_rsm_with(const gather_receiver<T>& receiver, Fetch&& fetch
   T reach = settings.disk.max_radius;
   if (in_front) {
     // One sample: fetch, visibility, Eq. 3.2, accumulate (Alg. 1 lines 9-16, Alg. 5 lines 9-15).
-    auto accumulate = [&](const pattern_sample<T>& sample) {
-      const glm::ivec2 texel = glm::ivec2(glm::floor(receiver.rsm_coordinate + sample.offset));
+    auto accumulate = [&](const pattern_sample<T>& s) {
+      const glm::ivec2 texel = glm::ivec2(glm::floor(receiver.rsm_coordinate + s.offset));
       if (texel.x < 0 || texel.y < 0 || texel.x >= settings.rsm_size.x || texel.y >= settings.rsm_size.y) return;
       const rsm_texel<T> light = fetch(texel);
       if (!(light.position.z < T(0))) return;
       const T seen = visibility(receiver, light);
       const glm::vec<3, T> e = pixel_light_irradiance(receiver.position, receiver.normal, light.position, light.normal,
                                                       light.flux, settings.irradiance);
-      irradiance += (seen * sample.weight) * e;
+      irradiance += (seen * s.weight) * e;
     };
     // How far the projection lies outside the RSM: the pattern runs only when it can land on it.
     const glm::vec<2, T> size(settings.rsm_size);
@@ -315,8 +315,8 @@ glm::vec<3, T> gather_rsm_with(const gather_receiver<T>& receiver, Fetch&& fetch
         for (int path = 0; path < settings.radial.paths; ++path) {
           visibility.begin_path();
           T ring_inner_radius = settings.radial.min_radius;
-          for (int sample = 0; sample < settings.radial.samples_per_path; ++sample) {
-            accumulate(radial_pattern_sample(path, sample, ring_inner_radius, pixel, settings.radial));
+          for (int sample_index = 0; sample_index < settings.radial.samples_per_path; ++sample_index) {
+            accumulate(radial_pattern_sample(path, sample_index, ring_inner_radius, pixel, settings.radial));
             ring_inner_radius *= settings.radial.ring_ratio;
           }
         }
@@ -325,7 +325,7 @@ glm::vec<3, T> gather_rsm_with(const gather_receiver<T>& receiver, Fetch&& fetch
       if (outside_squared <= (reach + T(1)) * (reach + T(1))) {
         visibility.begin_path();
         const glm::vec<2, T> shift = rsm_disk_pixel_shift(receiver.pixel, settings.disk);
-        for (int sample = 0; sample < settings.disk.samples; ++sample) accumulate(rsm_disk_sample(sample, shift, settings.disk));
+        for (int sample_index = 0; sample_index < settings.disk.samples; ++sample_index) accumulate(rsm_disk_sample(sample_index, shift, settings.disk));
       }
     }
     if (!(outside_squared > T(0))) return irradiance * T(0.318309886183790671538);  // on the map: the pattern alone

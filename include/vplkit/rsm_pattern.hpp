@@ -162,13 +162,13 @@ radial_pixel<T> radial_pattern_pixel(const glm::uvec2& pixel, const radial_patte
   return {pixel_hash, rotation, scale};
 }
 
-/// Sample `sample` (0 = nearest) of path `path` for a receiver, given the inner radius of its
-/// ring, r_min * q^sample (the gather keeps it as a running product along the path).
+/// Sample `sample_index` (0 = nearest) of path `path` for a receiver, given the inner radius of its
+/// ring, r_min * q^sample_index (the gather keeps it as a running product along the path).
 template <typename T>
-pattern_sample<T> radial_pattern_sample(int path, int sample, T ring_inner_radius, const radial_pixel<T>& pixel,
+pattern_sample<T> radial_pattern_sample(int path, int sample_index, T ring_inner_radius, const radial_pixel<T>& pixel,
                                         const radial_pattern_constants<T>& constants) {
   const std::uint32_t sample_hash =
-      hash_combine(pixel.hash, static_cast<std::uint32_t>(2 + path * constants.samples_per_path + sample));
+      hash_combine(pixel.hash, static_cast<std::uint32_t>(2 + path * constants.samples_per_path + sample_index));
   const T angle_offset = constants.angle_jitter * (T(uniform_float_from_bits(sample_hash)) - T(0.5));
   const T radial_position = T(uniform_float_from_bits(hash_uint32(sample_hash)));
   const T ring_width = pixel.scale * (ring_inner_radius * constants.ring_ratio - ring_inner_radius);
@@ -177,13 +177,13 @@ pattern_sample<T> radial_pattern_sample(int path, int sample, T ring_inner_radiu
   return {direction * radius, constants.path_angle * radius * ring_width};
 }
 
-/// Sample `sample` (0 = nearest) of path `path` for the receiver at RSM pixel `pixel`: the same
+/// Sample `sample_index` (0 = nearest) of path `path` for the receiver at RSM pixel `pixel`: the same
 /// as the two calls above (the ring radius by repeated multiplication, as the gather does).
 template <typename T>
-pattern_sample<T> radial_pattern_sample(int path, int sample, const glm::uvec2& pixel, const radial_pattern_constants<T>& constants) {
+pattern_sample<T> radial_pattern_sample(int path, int sample_index, const glm::uvec2& pixel, const radial_pattern_constants<T>& constants) {
   T inner = constants.min_radius;
-  for (int ring = 0; ring < sample; ++ring) inner *= constants.ring_ratio;
-  return radial_pattern_sample(path, sample, inner, radial_pattern_pixel(pixel, constants), constants);
+  for (int ring = 0; ring < sample_index; ++ring) inner *= constants.ring_ratio;
+  return radial_pattern_sample(path, sample_index, inner, radial_pattern_pixel(pixel, constants), constants);
 }
 
 /// Settings of the original RSM disk pattern (defaults: 400 samples, as suggested there).
@@ -224,11 +224,11 @@ glm::vec<2, T> rsm_disk_pixel_shift(const glm::uvec2& pixel, const disk_pattern_
   return glm::vec<2, T>(T(uniform_float_from_bits(hash_combine(pixel_hash, 0u))), T(uniform_float_from_bits(hash_combine(pixel_hash, 1u))));
 }
 
-/// Sample `sample` of the disk pattern for a pixel whose shift is `shift` (rsm_disk_pixel_shift;
+/// Sample `sample_index` of the disk pattern for a pixel whose shift is `shift` (rsm_disk_pixel_shift;
 /// 0: the original's pattern, the same for every receiver).
 template <typename T>
-pattern_sample<T> rsm_disk_sample(int sample, glm::vec<2, T> shift, const disk_pattern_settings<T>& settings) {
-  const std::uint32_t sample_hash = hash_combine(settings.seed ^ 0x5bd1e995u, static_cast<std::uint32_t>(sample));
+pattern_sample<T> rsm_disk_sample(int sample_index, glm::vec<2, T> shift, const disk_pattern_settings<T>& settings) {
+  const std::uint32_t sample_hash = hash_combine(settings.seed ^ 0x5bd1e995u, static_cast<std::uint32_t>(sample_index));
   const T xi1 = glm::fract(T(uniform_float_from_bits(sample_hash)) + shift.x);
   const T xi2 = glm::fract(T(uniform_float_from_bits(hash_uint32(sample_hash))) + shift.y);
   const glm::vec<2, T> direction = direction_from_turns(xi2);

@@ -4,6 +4,12 @@
 #ifndef VPLKIT_FINAL_GATHER_GLSL
 #define VPLKIT_FINAL_GATHER_GLSL
 
+// Required (no default): an undefined name in `#if` is an error in GLSL ES, so a forgotten define
+// must stop here with a message that names it, not at the `#if` below.
+#ifndef VPLKIT_FORM_FACTOR
+#error "define VPLKIT_FORM_FACTOR (0 polygon, 1 point) before including lib/final_gather.glsl"
+#endif
+
 #include "lib/form_factor.glsl"
 
 vec4 small_cube_fetch(int face, int i, int j);

@@ -51,49 +51,49 @@ struct micro_linear_buffer {
   vec3 previous_normal;
 };
 
-void micro_linear_buffer_reset(out micro_linear_buffer buffer, int slot_count) {
-  buffer.claims = uvec4(0u);
-  buffer.occluded = 0u;
-  buffer.previous_index = -1;
-  buffer.previous_visibility = 1.0;
-  buffer.previous_position = vec3(0.0);
-  buffer.previous_normal = vec3(0.0);
+void micro_linear_buffer_reset(out micro_linear_buffer linear_buffer, int slot_count) {
+  linear_buffer.claims = uvec4(0u);
+  linear_buffer.occluded = 0u;
+  linear_buffer.previous_index = -1;
+  linear_buffer.previous_visibility = 1.0;
+  linear_buffer.previous_position = vec3(0.0);
+  linear_buffer.previous_normal = vec3(0.0);
 }
 
-float micro_linear_buffer_alg2(inout micro_linear_buffer buffer, int index) {
+float micro_linear_buffer_alg2(inout micro_linear_buffer linear_buffer, int index) {
   uint bit = 1u << uint(index);
-  float visibility = (buffer.occluded & bit) == 0u ? 1.0 : 0.0;
-  buffer.occluded |= bit;
-  buffer.previous_index = index;
-  buffer.previous_visibility = visibility;
+  float visibility = (linear_buffer.occluded & bit) == 0u ? 1.0 : 0.0;
+  linear_buffer.occluded |= bit;
+  linear_buffer.previous_index = index;
+  linear_buffer.previous_visibility = visibility;
   return visibility;
 }
 
-float micro_linear_buffer_alg3(inout micro_linear_buffer buffer, int index) {
-  float visibility = buffer.previous_visibility;
-  if (index != buffer.previous_index) {
+float micro_linear_buffer_alg3(inout micro_linear_buffer linear_buffer, int index) {
+  float visibility = linear_buffer.previous_visibility;
+  if (index != linear_buffer.previous_index) {
     uint bit = 1u << uint(index);
-    visibility = (buffer.occluded & bit) == 0u ? 1.0 : 0.0;
-    buffer.occluded |= bit;
+    visibility = (linear_buffer.occluded & bit) == 0u ? 1.0 : 0.0;
+    linear_buffer.occluded |= bit;
   }
-  buffer.previous_index = index;
-  buffer.previous_visibility = visibility;
+  linear_buffer.previous_index = index;
+  linear_buffer.previous_visibility = visibility;
   return visibility;
 }
 
-float micro_linear_buffer_alg6(inout micro_linear_buffer buffer, int index) {
-  bool same_as_previous = index == buffer.previous_index;
+float micro_linear_buffer_alg6(inout micro_linear_buffer linear_buffer, int index) {
+  bool same_as_previous = index == linear_buffer.previous_index;
   uint word = uint(index) >> 2u;
   uint shift = (uint(index) & 3u) * 8u;
   uvec4 in_word = uvec4(word == 0u ? 1u : 0u, word == 1u ? 1u : 0u, word == 2u ? 1u : 0u, word == 3u ? 1u : 0u);
-  uint claims_word = word == 0u ? buffer.claims.x : word == 1u ? buffer.claims.y : word == 2u ? buffer.claims.z : buffer.claims.w;
+  uint claims_word = word == 0u ? linear_buffer.claims.x : word == 1u ? linear_buffer.claims.y : word == 2u ? linear_buffer.claims.z : linear_buffer.claims.w;
   uint count = (claims_word >> shift) & 255u;
   float slot_value = 1.0 - float(count);
-  float visibility = same_as_previous ? buffer.previous_visibility : slot_value;
+  float visibility = same_as_previous ? linear_buffer.previous_visibility : slot_value;
   uint claim = same_as_previous || count == 255u ? 0u : 1u;
-  buffer.claims += in_word * (claim << shift);
-  buffer.previous_index = index;
-  buffer.previous_visibility = visibility;
+  linear_buffer.claims += in_word * (claim << shift);
+  linear_buffer.previous_index = index;
+  linear_buffer.previous_visibility = visibility;
   return visibility;
 }
 
@@ -104,16 +104,16 @@ bool alg6_ray_in_front(vec3 x, vec3 n, vec3 xp, float min_distance) {
   return facing > 0.02 * d_length + min_distance;
 }
 
-float micro_linear_buffer_alg6_ray(inout micro_linear_buffer buffer, int index, vec3 receiver, vec3 position, vec3 normal) {
-  vec3 to_receiver = receiver - buffer.previous_position;
-  vec3 step = position - buffer.previous_position;
-  float faces = buffer.previous_normal.x * to_receiver.x + buffer.previous_normal.y * to_receiver.y + buffer.previous_normal.z * to_receiver.z;
-  float ahead = buffer.previous_normal.x * step.x + buffer.previous_normal.y * step.y + buffer.previous_normal.z * step.z;
+float micro_linear_buffer_alg6_ray(inout micro_linear_buffer linear_buffer, int index, vec3 receiver, vec3 position, vec3 normal) {
+  vec3 to_receiver = receiver - linear_buffer.previous_position;
+  vec3 step = position - linear_buffer.previous_position;
+  float faces = linear_buffer.previous_normal.x * to_receiver.x + linear_buffer.previous_normal.y * to_receiver.y + linear_buffer.previous_normal.z * to_receiver.z;
+  float ahead = linear_buffer.previous_normal.x * step.x + linear_buffer.previous_normal.y * step.y + linear_buffer.previous_normal.z * step.z;
   float step_length = sqrt(step.x * step.x + step.y * step.y + step.z * step.z);
-  if (!(faces > 0.0) || ahead < -0.2 * step_length) buffer.previous_index = -1;
-  float visibility = micro_linear_buffer_alg6(buffer, index);
-  buffer.previous_position = position;
-  buffer.previous_normal = normal;
+  if (!(faces > 0.0) || ahead < -0.2 * step_length) linear_buffer.previous_index = -1;
+  float visibility = micro_linear_buffer_alg6(linear_buffer, index);
+  linear_buffer.previous_position = position;
+  linear_buffer.previous_normal = normal;
   return visibility;
 }
 

@@ -73,7 +73,7 @@ vec3 towards_light(gather_receiver receiver, rsm_gather_settings settings) {
 // The C++ twin is the lambda `accumulate` inside gather_rsm (a function here: GLSL has no lambdas),
 // with the visibility object's operator().
 void rsm_gather_accumulate(gather_receiver receiver, pattern_sample s, rsm_gather_settings settings, vec3 up,
-                           inout micro_linear_buffer buffer, inout vec3 irradiance) {
+                           inout micro_linear_buffer linear_buffer, inout vec3 irradiance) {
   ivec2 texel = ivec2(floor(receiver.rsm_coordinate + s.offset));
   if (texel.x < 0 || texel.y < 0 || texel.x >= settings.rsm_size.x || texel.y >= settings.rsm_size.y) return;
   rsm_texel light = rsm_fetch(texel);
@@ -81,17 +81,17 @@ void rsm_gather_accumulate(gather_receiver receiver, pattern_sample s, rsm_gathe
   float visibility = 1.0;
 #if VPLKIT_VISIBILITY == 7
   if (alg6_ray_in_front(receiver.position, receiver.normal, light.position, settings.irradiance.min_distance))
-    visibility = clamp(micro_linear_buffer_alg6_ray(buffer, elevation_bucket_about(receiver.position, light.position, up, settings.slots),
+    visibility = clamp(micro_linear_buffer_alg6_ray(linear_buffer, elevation_bucket_about(receiver.position, light.position, up, settings.slots),
                                                     receiver.position, light.position, light.normal),
                        0.0, 1.0);
 #elif VPLKIT_VISIBILITY != 0
   int index = elevation_bucket(receiver.position, light.position, settings.slots);
 #if VPLKIT_VISIBILITY == 2
-  visibility = micro_linear_buffer_alg2(buffer, index);
+  visibility = micro_linear_buffer_alg2(linear_buffer, index);
 #elif VPLKIT_VISIBILITY == 3
-  visibility = micro_linear_buffer_alg3(buffer, index);
+  visibility = micro_linear_buffer_alg3(linear_buffer, index);
 #elif VPLKIT_VISIBILITY == 6
-  visibility = clamp(micro_linear_buffer_alg6(buffer, index), 0.0, 1.0);
+  visibility = clamp(micro_linear_buffer_alg6(linear_buffer, index), 0.0, 1.0);
 #endif
 #endif
   vec3 e = pixel_light_irradiance(receiver.position, receiver.normal, light.position, light.normal, light.flux,
@@ -104,7 +104,7 @@ vec3 gather_rsm(gather_receiver receiver, rsm_gather_settings settings) {
   bool in_front = receiver.position.z < 0.0;
   float reach = settings.disk.max_radius;
   if (in_front) {
-    micro_linear_buffer buffer;
+    micro_linear_buffer linear_buffer;
 #if VPLKIT_VISIBILITY == 7
     vec3 up = towards_light(receiver, settings);
 #else
@@ -118,21 +118,21 @@ vec3 gather_rsm(gather_receiver receiver, rsm_gather_settings settings) {
     reach = pixel.scale * settings.radial.max_radius;
     if (outside_squared <= (reach + 1.0) * (reach + 1.0)) {
       for (int path = 0; path < settings.radial.paths; ++path) {
-        micro_linear_buffer_reset(buffer, settings.slots.count);
+        micro_linear_buffer_reset(linear_buffer, settings.slots.count);
         float ring_inner_radius = settings.radial.min_radius;
-        for (int sample = 0; sample < settings.radial.samples_per_path; ++sample) {
-          rsm_gather_accumulate(receiver, radial_pattern_sample(path, sample, ring_inner_radius, pixel, settings.radial),
-                                settings, up, buffer, irradiance);
+        for (int sample_index = 0; sample_index < settings.radial.samples_per_path; ++sample_index) {
+          rsm_gather_accumulate(receiver, radial_pattern_sample(path, sample_index, ring_inner_radius, pixel, settings.radial),
+                                settings, up, linear_buffer, irradiance);
           ring_inner_radius *= settings.radial.ring_ratio;
         }
       }
     }
 #else
     if (outside_squared <= (reach + 1.0) * (reach + 1.0)) {
-      micro_linear_buffer_reset(buffer, settings.slots.count);  // unused without paths, but defined
+      micro_linear_buffer_reset(linear_buffer, settings.slots.count);  // unused without paths, but defined
       vec2 shift = rsm_disk_pixel_shift(receiver.pixel, settings.disk);
-      for (int sample = 0; sample < settings.disk.samples; ++sample)
-        rsm_gather_accumulate(receiver, rsm_disk_sample(sample, shift, settings.disk), settings, up, buffer, irradiance);
+      for (int sample_index = 0; sample_index < settings.disk.samples; ++sample_index)
+        rsm_gather_accumulate(receiver, rsm_disk_sample(sample_index, shift, settings.disk), settings, up, linear_buffer, irradiance);
     }
 #endif
     if (!(outside_squared > 0.0)) return irradiance * 0.318309886183790671538;  // on the map: the pattern alone

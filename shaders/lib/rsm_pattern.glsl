@@ -40,9 +40,9 @@ radial_pixel radial_pattern_pixel(uvec2 pixel, radial_pattern_constants constant
   return radial_pixel(pixel_hash, rotation, scale);
 }
 
-pattern_sample radial_pattern_sample(int path, int sample, float ring_inner_radius, radial_pixel pixel,
+pattern_sample radial_pattern_sample(int path, int sample_index, float ring_inner_radius, radial_pixel pixel,
                                      radial_pattern_constants constants) {
-  uint sample_hash = hash_combine(pixel.hash, uint(2 + path * constants.samples_per_path + sample));
+  uint sample_hash = hash_combine(pixel.hash, uint(2 + path * constants.samples_per_path + sample_index));
   float angle_offset = constants.angle_jitter * (uniform_float_from_bits(sample_hash) - 0.5);
   float radial_position = uniform_float_from_bits(hash_uint32(sample_hash));
   float ring_width = pixel.scale * (ring_inner_radius * constants.ring_ratio - ring_inner_radius);
@@ -51,10 +51,10 @@ pattern_sample radial_pattern_sample(int path, int sample, float ring_inner_radi
   return pattern_sample(direction * radius, constants.path_angle * radius * ring_width);
 }
 
-pattern_sample radial_pattern_sample(int path, int sample, uvec2 pixel, radial_pattern_constants constants) {
+pattern_sample radial_pattern_sample(int path, int sample_index, uvec2 pixel, radial_pattern_constants constants) {
   float inner = constants.min_radius;
-  for (int ring = 0; ring < sample; ++ring) inner *= constants.ring_ratio;
-  return radial_pattern_sample(path, sample, inner, radial_pattern_pixel(pixel, constants), constants);
+  for (int ring = 0; ring < sample_index; ++ring) inner *= constants.ring_ratio;
+  return radial_pattern_sample(path, sample_index, inner, radial_pattern_pixel(pixel, constants), constants);
 }
 
 struct disk_pattern_settings {
@@ -71,8 +71,8 @@ vec2 rsm_disk_pixel_shift(uvec2 pixel, disk_pattern_settings settings) {
   return vec2(uniform_float_from_bits(hash_combine(pixel_hash, 0u)), uniform_float_from_bits(hash_combine(pixel_hash, 1u)));
 }
 
-pattern_sample rsm_disk_sample(int sample, vec2 shift, disk_pattern_settings settings) {
-  uint sample_hash = hash_combine(settings.seed ^ 0x5bd1e995u, uint(sample));
+pattern_sample rsm_disk_sample(int sample_index, vec2 shift, disk_pattern_settings settings) {
+  uint sample_hash = hash_combine(settings.seed ^ 0x5bd1e995u, uint(sample_index));
   float xi1 = fract(uniform_float_from_bits(sample_hash) + shift.x);
   float xi2 = fract(uniform_float_from_bits(hash_uint32(sample_hash)) + shift.y);
   vec2 direction = direction_from_turns(xi2);

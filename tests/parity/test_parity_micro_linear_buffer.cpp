@@ -138,10 +138,10 @@ TEST_CASE("parity: micro_linear_buffer Alg. 2, 3 and 6 verdicts on random slot s
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     const unsigned slots = 1u + static_cast<unsigned>(i % micro_linear_buffer_max_slots);
     glm::uvec4 packed(0u, 0u, slots, 0u);
-    for (unsigned sample = 0; sample < 10; ++sample) {
+    for (unsigned sample_index = 0; sample_index < 10; ++sample_index) {
       const unsigned index = random.uniform_uint(0, slots - 1);
-      if (sample < 5) packed.x |= index << (4 * sample);
-      else packed.y |= index << (4 * (sample - 5));
+      if (sample_index < 5) packed.x |= index << (4 * sample_index);
+      else packed.y |= index << (4 * (sample_index - 5));
     }
     inputs.uints[0][i] = packed;
   }
@@ -156,14 +156,14 @@ TEST_CASE("parity: micro_linear_buffer Alg. 2, 3 and 6 verdicts on random slot s
     micro_linear_buffer_reset(alg6, slots);
     uint mask2 = 0u, mask3 = 0u, mask6 = 0u;
     float sum6 = 0.0;
-    for (int sample = 0; sample < 10; ++sample) {
-      uint word = sample < 5 ? uin0.x : uin0.y;
-      int index = int((word >> uint(4 * (sample % 5))) & 15u);
-      if (micro_linear_buffer_alg2(alg2, index) > 0.5) mask2 |= 1u << uint(sample);
-      if (micro_linear_buffer_alg3(alg3, index) > 0.5) mask3 |= 1u << uint(sample);
+    for (int sample_index = 0; sample_index < 10; ++sample_index) {
+      uint word = sample_index < 5 ? uin0.x : uin0.y;
+      int index = int((word >> uint(4 * (sample_index % 5))) & 15u);
+      if (micro_linear_buffer_alg2(alg2, index) > 0.5) mask2 |= 1u << uint(sample_index);
+      if (micro_linear_buffer_alg3(alg3, index) > 0.5) mask3 |= 1u << uint(sample_index);
       float nu = micro_linear_buffer_alg6(alg6, index);
       sum6 += nu;
-      if (clamp(nu, 0.0, 1.0) > 0.5) mask6 |= 1u << uint(sample);
+      if (clamp(nu, 0.0, 1.0) > 0.5) mask6 |= 1u << uint(sample_index);
     }
     uout0 = uvec4(mask2, mask3, mask6, floatBitsToUint(sum6));)";
   source.uint_outputs = 1;
@@ -178,14 +178,14 @@ TEST_CASE("parity: micro_linear_buffer Alg. 2, 3 and 6 verdicts on random slot s
     micro_linear_buffer_reset(alg6, slots);
     unsigned mask2 = 0, mask3 = 0, mask6 = 0;
     float sum6 = 0.0f;
-    for (int sample = 0; sample < 10; ++sample) {
-      const unsigned word = sample < 5 ? in.x : in.y;
-      const int index = static_cast<int>((word >> (4 * (sample % 5))) & 15u);
-      if (micro_linear_buffer_alg2(alg2, index) > 0.5f) mask2 |= 1u << sample;
-      if (micro_linear_buffer_alg3(alg3, index) > 0.5f) mask3 |= 1u << sample;
+    for (int sample_index = 0; sample_index < 10; ++sample_index) {
+      const unsigned word = sample_index < 5 ? in.x : in.y;
+      const int index = static_cast<int>((word >> (4 * (sample_index % 5))) & 15u);
+      if (micro_linear_buffer_alg2(alg2, index) > 0.5f) mask2 |= 1u << sample_index;
+      if (micro_linear_buffer_alg3(alg3, index) > 0.5f) mask3 |= 1u << sample_index;
       const float nu = micro_linear_buffer_alg6(alg6, index);
       sum6 += nu;
-      if (glm::clamp(nu, 0.0f, 1.0f) > 0.5f) mask6 |= 1u << sample;
+      if (glm::clamp(nu, 0.0f, 1.0f) > 0.5f) mask6 |= 1u << sample_index;
     }
     std::uint32_t sum_bits;
     std::memcpy(&sum_bits, &sum6, sizeof sum_bits);

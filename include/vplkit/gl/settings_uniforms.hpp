@@ -8,8 +8,10 @@
 // (it would silently read 0), is an error when the program is built.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
+#include <tuple>
 #include <type_traits>
 #include <vector>
 
@@ -60,10 +62,81 @@ std::string glsl_type_name() {
   else static_assert(std::is_void_v<Value>, "a field type without a GLSL twin type");
 }
 
+/// A list of settings types.
+template <typename... Settings>
+struct settings_list {
+  static constexpr std::size_t size = sizeof...(Settings);
+  template <typename S>
+  static constexpr bool contains = (std::is_same_v<S, Settings> || ...);
+};
+
+/// Every kernel settings struct with a GLSL twin, in the float instantiation (the GPU's): the one
+/// list glsl_twins() is made from, and the only types set_uniforms and glsl_twin_of take. The
+/// static_assert below ties it to the descriptions: every type listed has a description that says
+/// glsl_twin, every described struct a listed one nests (rsm_gather_settings' irradiance, radial,
+/// disk, slots) is listed too, and no two share a GLSL name.
+using glsl_twin_settings =
+    settings_list<irradiance_settings<float>, radial_pattern_constants<float>, disk_pattern_settings<float>, elevation_slots<float>,
+                  rsm_gather_settings<float>, rsm_unprojection<float>, shadow_density_settings<float>, bilateral_settings<float>,
+                  spot_light<float>, directional_light<float>, lightwave_layout_settings<float>, lightwave_shading_settings<float>,
+                  temporal_settings<float>>;
+
+namespace detail {
+
+template <typename Described>
+struct described_value;
+template <typename Owner, typename Value>
+struct described_value<described_field<Owner, Value>> {
+  using type = Value;
+};
+
+// A field of a listed twin: a nested settings struct (or an array of them) must be a listed twin.
+template <typename List, typename Value>
+constexpr bool nested_twin_listed() {
+  using element = std::remove_all_extents_t<Value>;
+  if constexpr (is_described_v<element>) return settings_description<element>::glsl_twin && List::template contains<element>;
+  else return true;
+}
+
+template <typename List, typename Fields>
+struct fields_listed;
+template <typename List, typename... Fields>
+struct fields_listed<List, std::tuple<Fields...>> {
+  static constexpr bool value = (nested_twin_listed<List, typename described_value<Fields>::type>() && ...);
+};
+
+constexpr bool same_name(const char* a, const char* b) {
+  for (; *a != '\0' && *a == *b; ++a, ++b) {
+  }
+  return *a == *b;
+}
+
+template <typename List>
+struct twins_consistent;
+template <typename... Settings>
+struct twins_consistent<settings_list<Settings...>> {
+  template <typename S>
+  static constexpr int named_like() {
+    return ((same_name(settings_description<S>::name, settings_description<Settings>::name) ? 1 : 0) + ...);
+  }
+  static constexpr bool described = (settings_description<Settings>::glsl_twin && ...);
+  static constexpr bool nested_listed =
+      (fields_listed<settings_list<Settings...>, decltype(settings_description<Settings>::fields())>::value && ...);
+  static constexpr bool names_distinct = ((named_like<Settings>() == 1) && ...);
+};
+
+}  // namespace detail
+
+static_assert(detail::twins_consistent<glsl_twin_settings>::described, "glsl_twin_settings lists a struct whose description has glsl_twin = false");
+static_assert(detail::twins_consistent<glsl_twin_settings>::nested_listed,
+              "a settings struct nested in a listed GLSL twin is not in glsl_twin_settings (or its description has glsl_twin = false)");
+static_assert(detail::twins_consistent<glsl_twin_settings>::names_distinct, "two structs in glsl_twin_settings have the same GLSL name");
+
 /// The twin of a described settings struct.
 template <typename Settings>
 glsl_twin glsl_twin_of() {
   static_assert(settings_description<Settings>::glsl_twin, "this settings struct has no GLSL twin");
+  static_assert(glsl_twin_settings::contains<Settings>, "a GLSL twin missing from glsl_twin_settings: add it there");
   glsl_twin twin{settings_description<Settings>::name, {}};
   Settings settings{};
   for_each_field(settings, [&](const field_description& field, const auto& value) {
@@ -73,7 +146,7 @@ glsl_twin glsl_twin_of() {
   return twin;
 }
 
-/// Every kernel settings struct with a GLSL twin, float instantiation (the GPU's).
+/// Every kernel settings struct with a GLSL twin (glsl_twin_settings), in that order.
 const std::vector<glsl_twin>& glsl_twins();
 
 /// Throws vplkit::error naming the program, the struct and the field when a uniform struct that
@@ -104,6 +177,7 @@ void set_uniform_value(const program& target, const std::string& name, const Val
 template <typename Settings>
 void set_uniforms(const program& target, const std::string& name, const Settings& settings) {
   static_assert(settings_description<Settings>::glsl_twin, "this settings struct has no GLSL twin");
+  static_assert(glsl_twin_settings::contains<Settings>, "a GLSL twin missing from glsl_twin_settings: add it there");
   detail::set_uniform_value(target, name, settings);
 }
 
