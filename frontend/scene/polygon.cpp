@@ -98,21 +98,23 @@ void polygon_triangulator::triangulate(std::span<const glm::vec3> corners, std::
                             : std::fabs(normal.y) <= std::fabs(normal.z)                                            ? glm::dvec3(0, 1, 0)
                                                                                                                     : glm::dvec3(0, 0, 1);
   const glm::dvec3 u = glm::normalize(glm::cross(helper, normal)), v = glm::cross(normal, u);
-  std::vector<glm::dvec2> flat(n);
+  std::vector<glm::dvec2>& flat = flat_;  // reused: most faces come here, most of them quads
+  flat.resize(n);
   const glm::dvec3 origin(corners[0]);
   for (std::size_t i = 0; i < n; ++i) {
     const glm::dvec3 p = glm::dvec3(corners[i]) - origin;
     flat[i] = glm::dvec2(glm::dot(p, u), glm::dot(p, v));
   }
   // Convex: every turn strictly to the left and once around in all (a star turns left at every
-  // corner but goes around twice or more).
+  // corner but goes around twice or more; that takes five corners or more, so a quad needs no
+  // angles).
   bool convex = true;
   double turning = 0.0;
   for (std::size_t i = 0; i < n && convex; ++i) {
     const glm::dvec2 in = flat[i] - flat[(i + n - 1) % n], out = flat[(i + 1) % n] - flat[i];
     const double turn = cross(in, out);
     convex = turn > 0.0;
-    turning += std::atan2(turn, glm::dot(in, out));
+    if (n > 4) turning += std::atan2(turn, glm::dot(in, out));
   }
   if (convex && turning < 3.0 * 3.14159265358979323846) {
     fan();

@@ -41,6 +41,7 @@ class polygon_triangulator {
   struct tessellator;
   std::unique_ptr<tessellator> tessellator_;
   std::uint64_t pair_tests_left_;
+  std::vector<glm::dvec2> flat_;  ///< the polygon in its plane
 };
 
 }  // namespace vplkit

@@ -87,7 +87,8 @@ TEST_CASE("a concave polygon's triangles cover exactly its inside, in any plane,
   // Planes: the xy plane, a tilted one, and the yz plane facing -x (as assimp's ring is).
   const std::vector<std::pair<glm::dvec3, glm::dvec3>> planes = {
       {{1, 0, 0}, {0, 1, 0}}, {glm::normalize(glm::dvec3(1, 1, 0)), glm::normalize(glm::dvec3(-1, 1, 2))}, {{0, 0, 1}, {0, 1, 0}}};
-  for (const auto& [u, v] : planes) {
+  for (const auto& plane : planes) {
+    const glm::dvec3 u = plane.first, v = plane.second;
     CAPTURE(u.x);
     CAPTURE(v.z);
     // An L: one reflex corner.
