@@ -16,12 +16,20 @@
 # VPLKIT_ASSIMP_MODELS changes the folder (default /usr/share/assimp/models); without it the
 # script says so and exits 77 (ctest: skipped).
 set -euo pipefail
-vplkit=${1:?usage: scripts/corpus.sh VPLKIT [--check DOC | --update DOC]}
+vplkit=${1:-}
 mode=${2:-}
 doc=${3:-}
+if [ -z "$vplkit" ] || [ ! -x "$vplkit" ]; then
+  echo "corpus.sh: usage: scripts/corpus.sh VPLKIT [--check DOC | --update DOC], VPLKIT the vplkit executable (got '$vplkit')" >&2
+  exit 2
+fi
 case "$mode" in
   "") ;;
-  --check|--update) [ -n "$doc" ] && [ -f "$doc" ] || { echo "corpus.sh: $mode needs an existing document" >&2; exit 2; } ;;
+  --check|--update)
+    if [ -z "$doc" ] || [ ! -f "$doc" ]; then
+      echo "corpus.sh: $mode needs an existing document (got '$doc')" >&2
+      exit 2
+    fi ;;
   *) echo "corpus.sh: unknown option '$mode' (known: --check DOC, --update DOC)" >&2; exit 2 ;;
 esac
 models=${VPLKIT_ASSIMP_MODELS:-/usr/share/assimp/models}
