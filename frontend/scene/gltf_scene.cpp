@@ -1,6 +1,7 @@
 #include "frontend/scene/gltf_scene.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -22,6 +23,7 @@
 #include "frontend/core/error.hpp"
 #include "frontend/core/files.hpp"
 #include "frontend/image/texture_decode.hpp"
+#include "frontend/scene/draco.hpp"
 
 namespace fs = std::filesystem;
 
@@ -114,7 +116,16 @@ bool keep_image_bytes(tinygltf::Image* image, const int index, std::string*, std
 }
 
 // The extensions the reader reads; any other one the file uses or requires is named in a note.
-bool extension_read(const std::string& name) { return name == "KHR_lights_punctual" || name == "KHR_texture_transform"; }
+bool extension_read(const std::string& name) {
+  return name == "KHR_lights_punctual" || name == "KHR_texture_transform" || name == "KHR_draco_mesh_compression";
+}
+
+// glTF 1.0 (a different schema: objects keyed by id where 2.0 has arrays, techniques and
+// shaders) is refused by its declared version rather than read as a 2.0 file without meshes.
+void refuse_gltf_1(const std::string& version, const std::string& how, const std::string& name) {
+  if (version == "1" || version.rfind("1.", 0) == 0)
+    throw error(name + ": a glTF 1.0 file (" + how + "); vplkit reads glTF 2.0 only (glTF 1.0 is not read: convert it, e.g. with gltf-pipeline or Blender)");
+}
 
 // The deepest nesting of arrays and objects in JSON text (strings skipped, escapes too), checked
 // before tinygltf parses it: its conversion to tinygltf::Value recurses once per level, and a
@@ -210,6 +221,28 @@ class vertex_map {
   std::unordered_map<std::uint32_t, std::uint32_t> map_;
 };
 
+// TRIANGLES (4, or -1: tinygltf's value when the mode is absent), TRIANGLE_STRIP (5) and
+// TRIANGLE_FAN (6) have triangles; POINTS and LINES* nothing to shade.
+bool has_triangles(const tinygltf::Primitive& primitive) {
+  return primitive.mode == TINYGLTF_MODE_TRIANGLES || primitive.mode == -1 || primitive.mode == TINYGLTF_MODE_TRIANGLE_STRIP ||
+         primitive.mode == TINYGLTF_MODE_TRIANGLE_FAN;
+}
+
+// How many triangles `corners` indices (or vertices) make in the primitive's mode.
+std::size_t triangles_in(int mode, std::size_t corners) {
+  if (mode == TINYGLTF_MODE_TRIANGLE_STRIP || mode == TINYGLTF_MODE_TRIANGLE_FAN) return corners >= 3 ? corners - 2 : 0;
+  return corners / 3;
+}
+
+// The corners of triangle t, as the glTF 2.0 specification (3.7.2.1) numbers them: a strip's
+// odd triangles swap their last two corners, so that every triangle winds as the first does; a
+// fan's triangle t is (t + 1, t + 2, 0).
+std::array<std::size_t, 3> triangle_corners(int mode, std::size_t t) {
+  if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) return t % 2 == 0 ? std::array<std::size_t, 3>{t, t + 1, t + 2} : std::array<std::size_t, 3>{t, t + 2, t + 1};
+  if (mode == TINYGLTF_MODE_TRIANGLE_FAN) return {t + 1, t + 2, 0};
+  return {3 * t, 3 * t + 1, 3 * t + 2};
+}
+
 class reader {
  public:
   reader(const tinygltf::Model& model, const std::string& name, const gltf_limits& limits, const image_bytes& images)
@@ -221,7 +254,8 @@ class reader {
     material_of_.assign(model_.materials.size(), unread);
     texture_of_.assign(model_.images.size(), unread);
     walk(roots());
-    if (geometry_.indices.empty()) fail("no triangles in its scene (only TRIANGLES primitives are read; points, lines, strips and fans are not)");
+    if (geometry_.indices.empty())
+      fail("no triangles in its scene (TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN primitives are read; points and lines are not drawn)");
     if (!library_.materials.empty()) geometry_.materials = std::make_shared<const material_library>(std::move(library_));
     framing_needs needs;
     needs.camera = !camera_;
@@ -389,6 +423,55 @@ class reader {
     if (count > 0 && (first > view_length || (count - 1) > (view_length - first) / stride || (count - 1) * stride + element_bytes > view_length - first))
       fail(where + ": " + std::to_string(count) + " elements do not fit in its buffer view");
     return accessor_view(data.data() + view_begin + first, static_cast<std::size_t>(count), static_cast<std::size_t>(stride), accessor.componentType);
+  }
+
+  // A primitive's attribute: decoded from its Draco data when the extension names it there, else
+  // its accessor in place.
+  accessor_view attribute_view(const tinygltf::Primitive& primitive, const draco_mesh* compressed, const std::string& name, int components,
+                               const std::string& what) const {
+    if (compressed) {
+      const auto found = compressed->attributes.find(name);
+      if (found != compressed->attributes.end()) {
+        if (found->second.components != components)
+          fail(what + ": its Draco attribute has " + std::to_string(found->second.components) + " components, expected " + std::to_string(components));
+        return accessor_view(reinterpret_cast<const unsigned char*>(found->second.values.data()), compressed->points,
+                             static_cast<std::size_t>(components) * sizeof(float), TINYGLTF_COMPONENT_TYPE_FLOAT);
+      }
+    }
+    return view_accessor(primitive.attributes.at(name), components, what);
+  }
+
+  // The decoded Draco data of mesh `mesh`'s primitive `which` (decoded once however often the
+  // mesh is instanced), or null when the primitive is not compressed.
+  const draco_mesh* draco_of(int mesh, std::size_t which, const std::string& what) {
+    const tinygltf::Primitive& primitive = model_.meshes[static_cast<std::size_t>(mesh)].primitives[which];
+    const auto extension = primitive.extensions.find("KHR_draco_mesh_compression");
+    if (extension == primitive.extensions.end()) return nullptr;
+    const auto key = std::make_pair(mesh, which);
+    if (const auto found = draco_.find(key); found != draco_.end()) return &found->second;
+    const std::string where = what + " KHR_draco_mesh_compression";
+    const tinygltf::Value& value = extension->second;
+    if (!value.IsObject() || !value.Has("bufferView") || !value.Get("bufferView").IsInt() || !value.Has("attributes") || !value.Get("attributes").IsObject())
+      fail(where + ": needs an integer bufferView and an attributes object");
+    const int view_index = value.Get("bufferView").GetNumberAsInt();
+    if (view_index < 0 || view_index >= static_cast<int>(model_.bufferViews.size()))
+      fail(where + ": buffer view " + std::to_string(view_index) + " does not exist");
+    const tinygltf::BufferView& view = model_.bufferViews[static_cast<std::size_t>(view_index)];
+    if (view.buffer < 0 || view.buffer >= static_cast<int>(model_.buffers.size())) fail(where + ": buffer " + std::to_string(view.buffer) + " does not exist");
+    const std::vector<unsigned char>& data = model_.buffers[static_cast<std::size_t>(view.buffer)].data;
+    if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset) fail(where + ": its buffer view lies outside its buffer");
+    std::map<std::string, int> ids;
+    const tinygltf::Value& attributes = value.Get("attributes");
+    for (const std::string& name : attributes.Keys()) {
+      const tinygltf::Value& id = attributes.Get(name);
+      if (!id.IsInt()) fail(where + ": attribute " + name + " needs an integer Draco id");
+      // Only what the reader uses is converted.
+      if (name == "POSITION" || name == "NORMAL" || name.rfind("TEXCOORD_", 0) == 0) ids[name] = id.GetNumberAsInt();
+    }
+    if (!ids.count("POSITION")) fail(where + ": POSITION is not among its attributes");
+    const std::size_t left = limits_.max_triangles - std::min(limits_.max_triangles, geometry_.triangle_count());
+    draco_mesh decoded = decode_draco_mesh(data.data() + view.byteOffset, view.byteLength, ids, left, name_ + ": " + where);
+    return &draco_.emplace(key, std::move(decoded)).first->second;
   }
 
   glm::vec3 albedo_of(int material) const {
@@ -563,11 +646,19 @@ class reader {
     std::string where;
     bool empty() const { return values.count() == 0; }
   };
-  texcoord_view texture_coordinates(const tinygltf::Primitive& primitive, int set, std::size_t vertex_count, const std::string& what) const {
-    const auto found = primitive.attributes.find("TEXCOORD_" + std::to_string(set));
+  texcoord_view texture_coordinates(const tinygltf::Primitive& primitive, const draco_mesh* compressed, int set, std::size_t vertex_count,
+                                    const std::string& what) const {
+    const std::string name = "TEXCOORD_" + std::to_string(set);
+    const auto found = primitive.attributes.find(name);
     if (found == primitive.attributes.end()) return {};
     texcoord_view out;
-    out.where = what + " TEXCOORD_" + std::to_string(set);
+    out.where = what + " " + name;
+    if (compressed && compressed->attributes.count(name)) {
+      // Decoded to floats, normalized integers already scaled by libdraco.
+      out.values = attribute_view(primitive, compressed, name, 2, out.where);
+      if (out.values.count() != vertex_count) fail(out.where + " and POSITION differ in count");
+      return out;
+    }
     if (found->second >= 0 && found->second < static_cast<int>(model_.accessors.size())) {
       const tinygltf::Accessor& accessor = model_.accessors[static_cast<std::size_t>(found->second)];
       if (accessor.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && accessor.normalized) out.scale = 1.0 / 255.0;
@@ -595,40 +686,49 @@ class reader {
     const tinygltf::Mesh& source = model_.meshes[static_cast<std::size_t>(index)];
     for (std::size_t which = 0; which < source.primitives.size(); ++which) {
       const tinygltf::Primitive& primitive = source.primitives[which];
-      if (primitive.mode != TINYGLTF_MODE_TRIANGLES && primitive.mode != -1) continue;  // points and lines: nothing to shade
+      if (!has_triangles(primitive)) continue;  // points and lines: nothing to shade
       const std::string what = "mesh " + std::to_string(index) + " primitive " + std::to_string(which);
       const auto position = primitive.attributes.find("POSITION");
       if (position == primitive.attributes.end()) fail(what + ": no POSITION");
-      if (model_.accessors.size() > static_cast<std::size_t>(position->second) && position->second >= 0 &&
+      const draco_mesh* compressed = draco_of(index, which, what);
+      if (!compressed && model_.accessors.size() > static_cast<std::size_t>(position->second) && position->second >= 0 &&
           model_.accessors[static_cast<std::size_t>(position->second)].componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
         fail(what + ": POSITION must be float (quantized positions are not read)");
-      const accessor_view positions = view_accessor(position->second, 3, what + " POSITION");
+      const accessor_view positions = attribute_view(primitive, compressed, "POSITION", 3, what + " POSITION");
       const std::size_t vertex_count = positions.count();
       accessor_view normals;
       bool has_normals = false;
       if (const auto normal = primitive.attributes.find("NORMAL"); normal != primitive.attributes.end()) {
-        if (normal->second >= 0 && normal->second < static_cast<int>(model_.accessors.size()) &&
+        if (!(compressed && compressed->attributes.count("NORMAL")) && normal->second >= 0 && normal->second < static_cast<int>(model_.accessors.size()) &&
             model_.accessors[static_cast<std::size_t>(normal->second)].componentType != TINYGLTF_COMPONENT_TYPE_FLOAT)
           fail(what + ": NORMAL must be float (quantized normals are not read)");
-        normals = view_accessor(normal->second, 3, what + " NORMAL");
+        normals = attribute_view(primitive, compressed, "NORMAL", 3, what + " NORMAL");
         if (normals.count() != vertex_count) fail(what + ": NORMAL and POSITION differ in count");
         has_normals = true;
       }
+      // A Draco primitive's triangles are its decoded faces (a triangle list, whatever the mode).
+      const int mode = compressed ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
+      const bool indexed = compressed || primitive.indices >= 0;
       accessor_view indices;
-      if (primitive.indices >= 0) {
+      if (compressed) {
+        indices = accessor_view(reinterpret_cast<const unsigned char*>(compressed->indices.data()), compressed->indices.size(), 4,
+                                TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT);
+      } else if (primitive.indices >= 0) {
         if (primitive.indices < static_cast<int>(model_.accessors.size()) &&
             model_.accessors[static_cast<std::size_t>(primitive.indices)].componentType == TINYGLTF_COMPONENT_TYPE_FLOAT)
           fail(what + ": indices must be unsigned integers, not floats");
         indices = view_accessor(primitive.indices, 1, what + " indices");
       }
-      const std::size_t corner_count = primitive.indices >= 0 ? indices.count() : vertex_count;
+      const std::size_t corner_count = indexed ? indices.count() : vertex_count;
       // Sizes first: nothing is allocated for a primitive the limits refuse.
-      if (corner_count % 3 != 0) fail(what + ": " + std::to_string(corner_count) + " corners is not a whole number of triangles");
-      if (geometry_.triangle_count() + corner_count / 3 > limits_.max_triangles)
+      if ((mode == TINYGLTF_MODE_TRIANGLES || mode == -1) && corner_count % 3 != 0)
+        fail(what + ": " + std::to_string(corner_count) + " corners is not a whole number of triangles");
+      const std::size_t triangle_count = triangles_in(mode, corner_count);
+      if (geometry_.triangle_count() + triangle_count > limits_.max_triangles)
         fail("more than " + std::to_string(limits_.max_triangles) + " triangles");
       if (vertex_count > std::size_t{0xfffffffe}) fail(what + ": " + std::to_string(vertex_count) + " vertices is too many");
       const auto corner = [&](std::size_t k) -> std::uint32_t {
-        if (primitive.indices < 0) return static_cast<std::uint32_t>(k);
+        if (!indexed) return static_cast<std::uint32_t>(k);
         const double v = indices.get(k, 0);
         if (v >= static_cast<double>(vertex_count))
           fail(what + ": index " + std::to_string(static_cast<std::uint64_t>(v)) + " is beyond its " + std::to_string(vertex_count) + " vertices");
@@ -638,7 +738,7 @@ class reader {
       const material_use use = material_for(primitive.material);
       texcoord_view texcoords;
       if (use.texcoord_set >= 0) {
-        texcoords = texture_coordinates(primitive, use.texcoord_set, vertex_count, what);
+        texcoords = texture_coordinates(primitive, compressed, use.texcoord_set, vertex_count, what);
         if (texcoords.empty())
           note("base colour textures on primitives without their TEXCOORD set", "those primitives take their material's factor alone");
       }
@@ -662,10 +762,11 @@ class reader {
       // A vertex with its own normal is shared by every triangle that uses it (the mesh stays
       // indexed); without one it takes its triangle's flat normal, as the glTF spec asks, and
       // so needs a copy per triangle.
-      vertex_map shared(has_normals ? vertex_count : 0, corner_count);
-      geometry_.indices.reserve(geometry_.indices.size() + corner_count);
-      for (std::size_t t = 0; t + 2 < corner_count; t += 3) {
-        std::uint32_t a = corner(t), b = corner(t + 1), c = corner(t + 2);
+      vertex_map shared(has_normals ? vertex_count : 0, 3 * triangle_count);
+      geometry_.indices.reserve(geometry_.indices.size() + 3 * triangle_count);
+      for (std::size_t t = 0; t < triangle_count; ++t) {
+        const std::array<std::size_t, 3> k = triangle_corners(mode, t);
+        std::uint32_t a = corner(k[0]), b = corner(k[1]), c = corner(k[2]);
         if (mirrored) std::swap(b, c);
         const glm::dvec3 pa = world_position(a), pb = world_position(b), pc = world_position(c);
         const glm::dvec3 face = glm::cross(pb - pa, pc - pa);
@@ -706,9 +807,8 @@ class reader {
           ranges.push_back({static_cast<std::uint32_t>(first_index), count, material});
       }
     }
-    if (std::any_of(source.primitives.begin(), source.primitives.end(),
-                    [](const tinygltf::Primitive& primitive) { return primitive.mode != TINYGLTF_MODE_TRIANGLES && primitive.mode != -1; }))
-      note("points, lines, strips and fans", "only TRIANGLES primitives are drawn");
+    if (std::any_of(source.primitives.begin(), source.primitives.end(), [](const tinygltf::Primitive& primitive) { return !has_triangles(primitive); }))
+      note("points and lines", "only triangles, strips and fans are drawn");
   }
 
   static glm::dvec3 axis(const glm::dmat4& world, const glm::dvec3& local) { return glm::normalize(glm::dmat3(world) * local); }
@@ -777,6 +877,7 @@ class reader {
   material_library library_;
   std::vector<int> material_of_;  ///< glTF material -> library material (-1 plain, unread not yet)
   std::vector<int> texture_of_;   ///< glTF image -> library texture
+  std::map<std::pair<int, std::size_t>, draco_mesh> draco_;  ///< (mesh, primitive) -> its decoded Draco data
   std::uint64_t texture_pixels_ = 0;
   std::vector<std::string> noted_, notes_;
   std::optional<camera> camera_;
@@ -785,9 +886,28 @@ class reader {
 
 }  // namespace
 
-scene parse_gltf(const std::string& bytes, bool binary, const std::string& name, const fs::path& base_dir, const gltf_limits& limits) {
-  if (bytes.size() > std::numeric_limits<unsigned int>::max()) throw error(name + ": larger than 4 GiB");
-  check_json_depth(binary ? glb_json(bytes) : std::string_view(bytes), name, limits.max_json_depth);
+scene parse_gltf(const std::string& original, bool binary, const std::string& name, const fs::path& base_dir, const gltf_limits& limits) {
+  if (original.size() > std::numeric_limits<unsigned int>::max()) throw error(name + ": larger than 4 GiB");
+  const std::string_view json = binary ? glb_json(original) : std::string_view(original);
+  check_json_depth(json, name, limits.max_json_depth);
+  if (binary && original.size() >= 8 && original.compare(4, 4, std::string("\1\0\0\0", 4)) == 0) refuse_gltf_1("1", "GLB container version 1", name);
+  // KHR_draco_mesh_compression: the compressed primitives' indices out of tinygltf's sight.
+  std::string edited = without_draco_indices(json);
+  if (!edited.empty() && binary) {
+    // The same GLB with the edited JSON chunk (padded with spaces to 4 bytes, as GLB asks).
+    while (edited.size() % 4 != 0) edited += ' ';
+    const std::size_t after_json = 20 + json.size();
+    std::string glb = original.substr(0, 12);
+    const auto put_word = [&](std::uint32_t value) { glb.append(reinterpret_cast<const char*>(&value), 4); };
+    put_word(static_cast<std::uint32_t>(edited.size()));
+    put_word(0x4E4F534Au);  // "JSON"
+    glb += edited;
+    glb.append(original, after_json, std::string::npos);
+    const auto total = static_cast<std::uint32_t>(glb.size());
+    std::memcpy(glb.data() + 8, &total, 4);
+    edited = std::move(glb);
+  }
+  const std::string& bytes = edited.empty() ? original : edited;
   file_access access;
   access.base_dir = base_dir.empty() ? std::string() : base_dir.string();
   access.max_bytes = limits.max_external_bytes;
@@ -817,7 +937,14 @@ scene parse_gltf(const std::string& bytes, bool binary, const std::string& name,
     std::istringstream lines(err);
     for (std::string line; std::getline(lines, line);)
       if (!line.empty()) reason += (reason.empty() ? "" : "; ") + excerpt(line);
+    // A glTF 1.0 file fails here or below (its schema is not 2.0's); named as such.
+    const std::string declared = declared_gltf_version(json);
+    refuse_gltf_1(declared, "asset.version " + excerpt(declared), name);
     throw error(name + ": not a readable glTF 2.0 file (" + (reason.empty() ? std::string("no reason given") : excerpt(reason, 4 * max_echoed_characters)) + ")");
+  }
+  if (model.asset.version.empty() || model.asset.version[0] != '2') {
+    const std::string declared = declared_gltf_version(json);
+    refuse_gltf_1(declared, "asset.version " + excerpt(declared), name);
   }
   return reader(model, name, limits, images).read();
 }

@@ -1,10 +1,14 @@
 // glTF 2.0 scenes (.gltf with embedded or external buffers, .glb), read and written with
 // tinygltf (Debian's libtinygltf-dev). What a scene carries in vplkit and how it maps:
 //
-//   geometry  every TRIANGLES primitive of the scene's node tree (the default scene, else the
-//             first, else every root node), in world space through the node transforms (matrix
-//             or TRS; a mirroring transform keeps the front faces front). Points and lines are
-//             skipped. Without NORMAL a primitive gets flat normals, as the glTF spec asks.
+//   geometry  every TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN primitive of the scene's node
+//             tree (the default scene, else the first, else every root node), indexed or not,
+//             strips and fans numbered as the spec does (every triangle wound as the first), in
+//             world space through the node transforms (matrix or TRS; a mirroring transform keeps
+//             the front faces front). Points and lines are skipped. Without NORMAL a primitive
+//             gets flat normals, as the glTF spec asks. KHR_draco_mesh_compression primitives
+//             are decoded by libdraco (frontend/scene/draco.hpp). glTF 1.0 files are refused as
+//             such (by asset.version, or a GLB container of version 1).
 //   albedo    the material's baseColorFactor (linear RGB) times its baseColorTexture (PNG or
 //             JPEG, frontend/image/texture_decode.hpp; sRGB decoded; the sampler's wrap modes
 //             and filters, mipmapped; KHR_texture_transform's offset, rotation, scale and
@@ -27,9 +31,9 @@
 // What the file has and vplkit does not read is named once per feature in the scene's notes:
 // other texture slots (normal, occlusion, emissive, metallic-roughness), emissive factors,
 // alphaMode BLEND, vertex colours, morph targets, skins, animations, point lights, lights after
-// the first, orthographic cameras, primitives other than triangles, material extensions, and
-// every extension the file uses or requires other than KHR_lights_punctual and
-// KHR_texture_transform.
+// the first, orthographic cameras, points and lines, material extensions, and every extension
+// the file uses or requires other than KHR_lights_punctual, KHR_texture_transform and
+// KHR_draco_mesh_compression.
 //
 // Every index, count, offset and stride is checked against its buffer before it is read, every
 // number for being finite; a bad file throws vplkit::error naming the file and the problem. Images

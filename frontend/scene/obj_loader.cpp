@@ -11,6 +11,7 @@
 #include "frontend/core/error.hpp"
 #include "frontend/core/files.hpp"
 #include "frontend/image/texture_decode.hpp"
+#include "frontend/scene/polygon.hpp"
 
 namespace vplkit {
 namespace fs = std::filesystem;
@@ -277,6 +278,9 @@ mesh parse_obj(std::string_view text, const std::string& name, const material_li
   std::vector<corner> corners;                 // three per triangle
   std::vector<std::uint32_t> triangle_material;  // one per triangle, into `used`
   std::vector<corner> polygon;
+  std::vector<glm::vec3> polygon_positions;
+  std::vector<std::uint32_t> polygon_triangles;  // three indices into `polygon` per triangle
+  polygon_triangulator triangulator;
   while (reader.next(words)) {
     if (words.empty()) continue;
     const std::string_view keyword = words[0];
@@ -294,10 +298,18 @@ mesh parse_obj(std::string_view text, const std::string& name, const material_li
         polygon.push_back(parse_corner(words[i], positions.size(), texture_coordinates.size(), normals.size(), reader));
       if (triangle_material.size() + (polygon.size() - 2) > limits.max_triangles)
         reader.fail("more than " + std::to_string(limits.max_triangles) + " triangles (the most vplkit loads)");
-      for (std::size_t i = 1; i + 1 < polygon.size(); ++i) {
-        corners.insert(corners.end(), {polygon[0], polygon[i], polygon[i + 1]});
-        triangle_material.push_back(current);
+      polygon_positions.clear();
+      for (const corner& at : polygon) polygon_positions.push_back(positions[at.position]);
+      polygon_triangles.clear();
+      try {
+        triangulator.triangulate(polygon_positions, polygon_triangles);
+      } catch (const error& failure) {
+        reader.fail(failure.what());
       }
+      if (triangle_material.size() + polygon_triangles.size() / 3 > limits.max_triangles)
+        reader.fail("more than " + std::to_string(limits.max_triangles) + " triangles (the most vplkit loads)");
+      for (const std::uint32_t k : polygon_triangles) corners.push_back(polygon[k]);
+      triangle_material.insert(triangle_material.end(), polygon_triangles.size() / 3, current);
     } else if (keyword == "mtllib") {
       if (words.size() < 2) reader.fail("'mtllib' needs a file name");
       for (std::size_t i = 1; i < words.size(); ++i) {

@@ -8,8 +8,10 @@
 // from the end), mtllib, usemtl; o, g, s, l, p and other statements are skipped. In MTL files:
 // newmtl, Kd and map_Kd (PNG or JPEG, next to the OBJ; -o and -s offset and scale its
 // coordinates, -clamp on clamps them, the other options are skipped); a face without vt corners
-// takes Kd alone. Polygons are fan-triangulated. Lines end in LF or CRLF; any other control
-// character is an error, so what the parser sees is what an editor shows.
+// takes Kd alone. Convex polygons are fans; others are triangulated by GLU's tessellator in their
+// best-fit plane (frontend/scene/polygon.hpp), and one whose edges cross is an error. Lines end
+// in LF or CRLF; any other control character is an error, so what the parser sees is what an
+// editor shows.
 #pragma once
 
 #include <cstdint>
@@ -27,7 +29,7 @@ namespace vplkit {
 struct obj_limits {
   std::uintmax_t max_obj_bytes = std::uintmax_t{1} << 30;  ///< 1 GiB
   std::uintmax_t max_mtl_bytes = std::uintmax_t{1} << 24;  ///< 16 MiB per material library
-  std::size_t max_triangles = std::size_t{1} << 24;        ///< after fan triangulation
+  std::size_t max_triangles = std::size_t{1} << 24;        ///< after triangulation
   std::uintmax_t max_texture_file_bytes = std::uintmax_t{1} << 28;  ///< 256 MiB per map_Kd file
   texture_limits textures;                                          ///< each map_Kd image
   std::uint64_t max_texture_pixels = std::uint64_t{1} << 28;        ///< all textures together

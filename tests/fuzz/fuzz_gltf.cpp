@@ -5,7 +5,10 @@
 //   anything else: the bytes drive a generator (fuzz_input) that writes a glTF with the structure
 //              tinygltf accepts and the values and references a hostile file would have: node
 //              graphs as chains thousands deep, trees and cycles; buffers, views and accessors with
-//              boundary offsets, strides, counts and component types; cameras and lights with
+//              boundary offsets, strides, counts and component types; triangle strips and fans;
+//              KHR_draco_mesh_compression primitives over a valid Draco cube (edgebreaker or
+//              sequential, made at start by libdraco's encoder), the cube with bytes the input
+//              changes or cuts, or the input's own bytes; cameras and lights with
 //              extreme numbers; extras nested thousands deep; external URIs with "..", percent
 //              escapes and absolute paths. Byte mutations of a generator input are structural ones.
 // External files are looked up in a scratch folder holding one 36-byte buffer (in.bin, also in
@@ -21,6 +24,9 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+
+#include <draco/compression/encode.h>
+#include <draco/mesh/triangle_soup_mesh_builder.h>
 
 #include "frontend/core/error.hpp"
 #include "frontend/reference/reference.hpp"
@@ -81,6 +87,25 @@ std::string base64(const std::string& bytes) {
   return out;
 }
 
+// A unit cube as Draco data (12 triangles, POSITION as attribute 0), encoded with edgebreaker or
+// the sequential method: a valid starting point the input then damages.
+std::string draco_cube(bool sequential) {
+  const float corners[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  const int faces[12][3] = {{0, 2, 1}, {0, 3, 2}, {4, 5, 6}, {4, 6, 7}, {0, 1, 5}, {0, 5, 4}, {3, 6, 2}, {3, 7, 6}, {0, 4, 7}, {0, 7, 3}, {1, 2, 6}, {1, 6, 5}};
+  draco::TriangleSoupMeshBuilder builder;
+  builder.Start(12);
+  const int position = builder.AddAttribute(draco::GeometryAttribute::POSITION, 3, draco::DT_FLOAT32);
+  for (int f = 0; f < 12; ++f)
+    builder.SetAttributeValuesForFace(position, draco::FaceIndex(static_cast<std::uint32_t>(f)), corners[faces[f][0]], corners[faces[f][1]], corners[faces[f][2]]);
+  const std::unique_ptr<draco::Mesh> mesh = builder.Finalize();
+  draco::Encoder encoder;
+  encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, 11);
+  encoder.SetEncodingMethod(sequential ? draco::MESH_SEQUENTIAL_ENCODING : draco::MESH_EDGEBREAKER_ENCODING);
+  draco::EncoderBuffer buffer;
+  require(mesh && encoder.EncodeMeshToBuffer(*mesh, &buffer).ok(), "libdraco could not encode the cube");
+  return std::string(buffer.data(), buffer.size());
+}
+
 std::string nested(std::size_t depth) { return std::string(depth, '[') + std::string(depth, ']'); }
 
 // A glTF text whose structure the bytes choose.
@@ -94,7 +119,17 @@ std::string generate(fuzz_input& in) {
   for (std::uint32_t b = 0; b < buffers; ++b) {
     std::string uri;
     std::size_t length = 36;
-    switch (in.below(6)) {
+    switch (in.below(7)) {
+      case 6: {
+        // Draco data: the cube, damaged by the input, or cut short.
+        static const std::string cubes[2] = {draco_cube(false), draco_cube(true)};
+        std::string bytes = cubes[in.below(2)];
+        for (std::uint32_t changes = in.below(4); changes > 0; --changes) bytes[in.below(static_cast<std::uint32_t>(bytes.size()))] = static_cast<char>(in.word());
+        if (in.below(4) == 0) bytes.resize(in.below(static_cast<std::uint32_t>(bytes.size()) + 1));
+        length = bytes.size();
+        uri = "data:application/octet-stream;base64," + base64(bytes);
+        break;
+      }
       case 0:
       case 1: {
         const std::string bytes = in.take(in.below(2) == 0 ? 36 : in.below(200));
@@ -141,7 +176,11 @@ std::string generate(fuzz_input& in) {
       if (in.flag()) json += std::string(",\"NORMAL\":") + index_value(in);
       json += "}";
       if (in.flag()) json += std::string(",\"indices\":") + index_value(in);
-      if (in.below(4) == 0) json += std::string(",\"mode\":") + in.pick({"4", "0", "1", "5", "6", "-1", "99"});
+      if (in.below(3) == 0) json += std::string(",\"mode\":") + in.pick({"4", "0", "1", "5", "6", "5", "6", "-1", "99"});
+      if (in.below(4) == 0) {
+        json += std::string(",\"extensions\":{\"KHR_draco_mesh_compression\":{\"bufferView\":") + index_value(in) + ",\"attributes\":{\"POSITION\":" +
+                in.pick({"0", "0", "1", "-1", "7", "\"0\""}) + (in.flag() ? std::string(",\"NORMAL\":") + in.pick({"0", "1", "2"}) : std::string()) + "}}}";
+      }
       if (in.below(4) == 0) json += std::string(",\"material\":") + index_value(in);
       json += "}";
     }

@@ -1,12 +1,20 @@
 // The glTF 2.0 reader and writer (frontend/scene/gltf_scene.hpp): a built-in scene written and
 // read back is the same scene; Debian's assimp glTF2 test files each load or fail with a
-// vplkit::error naming the file; hostile files fail with the problem named.
+// vplkit::error naming the file; hostile files fail with the problem named; strips, fans and
+// Draco-compressed primitives give the triangles they stand for; glTF 1.0 is named.
 #include <doctest/doctest.h>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <random>
 #include <string>
+#include <unordered_map>
+#include <vector>
 
 #include "frontend/core/error.hpp"
 #include "frontend/scene/gltf_scene.hpp"
@@ -261,4 +269,229 @@ TEST_CASE("a doubleSided material is noted: every surface is lit on its normal's
   };
   CHECK(mentions(notes_of(true)));
   CHECK_FALSE(mentions(notes_of(false)));
+}
+
+namespace {
+
+std::string base64_of(const void* data, std::size_t size) {
+  static const char* alphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  const auto* bytes = static_cast<const unsigned char*>(data);
+  std::string out;
+  for (std::size_t i = 0; i < size; i += 3) {
+    std::uint32_t group = static_cast<std::uint32_t>(bytes[i]) << 16;
+    if (i + 1 < size) group |= static_cast<std::uint32_t>(bytes[i + 1]) << 8;
+    if (i + 2 < size) group |= bytes[i + 2];
+    out += alphabet[group >> 18 & 63];
+    out += alphabet[group >> 12 & 63];
+    out += i + 1 < size ? alphabet[group >> 6 & 63] : '=';
+    out += i + 2 < size ? alphabet[group & 63] : '=';
+  }
+  return out;
+}
+
+// A glTF of one primitive in `mode` over `points` (z = 0), with byte `indices` when given.
+std::string primitive_gltf(int mode, const std::vector<glm::vec2>& points, const std::vector<std::uint8_t>& indices) {
+  std::vector<float> xyz;
+  for (const glm::vec2& p : points) xyz.insert(xyz.end(), {p.x, p.y, 0.0f});
+  const std::size_t bytes = xyz.size() * 4;
+  std::string text = R"({"asset": {"version": "2.0"}, "nodes": [{"mesh": 0}], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "mode": )" +
+                     std::to_string(mode) + (indices.empty() ? "" : R"(, "indices": 1)") + R"(}]}], "accessors": [{"bufferView": 0, "componentType": 5126, "count": )" +
+                     std::to_string(points.size()) + R"(, "type": "VEC3"})";
+  if (!indices.empty()) text += R"(, {"bufferView": 1, "componentType": 5121, "count": )" + std::to_string(indices.size()) + R"(, "type": "SCALAR"})";
+  text += R"(], "bufferViews": [{"buffer": 0, "byteLength": )" + std::to_string(bytes) + "}";
+  if (!indices.empty()) text += R"(, {"buffer": 1, "byteLength": )" + std::to_string(indices.size()) + "}";
+  text += R"(], "buffers": [{"byteLength": )" + std::to_string(bytes) + R"(, "uri": "data:application/octet-stream;base64,)" + base64_of(xyz.data(), bytes) + R"("})";
+  if (!indices.empty())
+    text += R"(, {"byteLength": )" + std::to_string(indices.size()) + R"(, "uri": "data:application/octet-stream;base64,)" + base64_of(indices.data(), indices.size()) + R"("})";
+  return text + "]}";
+}
+
+// The first `count` triangles of a loaded scene (frame_mesh's floor comes after them), as the
+// points of their corners in order.
+std::vector<std::array<glm::vec2, 3>> first_triangles(const scene& loaded, std::size_t count) {
+  REQUIRE(loaded.geometry.triangle_count() >= count);
+  std::vector<std::array<glm::vec2, 3>> out;
+  for (std::size_t t = 0; t < count; ++t) {
+    std::array<glm::vec2, 3> corners;
+    for (std::size_t k = 0; k < 3; ++k) corners[k] = glm::vec2(loaded.geometry.vertices[loaded.geometry.indices[3 * t + k]].position);
+    out.push_back(corners);
+  }
+  return out;
+}
+
+float signed_area(const std::array<glm::vec2, 3>& t) { return 0.5f * ((t[1].x - t[0].x) * (t[2].y - t[0].y) - (t[1].y - t[0].y) * (t[2].x - t[0].x)); }
+
+}  // namespace
+
+TEST_CASE("triangle strips and fans are read as the glTF specification numbers them, indexed or not, every triangle wound as the first") {
+  // A zigzag strip 0-1-2-3-4 along x: triangles (0 1 2), (1 3 2), (2 3 4); all clockwise seen
+  // from +z, as the first is.
+  const std::vector<glm::vec2> zigzag = {{0, 0}, {0, 1}, {1, 0}, {1, 1}, {2, 0}};
+  const std::vector<std::array<glm::vec2, 3>> strip = {{{{0, 0}, {0, 1}, {1, 0}}}, {{{0, 1}, {1, 1}, {1, 0}}}, {{{1, 0}, {1, 1}, {2, 0}}}};
+  CHECK(first_triangles(parse_gltf(primitive_gltf(5, zigzag, {}), false, "strip.gltf", {}), 3) == strip);
+  // The same strip through indices into shuffled vertices.
+  const std::vector<glm::vec2> shuffled = {zigzag[3], zigzag[0], zigzag[4], zigzag[1], zigzag[2]};
+  const scene indexed = parse_gltf(primitive_gltf(5, shuffled, {1, 3, 4, 0, 2}), false, "strip.gltf", {});
+  CHECK(first_triangles(indexed, 3) == strip);
+  CHECK(indexed.geometry.triangle_count() == 3 + 2);  // and frame_mesh's floor
+  for (const auto& t : strip) CHECK(signed_area(t) < 0.0f);
+  // A fan around the origin: (1 2 0), (2 3 0), (3 4 0), all counter-clockwise.
+  const std::vector<glm::vec2> around = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {-1, 1}};
+  const std::vector<std::array<glm::vec2, 3>> fan = {{{{1, 0}, {1, 1}, {0, 0}}}, {{{1, 1}, {0, 1}, {0, 0}}}, {{{0, 1}, {-1, 1}, {0, 0}}}};
+  CHECK(first_triangles(parse_gltf(primitive_gltf(6, around, {}), false, "fan.gltf", {}), 3) == fan);
+  CHECK(first_triangles(parse_gltf(primitive_gltf(6, {around[4], around[3], around[2], around[1], around[0]}, {4, 3, 2, 1, 0}), false, "fan.gltf", {}), 3) == fan);
+  for (const auto& t : fan) CHECK(signed_area(t) > 0.0f);
+  // Fewer than three corners: nothing to draw, named as such.
+  CHECK_THROWS_WITH_AS(parse_gltf(primitive_gltf(5, {{0, 0}, {1, 0}}, {}), false, "short.gltf", {}), doctest::Contains("no triangles in its scene"), vplkit::error);
+  // Points and lines are still not drawn.
+  CHECK_THROWS_WITH_AS(parse_gltf(primitive_gltf(1, zigzag, {}), false, "lines.gltf", {}), doctest::Contains("points and lines are not drawn"), vplkit::error);
+}
+
+TEST_CASE("Khronos' Asset-Generator strips and fans (Mesh_PrimitiveMode_04, 05, 11, 12) give the square the triangle lists (06, 13) give, facing +z") {
+  const fs::path folder = "/usr/share/assimp/models/glTF2/glTF-Asset-Generator/Mesh_PrimitiveMode";
+  if (!fs::is_directory(folder)) {
+    MESSAGE("skipped: assimp-testmodels is not installed");
+    return;
+  }
+  for (const char* number : {"04", "05", "06", "11", "12", "13"}) {
+    CAPTURE(number);
+    const scene loaded = load_gltf(folder / ("Mesh_PrimitiveMode_" + std::string(number) + ".gltf"));
+    REQUIRE(loaded.geometry.triangle_count() == 2 + 2);  // the square's two and frame_mesh's floor
+    float area = 0.0f;
+    for (const auto& t : first_triangles(loaded, 2)) {
+      CHECK(signed_area(t) > 0.0f);  // counter-clockwise seen from +z: the side the samples show
+      area += signed_area(t);
+    }
+    CHECK(area == doctest::Approx(1.0f));  // the unit square, covered once
+    for (std::size_t i = 0; i < 6; ++i) CHECK(loaded.geometry.vertices[loaded.geometry.indices[i]].normal == glm::vec3(0, 0, 1));
+  }
+}
+
+TEST_CASE("KHR_draco_mesh_compression: assimp's Draco 2CylinderEngine decodes to the triangles of its uncompressed GLB") {
+  const fs::path compressed = "/usr/share/assimp/models/glTF2/draco/2CylinderEngine.gltf";
+  const fs::path plain = "/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb";
+  if (!fs::is_regular_file(compressed) || !fs::is_regular_file(plain)) {
+    MESSAGE("skipped: assimp-testmodels is not installed");
+    return;
+  }
+  const scene from_draco = load_gltf(compressed), from_glb = load_gltf(plain);
+  for (const std::string& note : from_draco.notes) CHECK(note.find("KHR_draco_mesh_compression") == std::string::npos);  // read, not noted
+  // The triangles as corner positions. Draco's encoder drops degenerate triangles and quantizes
+  // positions (here by up to 0.11 in a model 836 across: 1.3 x 10^-4 of it): every triangle of
+  // the GLB with area must have one of Draco's with every corner within 2.5 x 10^-4 of the
+  // model's diagonal, in the same order up to rotation (so wound the same), each of Draco's
+  // matched once (the closest unused one).
+  const auto triangles_of = [](const scene& s, bool skip_degenerate) {
+    std::vector<std::array<glm::vec3, 3>> out;
+    const mesh& m = s.geometry;
+    for (std::size_t t = 0; t + 6 < m.indices.size(); t += 3) {  // without frame_mesh's floor, the last two
+      const std::array<glm::vec3, 3> corners = {m.vertices[m.indices[t]].position, m.vertices[m.indices[t + 1]].position, m.vertices[m.indices[t + 2]].position};
+      if (skip_degenerate && glm::length(glm::cross(corners[1] - corners[0], corners[2] - corners[0])) == 0.0f) continue;
+      out.push_back(corners);
+    }
+    return out;
+  };
+  const std::vector<std::array<glm::vec3, 3>> decoded = triangles_of(from_draco, false), expected = triangles_of(from_glb, true);
+  CHECK(from_glb.geometry.triangle_count() - 2 > expected.size());  // the GLB has degenerate triangles Draco dropped
+  REQUIRE(decoded.size() == expected.size());
+  glm::vec3 low(1e30f), high(-1e30f);
+  for (const auto& t : expected)
+    for (const glm::vec3& p : t) low = glm::min(low, p), high = glm::max(high, p);
+  const float tolerance = 2.5e-4f * glm::length(high - low), cell = 4.0f * tolerance;
+  CHECK(tolerance < 0.25f);  // well under the GLB's shortest edges (1 % are under 1.1)
+  const auto key = [&](const glm::vec3& p) {
+    const glm::ivec3 c(glm::floor(p / cell));
+    return (static_cast<std::int64_t>(c.x) * 73856093) ^ (static_cast<std::int64_t>(c.y) * 19349663) ^ (static_cast<std::int64_t>(c.z) * 83492791);
+  };
+  std::unordered_multimap<std::int64_t, std::size_t> by_cell;
+  for (std::size_t i = 0; i < decoded.size(); ++i) by_cell.emplace(key((decoded[i][0] + decoded[i][1] + decoded[i][2]) / 3.0f), i);
+  std::vector<bool> used(decoded.size(), false);
+  std::size_t matched = 0;
+  for (const auto& t : expected) {
+    const glm::vec3 centre = (t[0] + t[1] + t[2]) / 3.0f;
+    std::size_t best = decoded.size();
+    float best_distance = tolerance;
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dz = -1; dz <= 1; ++dz) {
+          const auto [begin, end] = by_cell.equal_range(key(centre + cell * glm::vec3(dx, dy, dz)));
+          for (auto at = begin; at != end; ++at) {
+            if (used[at->second]) continue;
+            const auto& d = decoded[at->second];
+            for (std::size_t r = 0; r < 3; ++r) {
+              const float distance = std::max({glm::length(d[r] - t[0]), glm::length(d[(r + 1) % 3] - t[1]), glm::length(d[(r + 2) % 3] - t[2])});
+              if (distance < best_distance) best_distance = distance, best = at->second;
+            }
+          }
+        }
+    if (best < decoded.size()) {
+      used[best] = true;
+      ++matched;
+    }
+  }
+  CHECK(matched == expected.size());
+}
+
+TEST_CASE("glTF 1.0 is named as such: its asset.version, a number 1 or a GLB container of version 1") {
+  CHECK_THROWS_WITH_AS(parse_gltf(R"({"asset": {"version": "1.0"}, "meshes": {"box": {"primitives": []}}})", false, "old.gltf", {}),
+                       doctest::Contains("old.gltf: a glTF 1.0 file (asset.version 1.0); vplkit reads glTF 2.0 only"), vplkit::error);
+  CHECK_THROWS_WITH_AS(parse_gltf(R"({"asset": {"version": 1}, "accessors": {"a": {}}})", false, "old.gltf", {}),
+                       doctest::Contains("old.gltf: a glTF 1.0 file (asset.version 1)"), vplkit::error);
+  const std::string json = R"({"asset": {"version": "1.0"}})";
+  std::string glb = "glTF";
+  for (const std::uint32_t word : {1u, static_cast<std::uint32_t>(20 + json.size()), static_cast<std::uint32_t>(json.size()), 0u})
+    glb.append(reinterpret_cast<const char*>(&word), 4);
+  glb += json;
+  CHECK_THROWS_WITH_AS(parse_gltf(glb, true, "old.glb", {}), doctest::Contains("old.glb: a glTF 1.0 file (GLB container version 1)"), vplkit::error);
+  // 2.0 is not mistaken for it, nor a version that only starts with 1.
+  CHECK_THROWS_WITH_AS(parse_gltf(R"({"asset": {"version": "2.0"}})", false, "new.gltf", {}), doctest::Contains("no triangles"), vplkit::error);
+  CHECK_THROWS_WITH_AS(parse_gltf(R"({"asset": {"version": "10.0"}})", false, "odd.gltf", {}), doctest::Contains("no triangles"), vplkit::error);
+  // assimp's glTF 1.0 files, where installed.
+  const fs::path folder = "/usr/share/assimp/models/glTF";
+  if (!fs::is_directory(folder)) return;
+  int named = 0;
+  for (const fs::directory_entry& entry : fs::recursive_directory_iterator(folder)) {
+    const std::string extension = entry.path().extension().string();
+    if (extension != ".gltf" && extension != ".glb") continue;
+    CAPTURE(entry.path().string());
+    CHECK_THROWS_WITH_AS(load_gltf(entry.path()), doctest::Contains("a glTF 1.0 file"), vplkit::error);
+    ++named;
+  }
+  CHECK(named == 7);
+}
+
+TEST_CASE("KHR_draco_mesh_compression in a .gltf and in a .glb (its JSON chunk rewritten): the same cube, edgebreaker and sequential") {
+  // The fuzz seeds: a unit cube (12 triangles) encoded by libdraco, with normals (edgebreaker) and
+  // without (sequential); the .glb holds the first's data in its binary chunk.
+  const fs::path seeds = fs::path(VPLKIT_TEST_SOURCE_DIR) / "fuzz" / "corpus" / "gltf";
+  const scene text = load_gltf(seeds / "draco-cube-edgebreaker-normals.gltf"), binary = load_gltf(seeds / "draco-cube-edgebreaker-normals.glb"),
+              sequential = load_gltf(seeds / "draco-cube-sequential.gltf");
+  for (const scene* s : {&text, &binary, &sequential}) {
+    REQUIRE(s->geometry.triangle_count() == 12 + 2);  // and frame_mesh's floor
+    // A closed cube: the triangles' areas add up to 6 and their area vectors cancel (all wound
+    // outward or all inward; outward: each points away from the centre).
+    double area = 0.0;
+    for (std::size_t t = 0; t < 36; t += 3) {
+      const glm::vec3 a = s->geometry.vertices[s->geometry.indices[t]].position, b = s->geometry.vertices[s->geometry.indices[t + 1]].position,
+                      c = s->geometry.vertices[s->geometry.indices[t + 2]].position;
+      const glm::vec3 normal = glm::cross(b - a, c - a);
+      area += 0.5 * glm::length(normal);
+      CHECK(glm::dot(normal, (a + b + c) / 3.0f - glm::vec3(0.5f)) > 0.0f);
+    }
+    CHECK(area == doctest::Approx(6.0).epsilon(1e-3));
+  }
+  // The decoded normals (quantized to 8 bits) are the faces' own.
+  for (std::size_t t = 0; t < 36; ++t) {
+    const vertex& v = binary.geometry.vertices[binary.geometry.indices[t]];
+    CHECK(std::fabs(glm::dot(v.normal, glm::vec3(1.0f))) == doctest::Approx(1.0f).epsilon(0.02));  // a unit axis
+  }
+  for (std::size_t i = 0; i < text.geometry.vertices.size(); ++i) CHECK(text.geometry.vertices[i].position == binary.geometry.vertices[i].position);
+  // Damaged Draco data is named.
+  std::ifstream in(seeds / "draco-cube-sequential.gltf");
+  std::string damaged((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::size_t magic = damaged.find("RFJBQ08");  // "DRACO" in base64
+  REQUIRE(magic != std::string::npos);
+  damaged.replace(magic, 4, "QUJD");  // "ABC"
+  CHECK_THROWS_WITH_AS(parse_gltf(damaged, false, "damaged.gltf", {}), doctest::Contains("damaged.gltf: mesh 0 primitive 0 KHR_draco_mesh_compression: not Draco data"),
+                       vplkit::error);
 }
