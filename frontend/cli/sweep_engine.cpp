@@ -269,15 +269,18 @@ void order_columns(sweep_table& table, const std::vector<std::string>& axis_colu
 void rank_against_base(sweep_table& table) {
   if (std::find(table.columns.begin(), table.columns.end(), "is_base") == table.columns.end()) return;
   table.add_column("rank");
+  // Each scene's base row first (the last one where a resumed CSV holds several), then the ranks:
+  // one pass each, not a search of every row per row.
+  std::map<std::string, double> base_ms;
+  for (auto& row : table.rows)
+    if (row["is_base"] == "1")
+      if (const std::optional<double> ms = sweep_table::number(row, "frame_ms")) base_ms[row["scene"]] = *ms;
   for (auto& row : table.rows) {
     row["rank"] = "";
     const std::optional<double> ms = sweep_table::number(row, "frame_ms"), similarity = sweep_table::number(row, "similarity");
-    if (!ms || !similarity || *similarity >= 100.0 || row["is_base"] == "1") continue;
-    for (const auto& base : table.rows) {
-      const std::optional<double> base_ms = sweep_table::number(base, "frame_ms");
-      if (base.at("scene") != row.at("scene") || base.at("is_base") != "1" || !base_ms) continue;
-      row["rank"] = format_real(lightwave_rank(1000.0 / *ms - 1000.0 / *base_ms, *similarity));
-    }
+    const auto base = base_ms.find(row["scene"]);
+    if (!ms || !similarity || *similarity >= 100.0 || row["is_base"] == "1" || base == base_ms.end()) continue;
+    row["rank"] = format_real(lightwave_rank(1000.0 / *ms - 1000.0 / base->second, *similarity));
   }
 }
 

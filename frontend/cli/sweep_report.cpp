@@ -1,7 +1,9 @@
 #include "frontend/cli/sweep_report.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -116,19 +118,33 @@ sweep_table read_sweep_csv(const fs::path& path) {
 
 void mark_pareto(sweep_table& table, const std::string& time, const std::string& error) {
   table.add_column("pareto");
-  for (auto& row : table.rows) {
+  struct point {
+    double time, error;
+    std::size_t row;
+  };
+  std::map<std::string, std::vector<point>> scenes;
+  for (std::size_t i = 0; i < table.rows.size(); ++i) {
+    auto& row = table.rows[i];
     const std::optional<double> t = sweep_table::number(row, time), e = sweep_table::number(row, error);
-    if (!t || !e) {
-      row["pareto"] = "";
-      continue;
+    row["pareto"] = "";
+    if (t && e && std::isfinite(*t) && std::isfinite(*e)) scenes[row["scene"]].push_back({*t, *e, i});
+  }
+  // Sorted by time, then error: a row is beaten exactly when a faster row has an error at most
+  // its own, or a row as fast has a smaller one. So one pass that carries the least error of the
+  // faster rows decides each group of equal times: O(n log n) for the sort. (Comparing every row
+  // with every other took 5.5 min per rewrite of a 20,000-row sweep.)
+  for (auto& [scene, points] : scenes) {
+    std::sort(points.begin(), points.end(), [](const point& a, const point& b) { return a.time < b.time || (a.time == b.time && a.error < b.error); });
+    double faster = std::numeric_limits<double>::infinity();
+    for (std::size_t first = 0; first < points.size();) {
+      std::size_t last = first;
+      while (last < points.size() && points[last].time == points[first].time) ++last;
+      const double fastest = points[first].error;  // the group's least error: the sort put it first
+      for (std::size_t k = first; k < last; ++k)
+        table.rows[points[k].row]["pareto"] = std::string(1, faster <= points[k].error || fastest < points[k].error ? '0' : '1');
+      faster = std::min(faster, fastest);
+      first = last;
     }
-    bool beaten = false;
-    for (const auto& other : table.rows) {
-      if (&other == &row || other.at("scene") != row.at("scene")) continue;
-      const std::optional<double> ot = sweep_table::number(other, time), oe = sweep_table::number(other, error);
-      if (ot && oe && *ot <= *t && *oe <= *e && (*ot < *t || *oe < *e)) beaten = true;
-    }
-    row["pareto"] = beaten ? "0" : "1";
   }
 }
 

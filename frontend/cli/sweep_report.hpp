@@ -30,7 +30,8 @@ std::string sweep_csv(const sweep_table& table);
 
 /// Marks `pareto` = 1 on the rows no other row of the same scene beats on both `time` and
 /// `error` (lower is better; one of them strictly), 0 on the others, and empty where either is
-/// not measured.
+/// not measured (empty, not a number, or not finite). O(n log n): per scene, one pass over the
+/// rows sorted by time.
 void mark_pareto(sweep_table& table, const std::string& time, const std::string& error);
 
 /// A gnuplot script drawing `ys` against the column `x` (numbers, else categories in row order),
