@@ -9,8 +9,11 @@
 // DIR/<section>; the options given next to --spec are added to every section's, a --vary of a
 // setting the section varies replaces it, and --scene replaces the section's scenes. Everything
 // is checked before anything is written: a usage error exits 2 and leaves no file.
+#include <algorithm>
+#include <cctype>
 #include <fstream>
 #include <sstream>
+#include <string_view>
 
 #include "frontend/cli/commands.hpp"
 #include "frontend/cli/sweep_engine.hpp"
@@ -224,9 +227,19 @@ std::string folder_name(const std::string& section) {
   return name;
 }
 
-std::string quoted_words(const std::vector<std::string>& words) {
+// The words as a POSIX shell reads them back, for sweep.md's command: a word of other than
+// letters, digits and _@%+=:,./- in single quotes, in which the shell reads nothing but the closing
+// quote ('\'' for a quote). A scene named `x"; rm -rf ~; "` is a word again, not a command.
+std::string shell_words(const std::vector<std::string>& words) {
   std::string all;
-  for (const std::string& word : words) all += (all.empty() ? "" : " ") + (word.find(' ') != std::string::npos ? "\"" + word + "\"" : word);
+  for (const std::string& word : words) {
+    const bool plain = !word.empty() && std::all_of(word.begin(), word.end(), [](char c) {
+      return std::isalnum(static_cast<unsigned char>(c)) || std::string_view("_@%+=:,./-").find(c) != std::string_view::npos;
+    });
+    std::string quoted = "'";
+    for (char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    all += (all.empty() ? "" : " ") + (plain ? word : quoted + "'");
+  }
   return all;
 }
 
@@ -239,7 +252,7 @@ int run(const session& io, CLI::App& command, const sweep_arguments& top) {
     for (const CLI::Option* option : command.get_options())
       if (option->count() > 0 && option->get_name() != "--help" && option->get_name() != "--plan")
         for (const std::string& value : option->results()) words.insert(words.end(), {option->get_name(), value});
-    sweeps.emplace_back(make_request(top, "", quoted_words(words), top.out), sweep_plan{});
+    sweeps.emplace_back(make_request(top, "", shell_words(words), top.out), sweep_plan{});
   } else {
     // The options given next to --spec, as words added to every section's.
     std::vector<std::string> overrides;
@@ -274,8 +287,12 @@ int run(const session& io, CLI::App& command, const sweep_arguments& top) {
         throw usage_error(top.spec + (section.name.empty() ? "" : " [" + section.name + "]") + ": " + failure.what());
       }
       const fs::path out = section.name.empty() ? fs::path(top.out) : fs::path(top.out) / folder_name(section.name);
-      sweeps.emplace_back(make_request(arguments, section.name, "--spec " + top.spec + (section.name.empty() ? "" : " [" + section.name + "]: ") + quoted_words(words), out),
-                          sweep_plan{});
+      // The command that runs this section again, as sweep.md quotes it.
+      std::vector<std::string> command_words = {"--spec", top.spec};
+      if (!section.name.empty()) command_words.insert(command_words.end(), {"--section", section.name});
+      command_words.insert(command_words.end(), overrides.begin(), overrides.end());
+      command_words.insert(command_words.end(), {"--out", top.out});
+      sweeps.emplace_back(make_request(arguments, section.name, shell_words(command_words), out), sweep_plan{});
     }
     if (!found) throw usage_error("--section " + top.section + ": " + top.spec + " has no such section");
   }

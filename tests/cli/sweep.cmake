@@ -184,6 +184,56 @@ file(WRITE "${WORK}/broken.sweep" "--technique rsm-radial\n[good]\n--vary radius
 expect_usage_error("a specification with a bad section writes nothing" "\\[bad\\] --vary slots: slots is read by" "${WORK}/broken"
                    "${VPLKIT}" sweep --spec "${WORK}/broken.sweep" --out "${WORK}/broken")
 
+# --- no injection: a scene named with a line end, a gnuplot command, quotes and a backslash, into
+# an --out with an apostrophe and a space. gnuplot gets the names as data (and the paths as its
+# ARG1 and ARG2), so nothing runs and the plots are drawn; every writer keeps the name as text. ----
+file(MAKE_DIRECTORY "${WORK}/hostile")
+set(evil "${WORK}/hostile/evil\nsystem \"touch MARKER\"\n#'\\.obj")
+file(READ "${WORK}/room.obj" room_obj)
+file(WRITE "${evil}" "${room_obj}")
+set(hostile_out "${WORK}/hostile/plain")
+set(hostile_sweep "${VPLKIT}" sweep --technique rsm-radial --scene "${evil}" ${tiny} --vary radius=0.125,0.5 --reference rsm-brute-force --out)
+execute_process(COMMAND ${hostile_sweep} "${hostile_out}" WORKING_DIRECTORY "${WORK}/hostile" RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+expect_true("a sweep of a hostile scene name exits 0 (${code}: ${err})" code EQUAL 0)
+execute_process(COMMAND ${hostile_sweep} "${WORK}/hostile/it's out" WORKING_DIRECTORY "${WORK}/hostile" RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+expect_true("the same into an --out with an apostrophe and a space exits 0 (${code}: ${err})" code EQUAL 0)
+file(GLOB_RECURSE markers "${WORK}/*MARKER" "${CMAKE_CURRENT_BINARY_DIR}/MARKER")
+expect_true("the name's gnuplot command never ran (no MARKER: ${markers})" NOT markers)
+if(GNUPLOT)
+  expect_true("the plots are drawn" EXISTS "${hostile_out}/radius.png" AND EXISTS "${hostile_out}/pareto.png")
+  expect_true("the --out with an apostrophe gets its plots" EXISTS "${WORK}/hostile/it's out/radius.png" AND EXISTS "${WORK}/hostile/it's out/pareto.png")
+endif()
+file(READ "${hostile_out}/sweep.csv" csv)
+string(FIND "${csv}" "\n\"evil\nsystem \"\"touch MARKER\"\"\n#'\\\",rsm-radial," quoted_cell)
+expect_true("sweep.csv holds the name as one quoted cell (RFC 4180)" quoted_cell GREATER -1)
+file(READ "${hostile_out}/sweep.md" md)
+string(FIND "${md}" "\n## evil system \"touch MARKER\" \\#'\\\\\n" heading)
+expect_true("sweep.md shows the name as a one-line heading, escaped" heading GREATER -1)
+# sweep.md's command, read back by a shell, gives the same words: the name is one word, not code.
+string(REGEX MATCH "```sh\nvplkit sweep ([^`]*)\n```" command "${md}")
+file(WRITE "${WORK}/hostile/words.sh" "printf '[%s]\\n' ${CMAKE_MATCH_1}\n")
+execute_process(COMMAND sh "${WORK}/hostile/words.sh" WORKING_DIRECTORY "${WORK}/hostile" OUTPUT_VARIABLE words RESULT_VARIABLE code)
+string(FIND "${words}" "[--scene]\n[${evil}]\n" scene_word)
+string(FIND "${words}" "[--out]\n[${hostile_out}]\n" out_word)
+expect_true("sweep.md's command is the sweep's words for a shell (exit ${code})" code EQUAL 0 AND scene_word GREATER -1 AND out_word GREATER -1)
+file(GLOB_RECURSE markers "${WORK}/*MARKER")
+expect_true("reading sweep.md's command ran nothing (no MARKER: ${markers})" NOT markers)
+execute_process(COMMAND ${hostile_sweep} "${hostile_out}" WORKING_DIRECTORY "${WORK}/hostile" RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+file(READ "${hostile_out}/sweep.csv" again)
+expect_true("the sweep resumes from the CSV the name is quoted in, and adds nothing (${code}: ${err})"
+            code EQUAL 0 AND out MATCHES "resuming .*2 row[(]s[)]" AND again STREQUAL csv)
+
+# gnuplot's own reason when it draws nothing: a gnuplot that fails, and none on PATH.
+file(MAKE_DIRECTORY "${WORK}/fakebin" "${WORK}/emptybin")
+file(WRITE "${WORK}/fakebin/gnuplot" "#!/bin/sh\necho \"fake gnuplot: cannot open the pngcairo terminal\" >&2\nexit 3\n")
+file(CHMOD "${WORK}/fakebin/gnuplot" PERMISSIONS OWNER_READ OWNER_WRITE OWNER_EXECUTE)
+expect_success("a failing gnuplot's reason is named" "no plot .*radius\\.png: gnuplot failed \\(exit status 3\\): fake gnuplot: cannot open the pngcairo terminal"
+               ${CMAKE_COMMAND} -E env "PATH=${WORK}/fakebin:$ENV{PATH}" "${VPLKIT}" sweep --technique rsm-radial ${tiny} --vary radius=0.125,0.5 --out "${WORK}/fake")
+file(READ "${WORK}/fake/sweep.md" md)
+expect_true("sweep.md names gnuplot's failure, not a missing gnuplot" md MATCHES "No radius[.]png: gnuplot failed" AND NOT md MATCHES "not installed")
+expect_success("no gnuplot on PATH is named as such" "no plot .*radius\\.png: gnuplot is not installed"
+               ${CMAKE_COMMAND} -E env "PATH=${WORK}/emptybin" "${VPLKIT}" sweep --technique rsm-radial ${tiny} --vary radius=0.125,0.5 --out "${WORK}/none")
+
 # --- render --stats ----------------------------------------------------------------------------
 expect_success("render --stats with a reference" "quality against rsm-brute-force.*rel_rmse.*wrote .*stats\\.json"
                "${VPLKIT}" render --technique rsm-alg6 --scene occluder --size 24 --rsm-size 32 --reference rsm-brute-force --stats "${WORK}/stats.json"

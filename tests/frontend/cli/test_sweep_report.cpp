@@ -1,6 +1,7 @@
 // The files of `vplkit sweep` (frontend/cli/sweep_report.hpp): the Pareto marking is the
 // brute force's (every row against every row) on random tables with ties, and takes well under a
-// second on 20,000 rows.
+// second on 20,000 rows; the CSV reads back every cell a hostile name can hold; no name reaches a
+// gnuplot script; markdown shows names as text.
 #include <doctest/doctest.h>
 
 #include <chrono>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "frontend/cli/sweep_report.hpp"
+#include "frontend/core/files.hpp"
 #include "frontend/core/setting.hpp"
 
 namespace fs = std::filesystem;
@@ -122,4 +124,66 @@ TEST_CASE("the Pareto marking of 20,000 rows takes well under a second") {
   for (const auto& row : table.rows) on_front += row.at("pareto") == "1";
   CHECK(on_front > 0);
   CHECK(on_front < 2000);
+}
+
+TEST_CASE("the CSV reads back every cell a hostile name can hold") {
+  const scratch_folder folder;
+  sweep_table table;
+  table.columns = {"scene", "technique", "radius", "key"};
+  const std::vector<std::string> scenes = {"evil\nsystem \"touch MARKER\"\n#", "comma, quote \" and \\ backslash", "cr\rlf\r\nend",
+                                           "'apostrophe'", "", "\"", "=1+2", "tab\there"};
+  for (std::size_t i = 0; i < scenes.size(); ++i)
+    table.rows.push_back({{"scene", scenes[i]}, {"technique", "rsm-alg6"}, {"radius", "0.5"}, {"key", std::to_string(i)}});
+  const std::string text = cli::sweep_csv(table);
+  write_bytes_atomically(folder.path / "sweep.csv", std::vector<std::uint8_t>(text.begin(), text.end()));
+  const sweep_table back = cli::read_sweep_csv(folder.path / "sweep.csv");
+  CHECK(back.columns == table.columns);
+  REQUIRE(back.rows.size() == table.rows.size());
+  for (std::size_t i = 0; i < scenes.size(); ++i) CHECK(back.rows[i].at("scene") == scenes[i]);
+
+  // A row cut in the middle of a quoted cell is named, not read as something else.
+  const std::string cut = text.substr(0, text.find("system"));
+  write_bytes_atomically(folder.path / "cut.csv", std::vector<std::uint8_t>(cut.begin(), cut.end()));
+  CHECK_THROWS_WITH_AS(cli::read_sweep_csv(folder.path / "cut.csv"), doctest::Contains("cut.csv:2: a quoted cell is not closed"), vplkit::error);
+}
+
+TEST_CASE("no name reaches a gnuplot script: the titles and categories are fields of the data file") {
+  const std::string hostile = "evil\nsystem \"touch MARKER\"\n#'\\ `id` $(id)";
+  sweep_table table;
+  table.columns = {"scene", "technique", "frame_ms", "rel_rmse", "pareto"};
+  for (int i = 0; i < 4; ++i)
+    table.rows.push_back({{"scene", hostile + std::to_string(i % 2)},
+                          {"technique", i < 2 ? "rsm-alg6" : hostile},
+                          {"frame_ms", format_real(1.0 + i)},
+                          {"rel_rmse", format_real(0.5 - 0.1 * i)},
+                          {"pareto", "1"}});
+  const std::optional<cli::gnuplot_plot> axis = cli::axis_plot(table, "technique", {"scene"}, "frame_ms", {"rel_rmse"});
+  const std::optional<cli::gnuplot_plot> pareto = cli::pareto_plot(table, "frame_ms", "rel_rmse");
+  REQUIRE(axis);
+  REQUIRE(pareto);
+  for (const cli::gnuplot_plot* plot : {&*axis, &*pareto}) {
+    for (const char* piece : {"touch", "system", "MARKER", "`id`", "$(id)", "evil"}) CHECK(plot->script.find(piece) == std::string::npos);
+    // Every title in the data: one line each (a line end would split the block), no double
+    // quote (gnuplot ends a field there), the backslash doubled (gnuplot reads escapes).
+    CHECK(plot->data.find("evil system ''touch MARKER'' #'\\\\ `id` $(id)") != std::string::npos);
+    CHECK(plot->data.find('"') == std::string::npos);
+    // The output and the data are the strings ARG2 and ARG1, never a path in the script.
+    CHECK(plot->script.find("set output ARG2") != std::string::npos);
+    CHECK(plot->script.find("ARG1 index 0") != std::string::npos);
+  }
+  // The categories (technique names here) are tic labels read from the data too.
+  CHECK(axis->script.find(":xtic(4)") != std::string::npos);
+}
+
+TEST_CASE("markdown shows names as text: no table cell, heading, link or HTML comes from a name") {
+  const std::string text = cli::markdown_text("a|b\nc <script>x</script> [link](http://x) *em* _u_ `code` # \\ &amp;");
+  CHECK(text.find('\n') == std::string::npos);
+  for (std::size_t i = 0; i < text.size(); ++i)
+    if (std::string("|<>[]()*_`#&").find(text[i]) != std::string::npos) {
+      const bool escaped = i > 0 && text[i - 1] == '\\';
+      CHECK_MESSAGE(escaped, "unescaped '" << text[i] << "' in " << text);
+    }
+  // A code block's fence is longer than any backtick run it holds.
+  CHECK(cli::markdown_code_block("a ``` b ```` c", "sh") == "`````sh\na ``` b ```` c\n`````\n");
+  CHECK(cli::markdown_code_block("plain", "") == "```\nplain\n```\n");
 }
