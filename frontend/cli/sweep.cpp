@@ -8,7 +8,8 @@
 // one sweep per [section] (the lines before the first section are every section's), each into
 // DIR/<section>; the options given next to --spec are added to every section's, a --vary of a
 // setting the section varies replaces it, and --scene replaces the section's scenes. Everything
-// is checked before anything is written: a usage error exits 2 and leaves no file.
+// is checked before anything is written: a usage error exits 2 and leaves no file; a grid of more
+// than --max-configurations points (100000) is one, refused before it is planned.
 #include <algorithm>
 #include <cctype>
 #include <fstream>
@@ -41,6 +42,7 @@ struct sweep_arguments {
   int min_rounds = 3;
   double max_noise_percent = 2.0;
   int interleave = 8;
+  long long max_configurations = 100000;
   std::string out, spec, section;
   bool plan_only = false;
 };
@@ -69,6 +71,9 @@ void register_sweep_options(CLI::App& app, sweep_arguments& a, bool top_level) {
       ->check(CLI::Range(0.0, 100.0))->capture_default_str();
   app.add_option("--interleave", a.interleave, "timing: configurations timed interleaved at once (their pipelines live together)")
       ->check(CLI::Range(1, 256))->capture_default_str();
+  app.add_option("--max-configurations", a.max_configurations,
+                 "the most configurations the grid may have (the product of the --vary axes' lengths): a larger one is refused before it is planned")
+      ->check(CLI::Range(1LL, 1000000000LL))->capture_default_str();
   add_pose_options(app, a.common);
   add_common_options(app, a.common);
   add_setting_options(app, a.given);
@@ -132,6 +137,7 @@ sweep_request make_request(const sweep_arguments& a, const std::string& title, c
   request.min_rounds = std::min(a.min_rounds, a.repeat);
   request.max_noise = a.max_noise_percent / 100.0;
   request.group = a.interleave;
+  request.max_configurations = static_cast<std::uint64_t>(a.max_configurations);
   request.out = out;
   return request;
 }

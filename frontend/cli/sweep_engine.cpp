@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -102,6 +103,29 @@ std::string unread_message(const std::string& option, const std::string& name, c
   return option + ": " + name + " is read by " + setting_readers(name) + ", not by technique" + (techniques.size() > 1 ? "s " : " ") + joined(techniques, ", ");
 }
 
+// The number of points of the grid, refused past request.max_configurations before anything is
+// planned (planning costs about 1.4 KB and 26 us a point). The product is checked step by step:
+// 8 axes of 256 values wrapped to 0 in 64 bits and ran "0 configurations".
+std::uint64_t grid_size(const sweep_request& request) {
+  std::uint64_t points = 1;
+  long double whole = 1.0L;  // the count when it does not fit in 64 bits, for the message
+  bool fits = true;
+  std::string factors;
+  for (const sweep_axis& axis : request.axes) {
+    const std::uint64_t length = axis.values.size();
+    whole *= static_cast<long double>(length);
+    if (fits && length != 0 && points > std::numeric_limits<std::uint64_t>::max() / length) fits = false;
+    if (fits) points *= length;
+    factors += (factors.empty() ? "" : " x ") + joined(axis.names, ":") + " (" + std::to_string(length) + ")";
+  }
+  if (fits && points <= request.max_configurations) return points;
+  std::ostringstream count;
+  if (fits) count << points;
+  else count << "about " << std::setprecision(3) << static_cast<double>(whole);
+  throw usage_error("--vary: the grid has " + count.str() + " configurations (" + factors + "), more than --max-configurations " +
+                    std::to_string(request.max_configurations) + "; vary fewer values, split it into sections of a --spec, or raise --max-configurations");
+}
+
 }  // namespace
 
 sweep_plan plan_sweep(const sweep_request& request) {
@@ -124,6 +148,7 @@ sweep_plan plan_sweep(const sweep_request& request) {
     }
     plan.technique_axis = true;
   }
+  const std::uint64_t points = grid_size(request);
   // Every setting given or varied exists and some technique of the grid reads it.
   const auto check_name = [&](const std::string& option, const std::string& name) {
     const std::unique_ptr<technique_settings> probe = family.make_settings(techniques.front());
@@ -182,13 +207,11 @@ sweep_plan plan_sweep(const sweep_request& request) {
   }
   // The grid: every point of every axis against every other, deduplicated where a technique does
   // not read a varied setting.
-  std::size_t points = 1;
-  for (const sweep_axis& axis : request.axes) points *= axis.values.size();
   std::set<std::string> seen;
-  for (std::size_t point = 0; point < points; ++point) {
+  for (std::uint64_t point = 0; point < points; ++point) {
     // The point's index on each axis, the last axis fastest.
     std::vector<std::size_t> index(request.axes.size(), 0);
-    for (std::size_t a = request.axes.size(), rest = point; a-- > 0;) {
+    for (std::size_t a = request.axes.size(), rest = static_cast<std::size_t>(point); a-- > 0;) {
       index[a] = rest % request.axes[a].values.size();
       rest /= request.axes[a].values.size();
     }

@@ -234,6 +234,37 @@ expect_true("sweep.md names gnuplot's failure, not a missing gnuplot" md MATCHES
 expect_success("no gnuplot on PATH is named as such" "no plot .*radius\\.png: gnuplot is not installed"
                ${CMAKE_COMMAND} -E env "PATH=${WORK}/emptybin" "${VPLKIT}" sweep --technique rsm-radial ${tiny} --vary radius=0.125,0.5 --out "${WORK}/none")
 
+# --- the grid's size: counted without overflow, bounded before it is planned -------------------
+set(values "")
+foreach(i RANGE 1 256)
+  list(APPEND values ${i})
+endforeach()
+string(JOIN "," values ${values})
+set(axes "")
+foreach(name size rsm-size indirect-divisor radius paths samples-per-path min-radius rotation-jitter)
+  list(APPEND axes --vary "${name}=${values}")
+endforeach()
+expect_usage_error("8 axes of 256 values: 2^64 configurations, counted, not wrapped to 0"
+                   "the grid has about 1\\.84e\\+19 configurations \\(size \\(256\\) x rsm-size \\(256\\) x .*\\), more than --max-configurations 100000"
+                   "${WORK}/g1" "${VPLKIT}" sweep --technique rsm-radial ${axes} --out "${WORK}/g1")
+set(thousand "")
+foreach(i RANGE 1 1000)
+  list(APPEND thousand ${i})
+endforeach()
+list(SUBLIST thousand 0 200 two_hundred)
+string(JOIN "," thousand ${thousand})
+string(JOIN "," two_hundred ${two_hundred})
+expect_usage_error("400,000 configurations are refused before they are planned"
+                   "the grid has 400000 configurations \\(radius \\(2\\) x paths \\(1000\\) x samples-per-path \\(200\\)\\), more than --max-configurations 100000"
+                   "${WORK}/g2" "${VPLKIT}" sweep --technique rsm-radial --vary radius=0.1,0.2 --vary "paths=${thousand}" --vary "samples-per-path=${two_hundred}"
+                   --out "${WORK}/g2")
+expect_usage_error("--max-configurations is a positive count" "--max-configurations: Value 0 not in range" "${WORK}/g3"
+                   "${VPLKIT}" sweep --technique rsm-radial --vary radius=0.1,0.2 --max-configurations 0 --out "${WORK}/g3")
+expect_usage_error("--max-configurations 2 refuses 3" "the grid has 3 configurations \\(radius \\(3\\)\\), more than --max-configurations 2" "${WORK}/g4"
+                   "${VPLKIT}" sweep --technique rsm-radial --vary radius=0.1,0.2,0.3 --max-configurations 2 --out "${WORK}/g4")
+expect_success("--max-configurations 3 plans 3" "3 configuration\\(s\\)"
+               "${VPLKIT}" sweep --technique rsm-radial --vary radius=0.1,0.2,0.3 --max-configurations 3 --plan --out "${WORK}/g4")
+
 # --- render --stats ----------------------------------------------------------------------------
 expect_success("render --stats with a reference" "quality against rsm-brute-force.*rel_rmse.*wrote .*stats\\.json"
                "${VPLKIT}" render --technique rsm-alg6 --scene occluder --size 24 --rsm-size 32 --reference rsm-brute-force --stats "${WORK}/stats.json"
