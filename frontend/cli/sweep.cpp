@@ -9,7 +9,8 @@
 // DIR/<section>; the options given next to --spec are added to every section's, a --vary of a
 // setting the section varies replaces it, and --scene replaces the section's scenes. Everything
 // is checked before anything is written: a usage error exits 2 and leaves no file; a grid of more
-// than --max-configurations points (100000) is one, refused before it is planned.
+// than --max-configurations points (100000) is one, refused before it is planned. A sweep holds a
+// lock on its folder while it runs: a second sweep into the same folder is refused (exit 1).
 #include <algorithm>
 #include <cctype>
 #include <fstream>
@@ -169,6 +170,22 @@ void check_output(const sweep_request& request, const sweep_plan& plan) {
   }
 }
 
+// The lock a sweep holds on its folder for its whole run (folder_lock, the mechanism renders
+// install their outputs under, on a file of its own), so that two sweeps into one folder never
+// interleave their rewrites of sweep.csv (each rewrote the rows it had read, and the other's were
+// lost). A second sweep is refused at once rather than made to wait: a sweep runs for hours.
+folder_lock lock_output(const sweep_request& request) {
+  std::error_code code;
+  fs::create_directories(request.out, code);
+  if (code) throw error("cannot create the folder " + request.out.string() + " (" + code.message() + ")");
+  try {
+    return folder_lock(request.out, 0.0, ".vplkit-sweep.lock");
+  } catch (const folder_lock_busy&) {
+    throw error("another vplkit sweep is writing to " + request.out.string() + " (it holds " + (request.out / ".vplkit-sweep.lock").string() +
+                "): wait for it to finish, then run this one to add its rows, or give another --out");
+  }
+}
+
 // Whitespace-separated words, "double quotes" around a word with spaces.
 std::vector<std::string> words_of(const std::string& line, const std::string& where) {
   std::vector<std::string> words;
@@ -323,6 +340,8 @@ int run(const session& io, CLI::App& command, const sweep_arguments& top) {
   if (io.dry_run) return 0;
   for (const auto& [request, plan] : sweeps) {
     if (!request.title.empty()) io.out << "sweep [" << request.title << "] into " << request.out.string() << "\n";
+    const folder_lock lock = lock_output(request);
+    check_output(request, plan);  // again under the lock: another sweep may have written its CSV since
     run_sweep(io, request, plan);
   }
   return 0;

@@ -265,6 +265,27 @@ expect_usage_error("--max-configurations 2 refuses 3" "the grid has 3 configurat
 expect_success("--max-configurations 3 plans 3" "3 configuration\\(s\\)"
                "${VPLKIT}" sweep --technique rsm-radial --vary radius=0.1,0.2,0.3 --max-configurations 3 --plan --out "${WORK}/g4")
 
+# --- one sweep at a time in a folder: the second, started while the first holds the folder's lock,
+# is refused and writes nothing; the first's rows are whole; run again, it adds its own. -----------
+execute_process(COMMAND sh -c "\"$0\" sweep --technique rsm-radial --size 24 --rsm-size 32 --repeat 400 --min-rounds 400 --vary radius=0.125,0.25 --out \"$1\" >\"$2/first.txt\" 2>&1 & first=$!
+                               i=0; while [ ! -e \"$1/.vplkit-sweep.lock\" ] && [ $i -lt 500 ]; do sleep 0.02; i=$((i + 1)); done
+                               \"$0\" sweep --technique rsm-radial --size 24 --rsm-size 32 --repeat 1 --min-rounds 1 --vary radius=0.5,0.75 --out \"$1\" >\"$2/second.txt\" 2>&1
+                               second=$?; wait $first; echo \"$? $second\""
+                        "${VPLKIT}" "${WORK}/both" "${WORK}"
+                OUTPUT_VARIABLE codes OUTPUT_STRIP_TRAILING_WHITESPACE)
+file(READ "${WORK}/second.txt" second)
+expect_true("two concurrent sweeps into one --out: the first exits 0, the second 1 (${codes}): ${second}"
+            codes STREQUAL "0 1" AND second MATCHES "another vplkit sweep is writing to .*both [(]it holds .*[.]vplkit-sweep[.]lock[)]")
+read_rows("${WORK}/both/sweep.csv" rows)
+list(LENGTH rows count)
+expect_true("the first sweep's 2 rows, none of the second's" count EQUAL 3 AND rows MATCHES "rsm-radial,0[.]125," AND NOT rows MATCHES "rsm-radial,0[.](5|75),")
+expect_true("the lock is gone with its holder" NOT EXISTS "${WORK}/both/.vplkit-sweep.lock")
+expect_success("the second sweep, run again, adds its rows" "resuming .*2 row\\(s\\)"
+               "${VPLKIT}" sweep --technique rsm-radial --size 24 --rsm-size 32 --repeat 1 --min-rounds 1 --vary radius=0.5,0.75 --out "${WORK}/both")
+read_rows("${WORK}/both/sweep.csv" rows)
+list(LENGTH rows count)
+expect_true("4 rows: both sweeps' whole" count EQUAL 5)
+
 # --- render --stats ----------------------------------------------------------------------------
 expect_success("render --stats with a reference" "quality against rsm-brute-force.*rel_rmse.*wrote .*stats\\.json"
                "${VPLKIT}" render --technique rsm-alg6 --scene occluder --size 24 --rsm-size 32 --reference rsm-brute-force --stats "${WORK}/stats.json"

@@ -1,7 +1,8 @@
 // The files of `vplkit sweep` (frontend/cli/sweep_report.hpp): the Pareto marking is the
 // brute force's (every row against every row) on random tables with ties, and takes well under a
 // second on 20,000 rows; the CSV reads back every cell a hostile name can hold; no name reaches a
-// gnuplot script; markdown shows names as text.
+// gnuplot script; markdown shows names as text; the sweep's folder lock refuses a second holder
+// and leaves the output lock free for the sweep's own writes.
 #include <doctest/doctest.h>
 
 #include <chrono>
@@ -186,4 +187,14 @@ TEST_CASE("markdown shows names as text: no table cell, heading, link or HTML co
   // A code block's fence is longer than any backtick run it holds.
   CHECK(cli::markdown_code_block("a ``` b ```` c", "sh") == "`````sh\na ``` b ```` c\n`````\n");
   CHECK(cli::markdown_code_block("plain", "") == "```\nplain\n```\n");
+}
+
+TEST_CASE("the sweep's lock: a second holder is refused at once, and the folder's output lock stays free for the holder's writes") {
+  const scratch_folder folder;
+  const folder_lock sweep(folder.path, 0.0, ".vplkit-sweep.lock");
+  CHECK(fs::exists(folder.path / ".vplkit-sweep.lock"));
+  CHECK_THROWS_AS(folder_lock(folder.path, 0.0, ".vplkit-sweep.lock"), folder_lock_busy);
+  // The holder's own writes take the output lock, another file: they do not wait on themselves.
+  write_bytes_atomically(folder.path / "sweep.csv", {'x'});
+  CHECK(fs::file_size(folder.path / "sweep.csv") == 1);
 }
