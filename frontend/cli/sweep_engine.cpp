@@ -320,7 +320,6 @@ std::string cell(const std::map<std::string, std::string>& row, const std::strin
   return found == row.end() ? std::string() : found->second;
 }
 
-// The markdown report.
 // A plot of the sweep: DIR/<name>.png, or why gnuplot did not draw it.
 struct drawn_plot {
   std::string name, caption, failure;
