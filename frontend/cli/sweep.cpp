@@ -8,9 +8,14 @@
 // one sweep per [section] (the lines before the first section are every section's), each into
 // DIR/<section>; the options given next to --spec are added to every section's, a --vary of a
 // setting the section varies replaces it, and --scene replaces the section's scenes. Everything
-// is checked before anything is written: a usage error exits 2 and leaves no file.
+// is checked before anything is written: a usage error exits 2 and leaves no file; a grid of more
+// than --max-configurations points (100000) is one, refused before it is planned. A sweep holds a
+// lock on its folder while it runs: a second sweep into the same folder is refused (exit 1).
+#include <algorithm>
+#include <cctype>
 #include <fstream>
 #include <sstream>
+#include <string_view>
 
 #include "frontend/cli/commands.hpp"
 #include "frontend/cli/sweep_engine.hpp"
@@ -38,6 +43,7 @@ struct sweep_arguments {
   int min_rounds = 3;
   double max_noise_percent = 2.0;
   int interleave = 8;
+  long long max_configurations = 100000;
   std::string out, spec, section;
   bool plan_only = false;
 };
@@ -66,6 +72,9 @@ void register_sweep_options(CLI::App& app, sweep_arguments& a, bool top_level) {
       ->check(CLI::Range(0.0, 100.0))->capture_default_str();
   app.add_option("--interleave", a.interleave, "timing: configurations timed interleaved at once (their pipelines live together)")
       ->check(CLI::Range(1, 256))->capture_default_str();
+  app.add_option("--max-configurations", a.max_configurations,
+                 "the most configurations the grid may have (the product of the --vary axes' lengths): a larger one is refused before it is planned")
+      ->check(CLI::Range(1LL, 1000000000LL))->capture_default_str();
   add_pose_options(app, a.common);
   add_common_options(app, a.common);
   add_setting_options(app, a.given);
@@ -129,6 +138,7 @@ sweep_request make_request(const sweep_arguments& a, const std::string& title, c
   request.min_rounds = std::min(a.min_rounds, a.repeat);
   request.max_noise = a.max_noise_percent / 100.0;
   request.group = a.interleave;
+  request.max_configurations = static_cast<std::uint64_t>(a.max_configurations);
   request.out = out;
   return request;
 }
@@ -157,6 +167,22 @@ void check_output(const sweep_request& request, const sweep_plan& plan) {
     for (const std::string& column : varied) listed += (listed.empty() ? "" : ", ") + column;
     throw usage_error(csv.string() + " holds a sweep over other settings (" + (listed.empty() ? std::string("none") : listed) +
                       "): resuming needs the same --vary; give another --out");
+  }
+}
+
+// The lock a sweep holds on its folder for its whole run (folder_lock, the mechanism renders
+// install their outputs under, on a file of its own), so that two sweeps into one folder never
+// interleave their rewrites of sweep.csv (each rewrote the rows it had read, and the other's were
+// lost). A second sweep is refused at once rather than made to wait: a sweep runs for hours.
+folder_lock lock_output(const sweep_request& request) {
+  std::error_code code;
+  fs::create_directories(request.out, code);
+  if (code) throw error("cannot create the folder " + request.out.string() + " (" + code.message() + ")");
+  try {
+    return folder_lock(request.out, 0.0, ".vplkit-sweep.lock");
+  } catch (const folder_lock_busy&) {
+    throw error("another vplkit sweep is writing to " + request.out.string() + " (it holds " + (request.out / ".vplkit-sweep.lock").string() +
+                "): wait for it to finish, then run this one to add its rows, or give another --out");
   }
 }
 
@@ -224,9 +250,19 @@ std::string folder_name(const std::string& section) {
   return name;
 }
 
-std::string quoted_words(const std::vector<std::string>& words) {
+// The words as a POSIX shell reads them back, for sweep.md's command: a word of other than
+// letters, digits and _@%+=:,./- in single quotes, in which the shell reads nothing but the closing
+// quote ('\'' for a quote). A scene named `x"; rm -rf ~; "` is a word again, not a command.
+std::string shell_words(const std::vector<std::string>& words) {
   std::string all;
-  for (const std::string& word : words) all += (all.empty() ? "" : " ") + (word.find(' ') != std::string::npos ? "\"" + word + "\"" : word);
+  for (const std::string& word : words) {
+    const bool plain = !word.empty() && std::all_of(word.begin(), word.end(), [](char c) {
+      return std::isalnum(static_cast<unsigned char>(c)) || std::string_view("_@%+=:,./-").find(c) != std::string_view::npos;
+    });
+    std::string quoted = "'";
+    for (char c : word) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    all += (all.empty() ? "" : " ") + (plain ? word : quoted + "'");
+  }
   return all;
 }
 
@@ -239,7 +275,7 @@ int run(const session& io, CLI::App& command, const sweep_arguments& top) {
     for (const CLI::Option* option : command.get_options())
       if (option->count() > 0 && option->get_name() != "--help" && option->get_name() != "--plan")
         for (const std::string& value : option->results()) words.insert(words.end(), {option->get_name(), value});
-    sweeps.emplace_back(make_request(top, "", quoted_words(words), top.out), sweep_plan{});
+    sweeps.emplace_back(make_request(top, "", shell_words(words), top.out), sweep_plan{});
   } else {
     // The options given next to --spec, as words added to every section's.
     std::vector<std::string> overrides;
@@ -274,8 +310,12 @@ int run(const session& io, CLI::App& command, const sweep_arguments& top) {
         throw usage_error(top.spec + (section.name.empty() ? "" : " [" + section.name + "]") + ": " + failure.what());
       }
       const fs::path out = section.name.empty() ? fs::path(top.out) : fs::path(top.out) / folder_name(section.name);
-      sweeps.emplace_back(make_request(arguments, section.name, "--spec " + top.spec + (section.name.empty() ? "" : " [" + section.name + "]: ") + quoted_words(words), out),
-                          sweep_plan{});
+      // The command that runs this section again, as sweep.md quotes it.
+      std::vector<std::string> command_words = {"--spec", top.spec};
+      if (!section.name.empty()) command_words.insert(command_words.end(), {"--section", section.name});
+      command_words.insert(command_words.end(), overrides.begin(), overrides.end());
+      command_words.insert(command_words.end(), {"--out", top.out});
+      sweeps.emplace_back(make_request(arguments, section.name, shell_words(command_words), out), sweep_plan{});
     }
     if (!found) throw usage_error("--section " + top.section + ": " + top.spec + " has no such section");
   }
@@ -300,6 +340,8 @@ int run(const session& io, CLI::App& command, const sweep_arguments& top) {
   if (io.dry_run) return 0;
   for (const auto& [request, plan] : sweeps) {
     if (!request.title.empty()) io.out << "sweep [" << request.title << "] into " << request.out.string() << "\n";
+    const folder_lock lock = lock_output(request);
+    check_output(request, plan);  // again under the lock: another sweep may have written its CSV since
     run_sweep(io, request, plan);
   }
   return 0;

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <iomanip>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -102,6 +103,29 @@ std::string unread_message(const std::string& option, const std::string& name, c
   return option + ": " + name + " is read by " + setting_readers(name) + ", not by technique" + (techniques.size() > 1 ? "s " : " ") + joined(techniques, ", ");
 }
 
+// The number of points of the grid, refused past request.max_configurations before anything is
+// planned (planning costs about 1.4 KB and 26 us a point). The product is checked step by step:
+// 8 axes of 256 values wrapped to 0 in 64 bits and ran "0 configurations".
+std::uint64_t grid_size(const sweep_request& request) {
+  std::uint64_t points = 1;
+  long double whole = 1.0L;  // the count when it does not fit in 64 bits, for the message
+  bool fits = true;
+  std::string factors;
+  for (const sweep_axis& axis : request.axes) {
+    const std::uint64_t length = axis.values.size();
+    whole *= static_cast<long double>(length);
+    if (fits && length != 0 && points > std::numeric_limits<std::uint64_t>::max() / length) fits = false;
+    if (fits) points *= length;
+    factors += (factors.empty() ? "" : " x ") + joined(axis.names, ":") + " (" + std::to_string(length) + ")";
+  }
+  if (fits && points <= request.max_configurations) return points;
+  std::ostringstream count;
+  if (fits) count << points;
+  else count << "about " << std::setprecision(3) << static_cast<double>(whole);
+  throw usage_error("--vary: the grid has " + count.str() + " configurations (" + factors + "), more than --max-configurations " +
+                    std::to_string(request.max_configurations) + "; vary fewer values, split it into sections of a --spec, or raise --max-configurations");
+}
+
 }  // namespace
 
 sweep_plan plan_sweep(const sweep_request& request) {
@@ -124,6 +148,7 @@ sweep_plan plan_sweep(const sweep_request& request) {
     }
     plan.technique_axis = true;
   }
+  const std::uint64_t points = grid_size(request);
   // Every setting given or varied exists and some technique of the grid reads it.
   const auto check_name = [&](const std::string& option, const std::string& name) {
     const std::unique_ptr<technique_settings> probe = family.make_settings(techniques.front());
@@ -182,13 +207,11 @@ sweep_plan plan_sweep(const sweep_request& request) {
   }
   // The grid: every point of every axis against every other, deduplicated where a technique does
   // not read a varied setting.
-  std::size_t points = 1;
-  for (const sweep_axis& axis : request.axes) points *= axis.values.size();
   std::set<std::string> seen;
-  for (std::size_t point = 0; point < points; ++point) {
+  for (std::uint64_t point = 0; point < points; ++point) {
     // The point's index on each axis, the last axis fastest.
     std::vector<std::size_t> index(request.axes.size(), 0);
-    for (std::size_t a = request.axes.size(), rest = point; a-- > 0;) {
+    for (std::size_t a = request.axes.size(), rest = static_cast<std::size_t>(point); a-- > 0;) {
       index[a] = rest % request.axes[a].values.size();
       rest /= request.axes[a].values.size();
     }
@@ -269,15 +292,18 @@ void order_columns(sweep_table& table, const std::vector<std::string>& axis_colu
 void rank_against_base(sweep_table& table) {
   if (std::find(table.columns.begin(), table.columns.end(), "is_base") == table.columns.end()) return;
   table.add_column("rank");
+  // Each scene's base row first (the last one where a resumed CSV holds several), then the ranks:
+  // one pass each, not a search of every row per row.
+  std::map<std::string, double> base_ms;
+  for (auto& row : table.rows)
+    if (row["is_base"] == "1")
+      if (const std::optional<double> ms = sweep_table::number(row, "frame_ms")) base_ms[row["scene"]] = *ms;
   for (auto& row : table.rows) {
     row["rank"] = "";
     const std::optional<double> ms = sweep_table::number(row, "frame_ms"), similarity = sweep_table::number(row, "similarity");
-    if (!ms || !similarity || *similarity >= 100.0 || row["is_base"] == "1") continue;
-    for (const auto& base : table.rows) {
-      const std::optional<double> base_ms = sweep_table::number(base, "frame_ms");
-      if (base.at("scene") != row.at("scene") || base.at("is_base") != "1" || !base_ms) continue;
-      row["rank"] = format_real(lightwave_rank(1000.0 / *ms - 1000.0 / *base_ms, *similarity));
-    }
+    const auto base = base_ms.find(row["scene"]);
+    if (!ms || !similarity || *similarity >= 100.0 || row["is_base"] == "1" || base == base_ms.end()) continue;
+    row["rank"] = format_real(lightwave_rank(1000.0 / *ms - 1000.0 / base->second, *similarity));
   }
 }
 
@@ -294,11 +320,41 @@ std::string cell(const std::map<std::string, std::string>& row, const std::strin
   return found == row.end() ? std::string() : found->second;
 }
 
-// The markdown report.
+// A plot of the sweep: DIR/<name>.png, or why gnuplot did not draw it.
+struct drawn_plot {
+  std::string name, caption, failure;
+};
+
+// Draws `plot` as DIR/<name>.png: its script and data are written beside it (NAME.gnuplot and
+// NAME.dat, to be run again by hand), gnuplot draws into a temporary, and the PNG is installed
+// as every output is (write_all_or_nothing). "" on success, else why not.
+std::string draw(const fs::path& folder, const std::string& name, const gnuplot_plot& plot) {
+  const fs::path script = fs::absolute(folder / (name + ".gnuplot")), data = fs::absolute(folder / (name + ".dat")), png = fs::absolute(folder / (name + ".png"));
+  write_all_or_nothing({{script, [&] { return std::vector<std::uint8_t>(plot.script.begin(), plot.script.end()); }},
+                        {data, [&] { return std::vector<std::uint8_t>(plot.data.begin(), plot.data.end()); }}});
+  const fs::path drawn = sibling_temporary_name(png, "partial");
+  std::string failure = run_gnuplot(script, data, drawn);
+  std::error_code code;
+  if (failure.empty() && !fs::is_regular_file(drawn, code)) failure = "gnuplot exited 0 but wrote no PNG";
+  if (failure.empty()) {
+    try {
+      const std::string bytes = read_file(drawn, std::uintmax_t{1} << 28, "PNG gnuplot drew");
+      write_bytes_atomically(png, std::vector<std::uint8_t>(bytes.begin(), bytes.end()));
+    } catch (const error& problem) {
+      failure = problem.what();
+    }
+  }
+  fs::remove(drawn, code);
+  return failure;
+}
+
+// The markdown report. Every name a user gave (a scene, a value, the command, a section) is
+// escaped: shown as it is, never a link, HTML or a table's cell boundary.
 std::string report(const sweep_request& request, const sweep_plan& plan, const sweep_table& table, const std::string& coverage, const std::string& device,
-                   const std::string& method, const std::vector<std::string>& plots, bool pareto_plot, std::size_t resumed) {
+                   const std::string& method, const std::vector<drawn_plot>& plots, std::size_t resumed) {
   std::ostringstream md;
-  md << "# vplkit sweep" << (request.title.empty() ? "" : ": " + request.title) << "\n\n`vplkit sweep " << request.command << "`\n\n"
+  md << "# vplkit sweep" << (request.title.empty() ? "" : ": " + markdown_text(request.title)) << "\n\n"
+     << markdown_code_block("vplkit sweep " + request.command, "sh") << "\n"
      << "Technique family: " << plan.family->title << ". ";
   std::vector<std::string> varied;
   for (const sweep_axis& axis : request.axes) {
@@ -306,9 +362,9 @@ std::string report(const sweep_request& request, const sweep_plan& plan, const s
     for (const auto& point : axis.values) points.push_back(joined(point, ":"));
     varied.push_back(joined(axis.names, ":") + " = " + joined(points, ", "));
   }
-  md << "Varied: " << (varied.empty() ? std::string("nothing") : joined(varied, "; ")) << ". " << plan.configurations.size() << " configurations x "
+  md << "Varied: " << (varied.empty() ? std::string("nothing") : markdown_text(joined(varied, "; "))) << ". " << plan.configurations.size() << " configurations x "
      << plan.scenes.size() << " scene(s). The settings in effect before --vary" << (request.seeds > 1 ? " (the seed is 1 to " + std::to_string(request.seeds) + ")" : "")
-     << ":\n\n```json\n" << settings_json(*plan.defaults, 0) << "\n```\n\n";
+     << ":\n\n" << markdown_code_block(settings_json(*plan.defaults, 0), "json") << "\n";
   md << "**Time**: " << method << ", on:\n\n```\n" << device << "\n```\n\nEvery pass of a frame (the frame the papers time), a warm-up frame first; the "
      << "configurations of a scene are timed interleaved, " << request.group << " at a time (A B C A B C ...), so that they share whatever else the "
      << "machine does: compare times within one run. frame_ms is the mean over the rounds of the sum of the passes, frame_ms_spread the rounds' "
@@ -348,7 +404,7 @@ std::string report(const sweep_request& request, const sweep_plan& plan, const s
   for (const auto& row : table.rows)
     if (std::find(scenes.begin(), scenes.end(), cell(row, "scene")) == scenes.end()) scenes.push_back(cell(row, "scene"));
   for (const std::string& scene : scenes) {
-    md << "## " << scene << "\n\n| " << (plan.technique_axis ? "technique | " : "");
+    md << "## " << markdown_text(scene) << "\n\n| " << (plan.technique_axis ? "technique | " : "");
     for (const std::string& column : plan.axis_columns) md << column << " | ";
     const bool ranked = std::find(table.columns.begin(), table.columns.end(), "rank") != table.columns.end();
     md << "frame ms | spread | ";
@@ -360,8 +416,8 @@ std::string report(const sweep_request& request, const sweep_plan& plan, const s
     md << (ranked ? "---:|" : "") << ":---:|\n";
     for (const auto& row : table.rows) {
       if (cell(row, "scene") != scene) continue;
-      md << "| " << (plan.technique_axis ? cell(row, "technique") + " | " : "");
-      for (const std::string& column : plan.axis_columns) md << (cell(row, column).empty() ? "-" : cell(row, column)) << " | ";
+      md << "| " << (plan.technique_axis ? markdown_text(cell(row, "technique")) + " | " : "");
+      for (const std::string& column : plan.axis_columns) md << (cell(row, column).empty() ? "-" : markdown_text(cell(row, column))) << " | ";
       const auto number = [&](const std::string& column, int digits) {
         const std::optional<double> v = sweep_table::number(row, column);
         return v ? fixed(*v, digits) : std::string("-");
@@ -377,9 +433,12 @@ std::string report(const sweep_request& request, const sweep_plan& plan, const s
     }
     md << "\n";
   }
-  for (const std::string& plot : plots) md << "![" << plot << "](" << plot << ".png)\n\n";
-  if (pareto_plot) md << "![rel_rmse against frame_ms, the Pareto front joined](pareto.png)\n";
-  if (plots.empty() && !pareto_plot) md << "(no plot: gnuplot is not installed, or there is nothing to draw)\n";
+  // The plots, and why any is missing: gnuplot's own reason.
+  for (const drawn_plot& plot : plots)
+    if (plot.failure.empty()) md << "![" << plot.caption << "](" << plot.name << ".png)\n\n";
+  for (const drawn_plot& plot : plots)
+    if (!plot.failure.empty()) md << "No " << plot.name << ".png: " << markdown_text(plot.failure) << "\n\n";
+  if (plots.empty()) md << "(no plot: nothing to draw)\n";
   return md.str();
 }
 
@@ -577,7 +636,7 @@ void run_sweep(const session& io, const sweep_request& request, const sweep_plan
   write_table(csv, table, plan.axis_columns);
 
   // A plot per varied setting (and the technique when it is varied), and the Pareto front.
-  std::vector<std::string> plots;
+  std::vector<drawn_plot> plots;
   std::vector<std::string> axes = plan.axis_columns;
   if (plan.technique_axis) axes.insert(axes.begin(), "technique");
   std::vector<std::string> errors;
@@ -587,27 +646,19 @@ void run_sweep(const session& io, const sweep_request& request, const sweep_plan
     std::vector<std::string> series = {"scene"};
     for (const std::string& other : axes)
       if (other != axis) series.push_back(other);
-    const fs::path png = request.out / (slug(axis) + ".png"), temporary = request.out / ("." + slug(axis) + ".png.tmp");
-    const std::string script = axis_plot_script(table, axis, series, "frame_ms", errors, temporary);
-    if (!script.empty() && run_gnuplot(request.out / (slug(axis) + ".gnuplot"), script) && fs::exists(temporary)) {
-      fs::rename(temporary, png);
-      plots.push_back(slug(axis));
-    }
+    if (const std::optional<gnuplot_plot> plot = axis_plot(table, axis, series, "frame_ms", errors))
+      plots.push_back({slug(axis), "frame_ms and the relative errors against " + axis, draw(request.out, slug(axis), *plot)});
   }
-  bool pareto_plot = false;
-  if (!errors.empty()) {
-    const fs::path temporary = request.out / ".pareto.png.tmp";
-    const std::string script = pareto_plot_script(table, "frame_ms", "rel_rmse", temporary);
-    if (!script.empty() && run_gnuplot(request.out / "pareto.gnuplot", script) && fs::exists(temporary)) {
-      fs::rename(temporary, request.out / "pareto.png");
-      pareto_plot = true;
-    }
-  }
-  const std::string md = report(request, plan, table, coverage, device, method, plots, pareto_plot, resumed);
+  if (!errors.empty())
+    if (const std::optional<gnuplot_plot> plot = pareto_plot(table, "frame_ms", "rel_rmse"))
+      plots.push_back({"pareto", "rel_rmse against frame_ms, the Pareto front joined", draw(request.out, "pareto", *plot)});
+  const std::string md = report(request, plan, table, coverage, device, method, plots, resumed);
   write_bytes_atomically(request.out / "sweep.md", std::vector<std::uint8_t>(md.begin(), md.end()));
   io.out << "wrote " << fs::absolute(csv).string() << "\nwrote " << fs::absolute(request.out / "sweep.md").string() << "\n";
-  for (const std::string& plot : plots) io.out << "wrote " << fs::absolute(request.out / (plot + ".png")).string() << "\n";
-  if (pareto_plot) io.out << "wrote " << fs::absolute(request.out / "pareto.png").string() << "\n";
+  for (const drawn_plot& plot : plots) {
+    if (plot.failure.empty()) io.out << "wrote " << fs::absolute(request.out / (plot.name + ".png")).string() << "\n";
+    else io.out << "sweep: no plot " << fs::absolute(request.out / (plot.name + ".png")).string() << ": " << plot.failure << "\n";
+  }
 }
 
 }  // namespace vplkit::cli

@@ -7,6 +7,7 @@
 // range, a configuration the family refuses.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -41,6 +42,9 @@ struct sweep_request {
   int min_rounds = 3;          ///< the fewest
   double max_noise = 0.02;     ///< stop once every configuration's mean frame time has this relative standard error
   int group = 8;               ///< configurations timed interleaved at once (their pipelines live together)
+  /// The most points the grid may have (the product of the axes' lengths, before configurations
+  /// that a technique reads the same are merged): a larger grid is refused before it is planned.
+  std::uint64_t max_configurations = 100000;
   std::filesystem::path out;
 };
 
@@ -62,7 +66,8 @@ struct sweep_plan {
   std::shared_ptr<const technique_settings> base;      ///< --reference base's configuration
 };
 
-/// Expands and checks the grid. Throws usage_error (exit 2) naming what is wrong.
+/// Expands and checks the grid. Throws usage_error (exit 2) naming what is wrong, a grid of more
+/// than request.max_configurations points among it (counted without overflow, before planning).
 sweep_plan plan_sweep(const sweep_request& request);
 
 /// Runs the plan, skipping the configurations whose rows DIR/sweep.csv already holds, and writes

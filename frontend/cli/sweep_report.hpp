@@ -2,7 +2,7 @@
 // varied setting named as the setting, the frame time and its passes, the quality numbers with
 // their spread over seeds, whether the row is on the Pareto front of error against time), read
 // back to resume; DIR/sweep.md; and a gnuplot plot per varied setting (DIR/<setting>.png) and of
-// the Pareto front (DIR/pareto.png).
+// the Pareto front (DIR/pareto.png), each with its script and data kept beside it.
 #pragma once
 
 #include <filesystem>
@@ -23,25 +23,46 @@ struct sweep_table {
   static std::optional<double> number(const std::map<std::string, std::string>& row, const std::string& column);
 };
 
-/// Reads DIR/sweep.csv back; throws vplkit::error for a file this writer did not write.
+/// Reads DIR/sweep.csv back (RFC 4180: a quoted cell may hold commas, quotes and line ends);
+/// throws vplkit::error for a file this writer did not write.
 sweep_table read_sweep_csv(const std::filesystem::path& path);
-/// The CSV text: RFC 4180 quoting where a cell holds a comma or a quote.
+/// The CSV text: RFC 4180 quoting where a cell holds a comma, a quote or a line end.
 std::string sweep_csv(const sweep_table& table);
 
 /// Marks `pareto` = 1 on the rows no other row of the same scene beats on both `time` and
 /// `error` (lower is better; one of them strictly), 0 on the others, and empty where either is
-/// not measured.
+/// not measured (empty, not a number, or not finite). O(n log n): per scene, one pass over the
+/// rows sorted by time.
 void mark_pareto(sweep_table& table, const std::string& time, const std::string& error);
 
-/// A gnuplot script drawing `ys` against the column `x` (numbers, else categories in row order),
-/// one line per distinct value of `series`, time on the left axis and the other columns on the
-/// right; returns "" when nothing can be drawn.
-std::string axis_plot_script(const sweep_table& table, const std::string& x, const std::vector<std::string>& series, const std::string& time,
-                             const std::vector<std::string>& errors, const std::filesystem::path& png);
-/// A gnuplot script of `error` against `time`, per scene, the Pareto front joined.
-std::string pareto_plot_script(const sweep_table& table, const std::string& time, const std::string& error, const std::filesystem::path& png);
+/// A plot for gnuplot: the script and the data it draws. Nothing a user named (a file name, a
+/// path, a scene name, a setting's value) is in the script: it is run as
+/// `gnuplot -c SCRIPT DATA PNG`, reading the data file and the PNG's path as the strings ARG1 and
+/// ARG2, and the titles and category names as fields of the data file (columnheader, xtic),
+/// which gnuplot shows and never runs.
+struct gnuplot_plot {
+  std::string script;
+  std::string data;
+};
 
-/// Runs gnuplot on `script` (kept as `script_path`); false when gnuplot is missing or fails.
-bool run_gnuplot(const std::filesystem::path& script_path, const std::string& script);
+/// `ys` against the column `x` (numbers, else categories in row order), one line per distinct
+/// value of `series`, time on the left axis and the other columns on the right; nullopt when
+/// nothing can be drawn.
+std::optional<gnuplot_plot> axis_plot(const sweep_table& table, const std::string& x, const std::vector<std::string>& series, const std::string& time,
+                                      const std::vector<std::string>& errors);
+/// `error` against `time`, per scene, the Pareto front joined; nullopt when nothing is measured.
+std::optional<gnuplot_plot> pareto_plot(const sweep_table& table, const std::string& time, const std::string& error);
+
+/// Runs `gnuplot -c script data png` (found on PATH, no shell between), its output kept for the
+/// message. "" when it succeeded; else why not: "gnuplot is not installed (...)", or its exit
+/// status and the last lines it printed.
+std::string run_gnuplot(const std::filesystem::path& script, const std::filesystem::path& data, const std::filesystem::path& png);
+
+/// `text` as markdown shows it literally in a table cell or a heading: every ASCII punctuation
+/// character backslash-escaped (no link, no HTML, no cell boundary), control characters and line
+/// ends as spaces.
+std::string markdown_text(const std::string& text);
+/// `text` as a fenced code block: the fence longer than any run of backticks in it.
+std::string markdown_code_block(const std::string& text, const std::string& language = {});
 
 }  // namespace vplkit::cli

@@ -124,47 +124,38 @@ std::error_code system_rename(const fs::path& from, const fs::path& to) {
   return code;
 }
 
-// An exclusive lock on a folder's output set: flock on ".vplkit-output.lock" in it, removed on
-// release. The file is checked to be the one still at the path after locking (a releasing run
-// may have unlinked the one we opened), so two runs never both hold it.
-class folder_lock {
- public:
-  folder_lock(const fs::path& folder, double wait_seconds) : path_(folder / ".vplkit-output.lock") {
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(std::max(wait_seconds, 0.0));
-    for (;;) {
-      descriptor_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
-      if (descriptor_ < 0) throw error("cannot lock the outputs in " + shown_path(folder) + ": cannot create " + shown_path(path_) + " (" + reason_of(errno) + ")");
-      if (::flock(descriptor_, LOCK_EX | LOCK_NB) == 0) {
-        struct stat opened {}, at_path {};
-        if (::fstat(descriptor_, &opened) == 0 && ::stat(path_.c_str(), &at_path) == 0 && opened.st_dev == at_path.st_dev && opened.st_ino == at_path.st_ino)
-          return;
-        ::close(descriptor_);  // released and removed by its previous holder meanwhile: lock the new one
-        continue;
-      }
-      const int reason = errno;
-      ::close(descriptor_);
-      descriptor_ = -1;
-      if (reason != EWOULDBLOCK && reason != EINTR)
-        throw error("cannot lock the outputs in " + shown_path(folder) + ": " + shown_path(path_) + " (" + reason_of(reason) + ")");
-      if (std::chrono::steady_clock::now() >= deadline)
-        throw error("cannot write to " + shown_path(folder) + ": another process has held its output lock " + shown_path(path_) + " for more than " +
-                    std::to_string(static_cast<long>(wait_seconds)) + " s");
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-  }
-  ~folder_lock() {
-    ::unlink(path_.c_str());
-    ::close(descriptor_);
-  }
-  folder_lock(const folder_lock&) = delete;
-  folder_lock& operator=(const folder_lock&) = delete;
-
- private:
-  fs::path path_;
-  int descriptor_ = -1;
-};
-
 }  // namespace
+
+// The lock's file is checked to be the one still at the path after locking (a releasing run may
+// have unlinked the one we opened), so two runs never both hold it.
+folder_lock::folder_lock(const fs::path& folder, double wait_seconds, const std::string& name) : path_(folder / name) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(std::max(wait_seconds, 0.0));
+  for (;;) {
+    descriptor_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+    if (descriptor_ < 0) throw error("cannot lock the outputs in " + shown_path(folder) + ": cannot create " + shown_path(path_) + " (" + reason_of(errno) + ")");
+    if (::flock(descriptor_, LOCK_EX | LOCK_NB) == 0) {
+      struct stat opened {}, at_path {};
+      if (::fstat(descriptor_, &opened) == 0 && ::stat(path_.c_str(), &at_path) == 0 && opened.st_dev == at_path.st_dev && opened.st_ino == at_path.st_ino)
+        return;
+      ::close(descriptor_);  // released and removed by its previous holder meanwhile: lock the new one
+      continue;
+    }
+    const int reason = errno;
+    ::close(descriptor_);
+    descriptor_ = -1;
+    if (reason != EWOULDBLOCK && reason != EINTR)
+      throw error("cannot lock the outputs in " + shown_path(folder) + ": " + shown_path(path_) + " (" + reason_of(reason) + ")");
+    if (std::chrono::steady_clock::now() >= deadline)
+      throw folder_lock_busy("cannot write to " + shown_path(folder) + ": another process has held its output lock " + shown_path(path_) + " for more than " +
+                             std::to_string(static_cast<long>(wait_seconds)) + " s");
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+}
+
+folder_lock::~folder_lock() {
+  ::unlink(path_.c_str());
+  ::close(descriptor_);
+}
 
 fs::path sibling_temporary_name(const fs::path& target, const std::string& tag) {
   constexpr std::size_t kept = 64;

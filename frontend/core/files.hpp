@@ -13,6 +13,8 @@
 #include <system_error>
 #include <vector>
 
+#include "frontend/core/error.hpp"
+
 namespace vplkit {
 
 /// The whole contents of `path`. Throws vplkit::error naming the path and `what` it was read as
@@ -40,6 +42,32 @@ struct write_options {
   double lock_wait_seconds = 60.0;
   /// The file system's rename(2), as an error code; tests replace it to make a rename fail.
   std::function<std::error_code(const std::filesystem::path& from, const std::filesystem::path& to)> rename;
+};
+
+/// An exclusive lock on a folder, held while the object lives: flock on the file `name` in it,
+/// created when taken and removed when released. write_all_or_nothing takes
+/// ".vplkit-output.lock" for the milliseconds it installs a set; `vplkit sweep` takes
+/// ".vplkit-sweep.lock" for its whole run (another file: its own writes take the first, and flock
+/// refuses a second lock on one file even within the process). Waits at most `wait_seconds`
+/// while another process holds it, then throws folder_lock_busy naming the lock; throws
+/// vplkit::error when the lock file cannot be made.
+class folder_lock {
+ public:
+  folder_lock(const std::filesystem::path& folder, double wait_seconds, const std::string& name = ".vplkit-output.lock");
+  ~folder_lock();
+  folder_lock(const folder_lock&) = delete;
+  folder_lock& operator=(const folder_lock&) = delete;
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+  int descriptor_ = -1;
+};
+
+/// What folder_lock throws when another process held the lock for all of `wait_seconds`.
+class folder_lock_busy : public error {
+ public:
+  using error::error;
 };
 
 /// Writes every file or none, and keeps the previous set when it fails:

@@ -184,6 +184,110 @@ file(WRITE "${WORK}/broken.sweep" "--technique rsm-radial\n[good]\n--vary radius
 expect_usage_error("a specification with a bad section writes nothing" "\\[bad\\] --vary slots: slots is read by" "${WORK}/broken"
                    "${VPLKIT}" sweep --spec "${WORK}/broken.sweep" --out "${WORK}/broken")
 
+# --- no injection: a scene named with a line end, a gnuplot command, quotes and a backslash, into
+# an --out with an apostrophe and a space. gnuplot gets the names as data (and the paths as its
+# ARG1 and ARG2), so nothing runs and the plots are drawn; every writer keeps the name as text. ----
+file(MAKE_DIRECTORY "${WORK}/hostile")
+set(evil "${WORK}/hostile/evil\nsystem \"touch MARKER\"\n#'\\.obj")
+file(READ "${WORK}/room.obj" room_obj)
+file(WRITE "${evil}" "${room_obj}")
+set(hostile_out "${WORK}/hostile/plain")
+set(hostile_sweep "${VPLKIT}" sweep --technique rsm-radial --scene "${evil}" ${tiny} --vary radius=0.125,0.5)
+execute_process(COMMAND ${hostile_sweep} --out "${hostile_out}" WORKING_DIRECTORY "${WORK}/hostile" RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+expect_true("a sweep of a hostile scene name exits 0 (${code}: ${err})" code EQUAL 0)
+# The same measured (a Pareto plot too) into an --out with an apostrophe.
+execute_process(COMMAND ${hostile_sweep} --reference rsm-brute-force --out "${WORK}/hostile/it's out" WORKING_DIRECTORY "${WORK}/hostile"
+                RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+expect_true("the same into an --out with an apostrophe and a space exits 0 (${code}: ${err})" code EQUAL 0)
+file(GLOB_RECURSE markers "${WORK}/*MARKER" "${CMAKE_CURRENT_BINARY_DIR}/MARKER")
+expect_true("the name's gnuplot command never ran (no MARKER: ${markers})" NOT markers)
+if(GNUPLOT)
+  expect_true("the plot is drawn" EXISTS "${hostile_out}/radius.png")
+  expect_true("the --out with an apostrophe gets its plots" EXISTS "${WORK}/hostile/it's out/radius.png" AND EXISTS "${WORK}/hostile/it's out/pareto.png")
+endif()
+file(READ "${hostile_out}/sweep.csv" csv)
+string(FIND "${csv}" "\n\"evil\nsystem \"\"touch MARKER\"\"\n#'\\\",rsm-radial," quoted_cell)
+expect_true("sweep.csv holds the name as one quoted cell (RFC 4180)" quoted_cell GREATER -1)
+file(READ "${hostile_out}/sweep.md" md)
+string(FIND "${md}" "\n## evil system \"touch MARKER\" \\#'\\\\\n" heading)
+expect_true("sweep.md shows the name as a one-line heading, escaped" heading GREATER -1)
+# sweep.md's command, read back by a shell, gives the same words: the name is one word, not code.
+string(REGEX MATCH "```sh\nvplkit sweep ([^`]*)\n```" command "${md}")
+file(WRITE "${WORK}/hostile/words.sh" "printf '[%s]\\n' ${CMAKE_MATCH_1}\n")
+execute_process(COMMAND sh "${WORK}/hostile/words.sh" WORKING_DIRECTORY "${WORK}/hostile" OUTPUT_VARIABLE words RESULT_VARIABLE code)
+string(FIND "${words}" "[--scene]\n[${evil}]\n" scene_word)
+string(FIND "${words}" "[--out]\n[${hostile_out}]\n" out_word)
+expect_true("sweep.md's command is the sweep's words for a shell (exit ${code})" code EQUAL 0 AND scene_word GREATER -1 AND out_word GREATER -1)
+file(GLOB_RECURSE markers "${WORK}/*MARKER")
+expect_true("reading sweep.md's command ran nothing (no MARKER: ${markers})" NOT markers)
+execute_process(COMMAND ${hostile_sweep} --out "${hostile_out}" WORKING_DIRECTORY "${WORK}/hostile" RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+file(READ "${hostile_out}/sweep.csv" again)
+expect_true("the sweep resumes from the CSV the name is quoted in, and adds nothing (${code}: ${err})"
+            code EQUAL 0 AND out MATCHES "resuming .*2 row[(]s[)]" AND again STREQUAL csv)
+
+# gnuplot's own reason when it draws nothing: a gnuplot that fails, and none on PATH.
+file(MAKE_DIRECTORY "${WORK}/fakebin" "${WORK}/emptybin")
+file(WRITE "${WORK}/fakebin/gnuplot" "#!/bin/sh\necho \"fake gnuplot: cannot open the pngcairo terminal\" >&2\nexit 3\n")
+file(CHMOD "${WORK}/fakebin/gnuplot" PERMISSIONS OWNER_READ OWNER_WRITE OWNER_EXECUTE)
+expect_success("a failing gnuplot's reason is named" "no plot .*radius\\.png: gnuplot failed \\(exit status 3\\): fake gnuplot: cannot open the pngcairo terminal"
+               ${CMAKE_COMMAND} -E env "PATH=${WORK}/fakebin:$ENV{PATH}" "${VPLKIT}" sweep --technique rsm-radial ${tiny} --vary radius=0.125,0.5 --out "${WORK}/fake")
+file(READ "${WORK}/fake/sweep.md" md)
+expect_true("sweep.md names gnuplot's failure, not a missing gnuplot" md MATCHES "No radius[.]png: gnuplot failed" AND NOT md MATCHES "not installed")
+expect_success("no gnuplot on PATH is named as such" "no plot .*radius\\.png: gnuplot is not installed"
+               ${CMAKE_COMMAND} -E env "PATH=${WORK}/emptybin" "${VPLKIT}" sweep --technique rsm-radial ${tiny} --vary radius=0.125,0.5 --out "${WORK}/none")
+
+# --- the grid's size: counted without overflow, bounded before it is planned -------------------
+set(values "")
+foreach(i RANGE 1 256)
+  list(APPEND values ${i})
+endforeach()
+string(JOIN "," values ${values})
+set(axes "")
+foreach(name size rsm-size indirect-divisor radius paths samples-per-path min-radius rotation-jitter)
+  list(APPEND axes --vary "${name}=${values}")
+endforeach()
+expect_usage_error("8 axes of 256 values: 2^64 configurations, counted, not wrapped to 0"
+                   "the grid has about 1\\.84e\\+19 configurations \\(size \\(256\\) x rsm-size \\(256\\) x .*\\), more than --max-configurations 100000"
+                   "${WORK}/g1" "${VPLKIT}" sweep --technique rsm-radial ${axes} --out "${WORK}/g1")
+set(thousand "")
+foreach(i RANGE 1 1000)
+  list(APPEND thousand ${i})
+endforeach()
+list(SUBLIST thousand 0 200 two_hundred)
+string(JOIN "," thousand ${thousand})
+string(JOIN "," two_hundred ${two_hundred})
+expect_usage_error("400,000 configurations are refused before they are planned"
+                   "the grid has 400000 configurations \\(radius \\(2\\) x paths \\(1000\\) x samples-per-path \\(200\\)\\), more than --max-configurations 100000"
+                   "${WORK}/g2" "${VPLKIT}" sweep --technique rsm-radial --vary radius=0.1,0.2 --vary "paths=${thousand}" --vary "samples-per-path=${two_hundred}"
+                   --out "${WORK}/g2")
+expect_usage_error("--max-configurations is a positive count" "--max-configurations: Value 0 not in range" "${WORK}/g3"
+                   "${VPLKIT}" sweep --technique rsm-radial --vary radius=0.1,0.2 --max-configurations 0 --out "${WORK}/g3")
+expect_usage_error("--max-configurations 2 refuses 3" "the grid has 3 configurations \\(radius \\(3\\)\\), more than --max-configurations 2" "${WORK}/g4"
+                   "${VPLKIT}" sweep --technique rsm-radial --vary radius=0.1,0.2,0.3 --max-configurations 2 --out "${WORK}/g4")
+expect_success("--max-configurations 3 plans 3" "3 configuration\\(s\\)"
+               "${VPLKIT}" sweep --technique rsm-radial --vary radius=0.1,0.2,0.3 --max-configurations 3 --plan --out "${WORK}/g4")
+
+# --- one sweep at a time in a folder: the second, started while the first holds the folder's lock,
+# is refused and writes nothing; the first's rows are whole; run again, it adds its own. -----------
+execute_process(COMMAND sh -c "\"$0\" sweep --technique rsm-radial --size 24 --rsm-size 32 --repeat 150 --min-rounds 150 --vary radius=0.125,0.25 --out \"$1\" >\"$2/first.txt\" 2>&1 & first=$!
+                               i=0; while [ ! -e \"$1/.vplkit-sweep.lock\" ] && [ $i -lt 500 ]; do sleep 0.02; i=$((i + 1)); done
+                               \"$0\" sweep --technique rsm-radial --size 24 --rsm-size 32 --repeat 1 --min-rounds 1 --vary radius=0.5,0.75 --out \"$1\" >\"$2/second.txt\" 2>&1
+                               second=$?; wait $first; echo \"$? $second\""
+                        "${VPLKIT}" "${WORK}/both" "${WORK}"
+                OUTPUT_VARIABLE codes OUTPUT_STRIP_TRAILING_WHITESPACE)
+file(READ "${WORK}/second.txt" second)
+expect_true("two concurrent sweeps into one --out: the first exits 0, the second 1 (${codes}): ${second}"
+            codes STREQUAL "0 1" AND second MATCHES "another vplkit sweep is writing to .*both [(]it holds .*[.]vplkit-sweep[.]lock[)]")
+read_rows("${WORK}/both/sweep.csv" rows)
+list(LENGTH rows count)
+expect_true("the first sweep's 2 rows, none of the second's" count EQUAL 3 AND rows MATCHES "rsm-radial,0[.]125," AND NOT rows MATCHES "rsm-radial,0[.](5|75),")
+expect_true("the lock is gone with its holder" NOT EXISTS "${WORK}/both/.vplkit-sweep.lock")
+expect_success("the second sweep, run again, adds its rows" "resuming .*2 row\\(s\\)"
+               "${VPLKIT}" sweep --technique rsm-radial --size 24 --rsm-size 32 --repeat 1 --min-rounds 1 --vary radius=0.5,0.75 --out "${WORK}/both")
+read_rows("${WORK}/both/sweep.csv" rows)
+list(LENGTH rows count)
+expect_true("4 rows: both sweeps' whole" count EQUAL 5)
+
 # --- render --stats ----------------------------------------------------------------------------
 expect_success("render --stats with a reference" "quality against rsm-brute-force.*rel_rmse.*wrote .*stats\\.json"
                "${VPLKIT}" render --technique rsm-alg6 --scene occluder --size 24 --rsm-size 32 --reference rsm-brute-force --stats "${WORK}/stats.json"
