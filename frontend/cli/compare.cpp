@@ -2,6 +2,7 @@
 // pixels and over a mask, and a false-colour error image.
 #include <iomanip>
 #include <optional>
+#include <sstream>
 
 #include "frontend/cli/commands.hpp"
 #include "frontend/cli/output.hpp"
@@ -23,6 +24,15 @@ struct compare_state {
 
 std::string size_of(const image& i) { return std::to_string(i.width) + "x" + std::to_string(i.height); }
 
+// A relative number as the table shows it: the number, or "undefined" and why (a black reference
+// has no level to be relative to; 0 there would read as a perfect match).
+std::string relative_cell(const relative_error& error, double value) {
+  if (!error.defined) return "undefined: " + error.why_undefined;
+  std::ostringstream text;
+  text << std::setprecision(6) << value;
+  return text.str();
+}
+
 int run_compare(const session& io, const compare_state& s) {
   std::optional<output_set> files;
   if (!s.error_image.empty()) {
@@ -41,13 +51,16 @@ int run_compare(const session& io, const compare_state& s) {
     throw error("the mask " + s.mask + " is " + size_of(*mask) + " but the reference " + s.reference + " is " + size_of(reference));
   const image_metrics m = compare_images(candidate, reference, mask ? &*mask : nullptr);
   if (files) files->add_png(files->main(), candidate.width, candidate.height, false_colour_error(candidate, reference, s.error_scale));
-  io.out << std::setprecision(6) << "| metric | value |\n|---|---:|\n| RMSE | " << m.rmse << " |\n| relative MSE | " << m.relative_mse
-         << " |\n| PSNR (dB) | " << m.psnr << " |\n| SSIM (luminance) | " << m.ssim << " |\n| similarity (Alg. 1, %) | " << m.similarity << " |\n";
-  io.out << "| relative RMSE (RMSE / reference mean) | " << m.relative.rmse << " |\n| relative bias ((mean - reference mean) / reference mean) | "
-         << m.relative.bias << " |\n";
+  io.out << std::setprecision(6) << "| metric | value |\n|---|---:|\n| RMSE | " << m.rmse << " |\n| relative MSE | " << m.relative_mse << " |\n| PSNR (dB) | ";
+  if (m.psnr_defined) io.out << m.psnr;
+  else io.out << "undefined: " << m.why_psnr_undefined;
+  io.out << " |\n| SSIM (luminance) | " << m.ssim << " |\n| similarity (Alg. 1, %) | " << m.similarity << " |\n";
+  io.out << "| relative RMSE (RMSE / reference mean) | " << relative_cell(m.relative, m.relative.rmse)
+         << " |\n| relative bias ((mean - reference mean) / reference mean) | " << relative_cell(m.relative, m.relative.bias) << " |\n";
   if (m.leak_rmse) io.out << "| masked RMSE (" << m.leak_pixels << " pixels, e.g. a leak region) | " << *m.leak_rmse << " |\n";
   if (m.masked)
-    io.out << "| masked relative RMSE (" << m.masked->pixels << " pixels) | " << m.masked->rmse << " |\n| masked relative bias | " << m.masked->bias << " |\n";
+    io.out << "| masked relative RMSE (" << m.masked->pixels << " pixels) | " << relative_cell(*m.masked, m.masked->rmse) << " |\n| masked relative bias | "
+           << relative_cell(*m.masked, m.masked->bias) << " |\n";
   if (files) files->write(io.out);
   return 0;
 }

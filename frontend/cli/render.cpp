@@ -174,11 +174,21 @@ int run_render(const session& io, const render_state& s) {
     const frame_quality quality = references.measure(*drawn, *settings);
     io.out << "quality against " << reference_name(kind) << " (" << quality.receivers << " receivers or pixels):\n| metric | value |\n|---|---:|\n";
     quality_json = ",\n  \"quality\": {\"reference\": " + json_string(reference_name(kind)) + ", \"receivers\": " + std::to_string(quality.receivers);
-    for (const auto& [name, value] : quality.metrics) {
-      io.out << "| " << name << " | " << std::setprecision(6) << value << " |\n";
-      quality_json += ", " + json_string(name) + ": " + json_number(value);
+    // A relative number against a black reference does not exist: "undefined" and why in the
+    // table, null in the JSON with the reason under "undefined", never a number to compare.
+    std::string undefined_json;
+    for (const quality_metric& metric : quality.metrics) {
+      if (metric.defined) {
+        io.out << "| " << metric.name << " | " << std::setprecision(6) << metric.value << " |\n";
+        quality_json += ", " + json_string(metric.name) + ": " + json_number(metric.value);
+      } else {
+        io.out << "| " << metric.name << " | undefined: " << metric.why_undefined << " |\n";
+        quality_json += ", " + json_string(metric.name) + ": null";
+        undefined_json += (undefined_json.empty() ? "" : ", ") + json_string(metric.name) + ": " + json_string(metric.why_undefined);
+      }
     }
     io.out << references.coverage() << "\n";
+    if (!undefined_json.empty()) quality_json += ", \"undefined\": {" + undefined_json + "}";
     quality_json += ", \"covers\": " + json_string(references.coverage()) + "}";
   }
   if (!s.stats.empty()) {

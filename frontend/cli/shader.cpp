@@ -56,11 +56,17 @@ std::string make_escaped(const fs::path& path) {
 
 std::vector<std::uint8_t> bytes_of(const std::string& text) { return {text.begin(), text.end()}; }
 
+// -o - and -o /dev/stdout: the command's own standard output, the stream whose writes main()
+// checks, rather than a path opened again (which, when standard output is a regular file, would
+// replace that file behind the shell's back).
+bool is_standard_output(const std::string& out) { return out == "-" || out == "/dev/stdout"; }
+
 int run_expand(const session& io, const expand_state& s) {
   shader_defines defines;
   for (const std::string& define : s.defines) defines.push_back(parse_define(define));
-  if (!s.out.empty() && same_file(s.out, s.file)) throw usage_error("-o " + s.out + " is the input " + s.file + "; name a new file");
-  if (!s.depfile.empty() && s.out.empty()) throw usage_error("--depfile names the dependencies of -o OUT; give -o");
+  const bool to_standard_output = s.out.empty() || is_standard_output(s.out);
+  if (!to_standard_output && same_file(s.out, s.file)) throw usage_error("-o " + s.out + " is the input " + s.file + "; name a new file");
+  if (!s.depfile.empty() && to_standard_output) throw usage_error("--depfile names the dependencies of -o OUT; give -o with a file");
   if (io.dry_run) return 0;
   shader_library library(s.shader_dir.empty() ? default_shader_dir() : fs::path(s.shader_dir));
   for (const std::string& root : s.roots) library.add_root(root);
@@ -71,7 +77,7 @@ int run_expand(const session& io, const expand_state& s) {
   text += "// vplkit shader expand: the source-string numbers of the #line directives:";
   for (std::size_t i = 0; i < source.file_names.size(); ++i) text += (i ? ", " : " ") + std::to_string(i) + " " + source.file_names[i];
   text += "\n";
-  if (s.out.empty()) {
+  if (to_standard_output) {
     io.out << text;
     return 0;
   }
@@ -96,7 +102,7 @@ command add_shader_command(CLI::App& app) {
   expand->add_option("file", state->file, "the GLSL file")->required();
   expand->add_option("--root", state->roots, "a folder searched for included files, before vplkit's shaders (repeat: searched in order)")
       ->check(CLI::ExistingDirectory);
-  expand->add_option("-o,--out", state->out, "output file (default: standard output)");
+  expand->add_option("-o,--out", state->out, "output file (default, or - or /dev/stdout: standard output)");
   expand->add_option("-D,--define", state->defines, "NAME=VALUE: a #define line right after #version (repeat for several)");
   expand->add_option("--depfile", state->depfile, "also write a Makefile rule: OUT depends on FILE and every file it included");
   expand->add_option("--shader-dir", state->shader_dir, "folder with the vplkit shaders (default: $VPLKIT_SHADER_DIR, then the built-in path)");

@@ -266,7 +266,8 @@ struct timing {
 };
 
 const std::vector<std::string> head_columns = {"scene", "technique"};
-const std::vector<std::string> tail_columns = {"receivers", "seeds", "is_base", "rank", "pareto", "key"};
+// "undefined": why a row's relative numbers are "undefined" (a black reference), when one is.
+const std::vector<std::string> tail_columns = {"undefined", "receivers", "seeds", "is_base", "rank", "pareto", "key"};
 
 // The columns in their order: scene, technique, the varied settings, the timing, the passes, the
 // quality numbers, then the bookkeeping.
@@ -420,7 +421,7 @@ std::string report(const sweep_request& request, const sweep_plan& plan, const s
       for (const std::string& column : plan.axis_columns) md << (cell(row, column).empty() ? "-" : markdown_text(cell(row, column))) << " | ";
       const auto number = [&](const std::string& column, int digits) {
         const std::optional<double> v = sweep_table::number(row, column);
-        return v ? fixed(*v, digits) : std::string("-");
+        return v ? fixed(*v, digits) : std::string(cell(row, column) == "undefined" ? "undefined" : "-");
       };
       md << number("frame_ms", 2) << " | " << number("frame_ms_spread", 3) << " | ";
       for (const std::string& metric : metrics) {
@@ -431,6 +432,17 @@ std::string report(const sweep_request& request, const sweep_plan& plan, const s
       if (ranked) md << (cell(row, "is_base") == "1" ? std::string("base") : number("rank", 2)) << " | ";
       md << (cell(row, "pareto") == "1" ? "*" : "") << " |\n";
     }
+    md << "\n";
+  }
+  // Why numbers are undefined, each reason once with its rows' count.
+  std::map<std::string, int> undefined;
+  for (const auto& row : table.rows)
+    if (!cell(row, "undefined").empty()) ++undefined[cell(row, "undefined")];
+  if (!undefined.empty()) {
+    md << "**Undefined numbers**: a relative number has no level to be relative to against a reference that is black where it counts, "
+       << "and none over no receiver (an empty leak region). It is \"undefined\" in the CSV (the column undefined says why), not 0, and a "
+       << "row whose rel_rmse is undefined is never on the Pareto front:\n\n";
+    for (const auto& [why, rows] : undefined) md << "- " << rows << " row(s): " << markdown_text(why) << "\n";
     md << "\n";
   }
   // The plots, and why any is missing: gnuplot's own reason.
@@ -568,8 +580,9 @@ void run_sweep(const session& io, const sweep_request& request, const sweep_plan
           row[slug(pass) + "_ms"] = number_text(of(timings[i].passes[pass]).mean);
         }
         const int seeds = seeds_of(*configuration.settings);
-        std::map<std::string, std::vector<double>> metrics;
+        std::map<std::string, std::vector<double>> metrics;  // the seeds' values of the defined ones
         std::vector<std::string> metric_order;
+        std::map<std::string, std::string> undefined;  // metric -> why, where a seed's is undefined
         std::vector<image> raws;
         std::size_t receivers = 0;
         if (reference.kind != reference_kind::none) {
@@ -585,9 +598,10 @@ void run_sweep(const session& io, const sweep_request& request, const sweep_plan
             drawn->draw();
             drawn->collect_pass_times();
             frame_quality quality = references.measure(*drawn, *settings);
-            for (const auto& [name, value] : quality.metrics) {
-              if (!metrics.count(name)) metric_order.push_back(name);
-              metrics[name].push_back(value);
+            for (const quality_metric& metric : quality.metrics) {
+              if (std::find(metric_order.begin(), metric_order.end(), metric.name) == metric_order.end()) metric_order.push_back(metric.name);
+              if (metric.defined) metrics[metric.name].push_back(metric.value);
+              else undefined.emplace(metric.name, metric.why_undefined);
             }
             receivers = quality.receivers;
             if (!quality.raw.texels.empty()) raws.push_back(std::move(quality.raw));
@@ -598,8 +612,13 @@ void run_sweep(const session& io, const sweep_request& request, const sweep_plan
           done_units += static_cast<double>(seeds);
         }
         for (const std::string& name : metric_order) {
-          const std::vector<double>& values = metrics[name];
           table.add_column(name);
+          // Undefined at one seed is undefined for the mean: never a number a ranking could read.
+          if (undefined.count(name)) {
+            row[name] = "undefined";
+            continue;
+          }
+          const std::vector<double>& values = metrics[name];
           row[name] = number_text(of(values).mean);
           if (values.size() > 1) {
             table.add_column(name + "_sd");
@@ -616,7 +635,19 @@ void run_sweep(const session& io, const sweep_request& request, const sweep_plan
         }
         if (raws.size() > 1) {
           table.add_column("seed_noise");
-          row["seed_noise"] = number_text(references.seed_noise(raws, *seeded[i]));
+          const quality_metric noise = references.seed_noise(raws, *seeded[i]);
+          row["seed_noise"] = noise.defined ? number_text(noise.value) : "undefined";
+          if (!noise.defined) undefined.emplace("seed_noise", noise.why_undefined);
+        }
+        if (!undefined.empty()) {
+          // "rel_bias rel_rmse: why | leak_rmse: why", the metrics of one reason together (no comma
+          // or semicolon: the cell needs no CSV quoting in either dialect).
+          std::map<std::string, std::string> by_reason;
+          for (const auto& [name, reason] : undefined) by_reason[reason] += (by_reason[reason].empty() ? "" : " ") + name;
+          std::string why;
+          for (const auto& [reason, names] : by_reason) why += (why.empty() ? "" : " | ") + names + ": " + reason;
+          table.add_column("undefined");
+          row["undefined"] = why;
         }
         row["receivers"] = reference.kind == reference_kind::none ? "" : std::to_string(receivers);
         row["seeds"] = std::to_string(reference.kind == reference_kind::none ? 0 : seeds);
@@ -626,7 +657,8 @@ void run_sweep(const session& io, const sweep_request& request, const sweep_plan
           row["is_base"] = identity(*configuration.settings) == identity(*plan.base) ? "1" : "0";
         }
         std::string summary = shown_scene(scene) + ": " + configuration.label + ": " + fixed(frames.mean, 2) + " ms";
-        if (metrics.count("rel_rmse")) summary += ", rel_rmse " + fixed(of(metrics["rel_rmse"]).mean, 4) + ", rel_bias " + fixed(of(metrics["rel_bias"]).mean, 4);
+        for (const char* name : {"rel_rmse", "rel_bias"})
+          if (row.count(name)) summary += std::string(", ") + name + " " + (row[name] == "undefined" ? std::string("undefined") : fixed(of(metrics[name]).mean, 4));
         progress(summary);
         table.rows.push_back(std::move(row));
       }

@@ -84,6 +84,24 @@ std::string random_hex() {
   return text;
 }
 
+// Writes all of `bytes` to `descriptor` and closes it: 0, or the errno of the first failure
+// (NFS and full disks may report only on close).
+int write_and_close(int descriptor, const std::vector<std::uint8_t>& bytes) {
+  std::size_t done = 0;
+  int failure = 0;
+  while (done < bytes.size()) {
+    const ssize_t written = ::write(descriptor, bytes.data() + done, std::min<std::size_t>(bytes.size() - done, std::size_t{1} << 30));
+    if (written < 0 && errno == EINTR) continue;
+    if (written <= 0) {
+      failure = written < 0 ? errno : EIO;
+      break;
+    }
+    done += static_cast<std::size_t>(written);
+  }
+  if (::close(descriptor) != 0 && failure == 0) failure = errno;  // NFS and full disks report on close
+  return failure;
+}
+
 // Writes `bytes` to a new temporary file next to `path` (O_EXCL: never an existing file or a
 // link someone placed there) and returns its name.
 fs::path write_temporary(const fs::path& path, const std::vector<std::uint8_t>& bytes) {
@@ -98,24 +116,39 @@ fs::path write_temporary(const fs::path& path, const std::vector<std::uint8_t>& 
       if (reason == EEXIST && attempt < 16) continue;
       throw error("cannot write " + shown_path(path) + ": cannot create a temporary file next to it (" + reason_of(reason) + ")");
     }
-    std::size_t done = 0;
-    int failure = 0;
-    while (done < bytes.size()) {
-      const ssize_t written = ::write(descriptor, bytes.data() + done, std::min<std::size_t>(bytes.size() - done, std::size_t{1} << 30));
-      if (written < 0 && errno == EINTR) continue;
-      if (written <= 0) {
-        failure = written < 0 ? errno : EIO;
-        break;
-      }
-      done += static_cast<std::size_t>(written);
-    }
-    if (::close(descriptor) != 0 && failure == 0) failure = errno;  // NFS and full disks report on close
-    if (failure != 0) {
+    if (const int failure = write_and_close(descriptor, bytes); failure != 0) {
       ::unlink(temporary.c_str());
       throw error("cannot write " + shown_path(path) + ": " + reason_of(failure));
     }
     return temporary;
   }
+}
+
+// What a file-system entry is, for messages.
+std::string kind_of(mode_t mode) {
+  if (S_ISREG(mode)) return "a regular file";
+  if (S_ISDIR(mode)) return "a folder";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISFIFO(mode)) return "a FIFO";
+  if (S_ISSOCK(mode)) return "a socket";
+  if (S_ISLNK(mode)) return "a symbolic link";
+  return "a special file";
+}
+
+// Gives `bytes` to the device or FIFO at `path` as cp does: opened for writing, following links,
+// never created or truncated. What was opened is checked not to be a regular file: an entry
+// swapped in since it was classified would otherwise be overwritten in place, not whole.
+void write_through(const fs::path& path, const std::vector<std::uint8_t>& bytes) {
+  const int descriptor = ::open(path.c_str(), O_WRONLY | O_NOCTTY | O_CLOEXEC);
+  if (descriptor < 0) throw error("cannot write " + shown_path(path) + ": " + reason_of(errno));
+  struct stat opened {};
+  if (::fstat(descriptor, &opened) != 0 || S_ISREG(opened.st_mode)) {
+    ::close(descriptor);
+    throw error("cannot write " + shown_path(path) + ": it became a regular file while the outputs were made; it is left as it is");
+  }
+  if (const int failure = write_and_close(descriptor, bytes); failure != 0)
+    throw error("cannot write " + shown_path(path) + " (" + kind_of(opened.st_mode) + ", written through): " + reason_of(failure));
 }
 
 std::error_code system_rename(const fs::path& from, const fs::path& to) {
@@ -171,6 +204,72 @@ fs::path sibling_temporary_name(const fs::path& target, const std::string& tag) 
   return target.has_parent_path() ? target.parent_path() / temporary : fs::path(temporary);
 }
 
+output_target output_target_of(const fs::path& path) {
+  struct stat entry {};
+  // Not there (a new file), a regular file or a folder (write_temporary names it): replaced whole.
+  if (::lstat(path.c_str(), &entry) != 0 || S_ISREG(entry.st_mode) || S_ISDIR(entry.st_mode)) return {path, false};
+  struct stat target = entry;
+  if (S_ISLNK(entry.st_mode) && ::stat(path.c_str(), &target) != 0) {
+    const int reason = errno;
+    std::error_code ignored;
+    const fs::path to = fs::read_symlink(path, ignored);
+    if (reason == ENOENT)
+      throw error("cannot write " + shown_path(path) + ": it is a link to " + shown_path(to) +
+                  ", which does not exist (vplkit writes through a link only to an existing file)");
+    throw error("cannot write " + shown_path(path) + ": cannot follow the link (" + reason_of(reason) + ")");
+  }
+  if (S_ISSOCK(target.st_mode))
+    throw error("cannot write " + shown_path(path) + ": it is " + std::string(S_ISLNK(entry.st_mode) ? "a link to " : "") + "a socket, not a file");
+  if (S_ISDIR(target.st_mode)) return {path, false};
+  if (!S_ISREG(target.st_mode)) return {path, true};
+  // A link to a regular file: that file is replaced whole, in its own folder (a temporary next to
+  // the link could be on another file system), and the link stays. The resolved path must still
+  // name the file the link does (/proc's links to deleted files resolve to a name that does not).
+  std::error_code code;
+  const fs::path resolved = fs::canonical(path, code);
+  struct stat at_resolved {};
+  if (code || ::stat(resolved.c_str(), &at_resolved) != 0 || at_resolved.st_dev != target.st_dev || at_resolved.st_ino != target.st_ino)
+    throw error("cannot write " + shown_path(path) + ": cannot tell which file the link names" + (code ? " (" + code.message() + ")" : std::string()));
+  return {resolved, false};
+}
+
+descriptor_output::descriptor_output(int descriptor) : descriptor_(descriptor), by_line_(::isatty(descriptor) == 1) {}
+
+descriptor_output::~descriptor_output() { write_pending(); }
+
+std::streamsize descriptor_output::xsputn(const char* text, std::streamsize count) {
+  if (failure_ != 0 || count <= 0) return 0;
+  pending_.append(text, static_cast<std::size_t>(count));
+  const bool line_ended = by_line_ && std::memchr(text, '\n', static_cast<std::size_t>(count)) != nullptr;
+  if ((pending_.size() >= (std::size_t{1} << 16) || line_ended) && !write_pending()) return 0;
+  return count;
+}
+
+descriptor_output::int_type descriptor_output::overflow(int_type c) {
+  if (traits_type::eq_int_type(c, traits_type::eof())) return sync() == 0 ? traits_type::not_eof(c) : traits_type::eof();
+  const char one = traits_type::to_char_type(c);
+  return xsputn(&one, 1) == 1 ? c : traits_type::eof();
+}
+
+int descriptor_output::sync() { return write_pending() ? 0 : -1; }
+
+bool descriptor_output::write_pending() {
+  if (failure_ != 0) return false;
+  std::size_t done = 0;
+  while (done < pending_.size()) {
+    const ssize_t written = ::write(descriptor_, pending_.data() + done, pending_.size() - done);
+    if (written < 0 && errno == EINTR) continue;
+    if (written <= 0) {
+      failure_ = written < 0 ? errno : EIO;
+      pending_.clear();
+      return false;
+    }
+    done += static_cast<std::size_t>(written);
+  }
+  pending_.clear();
+  return true;
+}
+
 std::string read_file(const fs::path& path, std::uintmax_t max_bytes, const std::string& what) {
   const std::uintmax_t bytes = checked_size(path, max_bytes, what);
   std::string contents(static_cast<std::size_t>(bytes), '\0');
@@ -195,20 +294,39 @@ void write_all_or_nothing(const std::vector<output_file>& files, const write_opt
         throw error("two outputs would be written to " + shown_path(files[i].path));
   const auto rename = options.rename ? options.rename : system_rename;
 
-  // 1. Every temporary, or none.
-  std::vector<fs::path> temporaries;
+  // Each path as it is treated: a regular file replaced whole, or a device or FIFO written through.
+  std::vector<output_target> targets;
+  for (const output_file& file : files) targets.push_back(output_target_of(file.path));
+
+  // 1. Every temporary, or none; the bytes of the outputs written through are kept for step 1b.
+  std::vector<fs::path> temporaries(files.size());
+  std::vector<std::vector<std::uint8_t>> through(files.size());
   const auto remove_temporaries = [&] {
-    for (const fs::path& temporary : temporaries) ::unlink(temporary.c_str());
+    for (const fs::path& temporary : temporaries)
+      if (!temporary.empty()) ::unlink(temporary.c_str());
   };
   try {
-    for (const output_file& file : files) {
+    for (std::size_t i = 0; i < files.size(); ++i) {
       std::vector<std::uint8_t> bytes;
       try {
-        bytes = file.encode();
+        bytes = files[i].encode();
       } catch (const error& failure) {
-        throw error("cannot write " + shown_path(file.path) + ": " + failure.what());
+        throw error("cannot write " + shown_path(files[i].path) + ": " + failure.what());
       }
-      temporaries.push_back(write_temporary(file.path, bytes));
+      if (targets[i].write_through) through[i] = std::move(bytes);
+      else temporaries[i] = write_temporary(targets[i].path, bytes);
+    }
+    // 1b. The devices and FIFOs, once every file is made (a failed encoding or temporary gives
+    // them nothing) and before any lock (a FIFO waits for its reader, holding up no one else).
+    std::string written_through;
+    for (std::size_t i = 0; i < files.size(); ++i) {
+      if (!targets[i].write_through) continue;
+      try {
+        write_through(targets[i].path, through[i]);
+      } catch (const error& failure) {
+        throw error(failure.what() + (written_through.empty() ? std::string() : "; " + written_through + " already got its bytes"));
+      }
+      written_through += (written_through.empty() ? "" : ", ") + shown_path(targets[i].path);
     }
   } catch (...) {
     remove_temporaries();
@@ -217,7 +335,8 @@ void write_all_or_nothing(const std::vector<output_file>& files, const write_opt
 
   // 2. The folders' locks, in a fixed order (two runs never wait on each other crosswise).
   std::set<fs::path> folders;
-  for (const output_file& file : files) folders.insert(fs::absolute(file.path).lexically_normal().parent_path());
+  for (const output_target& target : targets)
+    if (!target.write_through) folders.insert(fs::absolute(target.path).lexically_normal().parent_path());
   std::vector<std::unique_ptr<folder_lock>> locks;
   try {
     for (const fs::path& folder : folders) locks.push_back(std::make_unique<folder_lock>(folder, options.lock_wait_seconds));
@@ -228,30 +347,39 @@ void write_all_or_nothing(const std::vector<output_file>& files, const write_opt
 
   // 3. Each previous file aside, each new one in; 4. back on failure.
   struct installed {
-    fs::path target;
+    fs::path target, temporary;
     std::optional<fs::path> previous;  ///< where the previous file was moved aside
     bool new_in = false;
   };
   std::vector<installed> done;
+  std::vector<bool> started(files.size(), false);
   const auto roll_back = [&]() -> std::string {
     std::string kept;
     for (auto entry = done.rbegin(); entry != done.rend(); ++entry) {
-      if (entry->new_in) ::unlink(entry->target.c_str());
+      ::unlink((entry->new_in ? entry->target : entry->temporary).c_str());
       if (entry->previous) {
         if (const std::error_code code = rename(*entry->previous, entry->target))
           kept += "; the previous " + shown_path(entry->target) + " could not be put back (" + code.message() + ") and is kept as " +
                   shown_path(*entry->previous);
       }
     }
-    for (std::size_t i = done.size(); i < temporaries.size(); ++i) ::unlink(temporaries[i].c_str());
-    if (!done.empty() && !done.back().new_in) ::unlink(temporaries[done.size() - 1].c_str());
+    for (std::size_t i = 0; i < files.size(); ++i)
+      if (!started[i] && !temporaries[i].empty()) ::unlink(temporaries[i].c_str());
     return kept;
   };
   for (std::size_t i = 0; i < files.size(); ++i) {
-    const fs::path& target = files[i].path;
-    done.push_back({target, std::nullopt, false});
+    if (targets[i].write_through) continue;
+    const fs::path& target = targets[i].path;
+    started[i] = true;
+    done.push_back({target, temporaries[i], std::nullopt, false});
     struct stat existing {};
     if (::lstat(target.c_str(), &existing) == 0) {
+      // Only a regular file is moved aside: anything else put here since step 1 stays as it is.
+      if (!S_ISREG(existing.st_mode)) {
+        const std::string kept = roll_back();
+        throw error("cannot write " + shown_path(target) + ": it is now " + kind_of(existing.st_mode) +
+                    ", which appeared while the outputs were made; it is left as it is" + kept);
+      }
       const fs::path aside = sibling_temporary_name(target, "old");
       if (const std::error_code code = rename(target, aside)) {
         const std::string kept = roll_back();

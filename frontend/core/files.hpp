@@ -2,13 +2,16 @@
 // it is a regular file within a size limit (so /dev/zero or a 10 GB file is refused by name before
 // anything is allocated), and outputs are written whole or not at all: each to a temporary file
 // next to its target; then, holding a lock on the output folder, every previous file is moved
-// aside and every new one renamed in; any failure puts the previous files back. Every message
-// names the file and keeps the system's reason (strerror).
+// aside and every new one renamed in; any failure puts the previous files back. An output that
+// exists and is not a regular file (a device, a FIFO) is written through, as cp does, and never
+// renamed over, moved or deleted. Every message names the file and keeps the system's reason
+// (strerror).
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <streambuf>
 #include <string>
 #include <system_error>
 #include <vector>
@@ -79,9 +82,60 @@ class folder_lock_busy : public error {
 ///  3. each existing target is moved aside (".<name>.old-<hex>") and its temporary renamed in;
 ///  4. on any failure the new files are removed and the previous ones renamed back; on success
 ///     the previous ones are deleted. The lock file is removed when released.
+/// Only regular files are replaced (output_target says how each path is treated):
+///  - a path that exists and is not a regular file (a character or block device, a FIFO) is
+///    written through, as cp does: opened for writing (never created, truncated, renamed or
+///    removed) and given the bytes after every temporary of step 1 is written and before any
+///    lock is taken (a FIFO waits for its reader, as with cp). A failed write (ENOSPC on
+///    /dev/full) is an error with the system's reason and installs nothing; bytes a device has
+///    taken cannot be taken back. A socket, which cannot be opened, is refused by name;
+///  - a symbolic link is followed: to an existing regular file, that file is replaced whole (the
+///    link stays a link); to a device or FIFO, it is written through; a dangling link is refused
+///    by name (as cp refuses to write through one), so that no file appears where a link points;
+///  - an entry that is not a regular file when step 3 reaches it (one put there meanwhile) is
+///    refused and left as it is.
 /// Two outputs with the same path are an error. Throws vplkit::error naming the file that failed
 /// and the system's reason (and where a previous file is kept if it could not be put back).
 void write_all_or_nothing(const std::vector<output_file>& files, const write_options& options = {});
+
+/// How write_all_or_nothing treats an output path.
+struct output_target {
+  /// The regular file to replace whole (the link's target for a link to one), or the path to
+  /// write through.
+  std::filesystem::path path;
+  bool write_through = false;  ///< a device or FIFO (or a link to one): written through
+};
+
+/// Classifies `path` as write_all_or_nothing does. Throws vplkit::error naming it for a dangling
+/// link, a link whose target cannot be told, or an entry that cannot be written (a socket).
+output_target output_target_of(const std::filesystem::path& path);
+
+/// A stream buffer writing to a file descriptor (the executable's standard output) with write(2),
+/// keeping the first failure's errno: a command's printed results are its output too, and a lost
+/// one (`> /dev/full`, a closed descriptor) must fail the command with the system's reason
+/// instead of exiting 0. Buffered in 64 KiB blocks, by line on a terminal; once a write fails,
+/// the stream goes bad and the rest is dropped.
+class descriptor_output : public std::streambuf {
+ public:
+  explicit descriptor_output(int descriptor);
+  ~descriptor_output() override;
+  descriptor_output(const descriptor_output&) = delete;
+  descriptor_output& operator=(const descriptor_output&) = delete;
+  /// The errno of the first failed write, 0 while none failed.
+  int failure() const { return failure_; }
+
+ protected:
+  std::streamsize xsputn(const char* text, std::streamsize count) override;
+  int_type overflow(int_type c) override;
+  int sync() override;
+
+ private:
+  bool write_pending();
+  int descriptor_;
+  bool by_line_;
+  int failure_ = 0;
+  std::string pending_;
+};
 
 /// The temporary name step 1 uses for `target` with `tag` ("partial", "old") and a random suffix:
 /// at most 1 + 64 + 1 + tag + 1 + 16 bytes, in the target's folder.

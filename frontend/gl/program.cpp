@@ -76,18 +76,41 @@ std::optional<std::string_view> directive(std::string_view line, std::string_vie
   return line;
 }
 
-// `#include "path"`, optionally followed by a // comment: the path; nothing for any other line.
-std::optional<std::string> include_path(std::string_view line) {
+// An `#include` line: the path it names, or why it is not one vplkit expands.
+struct include_line {
+  std::string path;
+  std::string refusal;  ///< empty when `path` is the include
+};
+
+// `#include "path"`, optionally followed by a // comment: the path. Any other spelling of an
+// #include line is refused with the reason: GLSL has no #include, so a line left in the
+// "self-contained" text would only fail later, as a driver's compile error far from its cause.
+// Nothing for a line that is not an #include.
+std::optional<include_line> include_of(std::string_view line) {
   std::optional<std::string_view> rest = directive(line, "include");
   if (!rest) return std::nullopt;
-  std::string_view text = skip_blanks(*rest);
-  if (text.empty() || text.front() != '"') return std::nullopt;
+  const std::string_view text = skip_blanks(*rest);
+  const auto refused = [](std::string why) { return include_line{{}, std::move(why)}; };
+  if (text.empty()) return refused("no file name after #include");
+  if (text.front() == '<') return refused("#include <...> is not expanded: vplkit expands #include \"path\", looked up in the shader folders");
+  if (text.front() != '"') return refused("expected #include \"path\", not '" + excerpt(text, 60) + "'");
   const std::size_t close = text.find('"', 1);
-  if (close == std::string_view::npos || close == 1) return std::nullopt;
-  const std::string_view path = text.substr(1, close - 1);
+  if (close == std::string_view::npos) return refused("the file name has no closing quote");
+  if (close == 1) return refused("the file name is empty");
   const std::string_view after = skip_blanks(text.substr(close + 1));
-  if (!after.empty() && after.substr(0, 2) != "//") return std::nullopt;
-  return std::string(path);
+  if (!after.empty() && after.substr(0, 2) != "//")
+    return refused("text after the file name: '" + excerpt(after, 60) + "' (only a // comment may follow)");
+  return include_line{std::string(text.substr(1, close - 1)), {}};
+}
+
+// The next line of `text` from `at`, without its end: LF, CRLF or a lone CR (old Mac files), so
+// that an #include in a CR-only file is seen as a line of its own. `at` moves past the end.
+std::string_view next_line(std::string_view text, std::size_t& at) {
+  const std::size_t end = text.find_first_of("\r\n", at);
+  const std::string_view line = text.substr(at, end == std::string_view::npos ? std::string_view::npos : end - at);
+  if (end == std::string_view::npos) at = text.size();
+  else at = end + (text[end] == '\r' && end + 1 < text.size() && text[end + 1] == '\n' ? 2 : 1);
+  return line;
 }
 
 // The includes form a tree walked depth first: recursion is fine because its depth is bounded
@@ -114,17 +137,19 @@ class expander {
       throw error(excerpt_path(display_name) + ": the shader with its includes exceeds " + std::to_string(max_expanded_bytes >> 20) + " MiB");
     const int file_number = static_cast<int>(file_names_.size());
     file_names_.push_back(display_name);
-    std::istringstream lines(text);
-    std::string line;
     int line_number = 0;
     bool wrote_line_directive = false;
-    while (std::getline(lines, line)) {
+    for (std::size_t at = 0; at < text.size();) {
+      const std::size_t line_start = at;
+      const std::string_view line = next_line(text, at);
       ++line_number;
-      if (!line.empty() && line.back() == '\r') line.pop_back();
+      const auto where = [&] { return excerpt_path(display_name) + ":" + std::to_string(line_number); };
+      // glShaderSource reads the text up to its first NUL: the rest would vanish without a word.
+      if (const std::size_t nul = line.find('\0'); nul != std::string_view::npos)
+        throw error(where() + ": a NUL byte (byte offset " + std::to_string(line_start + nul) + " of the file); a shader is text");
       if (directive(line, "version")) {
         if (!top_level || line_number != 1)
-          throw error(display_name + ":" + std::to_string(line_number) +
-                      ": #version must be the first line of the top-level shader, not in an included file");
+          throw error(where() + ": #version must be the first line of the top-level shader, not in an included file");
         out_ << line << "\n";
         for (const auto& [name, value] : defines_) out_ << "#define " << name << " " << value << "\n";
         continue;
@@ -133,19 +158,20 @@ class expander {
         out_ << "#line " << line_number << " " << file_number << "\n";
         wrote_line_directive = true;
       }
-      if (const std::optional<std::string> included = include_path(line)) {
-        const std::string& relative = *included;
+      if (const std::optional<include_line> included = include_of(line)) {
+        if (!included->refusal.empty()) throw error(where() + ": " + included->refusal);
+        const std::string& relative = included->path;
         // Longer than any path a file system takes (PATH_MAX is 4096 on Linux).
         if (relative.size() > 4096)
-          throw error(excerpt_path(display_name) + ":" + std::to_string(line_number) + ": the included file name has " + std::to_string(relative.size()) +
+          throw error(where() + ": the included file name has " + std::to_string(relative.size()) +
                       " characters, more than a path can have");
         const std::optional<fs::path> path = find_in(roots_, relative);
         if (!path)
-          throw error(excerpt_path(display_name) + ":" + std::to_string(line_number) + ": included file \"" + excerpt_path(relative) +
+          throw error(where() + ": included file \"" + excerpt_path(relative) +
                       "\" not found (looked in " + folder_list(roots_) + ")");
         if (included_.insert(fs::weakly_canonical(*path).string()).second) {
           if (depth + 1 > max_include_depth)
-            throw error(excerpt_path(display_name) + ":" + std::to_string(line_number) + ": including \"" + excerpt_path(relative) +
+            throw error(where() + ": including \"" + excerpt_path(relative) +
                         "\" nests includes more than " + std::to_string(max_include_depth) + " deep");
           files_read_.push_back(*path);
           expand(read_text_file(*path, ""), relative, /*top_level=*/false, depth + 1);

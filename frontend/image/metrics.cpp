@@ -46,7 +46,16 @@ relative_error relative_error_over(const image& candidate, const image& referenc
     }
     ++result.pixels;
   }
-  if (result.pixels == 0 || !(sum_reference > 0.0)) return result;
+  if (result.pixels == 0) {
+    result.why_undefined = mask ? "the mask marks no pixel (luminance > 0.5)" : "the image has no pixel";
+    return result;
+  }
+  if (!(sum_reference > 0.0)) {
+    result.why_undefined = std::string(sum_reference == 0.0 ? "the reference's mean is 0 (black)" : "the reference's mean is negative") + " over the " +
+                           std::to_string(result.pixels) + (mask ? " masked" : "") + " pixels: there is no level to be relative to";
+    return result;
+  }
+  result.defined = true;
   const double n = 3.0 * static_cast<double>(result.pixels), mean = sum_reference / n;
   result.rmse = std::sqrt(squared / n) / mean;
   result.bias = (sum_image - sum_reference) / sum_reference;
@@ -79,7 +88,14 @@ image_metrics compare_images(const image& candidate, const image& reference, con
   const double mse = squared / (3.0 * static_cast<double>(count));
   m.rmse = std::sqrt(mse);
   m.relative_mse = relative / (3.0 * static_cast<double>(count));
-  m.psnr = mse > 0.0 ? 10.0 * std::log10(std::max(peak, 1e-12) * std::max(peak, 1e-12) / mse) : std::numeric_limits<double>::infinity();
+  if (mse == 0.0) {
+    m.psnr = std::numeric_limits<double>::infinity();
+  } else if (peak > 0.0) {
+    m.psnr = 10.0 * std::log10(peak * peak / mse);
+  } else {
+    m.psnr_defined = false;
+    m.why_psnr_undefined = "the reference is black (its peak is 0): there is no signal level to be relative to";
+  }
   if (mask) m.leak_rmse = m.leak_pixels > 0 ? std::sqrt(leak_squared / (3.0 * static_cast<double>(m.leak_pixels))) : 0.0;
   m.relative = relative_error_over(candidate, reference, nullptr);
   if (mask) m.masked = relative_error_over(candidate, reference, mask);

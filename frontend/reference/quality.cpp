@@ -46,6 +46,11 @@ image stretched(const image& source, int width, int height) {
 
 const rsm_technique& rsm_technique_of(const technique_settings& settings) { return find_rsm_technique(settings.technique()); }
 
+// A relative error's RMSE or bias as a named metric: undefined, with the reason, where the error is.
+quality_metric rmse_metric(const std::string& name, const relative_error& error) { return {name, error.rmse, error.defined, error.why_undefined}; }
+quality_metric bias_metric(const std::string& name, const relative_error& error) { return {name, error.bias, error.defined, error.why_undefined}; }
+quality_metric plain_metric(const std::string& name, double value) { return {name, value, true, {}}; }
+
 }  // namespace
 
 scene_references::scene_references(const shader_library& shaders, reference_options options, const scene* source)
@@ -82,10 +87,10 @@ frame_quality scene_references::measure(pipeline& drawn, const technique_setting
       const frame_reference& reference = brute_force(settings);
       const rsm_pipeline& rsm = dynamic_cast<const rsm_pipeline&>(drawn);
       frame_errors errors = measure_frame(rsm, reference);
-      quality.metrics = {{"rel_rmse", errors.raw_vs_exact.rmse},           {"rel_bias", errors.raw_vs_exact.bias},
-                         {"rel_bias_unoccluded", errors.raw_vs_unoccluded.bias}, {"leak_rmse", errors.raw_leak.rmse},
-                         {"leak_bias", errors.raw_leak.bias},              {"filtered_rel_rmse", errors.filtered_vs_exact.rmse},
-                         {"filtered_leak_bias", errors.filtered_leak.bias}};
+      quality.metrics = {rmse_metric("rel_rmse", errors.raw_vs_exact),          bias_metric("rel_bias", errors.raw_vs_exact),
+                         bias_metric("rel_bias_unoccluded", errors.raw_vs_unoccluded), rmse_metric("leak_rmse", errors.raw_leak),
+                         bias_metric("leak_bias", errors.raw_leak),             rmse_metric("filtered_rel_rmse", errors.filtered_vs_exact),
+                         bias_metric("filtered_leak_bias", errors.filtered_leak)};
       const rsm_technique& technique = rsm_technique_of(settings);
       const rsm_pipeline_settings& frame = rsm.settings();
       if (technique.indirect) {
@@ -94,12 +99,12 @@ frame_quality scene_references::measure(pipeline& drawn, const technique_setting
         for (const char* name : {"size", "rsm-size", "indirect-divisor", "format", "min-distance", "radius"}) key += settings.get(name) + "|";
         auto cut = radius_cuts_.find(key);
         if (cut == radius_cuts_.end()) cut = radius_cuts_.emplace(key, brute_force_within(reference, radius, options_.threads)).first;
-        quality.metrics.emplace_back("radius_bias", relative_error_of(cut->second, reference.unoccluded, &reference.receivers).bias);
+        quality.metrics.push_back(bias_metric("radius_bias", relative_error_of(cut->second, reference.unoccluded, &reference.receivers)));
       }
       if (technique.visibility != rsm_visibility::none) {
         const image ray_cast = ray_cast_gather(reference, frame, options_.threads);
-        quality.metrics.emplace_back("visibility_bias", relative_error_of(errors.raw, ray_cast, &reference.receivers).bias);
-        quality.metrics.emplace_back("visibility_leak_bias", relative_error_of(errors.raw, ray_cast, &reference.leak).bias);
+        quality.metrics.push_back(bias_metric("visibility_bias", relative_error_of(errors.raw, ray_cast, &reference.receivers)));
+        quality.metrics.push_back(bias_metric("visibility_leak_bias", relative_error_of(errors.raw, ray_cast, &reference.leak)));
       }
       quality.receivers = reference.receiver_count;
       quality.raw = std::move(errors.raw);
@@ -128,13 +133,14 @@ frame_quality scene_references::measure(pipeline& drawn, const technique_setting
           mask.texels[k] = glm::vec4(1.0f);
         });
         const relative_error errors = relative_error_of(indirect, reference, &mask);
-        quality.metrics = {{"rel_rmse", errors.rmse}, {"rel_bias", errors.bias}};
+        quality.metrics = {rmse_metric("rel_rmse", errors), bias_metric("rel_bias", errors)};
         quality.receivers = errors.pixels;
         break;
       }
       const image radiance = drawn.output().read_image();
       const image_metrics m = compare_images(radiance, monte_carlo(radiance.width, radiance.height));
-      quality.metrics = {{"rel_rmse", m.relative.rmse}, {"rel_bias", m.relative.bias}, {"similarity", m.similarity}, {"ssim", m.ssim}};
+      quality.metrics = {rmse_metric("rel_rmse", m.relative), bias_metric("rel_bias", m.relative), plain_metric("similarity", m.similarity),
+                         plain_metric("ssim", m.ssim)};
       quality.receivers = m.relative.pixels;
       break;
     }
@@ -144,7 +150,8 @@ frame_quality scene_references::measure(pipeline& drawn, const technique_setting
       if (base == bases_.end()) throw error("the base configuration's image was not rendered");
       const image radiance = stretched(drawn.output().read_image(), base->second.width, base->second.height);
       const image_metrics m = compare_images(radiance, base->second);
-      quality.metrics = {{"rel_rmse", m.relative.rmse}, {"rel_bias", m.relative.bias}, {"similarity", m.similarity}, {"ssim", m.ssim}};
+      quality.metrics = {rmse_metric("rel_rmse", m.relative), bias_metric("rel_bias", m.relative), plain_metric("similarity", m.similarity),
+                         plain_metric("ssim", m.ssim)};
       quality.receivers = m.relative.pixels;
       break;
     }
@@ -153,9 +160,9 @@ frame_quality scene_references::measure(pipeline& drawn, const technique_setting
   return quality;
 }
 
-double scene_references::seed_noise(const std::vector<image>& raws, const technique_settings& settings) {
-  if (options_.kind != reference_kind::rsm_brute_force || raws.size() < 2) return 0.0;
-  return vplkit::seed_noise(raws, brute_force(settings));
+quality_metric scene_references::seed_noise(const std::vector<image>& raws, const technique_settings& settings) {
+  if (options_.kind != reference_kind::rsm_brute_force || raws.size() < 2) return plain_metric("seed_noise", 0.0);
+  return rmse_metric("seed_noise", vplkit::seed_noise(raws, brute_force(settings)));
 }
 
 std::string scene_references::coverage() const {

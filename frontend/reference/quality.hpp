@@ -49,9 +49,19 @@ struct reference_options {
 /// "" when `kind` measures `technique`, else why not (the brute force is the RSM gather's).
 std::string reference_refusal(reference_kind kind, const std::string& technique);
 
+/// One named number of a frame's quality. A relative number against a black reference does not
+/// exist (relative_error::defined): `defined` is false, `value` is not to be read, and
+/// `why_undefined` says why; writers show "undefined" with the reason, and a sweep never ranks it.
+struct quality_metric {
+  std::string name;
+  double value = 0.0;
+  bool defined = true;
+  std::string why_undefined;
+};
+
 /// Named numbers of one drawn frame against the reference, in a fixed order per kind.
 struct frame_quality {
-  std::vector<std::pair<std::string, double>> metrics;
+  std::vector<quality_metric> metrics;
   std::size_t receivers = 0;  ///< the pixels or receivers the metrics count
   image raw;                  ///< rsm-brute-force: the raw gather (for the noise over seeds)
 };
@@ -69,8 +79,9 @@ class scene_references {
   /// The base configuration's final image at `seed` (kind base): a frame is compared with the
   /// base drawn with its own seed where the base has one, so that the seeds' noise is not counted.
   void set_base(image radiance, const std::string& seed = "") { bases_[seed] = std::move(radiance); }
-  /// The noise of several seeds' raw gathers of one configuration (rsm-brute-force), else 0.
-  double seed_noise(const std::vector<image>& raws, const technique_settings& settings);
+  /// The noise of several seeds' raw gathers of one configuration (rsm-brute-force), else 0;
+  /// undefined (relative to the seeds' mean gather) when that mean is black on the receivers.
+  quality_metric seed_noise(const std::vector<image>& raws, const technique_settings& settings);
   /// What the metrics cover and count, one paragraph (markdown), for the references made so far.
   std::string coverage() const;
   const reference_options& options() const { return options_; }

@@ -132,16 +132,23 @@ frame_errors measure_frame(const rsm_pipeline& drawn, const frame_reference& ref
   return errors;
 }
 
-double seed_noise(const std::vector<image>& raws, const frame_reference& reference) {
-  if (raws.size() < 2) return 0.0;
+relative_error seed_noise(const std::vector<image>& raws, const frame_reference& reference) {
+  relative_error noise;
+  noise.defined = true;
+  if (raws.size() < 2) return noise;
   const auto seeds = static_cast<double>(raws.size());
   image mean = blank(reference);
   for (const image& raw : raws)
     for (std::size_t i = 0; i < raw.texels.size(); ++i) mean.texels[i] += raw.texels[i] / static_cast<float>(seeds);
   // E|x_i - mean|^2 = (n - 1) / n sigma^2: scale back to one seed's spread.
-  double noise = 0.0;
-  for (const image& raw : raws) noise += relative_error_of(raw, mean, &reference.receivers).rmse / seeds;
-  return noise * std::sqrt(seeds / (seeds - 1.0));
+  for (const image& raw : raws) {
+    const relative_error one = relative_error_of(raw, mean, &reference.receivers);
+    if (!one.defined) return one;  // the same mean for every seed: undefined for all
+    noise.rmse += one.rmse / seeds;
+    noise.pixels = one.pixels;
+  }
+  noise.rmse *= std::sqrt(seeds / (seeds - 1.0));
+  return noise;
 }
 
 image ray_cast_gather(const frame_reference& reference, const rsm_pipeline_settings& settings, int threads) {

@@ -71,8 +71,9 @@ struct frame_errors {
 frame_errors measure_frame(const rsm_pipeline& drawn, const frame_reference& reference);
 
 /// The relative RMSE of one seed's raw gather against the mean of several seeds' (made unbiased
-/// for the seed count): the sampling noise. 0 for fewer than two seeds.
-double seed_noise(const std::vector<image>& raws, const frame_reference& reference);
+/// for the seed count): the sampling noise. 0 for fewer than two seeds; undefined (rmse not to be
+/// read, see relative_error) when the seeds' mean is black on the receivers.
+relative_error seed_noise(const std::vector<image>& raws, const frame_reference& reference);
 
 /// The radial pattern of `settings` (its seed) with ray-cast visibility (CPU): the same samples
 /// as the gather with exact visibility instead of the micro linear buffer.

@@ -14,6 +14,15 @@ expect_success("compare an image with itself" "\\| RMSE \\| 0 \\|.*\\| similarit
                "${VPLKIT}" compare "${WORK}/ref.pfm" "${WORK}/ref.pfm")
 expect_success("compare with a mask and an error image" "masked RMSE.*masked relative RMSE.*wrote .*/err\\.png"
                "${VPLKIT}" compare "${WORK}/ref.png" "${WORK}/ref.pfm" --mask "${WORK}/ref.pfm" --error-image "${WORK}/err.png")
+# Against a black reference (direct light's indirect image is 0 everywhere) the relative numbers
+# and PSNR are undefined, with the reason; they once read 0, a perfect score. The absolute
+# ones stay numbers.
+expect_success("direct light: a black indirect image" "wrote .*/direct-indirect\\.pfm" "${VPLKIT}" render --technique direct --size 24 --out "${WORK}/direct.png")
+expect_success("compare against a black reference: the relative numbers are undefined, and why"
+               "\\| RMSE \\| [0-9.]+ \\|.*\\| PSNR \\(dB\\) \\| undefined: the reference is black.*\\| relative RMSE \\(RMSE / reference mean\\) \\| undefined: the reference's mean is 0 \\(black\\) over the 576 pixels.*\\| relative bias [^|]*\\| undefined: the reference's mean is 0 \\(black\\).*\\| masked relative RMSE \\([0-9]+ pixels\\) \\| undefined: the reference's mean is 0 \\(black\\) over the [0-9]+ masked pixels"
+               "${VPLKIT}" compare "${WORK}/ref.pfm" "${WORK}/direct-indirect.pfm" --mask "${WORK}/ref.pfm")
+execute_process(COMMAND "${VPLKIT}" compare "${WORK}/ref.pfm" "${WORK}/direct-indirect.pfm" OUTPUT_VARIABLE out)
+expect_true("no relative number reads 0 against a black reference" NOT out MATCHES "relative (RMSE|bias)[^\n]*[|] 0 [|]")
 expect_failure("compare images of different sizes" "the image ${WORK}/ref\\.pfm is 24x24 but the reference ${WORK}/small\\.png is 48x32" "${WORK}/err2.png"
                "${VPLKIT}" compare "${WORK}/ref.pfm" "${WORK}/small.png" --error-image "${WORK}/err2.png")
 expect_failure("compare an unreadable file" "${WORK}/missing\\.pfm: no such PFM image" "" "${VPLKIT}" compare "${WORK}/missing.pfm" "${WORK}/ref.pfm")

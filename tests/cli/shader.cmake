@@ -82,4 +82,41 @@ file(WRITE "${WORK}/a-file" "")
 expect_failure("an output that cannot be written" "cannot write ${WORK}/a-file/x\\.frag" "${WORK}/a-file/x.frag"
                "${VPLKIT}" shader expand "${WORK}/main.frag" --root "${R}" --shader-dir "${SHADERS}" -o "${WORK}/a-file/x.frag")
 
+# Lines it does not expand are refused, naming the file and line (they were left in the
+# "self-contained" output, to fail later as a driver's compile error): each spelling of #include
+# other than `#include "path"` with at most a // comment after it.
+set(refused_lines "#include <lib/irradiance.glsl>" "#include \"lib/irradiance.glsl\" junk" "#include \"lib/irradiance.glsl" "#include \"\"")
+set(refused_reasons "#include <\\.\\.\\.> is not expanded" "text after the file name: 'junk'" "the file name has no closing quote" "the file name is empty")
+foreach(i RANGE 3)
+  list(GET refused_lines ${i} line)
+  list(GET refused_reasons ${i} reason)
+  file(WRITE "${WORK}/refused${i}.frag" "#version 330 core\n// line 2\n${line}\nvoid main() {}\n")
+  expect_failure("an #include line it does not expand: ${line}" "refused${i}\\.frag:3: ${reason}" "${WORK}/x.frag"
+                 "${VPLKIT}" shader expand "${WORK}/refused${i}.frag" --shader-dir "${SHADERS}" -o "${WORK}/x.frag")
+endforeach()
+file(WRITE "${R}/my/bad.glsl" "float bad();\n#include <lib/irradiance.glsl>\n")
+file(WRITE "${WORK}/nested.frag" "#version 330 core\n#include \"my/bad.glsl\"\n")
+expect_failure("an unexpanded #include in an included file names that file" "my/bad\\.glsl:2: #include <" "${WORK}/x.frag"
+               "${VPLKIT}" shader expand "${WORK}/nested.frag" --root "${R}" --shader-dir "${SHADERS}" -o "${WORK}/x.frag")
+
+# CR, LF and CRLF line ends expand alike: a CR-only file's include was one long line, never expanded.
+foreach(ending "\r" "\r\n")
+  string(REPLACE "\n" "${ending}" text "#version 330 core\n#include \"my/two_lights.glsl\"\nout vec4 colour;\nvoid main() { colour = vec4(two(vec3(VALUE)), 1.0); }\n")
+  file(WRITE "${WORK}/ends.frag" "${text}")
+  execute_process(COMMAND "${VPLKIT}" shader expand "${WORK}/ends.frag" --root "${R}" --shader-dir "${SHADERS}" RESULT_VARIABLE code OUTPUT_VARIABLE ends_out)
+  string(FIND "${ends_out}" "#include" include_left)
+  string(FIND "${ends_out}" "\r" cr_left)
+  string(REGEX MATCHALL "vec3 pixel_light_irradiance\\(" definitions "${ends_out}")
+  list(LENGTH definitions definition_count)
+  string(HEX "${ending}" ending_hex)
+  expect_true("line ends ${ending_hex}: exit 0, every include expanded once, LF line ends out" code EQUAL 0 AND include_left EQUAL -1 AND cr_left EQUAL -1
+              AND definition_count EQUAL 1)
+  expect_match("line ends ${ending_hex}: the top file's lines keep their numbers" ends_out "vec3 helper\\(vec3 a\\).*#line 3 0\nout vec4 colour;")
+endforeach()
+
+# A NUL byte (CMake cannot write one: printf does) is refused with its file, line and offset.
+execute_process(COMMAND printf "#version 330 core\\nvoid main() {}\\nfloat x\\000;\\n" OUTPUT_FILE "${WORK}/nul.frag")
+expect_failure("a NUL byte" "nul\\.frag:3: a NUL byte \\(byte offset 40 of the file\\)" "${WORK}/x.frag"
+               "${VPLKIT}" shader expand "${WORK}/nul.frag" --shader-dir "${SHADERS}" -o "${WORK}/x.frag")
+
 cli_report()

@@ -3,6 +3,9 @@
 # the reference, the plots; a rerun resumes; every family sweeps; the specifications in bench/
 # plan without an error. Tiny frames: the fast tier.
 include("${CMAKE_CURRENT_LIST_DIR}/cli_common.cmake")
+# A row split at its commas keeps its empty cells (an undefined metric leaves its _sd cell empty),
+# so that a column's index is the same in every row.
+cmake_policy(SET CMP0007 NEW)
 
 # expect_usage_error(<name> <message regex> <folder that must not appear> <args...>): exit 2,
 # the message, and no folder (nothing written).
@@ -143,6 +146,36 @@ foreach(row ${earlier})
 endforeach()
 expect_usage_error("resuming needs the same --vary" "holds a sweep over other settings \\(radius\\)" "${WORK}/s1/paths.png"
                    "${VPLKIT}" sweep --technique rsm-radial ${tiny} --vary paths=5,10 --out "${WORK}/s1")
+
+# --- a black reference: the light points away, so the brute force is 0 at every receiver. The
+# relative numbers are "undefined" with the reason, not 0, and no row is on the Pareto front
+# (with 0s, the fastest row was marked best).
+expect_success("a sweep against a black reference" "rel_rmse undefined.*wrote .*sweep\\.csv"
+               "${VPLKIT}" sweep --technique rsm-radial --scene cornell-box --light 0,100,0,0,200,0 ${tiny} --vary radius=0.125,0.5
+               --reference rsm-brute-force --out "${WORK}/black")
+read_rows("${WORK}/black/sweep.csv" rows)
+list(GET rows 0 header)
+column_index("${header}" "rel_rmse" rmse_column)
+column_index("${header}" "pareto" pareto_column)
+list(LENGTH rows count)
+expect_true("black: 2 rows, a column saying why" count EQUAL 3 AND header MATCHES ",undefined,")
+list(SUBLIST rows 1 -1 data_rows)
+foreach(row ${data_rows})
+  string(REPLACE "," ";" cells "${row}")
+  list(GET cells ${rmse_column} rmse)
+  list(GET cells ${pareto_column} pareto)
+  expect_true("black: rel_rmse is undefined (${rmse}), the row is not on the Pareto front (${pareto})" rmse STREQUAL "undefined" AND NOT pareto STREQUAL "1")
+  expect_true("black: the row says why" row MATCHES "rel_rmse: the reference's mean is 0 .black.")
+endforeach()
+file(READ "${WORK}/black/sweep.md" md)
+expect_true("black: sweep.md shows undefined and the reason" md MATCHES "[|] undefined [|]" AND md MATCHES "Undefined numbers.*rel_rmse: the reference's mean is 0")
+expect_success("render --stats against a black reference" "\\| rel_rmse \\| undefined: the reference's mean is 0 \\(black\\)"
+               "${VPLKIT}" render --technique rsm-alg6 --scene occluder --light 0,100,0,0,200,0 --size 24 --rsm-size 32 --reference rsm-brute-force
+               --stats "${WORK}/black-stats.json" --out "${WORK}/black-stats.png")
+file(READ "${WORK}/black-stats.json" json)
+string(JSON rmse_type TYPE "${json}" quality rel_rmse)
+string(JSON why GET "${json}" quality undefined rel_rmse)
+expect_true("the JSON's rel_rmse is null, the reason under undefined" rmse_type STREQUAL "NULL" AND why MATCHES "^the reference's mean is 0 .black.")
 
 # --- every family: Light Wave's shadow maps against the base configuration, final gathering's
 # techniques and M against Monte Carlo, a zipped axis and the technique axis ---------------------

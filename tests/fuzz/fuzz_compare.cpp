@@ -49,8 +49,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     for (const double value : {m.rmse, m.relative_mse, m.ssim, m.similarity, m.relative.rmse, m.relative.bias})
       require(std::isfinite(value), "a metric is not finite");
     require(std::isfinite(m.psnr) || (std::isinf(m.psnr) && m.psnr > 0.0 && m.rmse == 0.0), "PSNR is not finite for different images");
+    require(m.psnr_defined == m.why_psnr_undefined.empty() && (m.psnr_defined || m.rmse > 0.0), "PSNR undefined without a reason, or for equal images");
     if (m.leak_rmse) require(std::isfinite(*m.leak_rmse), "the masked RMSE is not finite");
     if (m.masked) require(std::isfinite(m.masked->rmse) && std::isfinite(m.masked->bias), "a masked relative error is not finite");
+    // An undefined relative number always says why; a black reference never gets a defined one.
+    require(m.relative.defined == m.relative.why_undefined.empty(), "a relative error undefined without a reason");
+    if (m.masked) require(m.masked->defined == m.masked->why_undefined.empty(), "a masked relative error undefined without a reason");
+    bool black = true;
+    for (const glm::vec4& p : parts[1].texels) black = black && p.r == 0.0f && p.g == 0.0f && p.b == 0.0f;
+    if (black) require(!m.relative.defined && !m.psnr_defined == (m.rmse > 0.0), "a black reference gave a relative number");
     for (const float scale : {0.0f, 1.0f, 1e-30f, 3e38f}) {
       const std::vector<std::uint8_t> colours = vplkit::false_colour_error(parts[0], parts[1], scale);
       require(colours.size() == parts[0].texels.size() * 4, "the error image has the wrong size");

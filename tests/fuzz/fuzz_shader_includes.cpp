@@ -64,7 +64,7 @@ std::string include_line(fuzz_input& in, std::uint32_t target) {
   switch (in.below(12)) {
     case 0: return "  #  include \"" + name + "\"";
     case 1: return "#include \"" + name + "\" // a comment";
-    case 2: return "#include \"" + name + "\" trailing";  // not an include: the scanner leaves it
+    case 2: return "#include \"" + name + "\" trailing";  // refused, naming the line: text after the name
     case 3: return "#include <" + name + ">";
     case 4: return "#include \"missing.glsl\"";
     case 5: return "#include \"\"";

@@ -57,9 +57,13 @@ class shader_library {
   /// The file `relative_path` names: in the first folder that has it. Throws vplkit::error naming
   /// every folder looked in when none has it.
   std::filesystem::path locate(const std::string& relative_path) const;
-  /// Expands a file found in the folders (e.g. "direct.frag"). Throws vplkit::error naming a
-  /// missing or unreadable file, and the including file:line for a missing include, an include
-  /// nested more than max_include_depth deep, or an expansion beyond max_expanded_bytes.
+  /// Expands a file found in the folders (e.g. "direct.frag"). Lines may end in LF, CRLF or a
+  /// lone CR; the expansion's end in LF. Throws vplkit::error naming a missing or unreadable
+  /// file, and the file:line for a missing include, an include nested more than
+  /// max_include_depth deep, an expansion beyond max_expanded_bytes, a NUL byte (with its byte
+  /// offset), or an #include line that is not `#include "path"` with at most a // comment after
+  /// it (`#include <x>`, trailing text, a missing closing quote, an empty name): GLSL has no
+  /// #include, so such a line is never left for the driver to fail on.
   expanded_source expand_file(const std::string& relative_path, const shader_defines& defines = {}) const;
   /// Expands in-memory text (generated shaders), shown in messages as `display_name`.
   expanded_source expand_text(const std::string& text, const std::string& display_name,

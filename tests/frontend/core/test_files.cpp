@@ -1,18 +1,27 @@
 // Whole-file reads and all-or-nothing writes (frontend/core/files.hpp): a failed rename at any
 // step leaves the previous set in place, temporaries have bounded names, the output lock keeps
 // two writers from mixing their sets, every message keeps the system's reason, and same_file
-// sees one file under two names.
+// sees one file under two names. Outputs that are not regular files (device nodes made with
+// mknod in a scratch folder, never the real /dev; FIFOs; links) are written through and stay what
+// they are, and descriptor_output reports a lost write with its errno.
 #include <doctest/doctest.h>
 
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/socket.h>
 #include <sys/stat.h>
+#include <sys/sysmacros.h>
+#include <sys/un.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <ostream>
 #include <random>
 #include <string>
 #include <thread>
@@ -222,4 +231,176 @@ TEST_CASE("same_file: one file under two names is the same, existing or not; two
   // Neither exists yet: the same name still is the same file, two names are not.
   CHECK(same_file(scratch.path / "new.pfm", scratch.path / "sub" / ".." / "new.pfm"));
   CHECK_FALSE(same_file(scratch.path / "new.pfm", scratch.path / "new2.pfm"));
+}
+
+namespace {
+
+// A character device node like /dev/null (1, 3) or /dev/full (1, 7) at `path`; false (with the
+// reason in `why`) where mknod is not permitted (no CAP_MKNOD, a nodev mount).
+bool make_char_device(const fs::path& path, unsigned minor, std::string& why) {
+  if (::mknod(path.c_str(), S_IFCHR | 0666, ::makedev(1, minor)) == 0) return true;
+  why = std::strerror(errno);
+  return false;
+}
+
+// What `path` is now, not following a link: its type bits and, for a device, its numbers.
+struct entry_kind {
+  mode_t type = 0;
+  dev_t device = 0;
+};
+entry_kind kind_of(const fs::path& path) {
+  struct stat entry {};
+  REQUIRE(::lstat(path.c_str(), &entry) == 0);
+  return {static_cast<mode_t>(entry.st_mode & S_IFMT), entry.st_rdev};
+}
+
+}  // namespace
+
+TEST_CASE("device nodes are written through and stay device nodes; ENOSPC is an error that installs nothing") {
+  const scratch_folder folder;
+  const fs::path null = folder.path / "null", full = folder.path / "full", png = folder.path / "a.png";
+  std::string why;
+  if (!make_char_device(null, 3, why) || !make_char_device(full, 7, why)) {
+    MESSAGE("skipped the device-node cases: mknod is not permitted here (" << why << ")");
+    return;
+  }
+  // The old bug: the node was moved aside and a regular file renamed over it.
+  write_all_or_nothing({text_file(null, "to the null device"), text_file(png, "new a")});
+  CHECK(kind_of(null).type == S_IFCHR);
+  CHECK(kind_of(null).device == ::makedev(1, 3));
+  CHECK(contents(png) == "new a");
+  CHECK(output_target_of(null).write_through);
+  CHECK_FALSE(output_target_of(png).write_through);
+  // /dev/full takes no byte: ENOSPC with the system's words, the regular file of the same set is
+  // not installed (the previous one stays), and the node is still the node.
+  CHECK_THROWS_WITH_AS(write_all_or_nothing({text_file(png, "newer a"), text_file(full, "lost")}),
+                       doctest::Contains("full (a character device, written through): No space left on device"), vplkit::error);
+  CHECK(contents(png) == "new a");
+  CHECK(kind_of(full).type == S_IFCHR);
+  CHECK(kind_of(full).device == ::makedev(1, 7));
+  // A link to a device is written through too, and stays a link.
+  fs::create_symlink(full, folder.path / "to-full");
+  CHECK_THROWS_WITH_AS(write_bytes_atomically(folder.path / "to-full", {1, 2}), doctest::Contains("No space left on device"), vplkit::error);
+  CHECK(fs::is_symlink(folder.path / "to-full"));
+  CHECK(kind_of(full).type == S_IFCHR);
+  // Nothing else was left: no temporary, no moved-aside node.
+  CHECK(names_in(folder.path) == std::vector<std::string>{"a.png", "full", "null", "to-full"});
+}
+
+TEST_CASE("a FIFO's reader gets the bytes, and the FIFO stays a FIFO") {
+  const scratch_folder folder;
+  const fs::path fifo = folder.path / "frame.png";
+  REQUIRE(::mkfifo(fifo.c_str(), 0666) == 0);
+  std::string received;
+  std::thread reader([&] {
+    std::ifstream in(fifo, std::ios::binary);
+    received.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  });
+  const std::string bytes(200000, 'p');  // more than a pipe's buffer: the writer waits for the reader
+  try {
+    write_all_or_nothing({text_file(fifo, bytes), text_file(folder.path / "frame-indirect.pfm", "pfm")});
+  } catch (...) {
+    // The reader still waits for a writer: open the FIFO once it is there, so that it sees the end.
+    for (int attempt = 0; attempt < 1000; ++attempt) {
+      const int writer = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK | O_CLOEXEC);
+      if (writer >= 0) {
+        ::close(writer);
+        break;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    reader.join();
+    throw;
+  }
+  reader.join();
+  CHECK(received == bytes);
+  CHECK(kind_of(fifo).type == S_IFIFO);
+  CHECK(contents(folder.path / "frame-indirect.pfm") == "pfm");
+}
+
+TEST_CASE("links: to a regular file, that file is replaced and the link stays; a dangling link and a socket are refused by name") {
+  const scratch_folder folder;
+  fs::create_directories(folder.path / "real");
+  const fs::path target = folder.path / "real" / "out.glsl", link = folder.path / "out.glsl";
+  std::ofstream(target) << "old";
+  fs::create_symlink(target, link);
+  write_bytes_atomically(link, {'n', 'e', 'w'});
+  CHECK(fs::is_symlink(link));
+  CHECK(fs::read_symlink(link) == target);
+  CHECK(contents(target) == "new");
+  CHECK(output_target_of(link).path == fs::canonical(target));
+  CHECK(names_in(folder.path / "real") == std::vector<std::string>{"out.glsl"});  // the temporary was made next to the target
+  // A dangling link: refused (as cp refuses), and no file appears where it points.
+  const fs::path dangling = folder.path / "dangling.png";
+  fs::create_symlink(folder.path / "nowhere" / "x.png", dangling);
+  CHECK_THROWS_WITH_AS(write_bytes_atomically(dangling, {1}), doctest::Contains("dangling.png: it is a link to"), vplkit::error);
+  CHECK_THROWS_WITH_AS(write_bytes_atomically(dangling, {1}), doctest::Contains("which does not exist"), vplkit::error);
+  CHECK(fs::is_symlink(dangling));
+  CHECK_FALSE(fs::exists(folder.path / "nowhere"));
+  // A socket cannot be opened as a file: refused, left in place.
+  const fs::path socket_path = folder.path / "s.png";
+  const int listener = ::socket(AF_UNIX, SOCK_STREAM, 0);
+  REQUIRE(listener >= 0);
+  sockaddr_un address{};
+  address.sun_family = AF_UNIX;
+  REQUIRE(socket_path.string().size() < sizeof address.sun_path);
+  std::strcpy(address.sun_path, socket_path.c_str());
+  REQUIRE(::bind(listener, reinterpret_cast<const sockaddr*>(&address), sizeof address) == 0);
+  CHECK_THROWS_WITH_AS(write_bytes_atomically(socket_path, {1}), doctest::Contains("s.png: it is a socket, not a file"), vplkit::error);
+  CHECK(kind_of(socket_path).type == S_IFSOCK);
+  ::close(listener);
+}
+
+TEST_CASE("descriptor_output: the bytes in order, and a lost write's errno (ENOSPC, EBADF)") {
+  int ends[2];
+  REQUIRE(::pipe(ends) == 0);
+  {
+    // The pipe holds 64 KiB, less than is written: read while it is written.
+    std::string received;
+    std::thread reader([&] {
+      char chunk[4096];
+      for (ssize_t got; (got = ::read(ends[0], chunk, sizeof chunk)) > 0;) received.append(chunk, static_cast<std::size_t>(got));
+    });
+    descriptor_output buffer(ends[1]);
+    std::ostream out(&buffer);
+    out << "first " << 42 << '\n' << std::string(100000, 'x');
+    out.flush();
+    CHECK(out.good());
+    CHECK(buffer.failure() == 0);
+    ::close(ends[1]);
+    reader.join();
+    CHECK(received == "first 42\n" + std::string(100000, 'x'));
+  }
+  ::close(ends[0]);
+  // A descriptor not open for writing (a pipe's read end): EBADF, and the stream goes bad.
+  REQUIRE(::pipe(ends) == 0);
+  {
+    descriptor_output buffer(ends[0]);
+    std::ostream out(&buffer);
+    out << "lost\n";
+    out.flush();
+    CHECK_FALSE(out.good());
+    CHECK(buffer.failure() == EBADF);
+  }
+  ::close(ends[0]);
+  ::close(ends[1]);
+  const scratch_folder folder;
+  std::string why;
+  if (!make_char_device(folder.path / "full", 7, why)) {
+    MESSAGE("skipped the ENOSPC case: mknod is not permitted here (" << why << ")");
+    return;
+  }
+  const int full = ::open((folder.path / "full").c_str(), O_WRONLY | O_CLOEXEC);
+  REQUIRE(full >= 0);
+  {
+    descriptor_output buffer(full);
+    std::ostream out(&buffer);
+    out << std::string(200000, 'y');  // past the 64 KiB block: the failure is seen before the flush
+    CHECK(buffer.failure() == ENOSPC);
+    out << "more";
+    out.flush();
+    CHECK_FALSE(out.good());
+    CHECK(buffer.failure() == ENOSPC);
+  }
+  ::close(full);
 }

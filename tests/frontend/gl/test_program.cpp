@@ -75,6 +75,58 @@ TEST_CASE("a missing shader file, folder or include is named in the error") {
   CHECK(message_of([&] { shader_library(nested.root).expand_file("main.frag"); }).find("lib/v.glsl:1: #version must be") == 0);
 }
 
+TEST_CASE("an #include line that is not expanded is refused with its file and line; CR, LF and CRLF lines all expand") {
+  // Each spelling GLSL would otherwise meet as an unknown directive, far from its cause, in a
+  // "self-contained" expansion.
+  const std::vector<std::pair<std::string, std::string>> refused = {
+      {"#include <lib/b.glsl>", "main.frag:3: #include <...> is not expanded"},
+      {"#include \"lib/b.glsl\" junk", "main.frag:3: text after the file name: 'junk' (only a // comment may follow)"},
+      {"#include \"lib/b.glsl", "main.frag:3: the file name has no closing quote"},
+      {"#include \"\"", "main.frag:3: the file name is empty"},
+      {"  #  include", "main.frag:3: no file name after #include"},
+      {"#include lib/b.glsl", "main.frag:3: expected #include \"path\", not 'lib/b.glsl'"},
+  };
+  for (const auto& [line, message] : refused) {
+    CAPTURE(line);
+    scratch_shaders files({{"main.frag", "#version 330 core\n// a comment\n" + line + "\nvoid main() {}\n"}, {"lib/b.glsl", "float b() { return 1.0; }\n"}});
+    CHECK(message_of([&] { shader_library(files.root).expand_file("main.frag"); }).find(message) == 0);
+  }
+  // In an included file, the message names that file and its line.
+  scratch_shaders nested({{"main.frag", "#version 330 core\n#include \"lib/a.glsl\"\n"}, {"lib/a.glsl", "float a();\n#include <x.glsl>\n"}});
+  CHECK(message_of([&] { shader_library(nested.root).expand_file("main.frag"); }).find("lib/a.glsl:2: #include <...> is not expanded") == 0);
+  // A // comment after the name, and a directive that only starts like include, stay allowed.
+  scratch_shaders fine({{"main.frag", "#version 330 core\n#include \"lib/b.glsl\" // why\n#includes_not\nvoid main() {}\n"},
+                        {"lib/b.glsl", "float b() { return 1.0; }\n"}});
+  CHECK(shader_library(fine.root).expand_file("main.frag").text.find("float b()") != std::string::npos);
+
+  // The same file with LF, CRLF and lone-CR line ends expands to the same text: a CR-only file's
+  // include was one long line before, never expanded.
+  const auto with_ends = [](const std::string& end) {
+    return "#version 330 core" + end + "#include \"lib/b.glsl\"" + end + "void main() {}" + end;
+  };
+  scratch_shaders lf({{"main.frag", with_ends("\n")}, {"lib/b.glsl", "float b() { return 1.0; }\n"}});
+  scratch_shaders crlf({{"main.frag", with_ends("\r\n")}, {"lib/b.glsl", "float b() { return 1.0; }\r\n"}});
+  scratch_shaders cr({{"main.frag", with_ends("\r")}, {"lib/b.glsl", "float b() { return 1.0; }\r"}});
+  const std::string expected = shader_library(lf.root).expand_file("main.frag").text;
+  CHECK(expected.find("float b()") != std::string::npos);
+  CHECK(expected.find("#line 3 0\nvoid main() {}\n") != std::string::npos);
+  CHECK(shader_library(crlf.root).expand_file("main.frag").text == expected);
+  CHECK(shader_library(cr.root).expand_file("main.frag").text == expected);
+  CHECK(expected.find('\r') == std::string::npos);
+}
+
+TEST_CASE("a NUL byte in a shader is refused with its file, line and byte offset") {
+  // glShaderSource would read the text only up to it: the rest would vanish without a word.
+  scratch_shaders files({{"main.frag", std::string("#version 330 core\nvoid main() {}\nfloat x") + std::string(1, '\0') + " = 1.0;\n"},
+                         {"lib/a.glsl", std::string("float a()\r\r{") + std::string(1, '\0') + "}\n"},
+                         {"top.frag", "#include \"lib/a.glsl\"\n"}});
+  CHECK(message_of([&] { shader_library(files.root).expand_file("main.frag"); }) ==
+        "main.frag:3: a NUL byte (byte offset 40 of the file); a shader is text");
+  // Lone CRs count as line ends here too: the NUL is on line 3 of the included file.
+  CHECK(message_of([&] { shader_library(files.root).expand_file("top.frag"); }) ==
+        "lib/a.glsl:3: a NUL byte (byte offset 12 of the file); a shader is text");
+}
+
 TEST_CASE("include chains are bounded: 32 deep expands, 10,000 deep is refused at depth 33, the expanded text has a limit") {
   const auto chain = [](int length) {
     scratch_shaders::file_list files{{"main.frag", "#version 330 core\n#include \"lib/c0.glsl\"\nvoid main() {}\n"}};

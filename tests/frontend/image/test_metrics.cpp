@@ -92,9 +92,16 @@ TEST_CASE("metrics of finite pixels are finite, FLT_MAX included; non-finite pix
   extreme.texels = {glm::vec4(big, -big, 3e38f, 1.0f), glm::vec4(-3e38f, big, 0.0f, 1.0f)};
   const image zero(2, 1);
   const image_metrics m = compare_images(extreme, zero, &extreme);
-  for (const double value : {m.rmse, m.relative_mse, m.psnr, m.ssim, m.similarity, *m.leak_rmse})
+  for (const double value : {m.rmse, m.relative_mse, m.ssim, m.similarity, *m.leak_rmse})
     CHECK(std::isfinite(value));
   CHECK(m.rmse > 1e38);
+  CHECK_FALSE(m.psnr_defined);  // a black reference has no peak to be relative to
+  const image_metrics reversed = compare_images(zero, extreme);
+  CHECK(reversed.psnr_defined);
+  CHECK(std::isfinite(reversed.psnr));
+  CHECK(reversed.relative.defined);  // the reference's channels sum to FLT_MAX > 0
+  CHECK(std::isfinite(reversed.relative.rmse));
+  CHECK(std::isfinite(reversed.relative.bias));
   const std::vector<std::uint8_t> colours = false_colour_error(extreme, zero, 0.0f);
   CHECK(colours[0] == 255);  // the largest difference is full red
   image with_nan = zero;
@@ -138,12 +145,50 @@ TEST_CASE("relative RMSE and bias: a scaled copy, an offset, and a mask that sel
   CHECK(m.masked->bias == doctest::Approx(-0.5));
   CHECK(m.relative.bias == doctest::Approx(-0.125));
   CHECK_FALSE(compare_images(darker, reference).masked);
-  // An empty mask or a black reference: no pixels, zeros rather than NaN.
+  CHECK(whole.defined);
+  CHECK(whole.why_undefined.empty());
+  // An empty mask or a black reference: no relative number exists (not 0, which would read as a
+  // perfect match), and the reason says which.
   image nothing = mask;
   for (glm::vec4& p : nothing.texels) p = glm::vec4(0.0f);
   const relative_error none = relative_error_of(scaled, reference, &nothing);
   CHECK(none.pixels == 0);
-  CHECK(none.rmse == 0.0);
-  CHECK(relative_error_of(scaled, nothing).rmse == 0.0);
+  CHECK_FALSE(none.defined);
+  CHECK(none.why_undefined == "the mask marks no pixel (luminance > 0.5)");
+  const relative_error black = relative_error_of(scaled, nothing);
+  CHECK_FALSE(black.defined);
+  CHECK(black.pixels == static_cast<std::size_t>(w * h));
+  CHECK(black.why_undefined == "the reference's mean is 0 (black) over the 32 pixels: there is no level to be relative to");
   CHECK_THROWS_AS(relative_error_of(scaled, image(2, 2)), vplkit::error);
+}
+
+TEST_CASE("against a black reference the relative numbers and PSNR are undefined, with the reason; the others stay numbers") {
+  // A configuration that draws something where the reference is black: relative RMSE and bias
+  // once read 0 here, a perfect score a sweep would rank best.
+  image reference(6, 4), lit(6, 4), black(6, 4), half(6, 4), mask(6, 4);
+  for (glm::vec4& p : lit.texels) p = glm::vec4(0.5f, 0.25f, 0.125f, 1.0f);
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 6; ++x) {
+      half.at(x, y) = glm::vec4(x < 3 ? 0.0f : 1.0f);  // black on the left only
+      mask.at(x, y) = glm::vec4(x < 3 ? 1.0f : 0.0f);
+    }
+  const image_metrics m = compare_images(lit, reference);
+  CHECK_FALSE(m.relative.defined);
+  CHECK(m.relative.why_undefined.find("the reference's mean is 0 (black) over the 24 pixels") == 0);
+  CHECK_FALSE(m.psnr_defined);
+  CHECK(m.why_psnr_undefined.find("the reference is black") == 0);
+  CHECK(m.rmse > 0.0);  // absolute numbers still compare
+  CHECK(std::isfinite(m.relative_mse));
+  CHECK(m.similarity < 100.0);
+  // Black against black: equal images, PSNR infinite as for any equal pair, relative still undefined.
+  const image_metrics same = compare_images(black, reference);
+  CHECK(std::isinf(same.psnr));
+  CHECK(same.psnr_defined);
+  CHECK_FALSE(same.relative.defined);
+  // A reference black only inside the mask: the whole image's numbers exist, the masked ones do not.
+  const image_metrics masked = compare_images(lit, half, &mask);
+  CHECK(masked.relative.defined);
+  REQUIRE(masked.masked);
+  CHECK_FALSE(masked.masked->defined);
+  CHECK(masked.masked->why_undefined.find("over the 12 masked pixels") != std::string::npos);
 }
