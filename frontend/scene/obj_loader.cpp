@@ -342,7 +342,7 @@ mesh parse_obj(std::string_view text, const std::string& name, const material_li
   material_library library;
   std::vector<int> surface_of(used.size(), -1);
   std::map<std::string, int> texture_of_file;
-  std::uint64_t pixels_so_far = 0;
+  texture_budget budget(limits.textures.max_scene_bytes, "obj_limits::textures.max_scene_bytes");
   for (std::size_t m = 0; m < used.size(); ++m) {
     if (used[m].texture_file.empty()) continue;
     if (std::find(triangle_material.begin(), triangle_material.end(), static_cast<std::uint32_t>(m)) == triangle_material.end()) continue;
@@ -357,11 +357,7 @@ mesh parse_obj(std::string_view text, const std::string& name, const material_li
       } catch (const error& failure) {
         throw error(what + ": " + failure.what());
       }
-      const texture_pixels pixels = decode_texture(bytes, what, limits.textures);
-      pixels_so_far += static_cast<std::uint64_t>(pixels.width) * static_cast<std::uint64_t>(pixels.height);
-      if (pixels_so_far > limits.max_texture_pixels)
-        throw error(what + ": the textures together exceed " + std::to_string(limits.max_texture_pixels) + " pixels (obj_limits::max_texture_pixels)");
-      library.textures.push_back(make_texture(source.texture_file, texture_level{pixels.width, pixels.height, pixels.rgba8}));
+      budget.decode_into(library, bytes, what, source.texture_file, limits.textures);
     }
     surface_material made;
     made.name = source.name;
