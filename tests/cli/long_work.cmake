@@ -33,6 +33,6 @@ string(REGEX MATCHALL "render --poses: [0-9]+% \\([0-9]+ of 100000 frames\\), [0
 list(LENGTH lines line_count)
 expect_true("render --poses on a pipe: ${line_count} progress lines, then stopped by --max-seconds 12 (exit ${code}): ${err}"
             code EQUAL 3 AND line_count GREATER_EQUAL 2 AND err MATCHES "stopped by --max-seconds 12 after [0-9]+ s: wrote frames 1 to [0-9]+ of 100000"
-            AND EXISTS "${WORK}/seq-00001.png")
+            AND EXISTS "${WORK}/seq-000001.png" AND EXISTS "${WORK}/seq-000001-indirect.pfm")
 
 cli_report()
