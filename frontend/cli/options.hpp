@@ -35,6 +35,10 @@ struct session {
   bool dry_run = false;
 };
 
+/// The exit code of a run that --max-seconds cut short after writing a complete part of its work
+/// (render --poses: frames 1 to k): neither success (0) nor a failure that wrote nothing (1, 2).
+constexpr int exit_stopped_by_deadline = 3;
+
 /// A command line that parses but asks for something inconsistent (exit 2, like a parse error).
 class usage_error : public std::runtime_error {
  public:

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
+#include <iostream>
 #include <sstream>
 
 #include <vplkit/version.hpp>
@@ -15,6 +16,7 @@
 #include "frontend/cli/output.hpp"
 #include "frontend/cli/technique_options.hpp"
 #include "frontend/core/parallel.hpp"
+#include "frontend/core/progress.hpp"
 #include "frontend/reference/quality.hpp"
 #include "frontend/scene/pose.hpp"
 #include "frontend/techniques/rsm/rsm_pipeline.hpp"
@@ -32,6 +34,7 @@ struct render_state {
   reference_options quality;
   option_scope reference_scope;  ///< --receiver-stride, --samples, --reference-seed
   std::string poses;             ///< --poses: a pose file, one frame per line
+  double max_seconds = 0.0;      ///< --max-seconds: a --poses sequence stops after the frame that passes it; 0: no limit
 };
 
 std::string json_string(const std::string& text) {
@@ -64,7 +67,13 @@ std::string frame_suffix(std::size_t frame, std::size_t count) {
 
 // The frames of --poses, rendered in one RSM pipeline (render_next: the pattern turns and the
 // temporal accumulation blends with the history); nothing is written unless every frame renders.
+// A long sequence reports its progress on stderr (a plain line every 5 s, with the time left, when
+// stderr is not a terminal). --max-seconds (counted from the command's start) stops it after the
+// frame during which the time ran out: the frames rendered until then, 1 to k, are written (all or
+// nothing, as a whole sequence is), stderr says how many, and the exit code is
+// exit_stopped_by_deadline, so a script can tell a shortened sequence from a whole one.
 int render_sequence(const session& io, const render_state& s, const technique_settings& settings, output_set& files) {
+  const double started = steady_seconds();
   const std::vector<pose_frame> frames = read_pose_file(s.poses, false);
   const headless_session gl(s.options.common);
   std::unique_ptr<scene> source;
@@ -80,7 +89,17 @@ int render_sequence(const session& io, const render_state& s, const technique_se
   camera view = rsm->current_camera();
   scene_light light = rsm->current_light();
   double total_ms = 0.0;
+  progress_settings reporting = progress_on_stderr();
+  const std::string deadline_name = "--max-seconds " + format_number(static_cast<float>(s.max_seconds));
+  if (s.max_seconds > 0.0) {
+    reporting.deadline = started + s.max_seconds;
+    reporting.deadline_name = deadline_name;
+  }
+  progress_monitor progress("render --poses", frames.size(), "frames", reporting);
+  std::size_t rendered_frames = 0;
   for (std::size_t i = 0; i < frames.size(); ++i) {
+    // The deadline is checked between frames: the frame it fell in is finished and kept.
+    if (i > 0 && (progress.stopped() || steady_seconds() >= reporting.deadline)) break;
     const pose_frame& frame = frames[i];
     const std::string where = s.poses + ":" + std::to_string(frame.line);
     if (frame.camera) {
@@ -97,11 +116,23 @@ int render_sequence(const session& io, const render_state& s, const technique_se
     files.add_png(files.sibling(suffix, ".png"), rendered.radiance);
     files.add_pfm(files.sibling(suffix + "-indirect", ".pfm"), rendered.indirect);
     if (s.raw_indirect) files.add_pfm(files.sibling(suffix + "-raw-indirect", ".pfm"), rsm->read_buffers().indirect);
+    rendered_frames = i + 1;
+    progress.advance();
   }
-  io.out << drawn->describe() << "\n" << frames.size() << " frames from " << s.poses << ", " << std::fixed << std::setprecision(1)
-         << total_ms / static_cast<double>(frames.size()) << " ms per frame (passes)\n";
+  const bool whole = rendered_frames == frames.size();
+  if (whole) {
+    progress.finish();
+  } else if (reporting.terminal) {
+    std::cerr << "\n";  // past the progress bar's line
+  }
+  io.out << drawn->describe() << "\n" << rendered_frames << " frames from " << s.poses << ", " << std::fixed << std::setprecision(1)
+         << total_ms / static_cast<double>(rendered_frames) << " ms per frame (passes)\n";
   files.write(io.out);
-  return 0;
+  if (whole) return 0;
+  std::cerr << "vplkit render: stopped by " << deadline_name << " after " << duration_text(steady_seconds() - started) << ": wrote frames 1 to "
+            << rendered_frames << " of " << frames.size() << "; the other " << frames.size() - rendered_frames << " were not rendered (exit code "
+            << exit_stopped_by_deadline << ")\n";
+  return exit_stopped_by_deadline;
 }
 
 int run_render(const session& io, const render_state& s) {
@@ -116,12 +147,13 @@ int run_render(const session& io, const render_state& s) {
   if (!s.stats.empty() && std::filesystem::path(s.stats).extension() != ".json") throw usage_error("--stats must name a .json file, got " + shown(s.stats));
   if (!s.poses.empty() && (kind != reference_kind::none || !s.stats.empty())) throw usage_error("--poses renders a sequence: no --reference or --stats");
   if (s.poses.empty() && o.given.find("temporal-blend")) throw usage_error("--temporal-blend is read with --poses (a sequence), not for one frame");
+  if (s.poses.empty() && s.max_seconds > 0.0) throw usage_error("--max-seconds bounds a --poses sequence, not one frame");
   if (io.dry_run) return 0;
   if (!s.poses.empty()) return render_sequence(io, s, *settings, files);
 
   const headless_session gl(o.common);
   std::unique_ptr<scene> source;
-  const std::unique_ptr<pipeline> drawn = make_posed_pipeline(gl.shaders, o.common, *settings, source);
+  std::unique_ptr<pipeline> drawn = make_posed_pipeline(gl.shaders, o.common, *settings, source);
   // The first frame pays for the shader compilers' lazy work (llvmpipe's JIT, a driver's first use
   // of a program); the tables report warmed-up frames: every pass, then what a camera move redraws.
   drawn->draw();
@@ -133,22 +165,9 @@ int run_render(const session& io, const render_state& s) {
 
   // Everything is rendered before anything is written, so a failure leaves no partial set.
   files.add_png(files.main(), radiance, exposure_scale(o.common, radiance, io.out));
-  if (drawn->has_indirect()) {
-    const float exposure = percentile_exposure(indirect);
-    files.add_png(files.sibling("-indirect", ".png"), indirect, exposure);
-    if (const std::string baseline = family.visibility_baseline(o.technique); !baseline.empty()) {
-      // The same frame without visibility: what the approximation removes, amplified 8x relative
-      // to the indirect image's exposure (Fig. 5.1c).
-      std::unique_ptr<technique_settings> without = settings->clone();
-      without->set_technique(baseline);
-      // The scene already loaded and posed is the baseline's too (the same family reads it).
-      std::unique_ptr<scene> baseline_source;
-      const std::unique_ptr<pipeline> reference = source ? family.make_pipeline(gl.shaders, source.get(), *without)
-                                                         : make_posed_pipeline(gl.shaders, o.common, *without, baseline_source);
-      reference->draw();
-      files.add_png(files.sibling("-visibility-difference", ".png"), luminance_difference(reference->indirect_output().read_image(), indirect, 8.0f * exposure));
-    }
-  }
+  const bool has_indirect = drawn->has_indirect();
+  const float exposure = has_indirect ? percentile_exposure(indirect) : 1.0f;
+  if (has_indirect) files.add_png(files.sibling("-indirect", ".png"), indirect, exposure);
   // The indirect shadow factor as grey, linear (1 = white = not shadowed).
   if (const texture_2d* shadow = drawn->indirect_shadow_output()) files.add_png(files.sibling("-indirect-shadow", ".png"), red_as_grey(shadow->read_image()));
   // The indirect light, linear (0 for direct light only).
@@ -199,6 +218,21 @@ int run_render(const session& io, const render_state& s) {
          << "}}" << quality_json << "\n}\n";
     files.add_text(s.stats, json.str());
   }
+  if (const std::string baseline = has_indirect ? family.visibility_baseline(o.technique) : std::string(); !baseline.empty()) {
+    // The same frame without visibility: what the approximation removes, amplified 8x relative
+    // to the indirect image's exposure (Fig. 5.1c). Drawn last, once the frame's own pipeline is
+    // released: the two side by side held the mesh on the GPU twice (a 2^21-triangle faceted mesh
+    // is 300 MB a copy).
+    drawn.reset();
+    std::unique_ptr<technique_settings> without = settings->clone();
+    without->set_technique(baseline);
+    // The scene already loaded and posed is the baseline's too (the same family reads it).
+    std::unique_ptr<scene> baseline_source;
+    const std::unique_ptr<pipeline> reference = source ? family.make_pipeline(gl.shaders, source.get(), *without)
+                                                       : make_posed_pipeline(gl.shaders, o.common, *without, baseline_source);
+    reference->draw();
+    files.add_png(files.sibling("-visibility-difference", ".png"), luminance_difference(reference->indirect_output().read_image(), indirect, 8.0f * exposure));
+  }
   files.write(io.out);
   return 0;
 }
@@ -221,6 +255,10 @@ command add_render_command(CLI::App& app) {
                                              "and/or --light x,y,z,tx,ty,tz ('#' comments; a pose a line leaves out stays); writes <out>-0001.png, "
                                              "<out>-0001-indirect.pfm, ... for every frame, or nothing; --temporal-blend sets the accumulation"),
                            "the RSM techniques (direct, rsm-*)", [](const std::string& technique) { return family_of(technique).name == "rsm"; });
+  render->add_option("--max-seconds", state->max_seconds,
+                     "with --poses: stop after the frame during which this many seconds (counted from the start) have passed, write the "
+                     "frames rendered until then, and exit with code 3; 0: no limit")
+      ->check(number_in(0.0, 1e9, false, "seconds"))->capture_default_str();
   render->add_option("--stats", state->stats, "write the settings in effect, the pass times with their method and the quality numbers as JSON (.json)");
   render->add_option("--reference", state->reference,
                      "measure the frame against ground truth: rsm-brute-force (the RSM techniques' raw gather against the brute-force gather of "

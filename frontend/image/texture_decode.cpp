@@ -2,6 +2,7 @@
 
 #include <turbojpeg.h>
 
+#include <algorithm>
 #include <limits>
 #include <memory>
 #include <utility>
@@ -40,6 +41,32 @@ texture_file_format texture_format_of(std::string_view bytes) {
   constexpr unsigned char jpeg_signature[3] = {0xff, 0xd8, 0xff};
   if (starts_with_bytes(bytes, jpeg_signature, sizeof jpeg_signature)) return texture_file_format::jpeg;
   return texture_file_format::unknown;
+}
+
+texture_size claimed_texture_size(std::string_view bytes) {
+  switch (texture_format_of(bytes)) {
+    case texture_file_format::png: {
+      // The signature, IHDR's length (13) and type, then width and height, big-endian.
+      if (bytes.size() < 24 || bytes.substr(12, 4) != "IHDR") return {};
+      const auto be32 = [&](std::size_t at) {
+        std::uint64_t value = 0;
+        for (std::size_t k = 0; k < 4; ++k) value = value << 8 | static_cast<unsigned char>(bytes[at + k]);
+        return value;
+      };
+      return {be32(16), be32(20)};
+    }
+    case texture_file_format::jpeg: {
+      if (bytes.size() > std::numeric_limits<unsigned long>::max()) return {};
+      const std::unique_ptr<void, int (*)(tjhandle)> decoder(tjInitDecompress(), tjDestroy);
+      int width = 0, height = 0, subsampling = 0, colour_space = 0;
+      if (!decoder || tjDecompressHeader3(decoder.get(), reinterpret_cast<const unsigned char*>(bytes.data()), static_cast<unsigned long>(bytes.size()), &width,
+                                          &height, &subsampling, &colour_space) != 0)
+        return {};
+      return {static_cast<std::uint64_t>(std::max(width, 0)), static_cast<std::uint64_t>(std::max(height, 0))};
+    }
+    case texture_file_format::unknown: break;
+  }
+  return {};
 }
 
 texture_pixels decode_texture(std::string_view bytes, const std::string& name, const texture_limits& limits) {

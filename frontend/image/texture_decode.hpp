@@ -20,6 +20,15 @@ namespace vplkit {
 struct texture_limits {
   int max_side = 16384;                           ///< GL_MAX_TEXTURE_SIZE of most GPUs
   std::size_t max_pixels = std::size_t{1} << 26;  ///< 64 Mi pixels: 256 MiB of RGBA8, 341 MiB with mipmaps
+  /// All of one scene's decoded textures with their mip chains together (texture_budget,
+  /// frontend/scene/material.hpp): 1 GiB, checked from each header before it is decoded.
+  std::uint64_t max_scene_bytes = std::uint64_t{1} << 30;
+};
+
+/// The width and height a PNG's IHDR or a JPEG's frame header claims, read without decoding.
+struct texture_size {
+  std::uint64_t width = 0;
+  std::uint64_t height = 0;
 };
 
 /// A decoded texture: 8-bit RGBA, RGB as stored (sRGB-encoded), alpha linear, rows top-down.
@@ -33,6 +42,10 @@ enum class texture_file_format { png, jpeg, unknown };
 
 /// The format the bytes' signature names (PNG: 89 50 4E 47 0D 0A 1A 0A; JPEG: FF D8 FF).
 texture_file_format texture_format_of(std::string_view bytes);
+
+/// The size the header of a PNG or JPEG claims, without decoding the pixels; {0, 0} when there is
+/// no readable header (decode_texture then says what is wrong).
+texture_size claimed_texture_size(std::string_view bytes);
 
 /// Decodes a PNG or a JPEG, chosen by the signature. Throws vplkit::error starting with `name`
 /// for another format, a size over the limits, or a file the decoder refuses.

@@ -527,8 +527,8 @@ class reader {
   }
 
   // The encoded bytes of image `index`: from its buffer view (bounds checked) or as tinygltf read
-  // its URI.
-  std::string bytes_of_image(int index, const std::string& what) const {
+  // its URI; both stay in memory while the model is read (they are not copied).
+  std::string_view bytes_of_image(int index, const std::string& what) const {
     const tinygltf::Image& image = model_.images[static_cast<std::size_t>(index)];
     if (image.bufferView >= 0) {
       if (image.bufferView >= static_cast<int>(model_.bufferViews.size())) fail(what + ": buffer view " + std::to_string(image.bufferView) + " does not exist");
@@ -536,26 +536,28 @@ class reader {
       if (view.buffer < 0 || view.buffer >= static_cast<int>(model_.buffers.size())) fail(what + ": buffer " + std::to_string(view.buffer) + " does not exist");
       const std::vector<unsigned char>& data = model_.buffers[static_cast<std::size_t>(view.buffer)].data;
       if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset) fail(what + ": its buffer view lies outside its buffer");
-      return std::string(reinterpret_cast<const char*>(data.data() + view.byteOffset), view.byteLength);
+      return std::string_view(reinterpret_cast<const char*>(data.data() + view.byteOffset), view.byteLength);
     }
     const auto found = images_.find(index);
     if (found == images_.end()) fail(what + ": its file '" + image.uri + "' could not be read (missing, not a regular file, or over the size limit)");
     return found->second;
   }
 
-  // Image `index` decoded into the library (once), or fail naming it.
+  // Image `index` decoded into the library, or fail naming it. Each distinct content is decoded
+  // once: images that name one file (or carry the same bytes) share its texture, so a file named
+  // by four images costs one decode and one budget share, not four.
   int texture_of(int index) {
     if (index < 0 || index >= static_cast<int>(model_.images.size())) fail("image " + std::to_string(index) + " does not exist");
     int& cached = texture_of_[static_cast<std::size_t>(index)];
     if (cached != unread) return cached;
     const tinygltf::Image& image = model_.images[static_cast<std::size_t>(index)];
     const std::string what = "image " + std::to_string(index) + (image.name.empty() ? "" : " '" + image.name + "'") + (image.uri.empty() || image.uri.rfind("data:", 0) == 0 ? "" : " (" + image.uri + ")");
-    const texture_pixels pixels = decode_texture(bytes_of_image(index, what), name_ + ": " + what, limits_.textures);
-    texture_pixels_ += static_cast<std::uint64_t>(pixels.width) * static_cast<std::uint64_t>(pixels.height);
-    if (texture_pixels_ > limits_.max_texture_pixels)
-      fail(what + ": the textures together exceed " + std::to_string(limits_.max_texture_pixels) + " pixels (gltf_limits::max_texture_pixels)");
-    library_.textures.push_back(make_texture(what, texture_level{pixels.width, pixels.height, pixels.rgba8}));
-    cached = static_cast<int>(library_.textures.size() - 1);
+    const std::string_view bytes = bytes_of_image(index, what);
+    const auto [first, last] = texture_of_bytes_.equal_range(std::hash<std::string_view>{}(bytes));
+    for (auto same = first; same != last; ++same)
+      if (same->second.first == bytes) return cached = same->second.second;
+    cached = texture_budget_.decode_into(library_, bytes, name_ + ": " + what, what, limits_.textures);
+    texture_of_bytes_.emplace(std::hash<std::string_view>{}(bytes), std::make_pair(bytes, cached));
     return cached;
   }
 
@@ -878,7 +880,9 @@ class reader {
   std::vector<int> material_of_;  ///< glTF material -> library material (-1 plain, unread not yet)
   std::vector<int> texture_of_;   ///< glTF image -> library texture
   std::map<std::pair<int, std::size_t>, draco_mesh> draco_;  ///< (mesh, primitive) -> its decoded Draco data
-  std::uint64_t texture_pixels_ = 0;
+  /// Decoded images by the hash of their bytes: (the bytes, the library texture).
+  std::unordered_multimap<std::size_t, std::pair<std::string_view, int>> texture_of_bytes_;
+  texture_budget texture_budget_{limits_.textures.max_scene_bytes, "gltf_limits::textures.max_scene_bytes"};
   std::vector<std::string> noted_, notes_;
   std::optional<camera> camera_;
   std::optional<scene_light> light_;

@@ -37,8 +37,9 @@
 //
 // Every index, count, offset and stride is checked against its buffer before it is read, every
 // number for being finite; a bad file throws vplkit::error naming the file and the problem. Images
-// are decoded only when a base colour texture uses them, each within gltf_limits::textures and all
-// together within max_texture_pixels.
+// are decoded only when a base colour texture uses them, each distinct file once however many
+// images name it, each within gltf_limits::textures, and all together, with their mipmaps, within
+// textures.max_scene_bytes (1 GiB).
 // Nothing recurses on the input's depth: the JSON's nesting is measured (skipping strings) before
 // tinygltf parses it (its conversion recurses per level), and the node tree is walked with an
 // explicit stack. External files (buffers, images) are read only from the glTF's folder tree:
@@ -62,8 +63,7 @@ struct gltf_limits {
   std::uintmax_t max_file_bytes = std::uintmax_t{1} << 30;      ///< the .gltf/.glb file
   std::uintmax_t max_external_bytes = std::uintmax_t{1} << 30;  ///< every external buffer and image together
   std::size_t max_triangles = std::size_t{1} << 24;
-  texture_limits textures;                                     ///< each base colour texture's image
-  std::uint64_t max_texture_pixels = std::uint64_t{1} << 28;   ///< all textures together (1 GiB of RGBA8)
+  texture_limits textures;  ///< each base colour texture's image; max_scene_bytes: all of them with mipmaps
   /// Arrays and objects nested in the JSON (glTF's own schema nests 7 deep; extras take the rest).
   int max_json_depth = 64;
 };

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 
+#include "frontend/core/error.hpp"
 #include "frontend/image/image.hpp"
 
 namespace vplkit {
@@ -61,6 +62,13 @@ glm::vec4 sample_level(const texture_level& level, const texture_sampler& sample
          a * b * texel(level, i[1], j[1]);
 }
 
+// "1 GiB", "300 MiB", "1000 bytes": the budget as its messages show it.
+std::string budget_text(std::uint64_t bytes) {
+  if (bytes >= (std::uint64_t{1} << 30) && bytes % (std::uint64_t{1} << 30) == 0) return std::to_string(bytes >> 30) + " GiB";
+  if (bytes >= (std::uint64_t{1} << 20) && bytes % (std::uint64_t{1} << 20) == 0) return std::to_string(bytes >> 20) + " MiB";
+  return std::to_string(bytes) + " bytes";
+}
+
 }  // namespace
 
 float srgb8_to_linear(std::uint8_t code) { return srgb_table()[code]; }
@@ -91,6 +99,40 @@ texture make_texture(std::string name, texture_level level0) {
     out.levels.push_back(std::move(next));
   }
   return out;
+}
+
+std::uint64_t texture_bytes_with_mipmaps(std::uint64_t width, std::uint64_t height) {
+  std::uint64_t bytes = 0;
+  for (;;) {
+    bytes += 4 * width * height;
+    if (width <= 1 && height <= 1) return bytes;
+    width = std::max<std::uint64_t>(1, width / 2);
+    height = std::max<std::uint64_t>(1, height / 2);
+  }
+}
+
+int texture_budget::decode_into(material_library& library, std::string_view encoded, const std::string& what, std::string texture_name,
+                                const texture_limits& limits) {
+  // The header's size against the per-texture limits first (a claim of 2^32 x 2^32 must not reach
+  // the sum below), then against what is left of the scene's budget, before anything is decoded.
+  const texture_size claimed = claimed_texture_size(encoded);
+  if (claimed.width >= 1 && claimed.height >= 1 && claimed.width <= static_cast<std::uint64_t>(limits.max_side) &&
+      claimed.height <= static_cast<std::uint64_t>(limits.max_side)) {
+    const std::uint64_t bytes = texture_bytes_with_mipmaps(claimed.width, claimed.height);
+    if (used_bytes_ + bytes > max_bytes_)
+      throw error(what + ": its " + std::to_string(claimed.width) + "x" + std::to_string(claimed.height) + " texels with mipmaps (" + std::to_string(bytes) +
+                  " bytes) would bring the scene's decoded textures to " + std::to_string(used_bytes_ + bytes) + " bytes, more than the " +
+                  budget_text(max_bytes_) + " budget for a scene's textures (" + origin_ + ")");
+  }
+  texture_pixels pixels = decode_texture(encoded, what, limits);
+  // The decoded size is charged too: it is what was allocated, whatever the header said.
+  const std::uint64_t bytes = texture_bytes_with_mipmaps(static_cast<std::uint64_t>(pixels.width), static_cast<std::uint64_t>(pixels.height));
+  if (used_bytes_ + bytes > max_bytes_)
+    throw error(what + ": its decoded texels with mipmaps (" + std::to_string(bytes) + " bytes) would bring the scene's decoded textures to " +
+                std::to_string(used_bytes_ + bytes) + " bytes, more than the " + budget_text(max_bytes_) + " budget for a scene's textures (" + origin_ + ")");
+  used_bytes_ += bytes;
+  library.textures.push_back(make_texture(std::move(texture_name), texture_level{pixels.width, pixels.height, std::move(pixels.rgba8)}));
+  return static_cast<int>(library.textures.size() - 1);
 }
 
 glm::vec2 material_texture_coordinate(const surface_material& material, glm::vec2 texcoord) {

@@ -23,9 +23,12 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/glm.hpp>
+
+#include "frontend/image/texture_decode.hpp"
 
 namespace vplkit {
 
@@ -76,6 +79,28 @@ struct surface_material {
 struct material_library {
   std::vector<texture> textures;
   std::vector<surface_material> materials;
+};
+
+/// RGBA8 bytes of a width x height texture with its whole mip chain (make_texture's levels).
+std::uint64_t texture_bytes_with_mipmaps(std::uint64_t width, std::uint64_t height);
+
+/// What one scene's textures may take once decoded: every texture's levels, mipmaps included,
+/// count against one budget (texture_limits::max_scene_bytes, 1 GiB by default), and a texture
+/// that would pass it is refused from its header, before it is decoded.
+class texture_budget {
+ public:
+  /// `origin` names the setting in messages ("gltf_limits::textures.max_scene_bytes").
+  texture_budget(std::uint64_t max_bytes, std::string origin) : max_bytes_(max_bytes), origin_(std::move(origin)) {}
+  /// Decodes `encoded` (decode_texture with `limits`) into `library` after charging its size with
+  /// mipmaps; returns its index. Throws vplkit::error starting with `what` (the scene file, the
+  /// image and its file) and naming the budget when the scene's textures would pass it.
+  int decode_into(material_library& library, std::string_view encoded, const std::string& what, std::string texture_name, const texture_limits& limits);
+  std::uint64_t used_bytes() const { return used_bytes_; }
+
+ private:
+  std::uint64_t max_bytes_;
+  std::string origin_;
+  std::uint64_t used_bytes_ = 0;
 };
 
 /// Triangles [first_index, first_index + index_count) of a mesh's index list use `material`.

@@ -263,10 +263,11 @@ class vertex_index {
   std::unordered_map<vertex_key, std::uint32_t, vertex_key_hash> others_;
 };
 
-}  // namespace
-
-mesh parse_obj(std::string_view text, const std::string& name, const material_library_reader& read_library, const obj_limits& limits,
-               const texture_file_reader& read_texture) {
+// parse_obj, with the file's text owned by `owned` when it is given: then the text is released as
+// soon as its statements are read, before the mesh is built (the text of a triangle soup, three `v`
+// lines a triangle, is about 100 bytes a triangle: as much as the mesh being built).
+mesh parse_obj_text(std::string_view text, std::string* owned, const std::string& name, const material_library_reader& read_library, const obj_limits& limits,
+                    const texture_file_reader& read_texture) {
   statement_reader reader(text, name);
   std::vector<std::string_view> words;
   std::vector<glm::vec3> positions, normals;
@@ -340,6 +341,7 @@ mesh parse_obj(std::string_view text, const std::string& name, const material_li
     // o, g, s, l, p, vp, curves and surfaces: nothing a triangle renderer uses.
   }
   if (positions.empty() || corners.empty()) throw error(name + ": no faces (an OBJ mesh needs 'v' and 'f' lines)");
+  if (owned) std::string().swap(*owned);
 
   // Where the file has no normals, each corner takes the area-weighted mean of the normals of the
   // faces around its position (smooth shading, as the meshes were scanned or modelled).
@@ -354,7 +356,7 @@ mesh parse_obj(std::string_view text, const std::string& name, const material_li
   material_library library;
   std::vector<int> surface_of(used.size(), -1);
   std::map<std::string, int> texture_of_file;
-  std::uint64_t pixels_so_far = 0;
+  texture_budget budget(limits.textures.max_scene_bytes, "obj_limits::textures.max_scene_bytes");
   for (std::size_t m = 0; m < used.size(); ++m) {
     if (used[m].texture_file.empty()) continue;
     if (std::find(triangle_material.begin(), triangle_material.end(), static_cast<std::uint32_t>(m)) == triangle_material.end()) continue;
@@ -369,11 +371,7 @@ mesh parse_obj(std::string_view text, const std::string& name, const material_li
       } catch (const error& failure) {
         throw error(what + ": " + failure.what());
       }
-      const texture_pixels pixels = decode_texture(bytes, what, limits.textures);
-      pixels_so_far += static_cast<std::uint64_t>(pixels.width) * static_cast<std::uint64_t>(pixels.height);
-      if (pixels_so_far > limits.max_texture_pixels)
-        throw error(what + ": the textures together exceed " + std::to_string(limits.max_texture_pixels) + " pixels (obj_limits::max_texture_pixels)");
-      library.textures.push_back(make_texture(source.texture_file, texture_level{pixels.width, pixels.height, pixels.rgba8}));
+      budget.decode_into(library, bytes, what, source.texture_file, limits.textures);
     }
     surface_material made;
     made.name = source.name;
@@ -392,6 +390,10 @@ mesh parse_obj(std::string_view text, const std::string& name, const material_li
   mesh result;
   vertex_index shared(positions.size());
   result.indices.reserve(corners.size());
+  // At most a vertex per corner (a triangle soup, where nothing is shared, has exactly that):
+  // reserved, because growing by doubling held the old and the new array at once (185 + 277 MB
+  // for a faceted 2^21-triangle mesh). The pages of a closed mesh's unused part are never touched.
+  result.vertices.reserve(corners.size());
   for (std::size_t face = 0; face < corners.size(); face += 3) {
     const material& face_material = used[triangle_material[face / 3]];
     glm::vec3 corner_position[3];
@@ -447,15 +449,28 @@ mesh parse_obj(std::string_view text, const std::string& name, const material_li
     }
   }
   if (result.indices.empty()) throw error(name + ": no faces with area (every triangle is degenerate)");
+  // The parser's arrays go first, then the vertices are fitted to their count (a copy of what is
+  // used: a closed mesh has about one vertex per two triangles).
+  for (auto* released : {&positions, &smooth_normals}) std::vector<glm::vec3>().swap(*released);
+  std::vector<corner>().swap(corners);
+  shared = vertex_index(0);
+  if (result.vertices.capacity() > result.vertices.size() + result.vertices.size() / 8) result.vertices.shrink_to_fit();
   if (!result.material_ranges.empty()) result.materials = std::make_shared<const material_library>(std::move(library));
   return result;
 }
 
+}  // namespace
+
+mesh parse_obj(std::string_view text, const std::string& name, const material_library_reader& read_library, const obj_limits& limits,
+               const texture_file_reader& read_texture) {
+  return parse_obj_text(text, nullptr, name, read_library, limits, read_texture);
+}
+
 mesh load_obj(const fs::path& path, const obj_limits& limits) {
-  const std::string text = read_file(path, limits.max_obj_bytes, "OBJ file");
+  std::string text = read_file(path, limits.max_obj_bytes, "OBJ file");
   const fs::path folder = path.parent_path();
-  return parse_obj(
-      text, path.string(), [&](const std::string& library) { return read_file(folder / library, limits.max_mtl_bytes, "MTL file"); }, limits,
+  return parse_obj_text(
+      text, &text, path.string(), [&](const std::string& library) { return read_file(folder / library, limits.max_mtl_bytes, "MTL file"); }, limits,
       [&](const std::string& file) {
         // Exporters on Windows write map_Kd paths with backslashes.
         std::string portable = file;

@@ -31,8 +31,7 @@ struct obj_limits {
   std::uintmax_t max_mtl_bytes = std::uintmax_t{1} << 24;  ///< 16 MiB per material library
   std::size_t max_triangles = std::size_t{1} << 24;        ///< after triangulation
   std::uintmax_t max_texture_file_bytes = std::uintmax_t{1} << 28;  ///< 256 MiB per map_Kd file
-  texture_limits textures;                                          ///< each map_Kd image
-  std::uint64_t max_texture_pixels = std::uint64_t{1} << 28;        ///< all textures together
+  texture_limits textures;  ///< each map_Kd image; max_scene_bytes: all of them with mipmaps
 };
 
 /// Returns the text of the material library an `mtllib` line names (or throws vplkit::error).

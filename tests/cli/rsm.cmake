@@ -122,4 +122,36 @@ expect_failure("--poses is the RSM techniques'" "--poses is read by the RSM tech
 expect_failure("a missing pose file" "none\\.txt" "${WORK}/none-*"
                "${VPLKIT}" render --poses "${WORK}/none.txt" --size 16 --out "${WORK}/none.png")
 
+# --max-seconds (issue 36): a sequence of 20,000 tiny frames (minutes) with 1 s stops after the
+# frame during which the second ran out, writes frames 1 to k whole, says so, and exits 3.
+string(REPEAT "--light 0.2,1.9,0.1,0,0,0\n--camera 0.5,1,3.5,0,1,0\n" 500 thousand_poses)
+file(WRITE "${WORK}/long-poses.txt" "")
+foreach(block RANGE 1 20)
+  file(APPEND "${WORK}/long-poses.txt" "${thousand_poses}")
+endforeach()
+execute_process(COMMAND "${VPLKIT}" render --poses "${WORK}/long-poses.txt" --size 8 --rsm-size 8 --max-seconds 1 --out "${WORK}/cut.png"
+                RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+set(written 0)
+if(err MATCHES "stopped by --max-seconds 1 after [0-9]+ s: wrote frames 1 to ([0-9]+) of 20000; the other [0-9]+ were not rendered \\(exit code 3\\)")
+  set(written ${CMAKE_MATCH_1})
+endif()
+math(EXPR next "${written} + 1")
+string(LENGTH "${written}" digits)
+math(EXPR zeros "5 - ${digits}")
+string(REPEAT "0" ${zeros} padding)
+string(LENGTH "${next}" digits)
+math(EXPR zeros "5 - ${digits}")
+string(REPEAT "0" ${zeros} next_padding)
+file(GLOB cut_files "${WORK}/cut-*")
+list(LENGTH cut_files cut_count)
+math(EXPR expected_files "2 * ${written}")
+expect_true("render --poses --max-seconds 1 of 20,000 frames: exit 3 (${code}), frames 1 to ${written} written whole, none after (${cut_count} files): ${err}"
+            code EQUAL 3 AND written GREATER 0 AND written LESS 20000 AND cut_count EQUAL expected_files
+            AND EXISTS "${WORK}/cut-${padding}${written}.png" AND EXISTS "${WORK}/cut-${padding}${written}-indirect.pfm"
+            AND NOT EXISTS "${WORK}/cut-${next_padding}${next}.png" AND out MATCHES "\n${written} frames from .*wrote .*/cut-00001\\.png")
+expect_failure("--max-seconds bounds a sequence" "--max-seconds bounds a --poses sequence, not one frame" "${WORK}/one.png"
+               "${VPLKIT}" render --max-seconds 5 --size 16 --out "${WORK}/one.png")
+expect_failure("--max-seconds is a number of seconds" "--max-seconds: must be a number in \\[0, 1e\\+09\\]" "${WORK}/neg-*"
+               "${VPLKIT}" render --poses "${WORK}/poses.txt" --max-seconds -1 --size 16 --out "${WORK}/neg.png")
+
 cli_report()

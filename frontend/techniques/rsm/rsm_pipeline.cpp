@@ -213,9 +213,10 @@ std::string validate(const rsm_pipeline_settings& settings) {
   return {};
 }
 
-light_frustum make_light_frustum(const scene& source, int rsm_size) {
+light_frustum make_light_frustum(const scene& source, int rsm_size) { return make_light_frustum(source, bounds(source.geometry), rsm_size); }
+
+light_frustum make_light_frustum(const scene& source, const bounding_box& box, int rsm_size) {
   light_frustum frustum;
-  const bounding_box box = bounds(source.geometry);
   const float radius = std::max(box.radius(), 1e-3f);
   if (source.light.kind == light_kind::spot) {
     const spot_light<float>& light = source.light.spot;
@@ -238,13 +239,17 @@ light_frustum make_light_frustum(const scene& source, int rsm_size) {
 }
 
 rsm_frame_constants make_frame_constants(const scene& source, const rsm_pipeline_settings& settings) {
+  return make_frame_constants(source, bounds(source.geometry), source.geometry.triangle_count(), settings);
+}
+
+rsm_frame_constants make_frame_constants(const scene& source, const bounding_box& box, std::size_t triangles, const rsm_pipeline_settings& settings) {
   if (const std::string problem = validate(settings); !problem.empty()) throw error("RSM pipeline settings: " + problem);
   const setting_problem light_problem = source.light.kind == light_kind::spot ? validate(source.light.spot) : validate(source.light.directional);
   if (light_problem) throw error("scene " + source.name + ": " + light_problem.message());
-  if (source.geometry.indices.empty()) throw error("scene " + source.name + " has no triangles");
+  if (triangles == 0) throw error("scene " + source.name + " has no triangles");
   rsm_frame_constants constants;
   constants.technique = find_rsm_technique(settings.technique);
-  constants.light = make_light_frustum(source, settings.rsm_size);
+  constants.light = make_light_frustum(source, box, settings.rsm_size);
   constants.primary = source.light;
   constants.gather = make_rsm_gather_settings(settings.radial, settings.disk, settings.radius, settings.slots, glm::ivec2(settings.rsm_size));
   constants.gather.irradiance = settings.irradiance;
@@ -286,9 +291,11 @@ void set_light_uniforms(const program& target, const rsm_frame_constants& consta
 }  // namespace
 
 rsm_pipeline::rsm_pipeline(const shader_library& shaders, const scene& source, const rsm_pipeline_settings& settings)
-    : scene_(source),
+    : scene_{source.name, mesh{}, source.view, source.light, source.notes},
+      bounds_(bounds(source.geometry)),
+      triangles_(source.geometry.triangle_count()),
       settings_(settings),
-      constants_(make_frame_constants(source, settings)),
+      constants_(make_frame_constants(source, bounds_, triangles_, settings)),
       mesh_(source.geometry),
       rsm_program_(load_program(shaders, "scene.vert", "rsm.frag", {{"VPLKIT_LIGHT_DIRECTIONAL", flag(is_directional(source))}})),
       gbuffer_program_(load_program(shaders, "scene.vert", "gbuffer.frag")),
@@ -396,7 +403,7 @@ void rsm_pipeline::move_to(const camera& view, const scene_light& light) {
   scene_.view = view;
   scene_.light = light;
   try {
-    constants_ = make_frame_constants(scene_, settings_);
+    constants_ = make_frame_constants(scene_, bounds_, triangles_, settings_);
   } catch (...) {
     scene_.view = previous_view;
     scene_.light = previous_light;
@@ -576,7 +583,7 @@ std::string rsm_pipeline::draw_counts() const {
 }
 
 std::string rsm_pipeline::describe() const {
-  return "scene " + scene_.name + " (" + std::to_string(scene_.geometry.triangle_count()) + " triangles), technique " + settings_.technique + ", " +
+  return "scene " + scene_.name + " (" + std::to_string(triangles_) + " triangles), technique " + settings_.technique + ", " +
          std::to_string(settings_.width) + "x" + std::to_string(settings_.height) + ", RSM " + std::to_string(settings_.rsm_size) + "^2, indirect " +
          std::to_string(constants_.indirect_size.x) + "x" + std::to_string(constants_.indirect_size.y);
 }

@@ -110,6 +110,8 @@ struct light_frustum {
   float texel_area = 0.0f;    ///< directional light: area one RSM texel covers across the light
 };
 light_frustum make_light_frustum(const scene& source, int rsm_size);
+/// The same for the light of `source` around a mesh whose bounds are `box` (source.geometry is not read).
+light_frustum make_light_frustum(const scene& source, const bounding_box& box, int rsm_size);
 
 /// The constants of a frame that the GL passes and their CPU mirror share (one derivation).
 struct rsm_frame_constants {
@@ -129,6 +131,9 @@ struct rsm_frame_constants {
   int indirect_divisor = 2;
 };
 rsm_frame_constants make_frame_constants(const scene& source, const rsm_pipeline_settings& settings);
+/// The same for the camera and light of `source` around a mesh of `triangles` triangles whose
+/// bounds are `box` (source.geometry is not read: the pipeline keeps these, not a copy of the mesh).
+rsm_frame_constants make_frame_constants(const scene& source, const bounding_box& box, std::size_t triangles, const rsm_pipeline_settings& settings);
 
 /// The RSM as the GPU stores it: one packed texel per pixel light (vplkit/rsm_packing.hpp), rows
 /// bottom-up; all bits 0 where nothing was rendered.
@@ -199,7 +204,6 @@ class rsm_pipeline final : public pipeline {
   std::string scene_name() const override { return scene_.name; }
   /// The pass times since the last render() or collect_pass_times().
   std::vector<pass_time> collect_pass_times() override { return timer_.collect(); }
-  const scene& source() const { return scene_; }
   const rsm_pipeline_settings& settings() const { return settings_; }
   /// draw() timed by wall clock between two glFinish calls: the frame's cost on any renderer
   /// (llvmpipe's timer queries measure only the span of its last rasterizer tiles).
@@ -224,7 +228,11 @@ class rsm_pipeline final : public pipeline {
   /// The gather's pattern seeds for frame `frame` of a sequence (0: the settings' own).
   void set_pattern_frame(std::uint32_t frame);
 
+  /// The scene's name, camera and light; not its mesh, which lives on the GPU (mesh_) and in the
+  /// caller's scene: a copy here doubled the memory a large mesh takes.
   scene scene_;
+  bounding_box bounds_;
+  std::size_t triangles_ = 0;
   rsm_pipeline_settings settings_;
   rsm_frame_constants constants_;
   mesh_buffers mesh_;

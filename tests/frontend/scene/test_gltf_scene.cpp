@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "frontend/core/error.hpp"
+#include "frontend/image/image_files.hpp"
 #include "frontend/scene/gltf_scene.hpp"
 
 using namespace vplkit;
@@ -494,4 +495,75 @@ TEST_CASE("KHR_draco_mesh_compression in a .gltf and in a .glb (its JSON chunk r
   damaged.replace(magic, 4, "QUJD");  // "ABC"
   CHECK_THROWS_WITH_AS(parse_gltf(damaged, false, "damaged.gltf", {}), doctest::Contains("damaged.gltf: mesh 0 primitive 0 KHR_draco_mesh_compression: not Draco data"),
                        vplkit::error);
+}
+
+namespace {
+
+// A textured triangle glTF: one primitive per entry of `image_uris` (each its own material and
+// texture, naming that image), positions and texture coordinates from uv.bin.
+std::string textured_gltf(const std::vector<std::string>& image_uris) {
+  std::string primitives, materials, textures, images;
+  for (std::size_t i = 0; i < image_uris.size(); ++i) {
+    const std::string n = std::to_string(i), comma = i == 0 ? "" : ",";
+    primitives += comma + R"({"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "material": )" + n + "}";
+    materials += comma + R"({"pbrMetallicRoughness": {"baseColorTexture": {"index": )" + n + "}}}";
+    textures += comma + R"({"source": )" + n + "}";
+    images += comma + R"({"uri": ")" + image_uris[i] + R"("})";
+  }
+  return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}], "meshes": [{"primitives": [)" + primitives +
+         R"(]}], "materials": [)" + materials + R"(], "textures": [)" + textures + R"(], "images": [)" + images +
+         R"(], "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},)"
+         R"( {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC2"}], "bufferViews": [{"buffer": 0, "byteLength": 36},)"
+         R"( {"buffer": 0, "byteOffset": 36, "byteLength": 24}], "buffers": [{"byteLength": 60, "uri": "uv.bin"}]})";
+}
+
+// A w x h PNG of one grey `level`.
+void write_png(const fs::path& path, int w, int h, std::uint8_t level) {
+  const std::vector<std::uint8_t> bytes = encode_png(w, h, std::vector<std::uint8_t>(static_cast<std::size_t>(w) * static_cast<std::size_t>(h) * 4, level));
+  std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+}
+
+}  // namespace
+
+TEST_CASE("textures: one image file named by four images is decoded once; all of a scene's texels with mipmaps count against one budget") {
+  const gltf_folder folder;
+  {
+    const float uv_bin[15] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 1};
+    std::ofstream(folder.root / "scene" / "uv.bin", std::ios::binary).write(reinterpret_cast<const char*>(uv_bin), sizeof uv_bin);
+  }
+  write_png(folder.root / "scene" / "big.png", 64, 32, 100);
+  write_png(folder.root / "scene" / "other.png", 64, 32, 200);
+  // 64 x 32 with mipmaps: 4 x (2048 + 512 + 128 + 32 + 8 + 2 + 1) texels' bytes.
+  CHECK(texture_bytes_with_mipmaps(64, 32) == 4 * (2048 + 512 + 128 + 32 + 8 + 2 + 1));
+  const std::uint64_t one = texture_bytes_with_mipmaps(64, 32);
+
+  // Four images (two spellings of the path among them) of one file: one texture, decoded once,
+  // which every material samples; it fits a budget of one texture.
+  gltf_limits limits;
+  limits.textures.max_scene_bytes = one;
+  const scene four = load_gltf(folder.write("four.gltf", textured_gltf({"big.png", "big.png", "./big.png", "big%2Epng"})), limits);
+  REQUIRE(four.geometry.materials != nullptr);
+  const material_library& library = *four.geometry.materials;
+  CHECK(library.textures.size() == 1);
+  REQUIRE(library.materials.size() == 4);
+  for (const surface_material& material : library.materials) CHECK(material.texture == 0);
+
+  // Two different files do not fit that budget: the second is refused, naming it and the budget.
+  const std::string refused = load_error(folder.write("two.gltf", textured_gltf({"big.png", "other.png"})), limits);
+  CHECK(refused.find("two.gltf: image 1 (other.png): its 64x32 texels with mipmaps (" + std::to_string(one) + " bytes) would bring the scene's decoded textures to " +
+                     std::to_string(2 * one) + " bytes, more than the " + std::to_string(one) + " bytes budget for a scene's textures "
+                     "(gltf_limits::textures.max_scene_bytes)") != std::string::npos);
+  limits.textures.max_scene_bytes = 2 * one;
+  CHECK(load_gltf(folder.root / "scene" / "two.gltf", limits).geometry.materials->textures.size() == 2);
+
+  // The header's claim is charged before decoding: a PNG claiming 8192 x 8192, with no data at all,
+  // is refused by a smaller budget, not by the decoder (which would name the missing data).
+  std::string claim = "\x89PNG\r\n\x1a\n";
+  claim += std::string("\0\0\0\x0dIHDR\0\0\x20\0\0\0\x20\0\x08\x06\0\0\0", 21);
+  claim += std::string(4, '\0');  // CRC, never checked: the budget refuses first
+  std::ofstream(folder.root / "scene" / "claim.png", std::ios::binary) << claim;
+  limits.textures.max_scene_bytes = std::uint64_t{1} << 28;
+  CHECK(load_error(folder.write("claim.gltf", textured_gltf({"claim.png"})), limits)
+            .find("image 0 (claim.png): its 8192x8192 texels with mipmaps (357913940 bytes) would bring the scene's decoded textures to 357913940 bytes, more than "
+                  "the 256 MiB budget") != std::string::npos);
 }
