@@ -86,12 +86,18 @@ glm::ivec3 cube_texel_of(const glm::vec<3, T>& direction, int resolution) {
 /// Distance from o of corner (ci, cj) of face `face`: the mean of the four texels around it.
 template <typename T, typename Fetch>
 T cube_corner_distance(int face, int ci, int cj, int resolution, Fetch&& fetch) {
-  const T half_texel = T(1) / T(resolution);  // half a texel in (u, v)
-  const glm::vec<2, T> corner(T(2 * ci) / T(resolution) - T(1), T(2 * cj) / T(resolution) - T(1));
+  glm::vec<3, T> major, s_axis, t_axis;
+  cube_face_axes(face, major, s_axis, t_axis);
   T sum = T(0);
   for (int k = 0; k < 4; ++k) {
-    const glm::vec<2, T> offset((k & 1) ? half_texel : -half_texel, (k & 2) ? half_texel : -half_texel);
-    const glm::ivec3 texel = cube_texel_of(cube_face_direction(face, corner + offset), resolution);
+    // The point half a texel diagonally off the corner, as a direction scaled by M (which
+    // cube_texel_of ignores): whole numbers, exact on both twins. (u, v) = (2 ci +- 1) / M - 1
+    // instead computed with a division, which GLSL need not round correctly (llvmpipe's 12.0 / 6.0
+    // is not 2.0), moved the points at a cube's corners off the diagonal where two faces tie, and
+    // the GPU read another of the three texels there than the CPU (test_parity_final_gather.cpp).
+    const int du = (k & 1) ? 1 : -1, dv = (k & 2) ? 1 : -1;
+    const glm::vec<3, T> direction = major * T(resolution) + s_axis * T(2 * ci - resolution + du) + t_axis * T(2 * cj - resolution + dv);
+    const glm::ivec3 texel = cube_texel_of(direction, resolution);
     sum += fetch(texel.x, texel.y, texel.z).w;
   }
   return sum * T(0.25);

@@ -52,12 +52,14 @@ ivec3 cube_texel_of(vec3 direction, int resolution) {
 }
 
 float cube_corner_distance(int face, int ci, int cj, int resolution) {
-  float half_texel = 1.0 / float(resolution);
-  vec2 corner = vec2(float(2 * ci) / float(resolution) - 1.0, float(2 * cj) / float(resolution) - 1.0);
+  vec3 major, s_axis, t_axis;
+  cube_face_axes(face, major, s_axis, t_axis);
   float sum = 0.0;
   for (int k = 0; k < 4; ++k) {
-    vec2 offset = vec2((k & 1) != 0 ? half_texel : -half_texel, (k & 2) != 0 ? half_texel : -half_texel);
-    ivec3 texel = cube_texel_of(cube_face_direction(face, corner + offset), resolution);
+    // Whole numbers, exact: no division, which GLSL need not round correctly (see the C++ twin).
+    int du = (k & 1) != 0 ? 1 : -1, dv = (k & 2) != 0 ? 1 : -1;
+    vec3 direction = major * float(resolution) + s_axis * float(2 * ci - resolution + du) + t_axis * float(2 * cj - resolution + dv);
+    ivec3 texel = cube_texel_of(direction, resolution);
     sum += small_cube_fetch(texel.x, texel.y, texel.z).w;
   }
   return sum * 0.25;
