@@ -69,7 +69,8 @@ const std::vector<glsl_twin>& glsl_twins();
 
 /// Throws vplkit::error naming the program, the struct and the field when a uniform struct that
 /// `declarations` holds has the name of a twin but not exactly its fields (names, types, arrays),
-/// for every struct a uniform uses, nested ones included. link_program calls it.
+/// for every struct a uniform or a uniform block member uses, nested ones included. link_program
+/// calls it.
 void check_glsl_twins(const uniform_declarations& declarations, const std::string& program_name);
 
 namespace detail {
