@@ -127,7 +127,8 @@ void check_round_trip() {
 TEST_CASE("std140_bytes puts every field of every settings struct at its std140 offset, padding zeroed") {
   for_each_glsl_twin_type([](const auto& settings) {
     using settings_type = std::decay_t<decltype(settings)>;
-    CAPTURE(settings_description<settings_type>::name);
+    const std::string name = settings_description<settings_type>::name;
+    CAPTURE(name);
     check_round_trip<settings_type>();
   });
 }
