@@ -215,10 +215,10 @@ struct struct_layout {
   static constexpr std::array<std::size_t, count> compute_offsets(std::index_sequence<I...>) {
     static_assert((std::is_same_v<typename field_value<std::tuple_element_t<I, fields_tuple<Settings>>>::owner, Settings> && ...),
                   "every field of a description is a member of the described struct");
-    std::array<std::size_t, count> offsets{};
+    std::array<std::size_t, count> placed{};
     std::size_t at = 0;
-    ((at = round_up(at, layout<field_type<Settings, I>>::alignment), offsets[I] = at, at += layout<field_type<Settings, I>>::size), ...);
-    return offsets;
+    ((at = round_up(at, layout<field_type<Settings, I>>::alignment), placed[I] = at, at += layout<field_type<Settings, I>>::size), ...);
+    return placed;
   }
   template <std::size_t... I>
   static constexpr std::size_t compute_alignment(std::index_sequence<I...>) {
