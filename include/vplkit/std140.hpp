@@ -143,11 +143,15 @@ static_assert(detail::twins_consistent<glsl_twin_settings>::nested_listed,
               "a settings struct nested in a listed GLSL twin is not in glsl_twin_settings (or its description has glsl_twin = false)");
 static_assert(detail::twins_consistent<glsl_twin_settings>::names_distinct, "two structs in glsl_twin_settings have the same GLSL name");
 
-/// Calls visit(S{}) (a value-initialised settings struct, for its type) for every struct of
-/// glsl_twin_settings, in the list's order.
-template <typename Visitor, typename... Settings>
-void for_each_glsl_twin_type(Visitor&& visit, settings_list<Settings...> = glsl_twin_settings{}) {
+/// Calls visit(S{}) (a value-initialised settings struct, for its type) for every struct of a
+/// settings_list, in its order; for_each_glsl_twin_type for glsl_twin_settings.
+template <typename... Settings, typename Visitor>
+void for_each_settings(settings_list<Settings...>, Visitor&& visit) {
   (visit(Settings{}), ...);
+}
+template <typename Visitor>
+void for_each_glsl_twin_type(Visitor&& visit) {
+  for_each_settings(glsl_twin_settings{}, visit);
 }
 
 namespace std140_detail {
