@@ -35,5 +35,7 @@ command add_compare_command(CLI::App& app);
 command add_reference_command(CLI::App& app);
 command add_export_scene_command(CLI::App& app);
 command add_shader_command(CLI::App& app);
+/// `shader block` (shader_block.cpp), a subcommand of `shader`, which add_shader_command registers.
+command add_shader_block_command(CLI::App& shader);
 
 }  // namespace vplkit::cli

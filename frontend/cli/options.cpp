@@ -25,6 +25,13 @@ namespace fs = std::filesystem;
 
 std::string shown(std::string_view text) { return quote_for_message(text); }
 
+bool is_glsl_identifier(std::string_view name) {
+  if (name.empty() || (name[0] >= '0' && name[0] <= '9')) return false;
+  for (char c : name)
+    if (!((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_')) return false;
+  return true;
+}
+
 std::string format_number(float value) {
   std::ostringstream out;
   out << value;

@@ -48,6 +48,9 @@ class usage_error : public std::runtime_error {
 /// An argument as a message shows it: quoted, and cut after 60 characters.
 std::string shown(std::string_view text);
 
+/// Whether `name` is a GLSL identifier: a letter or '_', then letters, digits and '_'.
+bool is_glsl_identifier(std::string_view name);
+
 /// A float as a message shows it (ostream's default format).
 std::string format_number(float value);
 

@@ -366,24 +366,73 @@ program load_program(const shader_library& library, const std::string& vertex_fi
                              {shader_stage::fragment, library.expand_file(fragment_file, defines)}});
 }
 
+namespace {
+
+void delete_block_buffers(std::vector<std::pair<unsigned, unsigned>>& buffers) {
+  for (const auto& [binding, buffer] : buffers) glDeleteBuffers(1, &buffer);
+  buffers.clear();
+}
+
+}  // namespace
+
 program::~program() {
   if (name_ != 0) glDeleteProgram(name_);
+  delete_block_buffers(block_buffers_);
 }
 
 program::program(program&& other) noexcept
-    : name_(std::exchange(other.name_, 0u)), program_name_(std::move(other.program_name_)), declarations_(std::move(other.declarations_)) {}
+    : name_(std::exchange(other.name_, 0u)), program_name_(std::move(other.program_name_)), declarations_(std::move(other.declarations_)),
+      block_buffers_(std::exchange(other.block_buffers_, {})) {}
 
 program& program::operator=(program&& other) noexcept {
   if (this != &other) {
     if (name_ != 0) glDeleteProgram(name_);
+    delete_block_buffers(block_buffers_);
     name_ = std::exchange(other.name_, 0u);
     program_name_ = std::move(other.program_name_);
     declarations_ = std::move(other.declarations_);
+    block_buffers_ = std::exchange(other.block_buffers_, {});
   }
   return *this;
 }
 
-void program::use() const { glUseProgram(name_); }
+// Binding points are the context's, not the program's: another program's blocks may have taken
+// them since set_uniform_block, so every use binds this program's buffers again.
+void program::use() const {
+  glUseProgram(name_);
+  for (const auto& [binding, buffer] : block_buffers_) glBindBufferBase(GL_UNIFORM_BUFFER, binding, buffer);
+}
+
+void program::set_uniform_block(const std::string& block, const void* bytes, std::size_t size) const {
+  const GLuint index = glGetUniformBlockIndex(name_, block.c_str());
+  if (index == GL_INVALID_INDEX) {
+    if (declarations_.declares_block(block)) return;  // the variant does not read it
+    throw error("program " + program_name_ + " declares no uniform block '" + block + "' (its blocks: " +
+                (declarations_.block_names().empty() ? std::string("none") : declarations_.block_names()) + ")");
+  }
+  GLint needed = 0;
+  glGetActiveUniformBlockiv(name_, index, GL_UNIFORM_BLOCK_DATA_SIZE, &needed);
+  if (size < static_cast<std::size_t>(needed))
+    throw error("program " + program_name_ + ": uniform block '" + block + "' holds " + std::to_string(needed) + " bytes, given " +
+                std::to_string(size) + ": the shader would read past them");
+  GLint bindings = 0;
+  glGetIntegerv(GL_MAX_UNIFORM_BUFFER_BINDINGS, &bindings);
+  if (index >= static_cast<GLuint>(bindings))
+    throw error("program " + program_name_ + ": uniform block '" + block + "' has index " + std::to_string(index) + ", beyond the " +
+                std::to_string(bindings) + " binding points (GL_MAX_UNIFORM_BUFFER_BINDINGS)");
+  glUniformBlockBinding(name_, index, index);
+  GLuint buffer = 0;
+  for (const auto& [binding, owned] : block_buffers_)
+    if (binding == index) buffer = owned;
+  if (buffer == 0) {
+    glGenBuffers(1, &buffer);
+    block_buffers_.emplace_back(index, buffer);
+  }
+  glBindBuffer(GL_UNIFORM_BUFFER, buffer);
+  glBufferData(GL_UNIFORM_BUFFER, static_cast<GLsizeiptr>(size), bytes, GL_DYNAMIC_DRAW);
+  glBindBuffer(GL_UNIFORM_BUFFER, 0);
+  use();
+}
 
 // GL 3.3 has no glProgramUniform (that is 4.1), so a setter binds the program first.
 GLint program::location(const std::string& uniform) const {

@@ -59,6 +59,7 @@ void check_struct(const uniform_declarations& declarations, const std::string& s
 void check_glsl_twins(const uniform_declarations& declarations, const std::string& program_name) {
   std::set<std::string> checked;
   for (const auto& [name, type] : declarations.uniforms()) check_struct(declarations, type, program_name, checked);
+  for (const auto& [name, type] : declarations.block_members()) check_struct(declarations, type, program_name, checked);
 }
 
 }  // namespace vplkit

@@ -50,27 +50,53 @@ void uniform_declarations::scan(const std::string& source) {
     static const std::string none;
     return i < tokens.size() ? tokens[i] : none;
   };
+  // Fields: "type name [N]? (, name [N]?)* ;" from `at` until the closing brace, which it
+  // returns the index of. A block member's own qualifiers (layout(...), a precision) are skipped.
+  const auto read_fields = [&](std::size_t at, std::map<std::string, field>& fields) {
+    while (at < tokens.size() && tokens[at] != "}") {
+      if (tokens[at] == "layout") {
+        while (at < tokens.size() && tokens[at] != ")") ++at;
+        ++at;
+        continue;
+      }
+      if (tokens[at] == "highp" || tokens[at] == "mediump" || tokens[at] == "lowp") {
+        ++at;
+        continue;
+      }
+      const std::string type = tokens[at++];
+      std::string last;  // the field an array size follows
+      while (at < tokens.size() && tokens[at] != ";" && tokens[at] != "}") {
+        if (tokens[at] == "[") {
+          while (at < tokens.size() && tokens[at] != "]") ++at;
+          if (!last.empty()) fields[last].array = true;
+        } else if (tokens[at] != ",") {
+          last = tokens[at];
+          fields[last] = {type, false};
+        }
+        ++at;
+      }
+      if (at < tokens.size() && tokens[at] == ";") ++at;
+    }
+    return at;
+  };
   for (std::size_t i = 0; i < tokens.size(); ++i) {
     if (tokens[i] == "struct" && token(i + 2) == "{") {
-      std::map<std::string, field>& fields = struct_fields_[token(i + 1)];
-      // Fields: "type name [N]? (, name [N]?)* ;" until the closing brace.
-      std::size_t at = i + 3;
-      while (at < tokens.size() && tokens[at] != "}") {
-        const std::string type = tokens[at++];
-        std::string last;  // the field an array size follows
-        while (at < tokens.size() && tokens[at] != ";" && tokens[at] != "}") {
-          if (tokens[at] == "[") {
-            while (at < tokens.size() && tokens[at] != "]") ++at;
-            if (!last.empty()) fields[last].array = true;
-          } else if (tokens[at] != ",") {
-            last = tokens[at];
-            fields[last] = {type, false};
-          }
-          ++at;
-        }
-        if (at < tokens.size() && tokens[at] == ";") ++at;
+      i = read_fields(i + 3, struct_fields_[token(i + 1)]);
+    } else if (tokens[i] == "uniform" && token(i + 2) == "{") {
+      // A uniform block, "uniform Block { members } [instance];": its members are not default-
+      // block uniforms (no location; a buffer holds them), but their struct types are checked
+      // all the same. With an instance name the block reads as a struct of that name.
+      const std::string block = token(i + 1);
+      std::map<std::string, field> members;
+      i = read_fields(i + 3, members);
+      blocks_.insert(block);
+      const std::string& instance = token(i + 1);
+      if (!instance.empty() && instance != ";") {
+        struct_fields_[block] = members;
+        block_member_types_[instance] = block;
+      } else {
+        for (const auto& [name, member] : members) block_member_types_[name] = member.type;
       }
-      i = at;
     } else if (tokens[i] == "uniform") {
       // "uniform [precision] type name [N]? ;"
       std::size_t at = i + 1;
@@ -112,6 +138,12 @@ bool uniform_declarations::declares(const std::string& path) const {
 const std::map<std::string, uniform_declarations::field>* uniform_declarations::struct_fields(const std::string& name) const {
   const auto found = struct_fields_.find(name);
   return found == struct_fields_.end() ? nullptr : &found->second;
+}
+
+std::string uniform_declarations::block_names() const {
+  std::string all;
+  for (const std::string& name : blocks_) all += (all.empty() ? "" : ", ") + name;
+  return all;
 }
 
 std::string uniform_declarations::names() const {

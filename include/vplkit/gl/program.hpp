@@ -7,6 +7,7 @@
 // the parity runs), so it names no GL header: the GL names are plain unsigned and int here.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <filesystem>
 #include <string>
@@ -95,7 +96,8 @@ class program {
   program& operator=(const program&) = delete;
   /// The GL program name (a GLuint).
   unsigned id() const { return name_; }
-  /// Binds the program (glUseProgram).
+  /// Binds the program (glUseProgram) and the buffers of its uniform blocks (set_uniform_block)
+  /// to their binding points.
   void use() const;
   /// The uniform's location, -1 for a declared uniform the linker removed; throws for an
   /// undeclared name.
@@ -108,11 +110,24 @@ class program {
   void set(const std::string& uniform, const glm::vec4& value) const;
   void set(const std::string& uniform, const glm::ivec2& value) const;
   void set(const std::string& uniform, const glm::mat4& value) const;
+  /// Fills the uniform block `block` from `size` bytes (e.g. vplkit::std140_bytes(settings), for
+  /// a `layout(std140) uniform block { twin member; };` that vplkit::std140_block writes): into a
+  /// buffer the program owns, bound at binding point = the block's index whenever the program is
+  /// used. A declared block the linker removed is a no-op, as for a uniform; an undeclared one,
+  /// or fewer bytes than GL_UNIFORM_BLOCK_DATA_SIZE (the shader would read past them), throws
+  /// vplkit::error naming the program and the block.
+  void set_uniform_block(const std::string& block, const void* bytes, std::size_t size) const;
+  template <std::size_t N>
+  void set_uniform_block(const std::string& block, const std::array<std::byte, N>& bytes) const {
+    set_uniform_block(block, bytes.data(), N);
+  }
 
  private:
   unsigned name_ = 0;  // owned: deleted with the program, on the context current then
   std::string program_name_;
   uniform_declarations declarations_;
+  // (binding point = block index, buffer name), owned like name_; filled by set_uniform_block.
+  mutable std::vector<std::pair<unsigned, unsigned>> block_buffers_;
 };
 
 struct stage_source {

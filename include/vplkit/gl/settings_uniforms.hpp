@@ -1,11 +1,14 @@
-// The one way a kernel settings struct reaches its GLSL twin, a uniform struct of the same name
-// and fields: set_uniforms walks the struct's description (vplkit/settings.hpp) and sets every
-// field by name, nested settings through theirs. Every program that includes a lib file fills
-// its twins from here, and so do users' own shaders that take vplkit's settings as uniforms
-// (installed with vplkit::parity). The same descriptions list each twin's fields with their GLSL
-// types (glsl_twins), and link_program checks every uniform struct a program declares against
-// them both ways: a described field the GLSL struct lacks, or a GLSL field no description sets
-// (it would silently read 0), is an error when the program is built.
+// How a kernel settings struct reaches its GLSL twin as a default-block uniform struct of the
+// same name and fields (the GL 3.3 convenience; a uniform buffer takes the bytes of
+// vplkit/std140.hpp instead, through program::set_uniform_block): set_uniforms walks the
+// struct's description (vplkit/settings.hpp) and sets every field by name, nested settings
+// through theirs. Every program that includes a lib file fills its twins from here, and so do
+// users' own shaders that take vplkit's settings as uniforms (installed with vplkit::parity).
+// The same descriptions list each twin's fields with their GLSL types (glsl_twins, made from
+// glsl_twin_settings in vplkit/std140.hpp), and link_program checks every uniform struct a
+// program declares against them both ways, members of uniform blocks included: a described
+// field the GLSL struct lacks, or a GLSL field no description sets (it would silently read 0),
+// is an error when the program is built.
 #pragma once
 
 #include <cstddef>
@@ -27,6 +30,7 @@
 #include <vplkit/rsm_pattern.hpp>
 #include <vplkit/settings.hpp>
 #include <vplkit/shadow.hpp>
+#include <vplkit/std140.hpp>
 #include <vplkit/temporal_accumulation.hpp>
 
 #include <vplkit/gl/program.hpp>
@@ -45,92 +49,6 @@ struct glsl_twin {
   std::string name;
   std::vector<field> fields;
 };
-
-/// The GLSL type name of a described field's C++ type.
-template <typename Value>
-std::string glsl_type_name() {
-  if constexpr (std::is_array_v<Value>) return glsl_type_name<std::remove_extent_t<Value>>();
-  else if constexpr (is_described_v<Value>) return settings_description<Value>::name;
-  else if constexpr (std::is_same_v<Value, float>) return "float";
-  else if constexpr (std::is_same_v<Value, int>) return "int";
-  else if constexpr (std::is_same_v<Value, bool>) return "bool";
-  else if constexpr (std::is_same_v<Value, std::uint32_t>) return "uint";
-  else if constexpr (std::is_same_v<Value, glm::vec2>) return "vec2";
-  else if constexpr (std::is_same_v<Value, glm::vec3>) return "vec3";
-  else if constexpr (std::is_same_v<Value, glm::vec4>) return "vec4";
-  else if constexpr (std::is_same_v<Value, glm::ivec2>) return "ivec2";
-  else static_assert(std::is_void_v<Value>, "a field type without a GLSL twin type");
-}
-
-/// A list of settings types.
-template <typename... Settings>
-struct settings_list {
-  static constexpr std::size_t size = sizeof...(Settings);
-  template <typename S>
-  static constexpr bool contains = (std::is_same_v<S, Settings> || ...);
-};
-
-/// Every kernel settings struct with a GLSL twin, in the float instantiation (the GPU's): the one
-/// list glsl_twins() is made from, and the only types set_uniforms and glsl_twin_of take. The
-/// static_assert below ties it to the descriptions: every type listed has a description that says
-/// glsl_twin, every described struct a listed one nests (rsm_gather_settings' irradiance, radial,
-/// disk, slots) is listed too, and no two share a GLSL name.
-using glsl_twin_settings =
-    settings_list<irradiance_settings<float>, radial_pattern_constants<float>, disk_pattern_settings<float>, elevation_slots<float>,
-                  rsm_gather_settings<float>, rsm_unprojection<float>, shadow_density_settings<float>, bilateral_settings<float>,
-                  spot_light<float>, directional_light<float>, lightwave_layout_settings<float>, lightwave_shading_settings<float>,
-                  temporal_settings<float>>;
-
-namespace detail {
-
-template <typename Described>
-struct described_value;
-template <typename Owner, typename Value>
-struct described_value<described_field<Owner, Value>> {
-  using type = Value;
-};
-
-// A field of a listed twin: a nested settings struct (or an array of them) must be a listed twin.
-template <typename List, typename Value>
-constexpr bool nested_twin_listed() {
-  using element = std::remove_all_extents_t<Value>;
-  if constexpr (is_described_v<element>) return settings_description<element>::glsl_twin && List::template contains<element>;
-  else return true;
-}
-
-template <typename List, typename Fields>
-struct fields_listed;
-template <typename List, typename... Fields>
-struct fields_listed<List, std::tuple<Fields...>> {
-  static constexpr bool value = (nested_twin_listed<List, typename described_value<Fields>::type>() && ...);
-};
-
-constexpr bool same_name(const char* a, const char* b) {
-  for (; *a != '\0' && *a == *b; ++a, ++b) {
-  }
-  return *a == *b;
-}
-
-template <typename List>
-struct twins_consistent;
-template <typename... Settings>
-struct twins_consistent<settings_list<Settings...>> {
-  template <typename S>
-  static constexpr int named_like() {
-    return ((same_name(settings_description<S>::name, settings_description<Settings>::name) ? 1 : 0) + ...);
-  }
-  static constexpr bool described = (settings_description<Settings>::glsl_twin && ...);
-  static constexpr bool nested_listed =
-      (fields_listed<settings_list<Settings...>, decltype(settings_description<Settings>::fields())>::value && ...);
-  static constexpr bool names_distinct = ((named_like<Settings>() == 1) && ...);
-};
-
-}  // namespace detail
-
-static_assert(detail::twins_consistent<glsl_twin_settings>::described, "glsl_twin_settings lists a struct whose description has glsl_twin = false");
-static_assert(detail::twins_consistent<glsl_twin_settings>::nested_listed,
-              "a settings struct nested in a listed GLSL twin is not in glsl_twin_settings (or its description has glsl_twin = false)");
-static_assert(detail::twins_consistent<glsl_twin_settings>::names_distinct, "two structs in glsl_twin_settings have the same GLSL name");
 
 /// The twin of a described settings struct.
 template <typename Settings>
@@ -151,7 +69,8 @@ const std::vector<glsl_twin>& glsl_twins();
 
 /// Throws vplkit::error naming the program, the struct and the field when a uniform struct that
 /// `declarations` holds has the name of a twin but not exactly its fields (names, types, arrays),
-/// for every struct a uniform uses, nested ones included. link_program calls it.
+/// for every struct a uniform or a uniform block member uses, nested ones included. link_program
+/// calls it.
 void check_glsl_twins(const uniform_declarations& declarations, const std::string& program_name);
 
 namespace detail {

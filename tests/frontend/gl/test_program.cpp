@@ -2,6 +2,8 @@
 // missing files and bad GLSL (include/vplkit/gl/program.hpp): several folders searched in order too.
 #include <doctest/doctest.h>
 
+#include <array>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -234,6 +236,37 @@ TEST_CASE("uniforms by name: a declared uniform the linker removed is a no-op, a
         "program main.vert + main.frag declares no uniform 'light.positon' (its uniforms: light, matrices, unused_scale)");
   CHECK(message_of([&] { linked.set("lights.position", glm::vec3(1.0f)); }).find("declares no uniform 'lights.position'") != std::string::npos);
   check_gl("setting uniforms");
+}
+
+TEST_CASE("uniform blocks: set_uniform_block fills one, a removed block is a no-op, an unknown one or too few bytes is an error") {
+  const shader_library& library = parity::test_shaders();
+  const auto build = [&](const std::string& body) {
+    return link_program("blocks", {{shader_stage::vertex, library.expand_text("#version 330 core\nvoid main() { gl_Position = vec4(0.0); }\n", "v.vert")},
+                                   {shader_stage::fragment, library.expand_text("#version 330 core\nlayout(std140) uniform used { vec4 a; float b; };\n"
+                                                                                "layout(std140) uniform unused { vec4 c; };\nout vec4 colour;\n"
+                                                                                "void main() { " + body + " }\n", "f.frag")}});
+  };
+  const program linked = build("colour = a + vec4(b);");
+  std::array<std::byte, 32> bytes{};
+  const float b = 2.5f;
+  std::memcpy(bytes.data() + 16, &b, sizeof b);
+  linked.set_uniform_block("used", bytes);
+  GLint bound = 0;
+  glGetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, glGetUniformBlockIndex(linked.id(), "used"), &bound);
+  REQUIRE(bound != 0);
+  float read_back = 0.0f;
+  glBindBuffer(GL_UNIFORM_BUFFER, static_cast<GLuint>(bound));
+  glGetBufferSubData(GL_UNIFORM_BUFFER, 16, sizeof read_back, &read_back);
+  glBindBuffer(GL_UNIFORM_BUFFER, 0);
+  CHECK(read_back == b);
+  // Declared, not read: no error, whether the linker kept it (std140 blocks may stay active) or not.
+  CHECK_NOTHROW(linked.set_uniform_block("unused", bytes));
+  const std::string unknown = message_of([&] { linked.set_uniform_block("usde", bytes); });
+  CHECK(unknown.find("program blocks declares no uniform block 'usde' (its blocks: unused, used)") != std::string::npos);
+  const std::string short_by_one = message_of([&] { linked.set_uniform_block("used", bytes.data(), 31); });
+  CHECK(short_by_one.find("uniform block 'used' holds 32 bytes, given 31") != std::string::npos);
+  // A member of a block is not a default-block uniform: setting it by name is an error, not a no-op.
+  CHECK(message_of([&] { linked.set("b", 1.0f); }).find("declares no uniform 'b'") != std::string::npos);
 }
 
 TEST_CASE("driver logs of Mesa, NVIDIA and AMD are mapped to file:line") {

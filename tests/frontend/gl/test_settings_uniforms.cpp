@@ -101,6 +101,18 @@ TEST_CASE("a uniform struct unlike its C++ twin fails to build, naming the struc
                   "void main() { colour = vec4(slots.boundary_tangent); }\n");
   });
   CHECK(slots.find("declares 'boundary_tangent' as float, the C++ elevation_slots as float[]") != std::string::npos);
+  // A twin held in a uniform block, with or without an instance name, is checked as well.
+  const std::string in_block = message_of([] {
+    link_fragment("#version 330 core\nstruct irradiance_settings { float min_distance; float scale; };\n"
+                  "layout(std140) uniform lights { irradiance_settings irradiance; };\nout vec4 colour;\nvoid main() { colour = vec4(irradiance.scale); }\n");
+  });
+  CHECK(in_block.find("GLSL struct irradiance_settings declares field 'scale'") != std::string::npos);
+  const std::string in_instance = message_of([] {
+    link_fragment("#version 330 core\nstruct irradiance_settings { int min_distance; };\n"
+                  "layout(std140) uniform lights { irradiance_settings irradiance; } block;\nout vec4 colour;\n"
+                  "void main() { colour = vec4(block.irradiance.min_distance); }\n");
+  });
+  CHECK(in_instance.find("declares 'min_distance' as int, the C++ irradiance_settings as float") != std::string::npos);
   // A struct vplkit does not describe is the program's own business.
   CHECK_NOTHROW(link_fragment("#version 330 core\nstruct mine { float a; };\nuniform mine m;\nout vec4 colour;\nvoid main() { colour = vec4(m.a); }\n"));
 }
