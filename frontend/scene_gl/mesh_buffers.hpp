@@ -1,8 +1,9 @@
 // A mesh on the GPU: one interleaved vertex buffer (position, normal, albedo and texture
 // coordinate at attribute locations 0, 1, 2 and 5; 3 and 4 are left to per-vertex results a
-// pipeline attaches), an index buffer, the vertex array that binds them, and the textures
-// (SRGB8_ALPHA8 with the mip chain frontend/scene/material.hpp made) and sampler objects of the
-// mesh's materials.
+// pipeline attaches; an albedo that every vertex shares, and the texture coordinates of a mesh
+// without textured ranges, are constant attributes instead of buffer data), an index buffer, the
+// vertex array that binds them, and the textures (SRGB8_ALPHA8 with the mip chain
+// frontend/scene/material.hpp made) and sampler objects of the mesh's materials.
 #pragma once
 
 #include <memory>
@@ -45,7 +46,13 @@ class mesh_buffers {
   gl_buffer indices_;
   GLsizei index_count_;
   GLsizei vertex_count_;
+  /// Sets the constant attributes (albedo, texture coordinate) that this mesh keeps out of its buffer.
+  void set_constant_attributes() const;
+
   std::vector<segment> segments_;
+  bool per_vertex_albedo_ = true;
+  bool per_vertex_texcoord_ = true;
+  glm::vec3 constant_albedo_{0.0f};
   std::shared_ptr<const material_library> materials_;
   std::vector<gl_texture> textures_;
   std::vector<gl_sampler> samplers_;  ///< one per material

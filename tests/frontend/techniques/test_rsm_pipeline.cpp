@@ -3,7 +3,9 @@
 // technique, both lights, both filters and both float formats; and properties of its output.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "frontend/core/error.hpp"
 #include "frontend/techniques/rsm/rsm_cpu_mirror.hpp"
@@ -307,4 +309,39 @@ TEST_CASE("the occlusion scenes: the atrium reaches the thesis's Sponza scale, t
     different += dark.geometry.vertices[i].albedo != white.geometry.vertices[i].albedo;
   }
   CHECK(different == 24);  // the panel: a box of 6 quads
+}
+
+TEST_CASE("a mesh whose vertices share one albedo draws it as a constant attribute, bit for bit the image of the same mesh drawn with per-vertex albedo") {
+  // mesh_buffers leaves a shared albedo (and texture coordinates without a textured range) out of
+  // the GPU's vertex buffer, to hold large meshes once in memory; the vertex shader then reads the
+  // context's current attribute value. The same scene with one extra vertex of another albedo,
+  // which no triangle uses, takes the per-vertex path: every buffer must be the same bit for bit.
+  // (A constant left unset, or set for one pass and not another, would give black or a stale
+  // albedo in the G-buffer and the RSM's flux.)
+  scene shared = make_cornell_box();
+  for (vertex& v : shared.geometry.vertices) v.albedo = glm::vec3(0.75f, 0.5f, 0.25f);
+  scene per_vertex = shared;
+  per_vertex.geometry.vertices.push_back({glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f), glm::vec3(0.1f, 0.9f, 0.3f)});
+
+  const rsm_pipeline_settings settings = small_settings("rsm-alg6");
+  const auto buffers_of = [&](const scene& source) {
+    rsm_pipeline pipeline(test_shaders(), source, settings);
+    const rsm_frame frame = pipeline.render();
+    return std::make_pair(frame, pipeline.read_buffers());
+  };
+  const auto [shared_frame, shared_buffers] = buffers_of(shared);
+  const auto [per_vertex_frame, per_vertex_buffers] = buffers_of(per_vertex);
+  const auto same_texels = [](const image& a, const image& b) {
+    return a.width == b.width && a.height == b.height &&
+           std::equal(a.texels.begin(), a.texels.end(), b.texels.begin(), [](const glm::vec4& x, const glm::vec4& y) {
+             return std::memcmp(&x, &y, sizeof x) == 0;
+           });
+  };
+  // The albedo reached the G-buffer: not black, and the value set.
+  const glm::vec4 centre = shared_buffers.gbuffer[1].at({settings.width / 2, settings.height / 2});
+  CHECK(glm::vec3(centre) == glm::vec3(0.75f, 0.5f, 0.25f));
+  for (int i = 0; i < 3; ++i) CHECK_MESSAGE(same_texels(shared_buffers.gbuffer[i], per_vertex_buffers.gbuffer[i]), "G-buffer " << i);
+  CHECK(same_texels(shared_buffers.indirect, per_vertex_buffers.indirect));
+  CHECK(same_texels(shared_frame.radiance, per_vertex_frame.radiance));
+  CHECK(same_texels(shared_frame.indirect, per_vertex_frame.indirect));
 }
