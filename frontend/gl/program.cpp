@@ -2,6 +2,7 @@
 
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <optional>
 #include <string_view>
 #include <set>
@@ -256,11 +257,14 @@ bool take(std::string_view& text, std::string_view expected) {
 
 }  // namespace
 
-std::string map_log_to_files(const std::string& log, const std::vector<std::string>& file_names) {
-  auto name_of = [&](const std::string& number) {
-    const std::size_t index = std::stoul(number);
-    return index < file_names.size() ? file_names[index] : "<source " + number + ">";
-  };
+namespace {
+
+// Where a log line points: the source-string number the driver printed and its line.
+using locate_fn = std::function<std::string(const std::string& source, const std::string& line)>;
+
+// Rewrites each log line in a driver's format so that its "source, line" prefix reads as
+// `locate` names it, keeping the rest of the driver's text; other lines are kept as they are.
+std::string rewrite_log(const std::string& log, const locate_fn& locate) {
   // Mesa: "0:12(5): error: ...".
   const auto mesa = [&](std::string_view rest) -> std::optional<std::string> {
     const auto file = take_digits(rest);
@@ -269,7 +273,7 @@ std::string map_log_to_files(const std::string& log, const std::vector<std::stri
     if (!row || !take(rest, "(")) return std::nullopt;
     const auto column = take_digits(rest);
     if (!column || !take(rest, ")")) return std::nullopt;
-    return name_of(*file) + ":" + *row + ":" + *column + std::string(rest);
+    return locate(*file, *row) + ":" + *column + std::string(rest);
   };
   // NVIDIA: "0(12) : error C0000: ...".
   const auto nvidia = [&](std::string_view rest) -> std::optional<std::string> {
@@ -277,7 +281,7 @@ std::string map_log_to_files(const std::string& log, const std::vector<std::stri
     if (!file || !take(rest, "(")) return std::nullopt;
     const auto row = take_digits(rest);
     if (!row || !take(rest, ")")) return std::nullopt;
-    return name_of(*file) + ":" + *row + std::string(rest);
+    return locate(*file, *row) + std::string(rest);
   };
   // AMD: "ERROR: 0:12: ..." (or WARNING).
   const auto amd = [&](std::string_view rest) -> std::optional<std::string> {
@@ -287,7 +291,7 @@ std::string map_log_to_files(const std::string& log, const std::vector<std::stri
     if (!file || !take(rest, ":")) return std::nullopt;
     const auto row = take_digits(rest);
     if (!row || !take(rest, ":")) return std::nullopt;
-    return name_of(*file) + ":" + *row + ": " + severity + std::string(rest);
+    return locate(*file, *row) + ": " + severity + std::string(rest);
   };
   std::istringstream lines(log);
   std::ostringstream out;
@@ -301,6 +305,85 @@ std::string map_log_to_files(const std::string& log, const std::vector<std::stri
   return out.str();
 }
 
+std::string file_name(const std::vector<std::string>& file_names, const std::string& number) {
+  const std::size_t index = std::stoul(number);
+  return index < file_names.size() ? file_names[index] : "<source " + number + ">";
+}
+
+// A line's origin: the source-string number and the line within it.
+struct line_origin {
+  unsigned long source = 0;
+  unsigned long line = 1;
+};
+
+// The origin of each line of `text` (index 0 is its first line), read from its #line directives
+// as the GLSL preprocessor reads them: `#line L S` makes the next line line L of source S, and
+// the first line is line 1 of source 0. Nothing when a #line is not plain numbers (a macro),
+// which is not evaluated here.
+std::optional<std::vector<line_origin>> origins_of(std::string_view text) {
+  std::vector<line_origin> origins;
+  line_origin next;
+  for (std::size_t at = 0; at < text.size();) {
+    const std::string_view line = next_line(text, at);
+    origins.push_back(next);
+    std::optional<std::string_view> rest = directive(line, "line");
+    if (!rest) {
+      ++next.line;
+      continue;
+    }
+    std::string_view numbers = skip_blanks(*rest);
+    const auto row = take_digits(numbers);
+    if (!row) return std::nullopt;
+    numbers = skip_blanks(numbers);
+    const auto source = take_digits(numbers);
+    numbers = skip_blanks(numbers);
+    if (!numbers.empty() && numbers.substr(0, 2) != "//") return std::nullopt;
+    next.line = std::stoul(*row);
+    if (source) next.source = std::stoul(*source);
+  }
+  return origins;
+}
+
+}  // namespace
+
+std::string map_log_to_files(const std::string& log, const std::vector<std::string>& file_names) {
+  return rewrite_log(log, [&](const std::string& source, const std::string& line) { return file_name(file_names, source) + ":" + line; });
+}
+
+std::string compiled_text(const std::string& text) {
+  if (!origins_of(text)) return text;
+  std::string out;
+  out.reserve(text.size());
+  std::size_t number = 0;
+  for (std::size_t at = 0; at < text.size();) {
+    const std::size_t start = at;
+    const std::string_view line = next_line(text, at);
+    ++number;
+    if (const std::optional<std::string_view> rest = directive(line, "line")) {
+      // Keep the source number (__FILE__ stays the file's); the line becomes the next line's place.
+      std::string_view numbers = skip_blanks(*rest);
+      take_digits(numbers);
+      numbers = skip_blanks(numbers);
+      const auto source = take_digits(numbers);
+      out += "#line " + std::to_string(number + 1) + (source ? " " + *source : std::string()) + "\n";
+    } else {
+      out += text.substr(start, at - start);
+    }
+  }
+  return out;
+}
+
+std::string map_compile_log(const std::string& log, const expanded_source& source) {
+  const std::optional<std::vector<line_origin>> origins = origins_of(source.text);
+  if (!origins) return map_log_to_files(log, source.file_names);
+  return rewrite_log(log, [&](const std::string& number, const std::string& line) {
+    const std::size_t place = std::stoul(line);
+    if (place == 0 || place > origins->size()) return file_name(source.file_names, number) + ":" + line;
+    const line_origin& origin = (*origins)[place - 1];
+    return file_name(source.file_names, std::to_string(origin.source)) + ":" + std::to_string(origin.line);
+  });
+}
+
 program link_program(const std::string& program_name, const std::vector<stage_source>& stages,
                      const std::vector<std::string>& transform_feedback_varyings) {
   check_gl("before building program " + program_name);
@@ -308,7 +391,10 @@ program link_program(const std::string& program_name, const std::vector<stage_so
   std::vector<gl_shader> shaders;
   for (const stage_source& stage : stages) {
     gl_shader shader(glCreateShader(stage.stage == shader_stage::vertex ? GL_VERTEX_SHADER : GL_FRAGMENT_SHADER));
-    const char* text = stage.source.text.c_str();
+    // The driver gets the text numbered by place, so the line it reports locates the file and
+    // line even where it drops the source number (Mesa does for an undeclared name).
+    const std::string numbered = compiled_text(stage.source.text);
+    const char* text = numbered.c_str();
     glShaderSource(shader.get(), 1, &text, nullptr);
     glCompileShader(shader.get());
     GLint compiled = GL_FALSE;
@@ -323,7 +409,7 @@ program link_program(const std::string& program_name, const std::vector<stage_so
       discard_pending_gl_messages();
       throw error("GLSL compile error in " + std::string(stage_name(stage.stage)) + " shader " +
                   stage.source.file_names.front() + " (program " + program_name + "):\n" +
-                  map_log_to_files(log, stage.source.file_names));
+                  map_compile_log(log, stage.source));
     }
     glAttachShader(linked.get(), shader.get());
     shaders.push_back(std::move(shader));

@@ -47,6 +47,13 @@ string(REPLACE "${marker}" "return t * t * (3.0 - 2.0 * t) +;" text "${text}")
 file(WRITE "${WORK}/syntax-error/lib/direct_light.glsl" "${text}")
 expect_failure("GLSL syntax error names the lib file and line" "GLSL compile error.*lib/direct_light\\.glsl:${line}:" "${WORK}/se.png"
                "${VPLKIT}" render --shader-dir "${WORK}/syntax-error" --out "${WORK}/se.png")
+# Mesa prints source number 0 for an undeclared name, whatever file it is in: the message named
+# the top-level rsm.frag at direct_light.glsl's line.
+file(COPY "${SHADERS}/" DESTINATION "${WORK}/undeclared")
+string(REPLACE "return t * t * (3.0 - 2.0 * t) +;" "return t * t * (3.0 - 2.0 * t) + undeclared_thing;" text "${text}")
+file(WRITE "${WORK}/undeclared/lib/direct_light.glsl" "${text}")
+expect_failure("GLSL undeclared name names the lib file and line" "GLSL compile error[^\n]*\n  lib/direct_light\\.glsl:${line}:[0-9]+: error: .undeclared_thing. undeclared"
+               "${WORK}/ud.png" "${VPLKIT}" render --shader-dir "${WORK}/undeclared" --out "${WORK}/ud.png")
 
 expect_failure("both --radius and --max-radius" "--max-radius and --radius set the same setting: give one of them" "${WORK}/r2.png"
                "${VPLKIT}" render --radius 0.5 --max-radius 30 --size 16 --rsm-size 32 --out "${WORK}/r2.png")

@@ -1,7 +1,8 @@
 // GLSL program loading: files from one or more shader folders, `#include "lib/....glsl"`
 // resolved (each file once, recursively), and compile/link errors reported against the original
 // file:line, not the expanded source. The expansion emits `#line <line> <file number>` around
-// every include; the driver's log then names (file number, line), which map back to file names.
+// every include; the driver compiles that text renumbered by place (compiled_text), so the line in
+// its log maps back to the file and line even where it prints the wrong file number.
 //
 // Installed with vplkit::parity (the program a uniform setter receives, the shader library of
 // the parity runs), so it names no GL header: the GL names are plain unsigned and int here.
@@ -149,5 +150,20 @@ program load_program(const shader_library& library, const std::string& vertex_fi
 /// Rewrites a driver log so that each "<source>:<line>(<column>)" (Mesa), "<source>(<line>)"
 /// (NVIDIA) or "ERROR: <source>:<line>:" (AMD) reference names the original file and line.
 std::string map_log_to_files(const std::string& log, const std::vector<std::string>& file_names);
+
+/// The text link_program gives the driver for an expanded source: `text` with each `#line L S`
+/// renumbered to the place of the line after it (`#line P S`, S kept), so the line any driver
+/// reports is the line's place in `text`, from which map_compile_log finds the file and line
+/// even when the driver prints the wrong source number (Mesa prints 0 for semantic errors such
+/// as an undeclared name in an included file). `text` unchanged when a #line in it is not
+/// plain numbers (a macro), which is not evaluated.
+std::string compiled_text(const std::string& text);
+
+/// Rewrites the log of a driver that compiled compiled_text(source.text), in any format
+/// map_log_to_files reads, so that each reference names the file and line the reported line of
+/// the expanded text came from (by its #line directives), whatever source number the driver
+/// printed; the rest of each line is the driver's own text. Falls back to map_log_to_files
+/// where compiled_text left the text unchanged or the line is beyond the text.
+std::string map_compile_log(const std::string& log, const expanded_source& source);
 
 }  // namespace vplkit

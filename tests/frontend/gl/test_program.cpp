@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <sstream>
 
 #include <vplkit/gl/program.hpp>
 #include <vplkit/parity/parity.hpp>
@@ -208,6 +209,80 @@ TEST_CASE("a GLSL error in the top-level file keeps its own line numbers after i
   const std::string message = message_of([&] { load_program(shader_library(files.root), "main.vert", "main.frag"); });
   CAPTURE(message);
   CHECK(message.find("main.frag:4:") != std::string::npos);
+}
+
+TEST_CASE("an undeclared name in an included user file is reported at that file's line, not the top-level file's") {
+  parity::test_shaders();
+  // Mesa reports a semantic error such as an undeclared name with source number 0 whatever file
+  // it is in; line 3 of main.frag is a blank line, so a message naming main.frag:3 is wrong.
+  scratch_shaders files({{"main.frag", "#version 330 core\n#include \"lib/consts.glsl\"\n\n#include \"mine/shade.glsl\"\n"
+                                       "out vec4 colour;\nvoid main() { colour = vec4(shade()); }\n"},
+                         {"lib/consts.glsl", "const float k_one = 1.0;\n"},
+                         {"mine/shade.glsl", "// my shading\nfloat shade() {\n  return k_one * not_declared_anywhere;\n}\n"},
+                         {"main.vert", "#version 330 core\nvoid main() { gl_Position = vec4(0.0); }\n"}});
+  const std::string message = message_of([&] { load_program(shader_library(files.root), "main.vert", "main.frag"); });
+  CAPTURE(message);
+  CHECK(message.find("GLSL compile error in fragment shader main.frag") == 0);
+  CHECK(message.find("mine/shade.glsl:3:") != std::string::npos);
+  CHECK(message.find("not_declared_anywhere") != std::string::npos);  // the driver's own text is kept
+  CHECK(message.find("main.frag:3:") == std::string::npos);
+}
+
+TEST_CASE("compiled_text numbers each line by its place; map_compile_log maps Mesa and NVIDIA logs to file and line") {
+  // No GL here: the renumbering and the mapping are plain text.
+  scratch_shaders files({{"main.frag", "#version 330 core\n#include \"lib/a.glsl\"\nvoid main() {}\n"},
+                         {"lib/a.glsl", "// a\n#include \"lib/b.glsl\"\nfloat a() { return b(); }\n"},
+                         {"lib/b.glsl", "float b() {\n  return 1.0;\n}\n"}});
+  const expanded_source source = shader_library(files.root).expand_file("main.frag", {{"K", "1"}});
+  const std::string compiled = compiled_text(source.text);
+  const auto lines_of = [](const std::string& text) {
+    std::vector<std::string> lines;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) lines.push_back(line);
+    return lines;
+  };
+  const std::vector<std::string> original_lines = lines_of(source.text), compiled_lines = lines_of(compiled);
+  // The same lines but for the numbers of the #line directives, each now the place of the line after it.
+  REQUIRE(compiled_lines.size() == original_lines.size());
+  int directives = 0;
+  for (std::size_t i = 0; i < compiled_lines.size(); ++i) {
+    CAPTURE(i);
+    if (original_lines[i].rfind("#line ", 0) == 0) {
+      ++directives;
+      REQUIRE(compiled_lines[i].rfind("#line ", 0) == 0);
+      CHECK(std::stoul(compiled_lines[i].substr(6)) == i + 2);
+      CHECK(compiled_lines[i].substr(compiled_lines[i].rfind(' ')) == original_lines[i].substr(original_lines[i].rfind(' ')));  // the source number
+    } else {
+      CHECK(compiled_lines[i] == original_lines[i]);
+    }
+  }
+  CHECK(directives == 5);  // one at the start of each file, one after each include
+  // The 1-based place of a line of text in the expansion.
+  const auto place_of = [&](const std::string& text) {
+    for (std::size_t i = 0; i < compiled_lines.size(); ++i)
+      if (compiled_lines[i] == text) return i + 1;
+    FAIL("no line " << text);
+    return std::size_t{0};
+  };
+  const std::string b_return = std::to_string(place_of("  return 1.0;"));
+  const std::string a_line = std::to_string(place_of("float a() { return b(); }"));
+  const std::string main_line = std::to_string(place_of("void main() {}"));
+  // Mesa with the source number dropped to 0, and with the right one: the file and line either way.
+  CHECK(map_compile_log("0:" + b_return + "(10): error: `x' undeclared\n", source) == "  lib/b.glsl:2:10: error: `x' undeclared\n");
+  CHECK(map_compile_log("2:" + b_return + "(10): error: `x' undeclared\n", source) == "  lib/b.glsl:2:10: error: `x' undeclared\n");
+  CHECK(map_compile_log("0:" + a_line + "(1): error: syntax error\n0:" + main_line + "(6): error: y\n", source) ==
+        "  lib/a.glsl:3:1: error: syntax error\n  main.frag:3:6: error: y\n");
+  // NVIDIA, and AMD.
+  CHECK(map_compile_log("0(" + b_return + ") : error C1008: undefined variable \"x\"\n", source) ==
+        "  lib/b.glsl:2 : error C1008: undefined variable \"x\"\n");
+  CHECK(map_compile_log("ERROR: 0:" + a_line + ": 'b' : no matching overloaded function\n", source) ==
+        "  lib/a.glsl:3: ERROR 'b' : no matching overloaded function\n");
+  // A line beyond the text keeps the driver's numbers; other lines are kept as they are.
+  CHECK(map_compile_log("1:9999(1): error: z\nsome note\n", source) == "  lib/a.glsl:9999:1: error: z\n  some note\n");
+  // A #line that is a macro is not evaluated: the text is compiled as it is and mapped by source number.
+  const std::string with_macro = "#version 330 core\n#define L 7\n#line L 1\nfloat f;\n";
+  CHECK(compiled_text(with_macro) == with_macro);
+  CHECK(map_compile_log("1:7(1): error: w\n", expanded_source{with_macro, {"main.frag", "lib/x.glsl"}, {}}) == "  lib/x.glsl:7:1: error: w\n");
 }
 
 TEST_CASE("a link error names the program's files") {
