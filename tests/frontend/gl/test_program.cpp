@@ -89,7 +89,10 @@ TEST_CASE("an #include line that is not expanded is refused with its file and li
       {"  #  include", "main.frag:3: no file name after #include"},
       {"#include lib/b.glsl", "main.frag:3: expected #include \"path\", not 'lib/b.glsl'"},
   };
-  for (const auto& [line, message] : refused) {
+  for (const auto& refusal : refused) {
+    // Named copies: clang 14 cannot capture structured bindings in CAPTURE's lambda.
+    const std::string& line = refusal.first;
+    const std::string& message = refusal.second;
     CAPTURE(line);
     scratch_shaders files({{"main.frag", "#version 330 core\n// a comment\n" + line + "\nvoid main() {}\n"}, {"lib/b.glsl", "float b() { return 1.0; }\n"}});
     CHECK(message_of([&] { shader_library(files.root).expand_file("main.frag"); }).find(message) == 0);
