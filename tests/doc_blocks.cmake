@@ -1,0 +1,57 @@
+# The marked code blocks of a docs page, read in one place for every test that takes code from the
+# docs (the tutorial of docs/testing-your-shaders.md, the examples of docs/glsl-twins.md).
+#
+# vplkit_doc_blocks(<page file> <marker word> <prefix>): every fenced code block whose opening fence
+# is on the line right after `<!-- <marker word>: NAME -->` (the marker starts a line, so the
+# page's prose may quote it). NAME is a relative file name without `..`. Blocks with one NAME are
+# joined in the page's order. Sets <prefix>_names (the names, first appearance first) and
+# <prefix>_text_<C identifier of NAME> (the code, each block ending in a newline). A marker not
+# followed by a closed fence is a FATAL_ERROR naming the page.
+function(vplkit_doc_blocks page word prefix)
+  file(READ "${page}" rest)
+  set(rest "\n${rest}")
+  set(marker "\n<!-- ${word}: ")
+  string(LENGTH "${marker}" marker_length)
+  set(names "")
+  while(TRUE)
+    string(FIND "${rest}" "${marker}" at)
+    if(at EQUAL -1)
+      break()
+    endif()
+    math(EXPR at "${at} + ${marker_length}")
+    string(SUBSTRING "${rest}" ${at} -1 rest)
+    string(FIND "${rest}" " -->\n```" name_end)
+    string(FIND "${rest}" "\n" line_end)
+    if(name_end EQUAL -1 OR NOT name_end LESS line_end)
+      message(FATAL_ERROR "${page}: a '<!-- ${word}: ' line is not ' -->' followed by a code fence")
+    endif()
+    string(SUBSTRING "${rest}" 0 ${name_end} name)
+    if(NOT name MATCHES "^[A-Za-z0-9_./-]+$" OR name MATCHES "(^|/)\\.\\.(/|$)" OR name MATCHES "^/")
+      message(FATAL_ERROR "${page}: '${name}' is not a relative file name for a ${word} block")
+    endif()
+    # Past ' -->\n', then the fence's own line (``` and a language).
+    math(EXPR after "${name_end} + 5")
+    string(SUBSTRING "${rest}" ${after} -1 rest)
+    string(FIND "${rest}" "\n" code_start)
+    math(EXPR code_start "${code_start} + 1")
+    string(SUBSTRING "${rest}" ${code_start} -1 rest)
+    string(FIND "${rest}" "\n```" code_end)
+    if(code_end EQUAL -1)
+      message(FATAL_ERROR "${page}: the code block of ${word} ${name} is not closed")
+    endif()
+    math(EXPR code_length "${code_end} + 1")
+    string(SUBSTRING "${rest}" 0 ${code_length} code)
+    string(SUBSTRING "${rest}" ${code_length} -1 rest)
+    string(MAKE_C_IDENTIFIER "${name}" key)
+    if(NOT name IN_LIST names)
+      list(APPEND names "${name}")
+      set(text_${key} "")
+    endif()
+    string(APPEND text_${key} "${code}")
+  endwhile()
+  set(${prefix}_names "${names}" PARENT_SCOPE)
+  foreach(name ${names})
+    string(MAKE_C_IDENTIFIER "${name}" key)
+    set(${prefix}_text_${key} "${text_${key}}" PARENT_SCOPE)
+  endforeach()
+endfunction()
