@@ -9,6 +9,7 @@
 
 #include <doctest/doctest.h>
 
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -41,11 +42,20 @@ inline const std::vector<target_run>& every_target() {
   return runs;
 }
 
-/// Fails (naming the target and why) when this machine cannot run it.
-inline void require_target(parity::target where) {
+/// Whether to run `where`: true when this machine runs it. Otherwise the test fails, naming the
+/// target and why, except in one case: under VPLKIT_CONTEXT=osmesa (the slow tier's OSMesa repeat
+/// of the parity tests) gl45 and gles3 cannot be made, OSMesa having GL 3.3 core only; the run is
+/// left out with a message that says so.
+inline bool target_runs(parity::target where) {
   const std::string reason = parity::target_unavailable(where);
-  INFO("target " << parity::target_name(where) << ": " << reason);
-  REQUIRE(reason.empty());
+  if (reason.empty()) return true;
+  const char* api = std::getenv("VPLKIT_CONTEXT");
+  if (api && std::string(api) == "osmesa" && (where == parity::target::gl45 || where == parity::target::gles3)) {
+    MESSAGE("target " << std::string(parity::target_name(where)) << " not run: VPLKIT_CONTEXT=osmesa, whose contexts are GL 3.3 core only");
+    return false;
+  }
+  FAIL("target " << std::string(parity::target_name(where)) << " is unavailable (scripts/setup.sh installs every driver): " << reason);
+  return false;
 }
 
 }  // namespace vplkit::testing

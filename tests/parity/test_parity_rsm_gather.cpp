@@ -206,7 +206,7 @@ TEST_CASE("parity: gather_rsm for every pattern and visibility, with and without
       kernel_source source;
       source.name = std::string("gather_rsm (") + v.name + ", " + run.name() + ")";
       CAPTURE(source.name);
-      testing::require_target(run.where);
+      if (!testing::target_runs(run.where)) continue;
       source.defines = {{"VPLKIT_RSM_PATTERN", std::to_string(v.pattern)},
                         {"VPLKIT_VISIBILITY", std::to_string(v.visibility)},
                         {"VPLKIT_RSM_COVERAGE", v.coverage ? "1" : "0"}};
