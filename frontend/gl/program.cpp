@@ -194,7 +194,7 @@ class expander {
 };
 
 const char* stage_name(shader_stage stage) {
-  return stage == shader_stage::vertex ? "vertex" : "fragment";
+  return stage == shader_stage::vertex ? "vertex" : stage == shader_stage::fragment ? "fragment" : "compute";
 }
 
 }  // namespace
@@ -390,7 +390,9 @@ program link_program(const std::string& program_name, const std::vector<stage_so
   gl_program linked(glCreateProgram());
   std::vector<gl_shader> shaders;
   for (const stage_source& stage : stages) {
-    gl_shader shader(glCreateShader(stage.stage == shader_stage::vertex ? GL_VERTEX_SHADER : GL_FRAGMENT_SHADER));
+    gl_shader shader(glCreateShader(stage.stage == shader_stage::vertex     ? GL_VERTEX_SHADER
+                                    : stage.stage == shader_stage::fragment ? GL_FRAGMENT_SHADER
+                                                                            : GL_COMPUTE_SHADER));
     // The driver gets the text numbered by place, so the line it reports locates the file and
     // line even where it drops the source number (Mesa does for an undeclared name).
     const std::string numbered = compiled_text(stage.source.text);

@@ -78,7 +78,8 @@ class shader_library {
   std::vector<std::filesystem::path> roots_;
 };
 
-enum class shader_stage { vertex, fragment };
+/// compute needs a GL 4.3+ context (vplkit::parity's gl45 target).
+enum class shader_stage { vertex, fragment, compute };
 
 /// A linked program with uniform setters (each binds the program: GL 3.3 has no glProgramUniform).
 /// Setting a uniform that the source declares but the linker removed (a variant that does not
