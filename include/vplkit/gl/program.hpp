@@ -35,8 +35,9 @@ struct expanded_source {
   std::vector<std::filesystem::path> files_read;
 };
 
-/// The shader directory: --shader-dir when given, else $VPLKIT_SHADER_DIR, else the source
-/// tree's shaders/ when it exists, else the installed share/vplkit/shaders.
+/// The shader directory: $VPLKIT_SHADER_DIR when set (the command line's --shader-dir comes
+/// before it), else, for an executable inside vplkit's build tree, the source tree's shaders/,
+/// else the share/vplkit/shaders installed beside the executable, else the configured prefix's.
 std::filesystem::path default_shader_dir();
 
 /// Preprocessor definitions placed right after #version: the GLSL side of a kernel's variant
