@@ -1,6 +1,7 @@
 #include <vplkit/gl/program.hpp>
 
 #include <algorithm>
+#include <atomic>
 #include <cstdlib>
 #include <fstream>
 #include <functional>
@@ -51,6 +52,15 @@ fs::path default_shader_dir() {
   }
   return VPLKIT_INSTALLED_SHADER_DIR;
 }
+
+namespace {
+std::atomic<std::uint64_t>& linked_programs() {
+  static std::atomic<std::uint64_t> count{0};
+  return count;
+}
+}  // namespace
+
+std::uint64_t linked_program_count() { return linked_programs().load(std::memory_order_relaxed); }
 
 // The public header names GL's integer types by their C++ types.
 static_assert(std::is_same_v<GLuint, unsigned> && std::is_same_v<GLint, int>, "GLuint and GLint are unsigned and int");
@@ -444,6 +454,7 @@ program link_program(const std::string& program_name, const std::vector<stage_so
     glTransformFeedbackVaryings(linked.get(), static_cast<GLsizei>(names.size()), names.data(), GL_SEPARATE_ATTRIBS);
   }
   glLinkProgram(linked.get());
+  linked_programs().fetch_add(1, std::memory_order_relaxed);
   GLint link_ok = GL_FALSE;
   glGetProgramiv(linked.get(), GL_LINK_STATUS, &link_ok);
   if (!link_ok) {

@@ -8,6 +8,7 @@
 // the parity runs), so it names no GL header: the GL names are plain unsigned and int here.
 #pragma once
 
+#include <cstdint>
 #include <array>
 #include <cstddef>
 #include <filesystem>
@@ -142,6 +143,10 @@ struct stage_source {
 /// (GL_SEPARATE_ATTRIBS), one buffer each.
 program link_program(const std::string& program_name, const std::vector<stage_source>& stages,
                      const std::vector<std::string>& transform_feedback_varyings = {});
+
+/// How many programs link_program has linked in this process (from any thread): what a change
+/// costs in programs, e.g. that a setting applied in place (pipeline::apply_settings) links none.
+std::uint64_t linked_program_count();
 
 /// Loads a vertex and a fragment shader file from the library and links them; `defines` go
 /// into both stages.
