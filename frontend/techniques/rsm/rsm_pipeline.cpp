@@ -400,8 +400,10 @@ bool rsm_pipeline::apply_settings(const technique_settings& settings) {
   set_settings_uniforms();
   set_pose_uniforms();
   check_gl("applying the RSM pipeline's settings");
-  // Every pass again (as a new pipeline's first frame), and no history from the old settings.
-  rsm_valid_ = view_valid_ = false;
+  // The G-buffer to the post filter again, and no history from the old settings. The RSM and the
+  // coverage's coarse lights depend on the light, the RSM's size and the blocks only, which a
+  // change in place keeps.
+  view_valid_ = false;
   history_valid_ = false;
   sequence_frame_ = 0;
   return true;

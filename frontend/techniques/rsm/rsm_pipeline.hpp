@@ -194,7 +194,8 @@ class rsm_pipeline final : public pipeline {
   /// scene's (the programs are built for a spot or a directional light).
   void set_light(const scene_light& light) override;
   /// In place when only uniforms change: the same technique, slots, coverage blocks, filter,
-  /// temporal accumulation on or off, sizes and format; the whole frame is redrawn.
+  /// temporal accumulation on or off, sizes and format; the next draw_changed() redraws the
+  /// G-buffer to the post filter (the RSM does not depend on what may change in place).
   bool apply_settings(const technique_settings& settings) override;
   camera current_camera() const override { return scene_.view; }
   scene_light current_light() const override { return scene_.light; }
