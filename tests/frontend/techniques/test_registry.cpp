@@ -160,6 +160,57 @@ TEST_CASE("every GLSL uniform a setting feeds is declared by the shader it names
   CHECK(checked > 30);
 }
 
+namespace {
+
+// Values to try for a setting other than `value`: its range's closed ends, its allowed values or
+// choices, and the value doubled, halved, plus and minus one.
+std::vector<std::string> other_values(const setting_info& info, const std::string& value) {
+  std::vector<std::string> candidates;
+  if (info.type == setting_type::choice) return info.choices;
+  for (int allowed : info.allowed) candidates.push_back(std::to_string(allowed));
+  const std::optional<double> number = info.number(value);
+  if (!number) return candidates;
+  const auto text = [&](double x) { return info.type == setting_type::integer ? std::to_string(static_cast<long long>(std::llround(x))) : format_real(x); };
+  if (std::isfinite(info.range.low) && !info.range.low_open) candidates.push_back(text(info.range.low));
+  if (std::isfinite(info.range.high) && !info.range.high_open) candidates.push_back(text(info.range.high));
+  for (double x : {*number * 2.0, *number * 0.5, *number + 1.0, *number - 1.0, *number + 0.1, *number - 0.1}) candidates.push_back(text(x));
+  return candidates;
+}
+
+}  // namespace
+
+TEST_CASE("every kernel-struct member a setting feeds moves with the setting, as the frame derives it") {
+  // The member path of setting::feeds names the uniform (checked above against the shaders);
+  // here the binding is real: a technique that reads the setting, given another usable value of
+  // it, derives another value of every member the setting claims to feed.
+  int checked = 0;
+  for (const technique_family& family : technique_families()) {
+    for (const setting_info* info : family.make_settings(family.techniques.front().name)->settings()) {
+      for (const std::string& technique : family.make_settings(family.techniques.front().name)->readers(info->name)) {
+        const std::unique_ptr<technique_settings> settings = family.make_settings(technique);
+        const std::vector<double> before = settings->fed_values(info->name);
+        if (before.empty()) continue;
+        CAPTURE(technique);
+        CAPTURE(info->name);
+        bool moved = false;
+        for (const std::string& candidate : other_values(*info, settings->get(info->name))) {
+          const std::unique_ptr<technique_settings> changed = settings->clone();
+          if (!changed->set(info->name, candidate).empty() || !changed->validate().empty() || changed->get(info->name) == settings->get(info->name)) continue;
+          CAPTURE(candidate);
+          const std::vector<double> after = changed->fed_values(info->name);
+          REQUIRE(after.size() == before.size());
+          for (std::size_t k = 0; k < after.size(); ++k) CHECK(after[k] != before[k]);
+          moved = true;
+          break;
+        }
+        CHECK(moved);  // some other value was usable
+        ++checked;
+      }
+    }
+  }
+  CHECK(checked > 40);
+}
+
 TEST_CASE("every technique's pipeline takes cameras and lights the same way and redraws only what a move invalidated") {
   const shader_library& shaders = parity::test_shaders();
   for (const technique_family& family : technique_families()) {
