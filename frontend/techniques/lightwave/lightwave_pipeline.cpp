@@ -35,7 +35,7 @@ lightwave_pipeline::lightwave_pipeline(const shader_library& shaders, const scen
       depth_program_(load_program(shaders, "scene.vert", "depth_only.frag",
                                   has_alpha_cutouts(source.geometry) ? shader_defines{} : shader_defines{{"VPLKIT_MATERIAL_NO_ALPHA_TEST", "1"}})),
       shadow_framebuffer_(generate_framebuffer()),
-      target_(settings.width, settings.height, {settings.format, settings.format, settings.format}, true) {
+      target_(settings.width, settings.height, {settings.format, settings.format, settings.format, settings.format}, true) {
   if (source.light.kind != light_kind::spot) throw error("Light Wave needs a spot light; scene " + source.name + " has a directional one");
   if (const setting_problem problem = validate(source.light.spot)) throw error("scene " + source.name + ": " + problem.message());
   const shader_defines defines = shader_defines_of();

@@ -66,10 +66,12 @@ class lightwave_pipeline final : public pipeline {
   scene_light current_light() const override { return scene_.light; }
   /// The pass times since the last render() or collect_pass_times().
   std::vector<pass_time> collect_pass_times() override { return timer_.collect(); }
-  /// The last frame's radiance, indirect shadow factor (red) and indirect radiance textures.
+  /// The last frame's radiance and indirect shadow factor (red).
   const texture_2d& output() const override { return target_.colour(0); }
   const texture_2d* indirect_shadow_output() const override;
-  const texture_2d& indirect_output() const override { return target_.colour(2); }
+  /// The indirect irradiance (-indirect.pfm, the quantity of every family): the indirect
+  /// radiance of lightwave_frame::indirect over the surface's reflectance albedo / pi.
+  const texture_2d& indirect_output() const override { return target_.colour(3); }
   bool has_indirect() const override { return technique_.mode != lightwave_mode::direct; }
   int view_draws() const override { return main_draws_; }
   std::string draw_counts() const override;
