@@ -73,8 +73,14 @@ const std::vector<setting<rsm_pipeline_settings, rsm_technique>>& rsm_settings_t
             "the gather's radius, paths, samples and slots: default (" + preset_text(defaults) + "; docs/rsm-study.md) or thesis (" + preset_text(thesis) +
                 "); --radius, --paths, --samples-per-path and --slots override it",
             [](const rsm_pipeline_settings& s) {
+              // A preset is in effect when applying it changes no setting in effect: apply() is
+              // the one place that says which fields a preset sets.
               const auto is = [&s](const rsm_gather_preset<float>& p) {
-                return s.radius == p.radius_fraction && s.radial.paths == p.paths && s.radial.samples_per_path == p.samples_per_path && s.slots == p.slots;
+                rsm_pipeline_settings applied = s;
+                applied.apply(p);
+                for (const setting<rsm_pipeline_settings, rsm_technique>& other : rsm_settings_table())
+                  if (other.in_effect && other.get(applied) != other.get(s)) return false;
+                return true;
               };
               return std::string(is(thesis_rsm_gather_preset<float>()) ? "thesis" : is(default_rsm_gather_preset<float>()) ? "default" : "custom");
             },
