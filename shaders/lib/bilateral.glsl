@@ -41,7 +41,7 @@ bilateral_centre make_bilateral_centre(float depth, vec3 normal, bilateral_setti
 }
 
 // One exp of the spatial and depth exponents' sum (see the C++ twin).
-float bilateral_centre_weight(vec2 offset, float tap_depth, vec3 tap_normal, bilateral_centre centre, int normal_power) {
+float bilateral_weight(vec2 offset, float tap_depth, vec3 tap_normal, bilateral_centre centre, int normal_power) {
   float exponent = dot(offset, offset) * centre.spatial_scale;
   // Relative to the centre's depth; a centre at depth 0 (nothing there) matches only depth 0.
   float depth = tap_depth == centre.depth ? 1.0 : 0.0;
@@ -56,7 +56,7 @@ float bilateral_centre_weight(vec2 offset, float tap_depth, vec3 tap_normal, bil
 
 float bilateral_weight(vec2 offset, float centre_depth, float tap_depth, vec3 centre_normal, vec3 tap_normal,
                        bilateral_settings settings) {
-  return bilateral_centre_weight(offset, tap_depth, tap_normal, make_bilateral_centre(centre_depth, centre_normal, settings),
+  return bilateral_weight(offset, tap_depth, tap_normal, make_bilateral_centre(centre_depth, centre_normal, settings),
                                  settings.normal_power);
 }
 
@@ -65,7 +65,7 @@ void bilateral_add_tap(ivec2 texel, vec2 centre_coordinate, bilateral_centre cen
   if (texel.x < 0 || texel.y < 0 || texel.x >= size.x || texel.y >= size.y) return;
   bilateral_tap tap = bilateral_fetch(texel);
   if (!(tap.depth < 0.0)) return;
-  float weight = bilateral_centre_weight(vec2(texel) + 0.5 - centre_coordinate, tap.depth, tap.normal, centre, normal_power);
+  float weight = bilateral_weight(vec2(texel) + 0.5 - centre_coordinate, tap.depth, tap.normal, centre, normal_power);
   sum += weight * tap.value;
   weight_sum += weight;
 }
