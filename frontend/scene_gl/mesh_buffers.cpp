@@ -139,12 +139,41 @@ void mesh_buffers::draw(const program& target) const {
     }
     glBindTexture(GL_TEXTURE_2D, textured ? textures_[static_cast<std::size_t>(material->texture)].get() : 0);
     glBindSampler(static_cast<GLuint>(material_texture_unit), textured ? samplers_[static_cast<std::size_t>(part.material)].get() : 0);
-    glDrawElements(GL_TRIANGLES, part.count, GL_UNSIGNED_INT, reinterpret_cast<const void*>(part.first_index * sizeof(std::uint32_t)));
+    draw_triangles(part.first_index, part.count);
   }
   glBindVertexArray(0);
   glBindSampler(static_cast<GLuint>(material_texture_unit), 0);
   glBindTexture(GL_TEXTURE_2D, 0);
   glActiveTexture(GL_TEXTURE0);
+}
+
+void mesh_buffers::draw_triangles(std::size_t first_index, GLsizei count) {
+  const auto draw = [](std::size_t first, GLsizei indices) {
+    glDrawElements(GL_TRIANGLES, indices, GL_UNSIGNED_INT, reinterpret_cast<const void*>(first * sizeof(std::uint32_t)));
+  };
+  if (count <= 3 * large_draw_triangles) {
+    draw(first_index, count);
+    return;
+  }
+  // A driver may set up triangles far ahead of drawing them: llvmpipe bins a whole draw's
+  // triangles while its rasterizer threads work through them, and the binned triangles of a
+  // 2^21-triangle mesh took 90-180 MiB (38 MiB when llvmpipe rasterizes on the calling thread),
+  // more the busier the machine. Drawn in chunks, each followed by a fence, waiting after each
+  // chunk for the previous chunk's fence: at most two chunks are in flight, one drawn while the
+  // next is set up. The triangles are drawn in the same order, so the images are the same bit
+  // for bit.
+  constexpr GLsizei chunk = 3 * chunk_triangles;
+  GLsync in_flight = nullptr;
+  for (GLsizei done = 0; done < count; done += chunk) {
+    draw(first_index + static_cast<std::size_t>(done), std::min(chunk, count - done));
+    if (in_flight) {
+      // A wait that times out only lets more work queue up; the drawing is the same.
+      glClientWaitSync(in_flight, GL_SYNC_FLUSH_COMMANDS_BIT, fence_timeout_ns);
+      glDeleteSync(in_flight);
+    }
+    in_flight = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+  }
+  if (in_flight) glDeleteSync(in_flight);
 }
 
 void mesh_buffers::draw_points() const {

@@ -48,6 +48,12 @@ class mesh_buffers {
   GLsizei vertex_count_;
   /// Sets the constant attributes (albedo, texture coordinate) that this mesh keeps out of its buffer.
   void set_constant_attributes() const;
+  /// Draws `count` indices from `first_index` of the bound vertex array: one draw call, or for
+  /// more than large_draw_triangles, chunks of chunk_triangles with at most two in flight.
+  static void draw_triangles(std::size_t first_index, GLsizei count);
+  static constexpr GLsizei large_draw_triangles = 1 << 20;
+  static constexpr GLsizei chunk_triangles = 1 << 16;
+  static constexpr GLuint64 fence_timeout_ns = GLuint64{10} * 1000 * 1000 * 1000;
 
   std::vector<segment> segments_;
   bool per_vertex_albedo_ = true;
