@@ -36,6 +36,12 @@ struct technique_family {
   /// The technique whose indirect light, the same frame without visibility, shows what a
   /// technique's visibility removes (Fig. 5.1c of [RSMV]); "" when the technique has none.
   std::function<std::string(const std::string& technique)> visibility_baseline;
+  /// How the family ranks a configuration against its base configuration (`vplkit sweep
+  /// --reference base`), from the frames per second it gains over the base and the % similarity to
+  /// the base's image it keeps; empty when the family has no such rank. The sweep writes it as the
+  /// column `rank`, titled base_rank_title.
+  std::function<double(double fps_gain, double similarity_percent)> base_rank;
+  std::string base_rank_title;  ///< e.g. "[LW] Eq. 5.3 (Table 5.10)"
 
   bool reads_scene() const { return !default_scene.empty(); }
   bool has(const std::string& technique) const;
