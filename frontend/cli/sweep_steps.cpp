@@ -249,7 +249,12 @@ std::string machine_name(const std::string& device) {
   std::istringstream lines(device);
   for (std::string line; std::getline(lines, line);)
     if (line.rfind("GL_RENDERER", 0) == 0 && line.find_first_not_of(' ', 11) != std::string::npos) renderer = line.substr(line.find_first_not_of(' ', 11));
-  return renderer.empty() ? name : name + ", " + renderer;
+  // No comma or semicolon: the cell needs no CSV quoting in either dialect (scripts split these
+  // rows at their separators).
+  std::string machine;
+  for (char c : renderer.empty() ? name : name + ": " + renderer)
+    if (c != ',' && c != ';') machine += c;
+  return machine;
 }
 
 }  // namespace vplkit::cli::sweep_steps
