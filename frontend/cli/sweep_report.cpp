@@ -227,21 +227,31 @@ void mark_pareto(sweep_table& table, const std::string& time, const std::string&
       const bool beaten = strictly_faster <= a->error_low || at_bound < a->error_low;
       table.rows[a->row]["pareto"] = std::string(1, beaten ? '0' : '1');
     }
-    // Ties: the front's rows by time, each within the noise of the next on both axes (their
-    // intervals overlap), numbered per scene; a row alone is no tie.
+    // Ties: the front's rows within each other's noise on both axes (their intervals overlap),
+    // joined (union-find) into groups numbered per scene in time order; a row alone is no tie.
+    // Sorted by lower time, a row is compared only with the rows whose lower time is below its
+    // upper time: those it can overlap.
     std::vector<const point*> front;
     for (const point& p : points)
       if (table.rows[p.row]["pareto"] == "1") front.push_back(&p);
-    std::sort(front.begin(), front.end(), [](const point* a, const point* b) { return a->time < b->time || (a->time == b->time && a->error < b->error); });
-    int group = 0;
-    for (std::size_t k = 1; k < front.size(); ++k) {
-      const point& a = *front[k - 1];
-      const point& b = *front[k];
-      const bool within = a.time_low <= b.time_high && b.time_low <= a.time_high && a.error_low <= b.error_high && b.error_low <= a.error_high;
-      if (!within) continue;
-      std::string& previous = table.rows[a.row]["tie"];
-      if (previous.empty()) previous = std::to_string(++group);
-      table.rows[b.row]["tie"] = previous;
+    std::sort(front.begin(), front.end(), [](const point* a, const point* b) { return a->time_low < b->time_low || (a->time_low == b->time_low && a->error < b->error); });
+    std::vector<std::size_t> parent(front.size());
+    for (std::size_t k = 0; k < front.size(); ++k) parent[k] = k;
+    const auto root = [&](std::size_t k) {
+      while (parent[k] != k) k = parent[k] = parent[parent[k]];
+      return k;
+    };
+    for (std::size_t k = 0; k < front.size(); ++k)
+      for (std::size_t j = k + 1; j < front.size() && front[j]->time_low <= front[k]->time_high; ++j)
+        if (front[j]->error_low <= front[k]->error_high && front[k]->error_low <= front[j]->error_high) parent[root(j)] = root(k);
+    std::map<std::size_t, std::size_t> members;
+    for (std::size_t k = 0; k < front.size(); ++k) ++members[root(k)];
+    std::map<std::size_t, int> numbers;
+    for (std::size_t k = 0; k < front.size(); ++k) {
+      const std::size_t group = root(k);
+      if (members[group] < 2) continue;
+      const auto [number, fresh] = numbers.emplace(group, static_cast<int>(numbers.size()) + 1);
+      table.rows[front[k]->row]["tie"] = std::to_string(number->second);
     }
   }
 }
