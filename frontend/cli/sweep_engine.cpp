@@ -283,111 +283,146 @@ void finish(const session& io, const sweep_request& request, const sweep_plan& p
 
 }  // namespace
 
+namespace {
+
+// What a run carries from step to step: the table (the rows there and the new ones), the context
+// sweep.md reports, how a row is timed and keyed, and the progress.
+struct sweep_run {
+  const session& io;
+  const sweep_request& request;
+  const sweep_plan& plan;
+  const headless_session& gl;
+  sweep_keys keys;
+  reference_options reference;  ///< request.reference with this machine's threads
+  sweep_table table;
+  sweep_context context;
+  bool wall_clock = false;
+  std::string machine;
+  progress_report progress;
+};
+
+// plan: the rows this run (this shard) still owes, and the work for the estimate (per row one
+// unit for its timing and one per seed).
+std::vector<sweep_unit> plan_rows(sweep_run& run) {
+  std::set<std::string> done;
+  for (const auto& row : run.table.rows) done.insert(row.count("key") ? row.at("key") : std::string());
+  std::vector<sweep_unit> owed = owed_units(run.keys, done);
+  for (const sweep_unit& unit : owed) run.progress.total += 1.0 + run.keys.seeds_of(*unit.configuration->settings);
+  if (run.context.resumed > 0)
+    run.io.out << "sweep: resuming " << (run.request.out / "sweep.csv").string() << ": " << run.context.resumed << " row(s) already there are kept\n";
+  if (run.request.shards > 1) run.io.out << "sweep: shard " << run.request.shard << "/" << run.request.shards << ": " << owed.size() << " row(s) to measure\n";
+  return owed;
+}
+
+// One group of configurations of a scene, built at their first seed, a warm-up frame each (the
+// shader compilers' lazy work).
+struct timed_group {
+  std::vector<const sweep_unit*> units;
+  std::vector<std::unique_ptr<technique_settings>> seeded;
+  std::vector<std::unique_ptr<pipeline>> pipelines;
+  std::vector<timing> timings;
+};
+
+// time: the group's pipelines timed interleaved.
+timed_group time_rows(sweep_run& run, const std::vector<const sweep_unit*>& units, const pipeline_builder& build) {
+  timed_group group;
+  group.units = units;
+  std::vector<pipeline*> drawn;
+  for (const sweep_unit* unit : units) {
+    group.seeded.push_back(unit->configuration->settings->clone());
+    if (run.keys.seeds_of(*group.seeded.back()) > 1) group.seeded.back()->set("seed", "1");
+    group.pipelines.push_back(build(*group.seeded.back()));
+    group.pipelines.back()->draw();
+    group.pipelines.back()->collect_pass_times();
+    drawn.push_back(group.pipelines.back().get());
+  }
+  group.timings = time_group(run.request, drawn);
+  run.progress.done += static_cast<double>(units.size());
+  const std::string& scene = run.plan.scenes[units.front()->scene_index];
+  run.progress("timed " + std::to_string(units.size()) + " configuration(s) of " + (scene.empty() ? run.plan.family->name : sweep_keys::shown_scene(scene)) +
+               " in " + std::to_string(group.timings.front().rounds) + " round(s)");
+  return group;
+}
+
+// measure: the group's i-th configuration against the reference, seed by seed, into its row.
+std::map<std::string, std::string> measure_row(sweep_run& run, timed_group& group, std::size_t i, scene_references& references, const pipeline_builder& build) {
+  const sweep_unit& unit = *group.units[i];
+  const sweep_configuration& configuration = *unit.configuration;
+  const std::string scene = run.keys.scene_of(configuration, unit.scene_index);
+  const bool measured = run.request.reference.kind != reference_kind::none;
+  sweep_table& table = run.table;
+  std::map<std::string, std::string> row;
+  row["scene"] = sweep_keys::shown_scene(scene);
+  row["technique"] = configuration.settings->technique();
+  for (std::size_t a = 0; a < run.plan.axis_columns.size(); ++a) row[run.plan.axis_columns[a]] = configuration.axis_values[a];
+  timing_columns(table, row, group.timings[i], run.request, run.wall_clock, run.machine);
+  for (const char* column : {"receivers", "seeds", "key"}) table.add_column(column);
+  const int seeds = run.keys.seeds_of(*configuration.settings);
+  double share = -1.0;
+  if (measured) {
+    const seed_qualities qualities = measure_seeds(references, *group.pipelines[i], *group.seeded[i], seeds, build, run.progress);
+    share = quality_columns(table, row, qualities, references, *group.seeded[i]);
+    row["receivers"] = std::to_string(qualities.seeds.back().receivers);
+    run.context.coverage = references.coverage();
+  } else {
+    run.progress.done += static_cast<double>(seeds);
+  }
+  row["seeds"] = std::to_string(measured ? seeds : 0);
+  row["key"] = run.keys.key_of(configuration, unit.scene_index);
+  if (run.plan.base) {
+    table.add_column("is_base");
+    row["is_base"] = identity(*configuration.settings) == identity(*run.plan.base) ? "1" : "0";
+  }
+  std::string summary = row["scene"] + ": " + configuration.label + ": " + fixed(of(group.timings[i].frames).mean, 2) + " ms";
+  for (const char* name : {"rel_rmse", "rel_bias"})
+    if (row.count(name)) summary += std::string(", ") + name + " " + (row[name] == "undefined" ? std::string("undefined") : fixed(*parse_real(row[name]), 4));
+  if (share >= 0.0) summary += ", reference noise " + fixed(100.0 * share, 0) + " % of rel_rmse";
+  run.progress(summary);
+  return row;
+}
+
+}  // namespace
+
 void run_sweep(const session& io, const sweep_request& request, const sweep_plan& plan) {
   fs::create_directories(request.out);
-  const fs::path csv = request.out / "sweep.csv";
-  sweep_table table;
-  if (fs::exists(csv)) table = read_sweep_csv(csv);
-  std::set<std::string> done;
-  for (const auto& row : table.rows) done.insert(row.count("key") ? row.at("key") : std::string());
-  for (const char* column : {"scene", "technique"}) table.add_column(column);
-  for (const std::string& column : plan.axis_columns) table.add_column(column);
-
   const headless_session gl(request.common);
-  sweep_request measured_request = request;
-  measured_request.reference.threads = hardware_threads();
-  const sweep_keys keys{request, plan};
+  sweep_run run{io, request, plan, gl, sweep_keys{request, plan}, request.reference, {}, {}, false, {}, progress_report{io}};
+  run.reference.threads = hardware_threads();
+  if (fs::exists(request.out / "sweep.csv")) run.table = read_sweep_csv(request.out / "sweep.csv");
+  for (const char* column : {"scene", "technique"}) run.table.add_column(column);
+  for (const std::string& column : plan.axis_columns) run.table.add_column(column);
+  run.context.method = describe(timing_method_for_current_context());
+  run.context.device = describe_current_context();
+  run.context.coverage = scene_references(gl.shaders, run.reference, nullptr).coverage();
+  run.context.resumed = run.table.rows.size();
+  run.wall_clock = timing_method_for_current_context() == timing_method::wall_clock;
+  run.machine = machine_name(run.context.device);
+  write_sweep_record(request.out, record_of(request, run.context));
+
+  const std::vector<sweep_unit> owed = plan_rows(run);
   const technique_family& family = *plan.family;
-  sweep_context context;
-  context.method = describe(timing_method_for_current_context());
-  context.device = describe_current_context();
-  context.resumed = table.rows.size();
-  const bool wall_clock = timing_method_for_current_context() == timing_method::wall_clock;
-  const std::string machine = machine_name(context.device);
-
-  // plan: the rows this run (this shard) still owes, and the work for the estimate: per row one
-  // unit for its timing and one per seed.
-  const std::vector<sweep_unit> owed = owed_units(keys, done);
-  progress_report progress{io};
-  for (const sweep_unit& unit : owed) progress.total += 1.0 + keys.seeds_of(*unit.configuration->settings);
-  if (context.resumed > 0) io.out << "sweep: resuming " << csv.string() << ": " << context.resumed << " row(s) already there are kept\n";
-  if (request.shards > 1) io.out << "sweep: shard " << request.shard << "/" << request.shards << ": " << owed.size() << " row(s) to measure\n";
-  context.coverage = scene_references(gl.shaders, measured_request.reference, nullptr).coverage();
-  write_sweep_record(request.out, record_of(request, context));
-
   for (std::size_t scene_index = 0; scene_index < plan.scenes.size(); ++scene_index) {
     std::vector<const sweep_unit*> pending;
     for (const sweep_unit& unit : owed)
       if (unit.scene_index == scene_index) pending.push_back(&unit);
     if (pending.empty()) continue;
-    const std::string& scene_name = plan.scenes[scene_index];
     std::unique_ptr<scene> source;
-    if (family.reads_scene()) source = std::make_unique<scene>(load_scene(request.common, scene_name));
-    scene_references references(gl.shaders, measured_request.reference, source.get());
+    if (family.reads_scene()) source = std::make_unique<scene>(load_scene(request.common, plan.scenes[scene_index]));
+    scene_references references(gl.shaders, run.reference, source.get());
     const pipeline_builder build = [&](const technique_settings& settings) {
       std::unique_ptr<scene> none;
       return family.reads_scene() ? family.make_pipeline(gl.shaders, source.get(), settings) : make_posed_pipeline(gl.shaders, request.common, settings, none);
     };
-    if (plan.base) draw_base(keys, references, build);
+    if (plan.base) draw_base(run.keys, references, build);
     for (std::size_t first = 0; first < pending.size(); first += static_cast<std::size_t>(request.group)) {
       const std::size_t last = std::min(pending.size(), first + static_cast<std::size_t>(request.group));
-      // time: the group's pipelines at the first seed, a warm-up frame each (the shader
-      // compilers' lazy work), then timed interleaved.
-      std::vector<std::unique_ptr<technique_settings>> seeded;
-      std::vector<std::unique_ptr<pipeline>> pipelines;
-      std::vector<pipeline*> drawn;
-      for (std::size_t i = first; i < last; ++i) {
-        seeded.push_back(pending[i]->configuration->settings->clone());
-        if (keys.seeds_of(*seeded.back()) > 1) seeded.back()->set("seed", "1");
-        pipelines.push_back(build(*seeded.back()));
-        pipelines.back()->draw();
-        pipelines.back()->collect_pass_times();
-        drawn.push_back(pipelines.back().get());
-      }
-      const std::vector<timing> timings = time_group(request, drawn);
-      progress.done += static_cast<double>(pipelines.size());
-      progress("timed " + std::to_string(pipelines.size()) + " configuration(s) of " + (scene_name.empty() ? family.name : sweep_keys::shown_scene(scene_name)) +
-               " in " + std::to_string(timings.front().rounds) + " round(s)");
-      // measure: each configuration against the reference, seed by seed, into its row.
-      for (std::size_t i = 0; i < pipelines.size(); ++i) {
-        const sweep_configuration& configuration = *pending[first + i]->configuration;
-        const std::string scene = keys.scene_of(configuration, scene_index);
-        std::map<std::string, std::string> row;
-        row["scene"] = sweep_keys::shown_scene(scene);
-        row["technique"] = configuration.settings->technique();
-        for (std::size_t a = 0; a < plan.axis_columns.size(); ++a) row[plan.axis_columns[a]] = configuration.axis_values[a];
-        timing_columns(table, row, timings[i], request, wall_clock, machine);
-        for (const char* column : {"receivers", "seeds", "key"}) table.add_column(column);
-        const int seeds = keys.seeds_of(*configuration.settings);
-        double share = -1.0;
-        std::size_t receivers = 0;
-        if (request.reference.kind != reference_kind::none) {
-          const seed_qualities qualities = measure_seeds(references, *pipelines[i], *seeded[i], seeds, build, progress);
-          share = quality_columns(table, row, qualities, references, *seeded[i]);
-          receivers = qualities.seeds.back().receivers;
-          context.coverage = references.coverage();
-        } else {
-          progress.done += static_cast<double>(seeds);
-        }
-        row["receivers"] = request.reference.kind == reference_kind::none ? "" : std::to_string(receivers);
-        row["seeds"] = std::to_string(request.reference.kind == reference_kind::none ? 0 : seeds);
-        row["key"] = keys.key_of(configuration, scene_index);
-        if (plan.base) {
-          table.add_column("is_base");
-          row["is_base"] = identity(*configuration.settings) == identity(*plan.base) ? "1" : "0";
-        }
-        std::string summary = sweep_keys::shown_scene(scene) + ": " + configuration.label + ": " + fixed(of(timings[i].frames).mean, 2) + " ms";
-        for (const char* name : {"rel_rmse", "rel_bias"})
-          if (row.count(name)) summary += std::string(", ") + name + " " + (row[name] == "undefined" ? std::string("undefined") : fixed(*parse_real(row[name]), 4));
-        if (share >= 0.0) summary += ", reference noise " + fixed(100.0 * share, 0) + " % of rel_rmse";
-        progress(summary);
-        table.rows.push_back(std::move(row));
-      }
+      timed_group group = time_rows(run, {pending.begin() + static_cast<std::ptrdiff_t>(first), pending.begin() + static_cast<std::ptrdiff_t>(last)}, build);
+      for (std::size_t i = 0; i < group.units.size(); ++i) run.table.rows.push_back(measure_row(run, group, i, references, build));
       // write: the CSV after every group, so that a stopped sweep resumes from here.
-      write_table(csv, table, plan);
+      write_table(request.out / "sweep.csv", run.table, plan);
     }
   }
-  finish(io, request, plan, table, context);
+  finish(io, request, plan, run.table, run.context);
 }
 
 void merge_sweep(const session& io, const sweep_request& request, const sweep_plan& plan, const std::vector<fs::path>& folders,
