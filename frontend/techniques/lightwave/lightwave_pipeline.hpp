@@ -202,6 +202,9 @@ class lightwave_pipeline final : public pipeline {
   pass_timer timer_;
   bool vpls_dirty_ = true;     ///< the VPLs (and the flux energy's indirect light) must be rebuilt
   bool shadows_dirty_ = true;  ///< the shadow maps must be rebuilt
+  /// Flux energy: the VPLs must be summed at the receivers again (set with shadows_dirty_; implied
+  /// by vpls_dirty_).
+  bool sums_dirty_ = false;
   bool view_valid_ = false;    ///< the main pass matches the camera and the light
   int rebuilds_ = 0;
   int main_draws_ = 0;

@@ -361,10 +361,14 @@ void check_live_slider(const std::string& technique, const std::string& slider, 
 
 TEST_CASE("live settings: a uniform-only slider move redraws the next frame without linking a program") {
   SUBCASE("rsm-alg6 (RSM 64^2): radius") { check_live_slider("rsm-alg6", "radius", "0.3", "slots", {"4", "8"}); }
-  // min-distance: the VPLs re-planned, the receivers' sums and the shadow maps redrawn, the main
-  // pass (shadow maps at 1 x the screen).
+  // min-distance: the receivers' sums, the shadow maps (at 1 x the screen) and the main pass
+  // redrawn.
   SUBCASE("lightwave-accurate: min-distance") {
     check_live_slider("lightwave-accurate", "min-distance", "0.3", "shadow-variant", {"thesis", "importance"});
+  }
+  // integrated-steps: the main pass only.
+  SUBCASE("lightwave-integrated: integrated-steps") {
+    check_live_slider("lightwave-integrated", "integrated-steps", "2", "integrated-maps", {"3", "5"});
   }
   // min-distance: the cube map (faces of 32^2) and the view redrawn (1.5: a clamp that shows, on
   // the object's top and the walls' upper parts).
