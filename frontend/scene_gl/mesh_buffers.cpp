@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <limits>
+#include <string>
 
+#include "frontend/core/error.hpp"
 #include "frontend/gl/debug_output.hpp"
 #include "frontend/gl/render_target.hpp"
 
@@ -28,13 +31,22 @@ GLint gl_min_filter(const texture_sampler& sampler) {
 
 }  // namespace
 
-mesh_buffers::mesh_buffers(const mesh& source)
+mesh_buffers::mesh_buffers(const mesh& source, draw_chunking chunking)
     : vertex_array_(generate_vertex_array()),
       vertices_(generate_buffer()),
       indices_(generate_buffer()),
       index_count_(static_cast<GLsizei>(source.indices.size())),
       vertex_count_(static_cast<GLsizei>(source.vertices.size())),
+      chunking_(chunking),
       materials_(source.material_ranges.empty() ? nullptr : source.materials) {
+  // Checked before anything else: a chunk of 0 triangles would never finish drawing, and 3 x the
+  // sizes must stay within GLsizei.
+  constexpr GLsizei max_triangles = std::numeric_limits<GLsizei>::max() / 3;
+  if (chunking.threshold_triangles < 0 || chunking.threshold_triangles > max_triangles || chunking.chunk_triangles < 1 ||
+      chunking.chunk_triangles > max_triangles)
+    throw error("mesh draw chunking: the threshold must be 0.." + std::to_string(max_triangles) + " triangles and the chunk 1.." +
+                std::to_string(max_triangles) + ", not " + std::to_string(chunking.threshold_triangles) + " and " +
+                std::to_string(chunking.chunk_triangles));
   check_materials(source, "mesh");
   // The GPU copy holds only the attributes that vary. An albedo that every vertex shares (an OBJ
   // without materials, any built-in object) is a constant attribute, and texture coordinates
@@ -147,11 +159,11 @@ void mesh_buffers::draw(const program& target) const {
   glActiveTexture(GL_TEXTURE0);
 }
 
-void mesh_buffers::draw_triangles(std::size_t first_index, GLsizei count) {
+void mesh_buffers::draw_triangles(std::size_t first_index, GLsizei count) const {
   const auto draw = [](std::size_t first, GLsizei indices) {
     glDrawElements(GL_TRIANGLES, indices, GL_UNSIGNED_INT, reinterpret_cast<const void*>(first * sizeof(std::uint32_t)));
   };
-  if (count <= 3 * large_draw_triangles) {
+  if (count <= 3 * chunking_.threshold_triangles) {
     draw(first_index, count);
     return;
   }
@@ -162,10 +174,12 @@ void mesh_buffers::draw_triangles(std::size_t first_index, GLsizei count) {
   // chunk for the previous chunk's fence: at most two chunks are in flight, one drawn while the
   // next is set up. The triangles are drawn in the same order, so the images are the same bit
   // for bit.
-  constexpr GLsizei chunk = 3 * chunk_triangles;
+  const GLsizei chunk = 3 * chunking_.chunk_triangles;
   GLsync in_flight = nullptr;
-  for (GLsizei done = 0; done < count; done += chunk) {
-    draw(first_index + static_cast<std::size_t>(done), std::min(chunk, count - done));
+  for (GLsizei done = 0; done < count;) {
+    const GLsizei indices = std::min(chunk, count - done);  // done + indices <= count: no overflow
+    draw(first_index + static_cast<std::size_t>(done), indices);
+    done += indices;
     if (in_flight) {
       // A wait that times out only lets more work queue up; the drawing is the same.
       glClientWaitSync(in_flight, GL_SYNC_FLUSH_COMMANDS_BIT, fence_timeout_ns);
