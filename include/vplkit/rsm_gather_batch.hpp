@@ -173,15 +173,17 @@ void gather_rsm_batch(const gather_receiver<T>* receivers, std::size_t count, co
       // Each step below is one loop over the lanes (the loop the compiler vectorises); the loops
       // over slots stay outside them. Masks are ints combined with &, not bools with && (whose
       // short circuit is control flow, which stops the vectoriser).
-      alignas(64) T claims[micro_linear_buffer_max_slots][W];  // Alg. 6: claims per slot (slot value 1 - claims)
+      // Alg. 6's slot values are the integers 1, 0, -1, ... (1 - claims): kept as ints, whose selects
+      // vectorise where float compares (which may trap) kept GCC from if-converting the loop.
+      alignas(64) int claims[micro_linear_buffer_max_slots][W];
       alignas(64) int previous_index[W];
-      alignas(64) T previous_visibility[W];
-      alignas(64) int texel_index[W], lit[W], slot[W];
-      alignas(64) T turns[W], sample_radius[W], weight[W], dz[W], horizontal[W], slot_claims[W], claim[W], seen[W];
+      alignas(64) int previous_visibility[W];
+      alignas(64) int texel_index[W], lit[W], slot[W], slot_claims[W], claim[W];
+      alignas(64) T turns[W], sample_radius[W], weight[W], dz[W], horizontal[W], seen[W];
       for (int path = 0; path < paths; ++path) {
         for (int k = 0; k < slot_count; ++k)
-          for (int l = 0; l < W; ++l) claims[k][l] = T(0);
-        for (int l = 0; l < W; ++l) previous_index[l] = -1, previous_visibility[l] = T(1);
+          for (int l = 0; l < W; ++l) claims[k][l] = 0;
+        for (int l = 0; l < W; ++l) previous_index[l] = -1, previous_visibility[l] = 1;
         for (int sample = 0; sample < samples; ++sample) {
           const T inner = ring_inner[static_cast<std::size_t>(sample)];
           const T outer = inner * radial.ring_ratio;
@@ -219,7 +221,7 @@ void gather_rsm_batch(const gather_receiver<T>* receivers, std::size_t count, co
               dz[l] = rsm.position[2][i] - rz[l];
               horizontal[l] = std::sqrt(dx * dx + dy * dy);
               slot[l] = 0;
-              slot_claims[l] = T(0);
+              slot_claims[l] = 0;
             }
             for (int k = 0; k < boundaries; ++k)
               for (int l = 0; l < W; ++l) slot[l] += dz[l] >= boundary_tangent[k] * horizontal[l] ? 1 : 0;
@@ -227,16 +229,15 @@ void gather_rsm_batch(const gather_receiver<T>* receivers, std::size_t count, co
               for (int l = 0; l < W; ++l) slot_claims[l] = slot[l] == k ? claims[k][l] : slot_claims[l];
             for (int l = 0; l < W; ++l) {
               const bool same_as_previous = slot[l] == previous_index[l];
-              const T slot_value = T(1) - slot_claims[l];
-              const T visibility = same_as_previous ? previous_visibility[l] : slot_value;
-              claim[l] = T((lit[l] & int(!same_as_previous) & int(slot_claims[l] < T(255))));
+              const int slot_value = 1 - slot_claims[l];
+              const int visibility = same_as_previous ? previous_visibility[l] : slot_value;
+              claim[l] = lit[l] & int(!same_as_previous) & int(slot_claims[l] < 255);  // value -= 1, saturating
               previous_index[l] = lit[l] != 0 ? slot[l] : previous_index[l];
               previous_visibility[l] = lit[l] != 0 ? visibility : previous_visibility[l];
-              const T low = visibility > T(0) ? visibility : T(0);
-              seen[l] = low < T(1) ? low : T(1);  // glm::clamp(visibility, 0, 1)
+              seen[l] = T(glm::clamp(visibility, 0, 1));  // exact: the clamp of the same integer as a float
             }
             for (int k = 0; k < slot_count; ++k)
-              for (int l = 0; l < W; ++l) claims[k][l] += slot[l] == k ? claim[l] : T(0);
+              for (int l = 0; l < W; ++l) claims[k][l] += slot[l] == k ? claim[l] : 0;
           } else {
             for (int l = 0; l < W; ++l) seen[l] = T(1);
           }
