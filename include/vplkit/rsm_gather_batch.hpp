@@ -166,6 +166,10 @@ void gather_rsm_batch(const gather_receiver<T>* receivers, std::size_t count, co
       const T reach = pixel.scale * radial.max_radius;
       active[l] = std::size_t(l) < in_block && r.position.z < T(0) && glm::dot(outside, outside) <= (reach + T(1)) * (reach + T(1)) ? 1 : 0;
       sum_r[l] = sum_g[l] = sum_b[l] = T(0);
+      // An inactive lane still runs every step: its projection (far off the map, or a mirrored one
+      // behind the light) must not overflow the float-to-int conversion of the texel, undefined
+      // behaviour the scalar gather never reaches. Active lanes lie within reach of the map.
+      if (active[l] == 0) cu[l] = cv[l] = T(0);
     }
     int any_active = 0;
     for (int l = 0; l < W; ++l) any_active |= active[l];

@@ -32,7 +32,7 @@ namespace {
 template <typename T>
 std::vector<gather_receiver<T>> batch_receivers() {
   std::vector<gather_receiver<T>> receivers;
-  // 61 receivers (not a multiple of the lane count): under and beside the block, facing up, down
+  // 62 receivers (not a multiple of the lane count): under and beside the block, facing up, down
   // and sideways, on pixels that differ, plus one behind the light and two off the map (one
   // within the pattern's reach, one beyond it).
   for (int i = 0; i < 58; ++i) {
@@ -41,10 +41,12 @@ std::vector<gather_receiver<T>> batch_receivers() {
     const gather_receiver<double> r = receiver_at(glm::dvec3(x, y, z), glm::uvec2(3u * static_cast<unsigned>(i), 7u + static_cast<unsigned>(i) / 4u), normal);
     receivers.push_back({glm::vec<3, T>(r.position), glm::vec<3, T>(r.normal), glm::vec<2, T>(r.rsm_coordinate), r.pixel});
   }
-  for (const glm::dvec3 p : {glm::dvec3(0.1, 11.0, 0.0), glm::dvec3(2.8, 0.1, 0.0), glm::dvec3(9.0, 0.1, 0.0)}) {
+  for (const glm::dvec3 p : {glm::dvec3(0.1, 11.0, 0.0), glm::dvec3(2.8, 0.1, 0.0), glm::dvec3(9.0, 0.1, 0.0)}) {  // 9.0: beyond reach
     const gather_receiver<double> r = receiver_at(p, glm::uvec2(1, 2), glm::dvec3(0, 1, 0));
     receivers.push_back({glm::vec<3, T>(r.position), glm::vec<3, T>(r.normal), glm::vec<2, T>(r.rsm_coordinate), r.pixel});
   }
+  // Far off the map (its projection ~1e12 texels away): skipped, and never converted to an int.
+  receivers.push_back({glm::vec<3, T>(T(1e10), T(0), T(-10)), glm::vec<3, T>(0, 0, 1), glm::vec<2, T>(T(1e12), T(1e12)), glm::uvec2(4, 5)});
   return receivers;
 }
 
@@ -97,6 +99,7 @@ void check_batch_equals_scalar() {
   // The receivers the pattern skips get nothing, as from gather_rsm.
   CHECK(batch[58] == glm::vec<3, T>(T(0)));
   CHECK(batch[60] == glm::vec<3, T>(T(0)));
+  CHECK(batch[61] == glm::vec<3, T>(T(0)));
 }
 
 }  // namespace
