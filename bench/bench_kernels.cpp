@@ -12,6 +12,7 @@
 
 #include <vplkit/final_gather.hpp>
 #include <vplkit/form_factor.hpp>
+#include <vplkit/form_factor_grid.hpp>
 #include <vplkit/hash.hpp>
 #include <vplkit/irradiance.hpp>
 #include <vplkit/micro_linear_buffer.hpp>
@@ -193,6 +194,24 @@ void point_form_factor_throughput(benchmark::State& state) {
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * 1024);
 }
 BENCHMARK(point_form_factor_throughput);
+
+// The polygon form factor to every cell of a 32 x 32 grid (a cube-map face 1 unit away, cells
+// 1/32 wide) from one receiver per iteration, its normal one of form_factor_inputs': per cell,
+// comparable with the two above (form_factor_grid.hpp shares corners and edges between cells).
+void polygon_form_factor_grid_throughput(benchmark::State& state) {
+  const form_factor_inputs in;
+  vplkit::form_factor_grid_scratch<float> scratch;
+  std::vector<float> out(32 * 32);
+  std::size_t k = 0;
+  for (auto _ : state) {
+    vplkit::polygon_form_factor_grid(glm::vec3(0.0f), in.normals[k++ & 1023u], glm::vec3(-0.5f, -0.5f, 1.0f), glm::vec3(1.0f / 32.0f, 0, 0),
+                                     glm::vec3(0, 1.0f / 32.0f, 0), 32, 32, out.data(), scratch);
+    benchmark::DoNotOptimize(out.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * 1024);
+}
+BENCHMARK(polygon_form_factor_grid_throughput);
 
 template <vplkit::gather_form_factor Kind>
 void final_gather_cost(benchmark::State& state) {
