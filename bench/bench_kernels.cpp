@@ -12,10 +12,12 @@
 
 #include <vplkit/final_gather.hpp>
 #include <vplkit/form_factor.hpp>
+#include <vplkit/form_factor_grid.hpp>
 #include <vplkit/hash.hpp>
 #include <vplkit/irradiance.hpp>
 #include <vplkit/micro_linear_buffer.hpp>
 #include <vplkit/rsm_gather.hpp>
+#include <vplkit/rsm_gather_batch.hpp>
 
 namespace {
 
@@ -111,6 +113,33 @@ BENCHMARK_TEMPLATE(gather_cost, vplkit::rsm_visibility::none);
 BENCHMARK_TEMPLATE(gather_cost, vplkit::rsm_visibility::alg3);
 BENCHMARK_TEMPLATE(gather_cost, vplkit::rsm_visibility::alg6);
 
+// The batch gather (rsm_gather_batch.hpp) on the same RSM and receivers as gather_cost: a block
+// of 4096 receivers per iteration, each thread its own block (the caller's split over cores), so
+// with ->Threads(2) and real time items_per_second is the rate of both cores together.
+template <vplkit::rsm_visibility Visibility>
+void gather_batch_cost(benchmark::State& state) {
+  static const synthetic_rsm rsm;
+  static const vplkit::rsm_plane_storage<float> planes =
+      vplkit::make_rsm_planes<float>(glm::ivec2(512), [](glm::ivec2 t) { return rsm.texels[static_cast<std::size_t>(t.y * 512 + t.x)]; });
+  const vplkit::rsm_gather_settings<float> settings;
+  constexpr std::uint32_t count = 4096;
+  std::vector<vplkit::gather_receiver<float>> receivers(count);
+  for (std::uint32_t receiver = 0; receiver < count; ++receiver) {
+    const float x = static_cast<float>(receiver % 64) * 0.01f, z = static_cast<float>(receiver / 64 % 64) * 0.01f;
+    receivers[receiver] = {vplkit::transform_point(bench_light_view, glm::vec3(x, 0.05f, -z)), vplkit::transform_direction(bench_light_view, glm::vec3(1, 0, 0)),
+                           glm::vec2(256.0f + 100.0f * x, 256.0f + 100.0f * z), glm::uvec2(receiver % 64, receiver / 64)};
+  }
+  std::vector<glm::vec3> irradiance(count);
+  for (auto _ : state) {
+    vplkit::gather_rsm_batch<Visibility>(receivers.data(), receivers.size(), planes.view(), settings, irradiance.data());
+    benchmark::DoNotOptimize(irradiance.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * count * 150);
+}
+BENCHMARK_TEMPLATE(gather_batch_cost, vplkit::rsm_visibility::none)->Threads(1)->Threads(2)->UseRealTime();
+BENCHMARK_TEMPLATE(gather_batch_cost, vplkit::rsm_visibility::alg6)->Threads(1)->Threads(2)->UseRealTime();
+
 // Form factors ([FG]): the clipped polygon-to-point against the point-to-point kernel, one
 // quad each, and the whole gather over a 6 x 4 x 4 distance cube map.
 struct form_factor_inputs {
@@ -165,6 +194,24 @@ void point_form_factor_throughput(benchmark::State& state) {
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * 1024);
 }
 BENCHMARK(point_form_factor_throughput);
+
+// The polygon form factor to every cell of a 32 x 32 grid (a cube-map face 1 unit away, cells
+// 1/32 wide) from one receiver per iteration, its normal one of form_factor_inputs': per cell,
+// comparable with the two above (form_factor_grid.hpp shares corners and edges between cells).
+void polygon_form_factor_grid_throughput(benchmark::State& state) {
+  const form_factor_inputs in;
+  vplkit::form_factor_grid_scratch<float> scratch;
+  std::vector<float> out(32 * 32);
+  std::size_t k = 0;
+  for (auto _ : state) {
+    vplkit::polygon_form_factor_grid(glm::vec3(0.0f), in.normals[k++ & 1023u], glm::vec3(-0.5f, -0.5f, 1.0f), glm::vec3(1.0f / 32.0f, 0, 0),
+                                     glm::vec3(0, 1.0f / 32.0f, 0), 32, 32, out.data(), scratch);
+    benchmark::DoNotOptimize(out.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * 1024);
+}
+BENCHMARK(polygon_form_factor_grid_throughput);
 
 template <vplkit::gather_form_factor Kind>
 void final_gather_cost(benchmark::State& state) {

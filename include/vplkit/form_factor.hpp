@@ -66,7 +66,7 @@ T acos_over_sqrt_one_minus(T x) {
 /// origin (x = -1) has no defined term (its unit normal is rounding noise, in any form); it is
 /// kept in [-pi, pi], the range of the exact term.
 template <typename T, glm::qualifier Q>
-T lambert_edge(const glm::vec<3, T, Q>& a, T inverse_length_a, const glm::vec<3, T, Q>& b, T inverse_length_b, const glm::vec<3, T, Q>& n) {
+[[gnu::always_inline]] inline T lambert_edge(const glm::vec<3, T, Q>& a, T inverse_length_a, const glm::vec<3, T, Q>& b, T inverse_length_b, const glm::vec<3, T, Q>& n) {
   const glm::vec<3, T, Q> u = a * inverse_length_a, v = b * inverse_length_b, half_sum = (u + v) * T(0.5);
   const T x = glm::clamp(glm::dot(u, v), T(-1), T(1));
   const T ax = std::abs(x);
@@ -80,9 +80,10 @@ T lambert_edge(const glm::vec<3, T, Q>& a, T inverse_length_a, const glm::vec<3,
   return glm::clamp(term, T(-3.14159265358979323846), T(3.14159265358979323846));
 }
 
-/// 1 / |v|, 0 for the zero vector.
+/// 1 / |v|, 0 for the zero vector. (Both are always inlined: GCC otherwise calls them out of line
+/// from form_factor_grid.hpp's loops, which then do not vectorise.)
 template <typename T, glm::qualifier Q>
-T inverse_length(const glm::vec<3, T, Q>& v) {
+[[gnu::always_inline]] inline T inverse_length(const glm::vec<3, T, Q>& v) {
   const T length_squared = glm::dot(v, v);
   return length_squared > T(0) ? T(1) / std::sqrt(length_squared) : T(0);
 }
