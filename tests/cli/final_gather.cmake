@@ -46,4 +46,7 @@ expect_failure("final gathering in a scene lit by a sun" "final gathering in sce
 expect_failure("final gathering in a scene file that does not exist" "no-room\\.gltf" "${WORK}/none-fail*.png"
                "${VPLKIT}" render --technique finalgather-polygon --scene "${WORK}/no-room.gltf" --size 32 --out "${WORK}/none-fail.png")
 
+expect_failure("the viewer does not draw final gathering in a scene" "--scene: the viewer draws technique finalgather-point in its own room" ""
+               "${VPLKIT}" view --technique finalgather-point --scene "${room}")
+
 cli_report()
