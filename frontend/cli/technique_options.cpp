@@ -100,12 +100,12 @@ void add_technique_options(CLI::App& command, technique_options& options) {
   command.add_option("--technique", options.technique, "rendering technique: " + techniques)->check(CLI::IsMember(technique_names()))->capture_default_str();
   std::vector<std::string> scene_readers, scene_defaults;
   for (const technique_family& family : technique_families())
-    if (family.reads_scene()) {
+    if (family.takes_scene()) {
       for (const std::string& name : family.technique_names()) scene_readers.push_back(name);
-      scene_defaults.push_back(family.default_scene + " (" + family.name + ")");
+      scene_defaults.push_back((family.reads_scene() ? family.default_scene : "its own room") + " (" + family.name + ")");
     }
   options.scope.add(add_scene_option(command, options.common, listed(scene_defaults)), listed(scene_readers),
-                    [](const std::string& technique) { return family_of(technique).reads_scene(); });
+                    [](const std::string& technique) { return family_of(technique).takes_scene(); });
   add_pose_options(command, options.common);
   add_exposure_option(command, options.common);
   add_common_options(command, options.common);
@@ -153,14 +153,14 @@ void add_reference_options(CLI::App& command, reference_options& options, option
 
 std::string drawn_scene_name(const common_options& common, const technique_settings& settings) {
   const technique_family& family = family_of(settings.technique());
-  if (!family.reads_scene()) return settings.get("object");
+  if (!family.reads_scene() && !(family.scene_optional && common.scene_given)) return settings.get("object");
   return common.scene_given ? common.scene : family.default_scene;
 }
 
 std::unique_ptr<pipeline> make_posed_pipeline(const shader_library& shaders, const common_options& common, const technique_settings& settings,
                                               std::unique_ptr<scene>& source) {
   const technique_family& family = family_of(settings.technique());
-  if (!family.reads_scene()) {
+  if (!family.reads_scene() && !(family.scene_optional && common.scene_given)) {
     std::unique_ptr<pipeline> drawn = family.make_pipeline(shaders, nullptr, settings);
     apply_poses(common, *drawn);
     return drawn;

@@ -25,6 +25,10 @@ struct view_state {
 int run_view(const session& io, const view_state& s) {
   const technique_options& o = s.options;
   o.scope.require_read_by(o.technique, "technique");
+  // The viewer draws final gathering in its own room: a --scene it would not draw is refused.
+  if (o.common.scene_given && !family_of(o.technique).reads_scene())
+    throw usage_error("--scene: the viewer draws technique " + o.technique + " in its own room; `vplkit render --technique " + o.technique +
+                      " --scene FILE` draws it in the scene");
   // The chosen technique's settings (a usage error, exit 2, when refused), then every other
   // family's from the options it reads, so that the panel can switch to any technique.
   const std::unique_ptr<technique_settings> chosen = make_technique_settings(o.given, o.technique);

@@ -28,6 +28,9 @@ struct technique_family {
   /// The scene drawn when none is given; "" for a family that draws its own (final gathering:
   /// the room around its object, which its settings choose).
   std::string default_scene;
+  /// A family that draws its own room unless --scene gives one (final gathering: the user's scene
+  /// around the object); make_pipeline gets null without --scene.
+  bool scene_optional = false;
   /// The technique's settings at their defaults.
   std::function<std::unique_ptr<technique_settings>(const std::string& technique)> make_settings;
   /// Its pipeline over `source` (null for a family without a scene). Throws vplkit::error when
@@ -47,6 +50,8 @@ struct technique_family {
   std::string base_rank_title;  ///< e.g. "[LW] Eq. 5.3 (Table 5.10)"
 
   bool reads_scene() const { return !default_scene.empty(); }
+  /// Whether --scene may be given: a family that reads a scene, or draws its own unless given one.
+  bool takes_scene() const { return reads_scene() || scene_optional; }
   bool has(const std::string& technique) const;
   std::vector<std::string> technique_names() const;
 };

@@ -22,4 +22,31 @@ if(EXISTS "${WORK}/fg2.png" OR EXISTS "${WORK}/fg2-indirect.png")
   math(EXPR failures "${failures} + 1")
 endif()
 
+# In the user's scene (--scene): a glTF room of bench/scenes (its spot, its camera) with an OBJ
+# object the test writes (a tetrahedron), near a wall and in the open; the Monte Carlo reference
+# of the object's indirect light in the same scene; the refusals.
+set(room "${FUZZ_INPUTS}/../../../bench/scenes/room-a.gltf")
+file(WRITE "${WORK}/tetra.obj" "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n")
+foreach(technique finalgather-polygon finalgather-point envmap)
+  expect_success("render --technique ${technique} --scene room-a.gltf" "object tetra .*at \\(-2, 1.2, 1\\).*wrote .*/room-${technique}\\.png"
+                 "${VPLKIT}" render --technique ${technique} --scene "${room}" --object "${WORK}/tetra.obj" --object-position -2,1.2,1
+                 --object-size 0.4 --size 48 --face-size 32 --out "${WORK}/room-${technique}.png")
+endforeach()
+expect_success("final gathering in room-a.gltf against the Monte Carlo reference" "rel_rmse"
+               "${VPLKIT}" render --technique finalgather-polygon --scene "${room}" --object-position 0.5,1.3,1 --object-size 0.4 --size 48
+               --face-size 32 --reference monte-carlo --samples 64 --out "${WORK}/room-reference.png")
+expect_failure("final gathering in a scene with the object inside the table" "outside the room or inside geometry" "${WORK}/room-fail*.png"
+               "${VPLKIT}" render --technique finalgather-polygon --scene "${room}" --object-position -0.5,0.73,-0.6 --size 32 --face-size 32
+               --out "${WORK}/room-fail.png")
+expect_failure("final gathering in a scene outside its walls" "outside the room or inside geometry" "${WORK}/room-fail*.png"
+               "${VPLKIT}" render --technique finalgather-point --scene "${room}" --object-position 0,1,9 --size 32 --face-size 32
+               --out "${WORK}/room-fail.png")
+expect_failure("final gathering in a scene lit by a sun" "final gathering in scene .*its light is directional" "${WORK}/sun-fail*.png"
+               "${VPLKIT}" render --technique envmap --scene indirect-shadow --size 32 --face-size 32 --out "${WORK}/sun-fail.png")
+expect_failure("final gathering in a scene file that does not exist" "no-room\\.gltf" "${WORK}/none-fail*.png"
+               "${VPLKIT}" render --technique finalgather-polygon --scene "${WORK}/no-room.gltf" --size 32 --out "${WORK}/none-fail.png")
+
+expect_failure("the viewer does not draw final gathering in a scene" "--scene: the viewer draws technique finalgather-point in its own room" ""
+               "${VPLKIT}" view --technique finalgather-point --scene "${room}")
+
 cli_report()

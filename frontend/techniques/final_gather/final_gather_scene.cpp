@@ -8,18 +8,13 @@
 
 namespace vplkit {
 
-final_gather_scene make_final_gather_scene(const std::string& object, glm::vec3 position, float size) {
+namespace {
+
+// The object ("sphere" or an .obj file) scaled to `size` across and centred at `position`.
+void place_object(final_gather_scene& s, const std::string& object, glm::vec3 position, float size) {
   if (!(size > 0.0f)) throw error("the object's size must be > 0");
-  final_gather_scene s;
   s.object_source = object;
   s.object_size = size;
-  const scene box = make_cornell_box();  // its camera and light
-  add_cornell_room(s.room);
-  // Closed at the front (the paper's box room): the cube map must see a surface everywhere. The
-  // camera looks in through it: the G-buffer pass culls the room's back faces.
-  add_quad(s.room, {1, 0, 1}, {-1, 0, 1}, {-1, 2, 1}, {1, 2, 1}, {0, 0, -1}, glm::vec3(0.73f));
-  s.view = box.view;
-  s.light = box.light.spot;
   mesh shape;
   if (object == "sphere") {
     add_sphere(shape, glm::vec3(0.0f), 1.0f, 24, 48, glm::vec3(0.8f));  // 2304 triangles, the paper's ~2300
@@ -38,6 +33,35 @@ final_gather_scene make_final_gather_scene(const std::string& object, glm::vec3 
   s.object = s.local_object;
   for (std::size_t i = 0; i < s.object.vertices.size(); ++i) s.object.vertices[i].position = s.local_object.vertices[i].position + position;
   s.reference_point = position;
+}
+
+}  // namespace
+
+scene final_gather_box() {
+  scene room = make_cornell_box();  // its camera and light
+  room.name = "final-gather-box";
+  room.geometry = mesh();
+  add_cornell_room(room.geometry);
+  // Closed at the front (the paper's box room): the cube map must see a surface everywhere. The
+  // camera looks in through it: the G-buffer pass culls the room's back faces.
+  add_quad(room.geometry, {1, 0, 1}, {-1, 0, 1}, {-1, 2, 1}, {1, 2, 1}, {0, 0, -1}, glm::vec3(0.73f));
+  return room;
+}
+
+final_gather_scene make_final_gather_scene(const std::string& object, glm::vec3 position, float size) {
+  return make_final_gather_scene(final_gather_box(), object, position, size);
+}
+
+final_gather_scene make_final_gather_scene(const scene& environment, const std::string& object, glm::vec3 position, float size) {
+  const std::string where = "final gathering in scene " + environment.name;
+  if (environment.light.kind != light_kind::spot)
+    throw error(where + ": its light is directional; the cube map's faces and the shading are lit by a spot light (give the scene a spot)");
+  if (environment.geometry.indices.empty()) throw error(where + ": the scene has no triangles around the object");
+  final_gather_scene s;
+  s.room = environment.geometry;
+  s.view = environment.view;
+  s.light = environment.light.spot;
+  place_object(s, object, position, size);
   return s;
 }
 

@@ -37,4 +37,16 @@ struct final_gather_scene {
 /// vplkit::error when the object file fails to load.
 final_gather_scene make_final_gather_scene(const std::string& object, glm::vec3 position, float size);
 
+/// The built-in room above as a scene (its geometry, the Cornell box's camera and spot): what
+/// make_final_gather_scene(object, ...) gathers in, so that the same room written as glTF and
+/// given as --scene gathers the same light.
+scene final_gather_box();
+
+/// The user's scene as the environment (--scene): its geometry (every triangle: the object is
+/// not part of it), its camera and its spot light, lighting the cube map's faces with direct light
+/// as for the box; the object as above. Throws vplkit::error naming the scene for a directional
+/// light or a scene without triangles. A position inside geometry or outside the scene is found
+/// by the pipeline's cube-map check.
+final_gather_scene make_final_gather_scene(const scene& environment, const std::string& object, glm::vec3 position, float size);
+
 }  // namespace vplkit
