@@ -5,7 +5,8 @@
 // A scene is a built-in name or a .gltf/.glb/.obj path, optionally posed: NAME@camera=x,y,z,tx,ty,tz
 // and/or @light=x,y,z,tx,ty,tz (as render --camera/--light).
 // For each scene: the reference (Embree, --samples bounce rays per pixel, reference seed 1) and its
-// direct light alone (0 bounce rays), cached in --out/references; a second reference with a
+// direct light alone (0 bounce rays), cached in --out/references (keyed by the scene's bytes, its
+// posed camera and light and the size: bench/study_cache.hpp); a second reference with a
 // quarter of the samples and another seed gives the reference's noise (sigma, per pixel and
 // channel: their RMSE / sqrt(5)). Then lightwave-direct, -unshadowed, and -accurate with each
 // --maps count for seeds 0 .. --seeds - 1, at the same size, with the defaults otherwise.
@@ -29,6 +30,7 @@
 #include <map>
 #include <sstream>
 
+#include "bench/study_cache.hpp"
 #include "frontend/core/error.hpp"
 #include "frontend/core/files.hpp"
 #include "frontend/core/parallel.hpp"
@@ -36,6 +38,7 @@
 #include "frontend/gl/context.hpp"
 #include "frontend/image/image_files.hpp"
 #include "frontend/reference/reference.hpp"
+#include "frontend/reference/rsm_measure.hpp"
 #include "frontend/scene/gltf_scene.hpp"
 #include "frontend/scene/obj_loader.hpp"
 #include "frontend/scene/pose.hpp"
@@ -69,6 +72,9 @@ std::vector<std::string> split_scenes(const std::string& text) {
   }
   return scenes;
 }
+
+// The scene part of "NAME[@camera=...][@light=...]".
+std::string scene_file_of(const std::string& spec) { return spec.substr(0, spec.find('@')); }
 
 // "NAME[@camera=...][@light=...]" -> the scene, posed, and a label for files and tables.
 scene load_study_scene(const std::string& spec, std::string& label) {
@@ -194,11 +200,19 @@ int main(int argc, char** argv) {
     summary << "\n## Targets\n\n| scene | reference noise (sigma) | direct RMSE | unshadowed RMSE | accurate RMSE: mean / worst seed | accurate < "
                "unshadowed, seeds (unshadowed - worst accurate RMSE +- its standard error from the reference's noise) | accurate < direct | level of accurate: mean (worst) | maps never worse than none (mean over seeds; mean - unshadowed RMSE +- standard error) |\n"
                "|---|---:|---:|---:|---:|---:|---:|---:|---|\n";
+    std::map<std::string, int> labels_seen;
     for (const std::string& spec : split_scenes(scenes_text)) {
       std::string label;
       const scene source = load_study_scene(spec, label);
+      // Two poses of one file give one label ("room-a-camera1"): the second is "room-a-camera1-2",
+      // so that its images and rows are its own.
+      if (const int seen = ++labels_seen[label]; seen > 1) label += "-" + std::to_string(seen);
       std::cerr << label << "\n";
-      const std::string stem = label + "-" + std::to_string(width) + "x" + std::to_string(height);
+      // The references' names: readable, then the key of everything they depend on (the scene's
+      // bytes, its posed camera and light, the size), so that two poses of one file differ.
+      const std::string stem = label + "-" + std::to_string(width) + "x" + std::to_string(height) + "-" +
+                               cache_key(study::scene_identity(scene_file_of(spec), source) + "\nsize " + std::to_string(width) + "x" +
+                                         std::to_string(height));
       const fs::path references = fs::path(out) / "references";
       const std::string revision = "-r" + std::to_string(monte_carlo_revision);
       const image reference = cached_reference(references / (stem + "-" + std::to_string(samples) + revision + ".pfm"), source, width, height, samples, 1u);

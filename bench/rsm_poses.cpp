@@ -27,6 +27,7 @@
 #include <iomanip>
 #include <memory>
 
+#include "bench/study_cache.hpp"
 #include "frontend/reference/rsm_measure.hpp"
 #include "frontend/cli/options.hpp"
 #include "frontend/core/error.hpp"
@@ -431,10 +432,9 @@ int main(int argc, char** argv) {
       settings.coverage_interleave = coverage_interleave;
       settings.width = settings.height = size;
       settings.rsm_size = rsm_size;
-      // The cache key: the scene's bytes (a file) or name, the poses and the frame.
-      std::string identity = frame.scene + "|" + (frame.camera ? format_pose(*frame.camera) : "") + "|" + (frame.light ? format_pose(*frame.light) : "") +
-                             "|" + std::to_string(size) + "|" + std::to_string(rsm_size) + "|" + std::to_string(stride);
-      if (fs::is_regular_file(frame.scene)) identity += read_file(frame.scene, std::uintmax_t{1} << 30, "scene");
+      // The cache key: the scene (its bytes, the posed camera and light) and the frame.
+      const std::string identity = study::scene_identity(frame.scene, source) + "\nframe " + std::to_string(size) + " rsm " +
+                                   std::to_string(rsm_size) + " stride " + std::to_string(stride);
       const std::string key = cache.empty() ? std::string() : (fs::path(cache) / cache_key(identity)).string();
       const frame_reference reference = make_frame_reference(shaders, source, settings, stride, threads, key);
       image monte_carlo;

@@ -21,7 +21,7 @@ cd "$(dirname "$0")/.."
 packages=(cmake ninja-build g++ make pkg-config libglm-dev doctest-dev libglfw3-dev libegl-dev libegl-mesa0 libosmesa6-dev
           python3-glad xvfb xauth libcli11-dev libspng-dev libturbojpeg0-dev libbenchmark-dev
           assimp-testmodels libembree-dev libtinygltf-dev libimgui-dev xdotool gnuplot-nox clang libclang-rt-dev
-          glslang-tools spirv-tools libglu1-mesa-dev libdraco-dev nlohmann-json3-dev)
+          glslang-tools spirv-tools libglu1-mesa-dev libdraco-dev nlohmann-json3-dev glslang-dev libvulkan-dev mesa-vulkan-drivers)
 
 build_dir=build
 cmake_options=(-DCMAKE_BUILD_TYPE=Release)

@@ -96,7 +96,7 @@ void check_environment() {
 common_option_handles add_common_options(CLI::App& command, common_options& options) {
   common_option_handles handles{};
   handles.shader_dir = command.add_option("--shader-dir", options.shader_dir,
-                                         "folder with the vplkit shaders (default: $VPLKIT_SHADER_DIR, then the built-in path)");
+                                         "folder with the vplkit shaders (default: $VPLKIT_SHADER_DIR, else the source tree's for a build tree's vplkit, else the installed ones beside it)");
   handles.context = command.add_option("--context", options.context,
                                       "headless context: auto ($VPLKIT_CONTEXT, else EGL, else OSMesa), egl (a device, else surfaceless), egl-surfaceless or osmesa (vplkit info lists them)")
                         ->check(CLI::IsMember(headless_api_names()))->capture_default_str();

@@ -105,7 +105,7 @@ command add_shader_command(CLI::App& app) {
   expand->add_option("-o,--out", state->out, "output file (default, or - or /dev/stdout: standard output)");
   expand->add_option("-D,--define", state->defines, "NAME=VALUE: a #define line right after #version (repeat for several)");
   expand->add_option("--depfile", state->depfile, "also write a Makefile rule: OUT depends on FILE and every file it included");
-  expand->add_option("--shader-dir", state->shader_dir, "folder with the vplkit shaders (default: $VPLKIT_SHADER_DIR, then the built-in path)");
+  expand->add_option("--shader-dir", state->shader_dir, "folder with the vplkit shaders (default: $VPLKIT_SHADER_DIR, else the source tree's for a build tree's vplkit, else the installed ones beside it)");
   const command block = add_shader_block_command(*shader);
   return {shader, [state, block](const session& io) { return block.app->parsed() ? block.run(io) : run_expand(io, *state); },
           [reset = restorer(state), block] {

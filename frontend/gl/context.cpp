@@ -31,14 +31,27 @@ std::string describe_current_context() {
   return out.str();
 }
 
-void load_gl(GLADloadfunc loader, const std::string& kind) {
-  const int version = gladLoadGL(loader);
-  if (version == 0) throw error("no GL context: glad could not load GL entry points for the " + kind + " context");
-  if (GLAD_VERSION_MAJOR(version) * 10 + GLAD_VERSION_MINOR(version) < 33)
-    throw error("no GL context: the " + kind + " context offers GL " +
-                std::to_string(GLAD_VERSION_MAJOR(version)) + "." +
-                std::to_string(GLAD_VERSION_MINOR(version)) + ", vplkit needs 3.3 core");
-  install_debug_output();
+const char* gl_profile_name(gl_profile profile) {
+  switch (profile) {
+    case gl_profile::core33: return "GL 3.3 core";
+    case gl_profile::core45: return "GL 4.5 core";
+    case gl_profile::es30: return "GLES 3.0";
+  }
+  return "unknown profile";
+}
+
+void load_gl(GLADloadfunc loader, const std::string& kind, gl_profile profile) {
+  // One merged loader serves both APIs (frontend/CMakeLists.txt): an ES context loads the ES
+  // entry points, whose version check reads "OpenGL ES 3.2 ..." rather than a desktop version.
+  const bool es = profile == gl_profile::es30;
+  const int version = es ? gladLoadGLES2(loader) : gladLoadGL(loader);
+  if (version == 0) throw error("no GL context: glad could not load " + std::string(es ? "GLES" : "GL") + " entry points for the " + kind + " context");
+  const int needed = profile == gl_profile::core33 ? 33 : profile == gl_profile::core45 ? 45 : 30;
+  if (GLAD_VERSION_MAJOR(version) * 10 + GLAD_VERSION_MINOR(version) < needed)
+    throw error("no GL context: the " + kind + " context offers " + (es ? "GLES " : "GL ") + std::to_string(GLAD_VERSION_MAJOR(version)) + "." +
+                std::to_string(GLAD_VERSION_MINOR(version)) + ", " + gl_profile_name(profile) + " was asked for");
+  // Debug output is core in GLES 3.2; below it the pointers would be a desktop context's.
+  if (!es || GLAD_GL_ES_VERSION_3_2) install_debug_output();
 }
 
 namespace {
@@ -153,30 +166,35 @@ struct egl_client {
 
 class egl_context final : public gl_context {
  public:
-  egl_context(EGLDisplay display, std::string kind) : display_(display), kind_(std::move(kind)) {
+  egl_context(EGLDisplay display, std::string kind, gl_profile profile) : display_(display), kind_(std::move(kind)), profile_(profile) {
     EGLint major = 0, minor = 0;
     // A display is one per device and process, shared by every context on it; it is initialised
     // again (a no-op) per context and never terminated: eglTerminate on Mesa 22.3 leaves two of
     // its blocks unreachable (LeakSanitizer reports them), and the process ends soon after anyway.
     if (!eglInitialize(display_, &major, &minor)) throw error(kind_ + ": eglInitialize failed (" + egl_error_text() + ")");
     try {
-      if (!eglBindAPI(EGL_OPENGL_API)) throw error(kind_ + ": desktop OpenGL is not offered (eglBindAPI: " + egl_error_text() + ")");
+      const bool es = profile_ == gl_profile::es30;
+      if (!eglBindAPI(es ? EGL_OPENGL_ES_API : EGL_OPENGL_API))
+        throw error(kind_ + ": " + (es ? "OpenGL ES" : "desktop OpenGL") + " is not offered (eglBindAPI: " + egl_error_text() + ")");
       const char* display_extensions = eglQueryString(display_, EGL_EXTENSIONS);
       if (!has_extension(display_extensions, "EGL_KHR_surfaceless_context"))
         throw error(kind_ + ": EGL_KHR_surfaceless_context is missing (vplkit renders to framebuffer objects only)");
-      const EGLint config_attributes[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
+      const EGLint config_attributes[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, es ? EGL_OPENGL_ES3_BIT : EGL_OPENGL_BIT, EGL_NONE};
       EGLConfig config = nullptr;
       EGLint configs = 0;
       if (!eglChooseConfig(display_, config_attributes, &config, 1, &configs) || configs < 1) {
         eglGetError();
         if (!has_extension(display_extensions, "EGL_KHR_no_config_context"))
-          throw error(kind_ + ": no EGL config renders desktop OpenGL, and EGL_KHR_no_config_context is missing");
+          throw error(kind_ + ": no EGL config renders " + (es ? "OpenGL ES 3" : "desktop OpenGL") + ", and EGL_KHR_no_config_context is missing");
         config = EGL_NO_CONFIG_KHR;
       }
-      const EGLint context_attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
+      const EGLint want_major = profile_ == gl_profile::core45 ? 4 : 3, want_minor = profile_ == gl_profile::core45 ? 5 : es ? 0 : 3;
+      const EGLint desktop_attributes[] = {EGL_CONTEXT_MAJOR_VERSION, want_major, EGL_CONTEXT_MINOR_VERSION, want_minor,
                                            EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
-      context_ = eglCreateContext(display_, config, EGL_NO_CONTEXT, context_attributes);
-      if (context_ == EGL_NO_CONTEXT) throw error(kind_ + ": eglCreateContext could not create a 3.3 core context (" + egl_error_text() + ")");
+      const EGLint es_attributes[] = {EGL_CONTEXT_MAJOR_VERSION, want_major, EGL_CONTEXT_MINOR_VERSION, want_minor, EGL_NONE};
+      context_ = eglCreateContext(display_, config, EGL_NO_CONTEXT, es ? es_attributes : desktop_attributes);
+      if (context_ == EGL_NO_CONTEXT)
+        throw error(kind_ + ": eglCreateContext could not create a " + gl_profile_name(profile_) + " context (" + egl_error_text() + ")");
       make_current();
     } catch (...) {
       release();
@@ -188,8 +206,11 @@ class egl_context final : public gl_context {
   egl_context& operator=(const egl_context&) = delete;
 
   void make_current() override {
+    // eglBindAPI is per thread, and eglMakeCurrent binds the context of the API bound now: a
+    // process with a GL and an ES context switches it each time.
+    eglBindAPI(profile_ == gl_profile::es30 ? EGL_OPENGL_ES_API : EGL_OPENGL_API);
     if (!eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_)) throw error(kind_ + ": eglMakeCurrent failed (" + egl_error_text() + ")");
-    load_gl(egl_get_proc, kind_);
+    load_gl(egl_get_proc, kind_, profile_);
   }
   std::string kind() const override { return kind_; }
 
@@ -205,12 +226,13 @@ class egl_context final : public gl_context {
   EGLDisplay display_ = EGL_NO_DISPLAY;
   EGLContext context_ = EGL_NO_CONTEXT;
   std::string kind_;
+  gl_profile profile_;
 };
 
 // The device `device_index` (from --device or $VPLKIT_EGL_DEVICE, said by `device_source`), else
 // the first hardware device, else the software one, else the surfaceless platform; only the last
 // with `surfaceless_only`.
-std::unique_ptr<gl_context> create_egl_context(int device_index, const std::string& device_source, bool surfaceless_only) {
+std::unique_ptr<gl_context> create_egl_context(int device_index, const std::string& device_source, bool surfaceless_only, gl_profile profile) {
   const egl_client client;
   const std::vector<egl_device> devices = surfaceless_only ? std::vector<egl_device>{} : client.devices();
   if (surfaceless_only && device_index >= 0)
@@ -233,7 +255,7 @@ std::unique_ptr<gl_context> create_egl_context(int device_index, const std::stri
       tried = kind + ": no display (" + egl_error_text() + ")";
     } else {
       try {
-        return std::make_unique<egl_context>(display, kind);
+        return std::make_unique<egl_context>(display, kind, profile);
       } catch (const error& failure) {
         tried = failure.what();
       }
@@ -243,7 +265,7 @@ std::unique_ptr<gl_context> create_egl_context(int device_index, const std::stri
     const EGLDisplay display = client.get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
     if (display != EGL_NO_DISPLAY) {
       try {
-        return std::make_unique<egl_context>(display, "EGL surfaceless");
+        return std::make_unique<egl_context>(display, "EGL surfaceless", profile);
       } catch (const error& failure) {
         tried += (tried.empty() ? "" : "; ") + std::string(failure.what());
       }
@@ -299,6 +321,8 @@ std::unique_ptr<gl_context> create_headless_context(const headless_request& requ
     if (device >= 0) device_source = "; VPLKIT_EGL_DEVICE asked for it";
   }
   if (api == headless_api::osmesa) {
+    if (request.profile != gl_profile::core33)
+      throw error(std::string("no GL context: OSMesa makes GL 3.3 core contexts only; ") + gl_profile_name(request.profile) + " needs EGL");
 #if VPLKIT_HAVE_OSMESA
     return std::make_unique<osmesa_context>();
 #else
@@ -306,12 +330,12 @@ std::unique_ptr<gl_context> create_headless_context(const headless_request& requ
 #endif
   }
   if (api == headless_api::egl || api == headless_api::egl_surfaceless)
-    return create_egl_context(device, device_source, api == headless_api::egl_surfaceless);
+    return create_egl_context(device, device_source, api == headless_api::egl_surfaceless, request.profile);
   try {
-    return create_egl_context(device, device_source, false);
+    return create_egl_context(device, device_source, false, request.profile);
   } catch (const error& egl_failure) {
 #if VPLKIT_HAVE_OSMESA
-    if (device >= 0) throw;  // a device was asked for: OSMesa is not it
+    if (device >= 0 || request.profile != gl_profile::core33) throw;  // a device, or a profile OSMesa lacks, was asked for
     try {
       return std::make_unique<osmesa_context>();
     } catch (const error& osmesa_failure) {

@@ -29,10 +29,21 @@ class gl_context {
   virtual std::string kind() const = 0;
 };
 
+/// The API and version a context is made for. vplkit itself needs GL 3.3 core; vplkit::parity
+/// also runs kernels in GL 4.5 core (compute shaders) and in OpenGL ES 3.0 (the WebGL2 subset).
+enum class gl_profile {
+  core33,  ///< desktop GL 3.3 core: vplkit's passes, the default
+  core45,  ///< desktop GL 4.5 core
+  es30,    ///< OpenGL ES 3.0 or later (EGL_OPENGL_ES_API; Mesa gives 3.2)
+};
+/// "GL 3.3 core", "GL 4.5 core", "GLES 3.0": for messages.
+const char* gl_profile_name(gl_profile profile);
+
 /// Loads the GL entry points of the context just made current through `loader` (its
 /// GetProcAddress) and enables KHR_debug output; throws vplkit::error naming `kind` when the
-/// context offers less than GL 3.3 core. Every context's make_current calls it.
-void load_gl(GLADloadfunc loader, const std::string& kind);
+/// context offers less than `profile` asks for (GL 3.3 core by default). Every context's
+/// make_current calls it.
+void load_gl(GLADloadfunc loader, const std::string& kind, gl_profile profile = gl_profile::core33);
 
 /// GL_VERSION, GL_RENDERER and GL_VENDOR of the current context, one per line.
 std::string describe_current_context();
@@ -54,6 +65,8 @@ struct headless_request {
   /// EGL device index (EGL_EXT_device_enumeration order); -1: $VPLKIT_EGL_DEVICE when set, else
   /// the first hardware device, else the software device, else the surfaceless platform.
   int device = -1;
+  /// core45 and es30 are EGL only (OSMesa makes 3.3 core): asked of OSMesa, an error.
+  gl_profile profile = gl_profile::core33;
 };
 
 /// $VPLKIT_EGL_DEVICE checked like --device: -1 when unset or empty, else an index in [0, 1024];
@@ -63,7 +76,7 @@ int egl_device_from_environment();
 /// naming the variable for a name that is not one of headless_api_names().
 headless_api headless_api_from_environment();
 
-/// A headless context with a core 3.3 profile, current on return. Rendering goes to framebuffer
+/// A headless context of request.profile (a core 3.3 profile by default), current on return. Rendering goes to framebuffer
 /// objects. A device asked for (request.device or $VPLKIT_EGL_DEVICE) is that device or an
 /// error, never another context. Throws vplkit::error naming what failed (every API tried, and
 /// why) when no context can be made.

@@ -1,5 +1,7 @@
 #include <vplkit/gl/program.hpp>
 
+#include <algorithm>
+#include <atomic>
 #include <cstdlib>
 #include <fstream>
 #include <functional>
@@ -21,12 +23,44 @@
 namespace vplkit {
 namespace fs = std::filesystem;
 
+namespace {
+
+// Whether `inner` is `outer` or lies below it (both canonical).
+bool is_within(const fs::path& inner, const fs::path& outer) {
+  return std::mismatch(outer.begin(), outer.end(), inner.begin(), inner.end()).first == outer.end();
+}
+
+}  // namespace
+
+// Decided by where the running executable is, not by which folders exist: an installed vplkit
+// once read the source tree's shaders whenever that tree was still on the machine, so editing a
+// checkout changed what an installed binary drew. An executable inside the build tree (vplkit's
+// own tools and tests) reads the source tree; an installed one reads the shaders installed beside
+// it (found relative to the executable, so a moved prefix still finds its own); any other the
+// prefix the build was configured for.
 fs::path default_shader_dir() {
   if (const char* from_environment = std::getenv("VPLKIT_SHADER_DIR"); from_environment && *from_environment)
     return from_environment;
-  if (fs::exists(fs::path(VPLKIT_SOURCE_SHADER_DIR) / "lib")) return VPLKIT_SOURCE_SHADER_DIR;
+  std::error_code failed;
+  const fs::path executable = fs::canonical("/proc/self/exe", failed);
+  if (!failed) {
+    // Beside it first: a prefix may itself lie inside the build tree (the tests install there).
+    const fs::path beside = (executable.parent_path() / VPLKIT_INSTALLED_SHADER_DIR_FROM_BIN).lexically_normal();
+    if (fs::is_directory(beside / "lib", failed)) return beside;
+    const fs::path build_tree = fs::weakly_canonical(VPLKIT_BUILD_DIR, failed);
+    if (!failed && is_within(executable, build_tree)) return VPLKIT_SOURCE_SHADER_DIR;
+  }
   return VPLKIT_INSTALLED_SHADER_DIR;
 }
+
+namespace {
+std::atomic<std::uint64_t>& linked_programs() {
+  static std::atomic<std::uint64_t> count{0};
+  return count;
+}
+}  // namespace
+
+std::uint64_t linked_program_count() { return linked_programs().load(std::memory_order_relaxed); }
 
 // The public header names GL's integer types by their C++ types.
 static_assert(std::is_same_v<GLuint, unsigned> && std::is_same_v<GLint, int>, "GLuint and GLint are unsigned and int");
@@ -194,7 +228,7 @@ class expander {
 };
 
 const char* stage_name(shader_stage stage) {
-  return stage == shader_stage::vertex ? "vertex" : "fragment";
+  return stage == shader_stage::vertex ? "vertex" : stage == shader_stage::fragment ? "fragment" : "compute";
 }
 
 }  // namespace
@@ -390,7 +424,9 @@ program link_program(const std::string& program_name, const std::vector<stage_so
   gl_program linked(glCreateProgram());
   std::vector<gl_shader> shaders;
   for (const stage_source& stage : stages) {
-    gl_shader shader(glCreateShader(stage.stage == shader_stage::vertex ? GL_VERTEX_SHADER : GL_FRAGMENT_SHADER));
+    gl_shader shader(glCreateShader(stage.stage == shader_stage::vertex     ? GL_VERTEX_SHADER
+                                    : stage.stage == shader_stage::fragment ? GL_FRAGMENT_SHADER
+                                                                            : GL_COMPUTE_SHADER));
     // The driver gets the text numbered by place, so the line it reports locates the file and
     // line even where it drops the source number (Mesa does for an undeclared name).
     const std::string numbered = compiled_text(stage.source.text);
@@ -420,6 +456,7 @@ program link_program(const std::string& program_name, const std::vector<stage_so
     glTransformFeedbackVaryings(linked.get(), static_cast<GLsizei>(names.size()), names.data(), GL_SEPARATE_ATTRIBS);
   }
   glLinkProgram(linked.get());
+  linked_programs().fetch_add(1, std::memory_order_relaxed);
   GLint link_ok = GL_FALSE;
   glGetProgramiv(linked.get(), GL_LINK_STATUS, &link_ok);
   if (!link_ok) {

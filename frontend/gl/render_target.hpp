@@ -8,9 +8,9 @@
 
 #include <glm/glm.hpp>
 
+#include "frontend/core/image.hpp"
 #include "frontend/gl/gl.hpp"
 #include "frontend/gl/gl_object.hpp"
-#include "frontend/image/image.hpp"
 
 namespace vplkit {
 

@@ -1,7 +1,8 @@
-// The one image type of the frontend and every conversion of it: a linear float RGBA image with
-// rows bottom-up, the order in which GL reads a render target back and in which a PFM file stores
-// its rows. Only PNG is top-down; to_srgb8 (and the PNG decoder in image_files) are the one place
-// where rows are flipped. Rec. 709 luminance and the sRGB transfer function are defined here once.
+// Every conversion of the frontend's one image type (frontend/core/image.hpp: a linear float
+// RGBA image with rows bottom-up, the order in which GL reads a render target back and in which a
+// PFM file stores its rows). Only PNG is top-down; to_srgb8 (and the PNG decoder in image_files)
+// are the one place where rows are flipped. Rec. 709 luminance and the sRGB transfer function are
+// defined here once.
 #pragma once
 
 #include <cmath>
@@ -12,18 +13,9 @@
 
 #include <glm/glm.hpp>
 
+#include "frontend/core/image.hpp"
+
 namespace vplkit {
-
-/// The largest image side vplkit renders, reads or allocates a render target for (per axis);
-/// GL_MAX_TEXTURE_SIZE is checked as well where a texture is made.
-constexpr int max_image_side = 16384;
-
-/// Empty when width x height is a size vplkit renders, else the reason.
-inline std::string validate_image_size(int width, int height) {
-  if (width < 1 || height < 1 || width > max_image_side || height > max_image_side)
-    return "image size must be in [1, " + std::to_string(max_image_side) + "] per side, got " + std::to_string(width) + "x" + std::to_string(height);
-  return {};
-}
 
 /// What an image file may claim before anything is allocated for it: a PNG of a few hundred bytes
 /// can declare gigapixels. The defaults cover every image vplkit renders up to 8192^2.
@@ -35,23 +27,6 @@ struct image_read_limits {
   /// 64 MiB is). vplkit uses none of them; an ICC profile is rarely over 1 MiB.
   std::size_t max_chunk_bytes = std::size_t{4} << 20;
   std::size_t max_chunk_cache_bytes = std::size_t{16} << 20;
-};
-
-/// Linear RGBA floats, rows bottom-up: texel (x, y) has y = 0 at the bottom, as in GL.
-struct image {
-  int width = 0;
-  int height = 0;
-  std::vector<glm::vec4> texels;
-
-  image() = default;
-  image(int w, int h, glm::vec4 fill = glm::vec4(0.0f))
-      : width(w), height(h), texels(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), fill) {}
-  std::size_t index(int x, int y) const { return static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x); }
-  const glm::vec4& at(glm::ivec2 texel) const { return texels[index(texel.x, texel.y)]; }
-  glm::vec4& at(glm::ivec2 texel) { return texels[index(texel.x, texel.y)]; }
-  const glm::vec4& at(int x, int y) const { return texels[index(x, y)]; }
-  glm::vec4& at(int x, int y) { return texels[index(x, y)]; }
-  bool same_size(const image& other) const { return width == other.width && height == other.height; }
 };
 
 /// Rec. 709 luminance of linear RGB, in the precision of T (double for sums over images: the

@@ -5,6 +5,8 @@
 // - draw(): every pass, whatever moved (the frame the papers time);
 // - draw_changed(): only the passes the moves since the last frame invalidated (the viewer's
 //   frames): nothing when nothing moved.
+// Settings are changed in place where they only change uniforms (apply_settings: the viewer's
+// live controls); a setting that changes a define or a buffer's size needs a new pipeline.
 #pragma once
 
 #include <optional>
@@ -14,6 +16,7 @@
 #include <glm/glm.hpp>
 
 #include "frontend/core/error.hpp"
+#include "frontend/core/setting.hpp"
 #include "frontend/gl/pass_timer.hpp"
 #include "frontend/gl/render_target.hpp"
 #include "frontend/image/image.hpp"
@@ -37,6 +40,16 @@ class pipeline {
   virtual void set_light(const scene_light& light) = 0;
   virtual camera current_camera() const = 0;
   virtual scene_light current_light() const = 0;
+  /// Takes `settings` (of the technique it draws) in place when they change only uniforms: no
+  /// program is compiled or linked and no buffer is made, and the next draw_changed() redraws
+  /// with them the image a new pipeline with them would draw. Returns false, changing nothing,
+  /// when they need a new pipeline: another technique, a define (a program's variant) or a
+  /// buffer's size changes, the settings are invalid, or the family does not apply settings in
+  /// place.
+  virtual bool apply_settings(const technique_settings& settings) {
+    static_cast<void>(settings);
+    return false;
+  }
   /// A dynamic object the technique gathers for (final gathering), moved by set_object_position.
   virtual bool has_object() const { return false; }
   virtual glm::vec3 object_position() const { return glm::vec3(0.0f); }

@@ -48,8 +48,8 @@ std::unique_ptr<pipeline> make_posed(const shader_library& shaders, const viewer
 }
 
 // A control for one setting, made from its description; `value` holds the setting's text. True
-// when the user finished an edit (a slider or field is let go: a new pipeline per mouse pixel
-// would recompile the programs continuously). The range is the description's: what the command
+// when the user finished an edit (a slider or field is let go: a setting that needs a new
+// pipeline would otherwise recompile the programs per mouse pixel). The range is the description's: what the command
 // line refuses, the control does not offer, or refuses the same way.
 bool edit_control(const setting_info& info, std::string& value) {
   const char* label = info.name.c_str();
@@ -192,6 +192,18 @@ bool technique_view::edit_settings(viewer_scenes& scenes, std::string& problem) 
     return false;
   }
   family.settings = std::move(edited);
+  return true;
+}
+
+bool technique_view::take_settings(const viewer_scenes& scenes) {
+  const technique_settings& stored = *scenes.of(technique()).settings;
+  if (stored.technique() != technique() || !pipeline_->apply_settings(stored)) return false;
+  settings_ = stored.clone();
+  if (difference_) {
+    std::unique_ptr<technique_settings> without = settings_->clone();
+    without->set_technique(family_of(technique()).visibility_baseline(technique()));
+    if (!difference_->apply_settings(*without)) difference_.reset();
+  }
   return true;
 }
 

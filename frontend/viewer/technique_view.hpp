@@ -2,8 +2,9 @@
 // poses of its camera and light (and of the object, for final gathering), the layers it can show,
 // and its settings as live controls made from their descriptions (frontend/core/setting.hpp),
 // with the ranges and refusals of the command line. A move goes to the pipeline, which redraws
-// only what the move invalidated (draw_changed); a changed setting builds a new pipeline, since
-// the programs are compiled for the settings.
+// only what the move invalidated (draw_changed). A changed setting that only changes uniforms is
+// applied in place (pipeline::apply_settings: no program is compiled, the next frame redraws);
+// one that changes a define or a buffer's size builds a new pipeline.
 #pragma once
 
 #include <map>
@@ -100,6 +101,11 @@ class technique_view {
   /// Returns true when one was changed and the settings are valid (stored in `scenes`; the caller
   /// builds a new view); writes the reason into `problem` when they are not.
   bool edit_settings(viewer_scenes& scenes, std::string& problem);
+  /// Takes the family's settings stored in `scenes` (by edit_settings, or viewer::set_settings)
+  /// in place when they change only uniforms, for the technique and its visibility baseline
+  /// (which is dropped, to be built when shown again, where it cannot); true then, and the next
+  /// draw() redraws. False, changing nothing, when the view must be built again.
+  bool take_settings(const viewer_scenes& scenes);
 
  private:
   const shader_library& shaders_;

@@ -110,6 +110,31 @@ void viewer::select_technique(const std::string& technique) {
   });
 }
 
+void viewer::take_stored_settings() {
+  bool in_place = false;
+  if (!try_action([&] { in_place = view_->take_settings(scenes_); })) return;
+  if (in_place) exposure_stale_ = true;
+  else select_technique(technique_);
+}
+
+void viewer::set_settings(const technique_settings& settings) {
+  if (settings.technique() != technique_) {
+    message_ = "the settings are " + settings.technique() + "'s; the viewer shows " + technique_;
+    return;
+  }
+  if (const std::string why = settings.validate(); !why.empty()) {
+    message_ = why;
+    return;
+  }
+  viewer_family& family = scenes_.of(technique_);
+  std::unique_ptr<technique_settings> previous = std::move(family.settings);
+  family.settings = settings.clone();
+  take_stored_settings();
+  // A view that refused them (select_technique kept the current one): the family keeps the
+  // settings the view draws.
+  if (!message_.empty()) family.settings = std::move(previous);
+}
+
 void viewer::select_layer(view_layer layer) {
   const std::vector<view_layer> layers = view_->layers();
   if (std::find(layers.begin(), layers.end(), layer) == layers.end()) {
@@ -258,7 +283,7 @@ void viewer::build_panel() {
 
   if (ImGui::CollapsingHeader("settings", ImGuiTreeNodeFlags_DefaultOpen)) {
     std::string problem;
-    if (view_->edit_settings(scenes_, problem)) select_technique(technique_);
+    if (view_->edit_settings(scenes_, problem)) take_stored_settings();
     if (!problem.empty()) message_ = problem;
   }
 

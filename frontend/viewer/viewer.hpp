@@ -74,6 +74,10 @@ class viewer {
   /// Switches technique (settings kept per family, poses kept). A refusal leaves the current one
   /// and sets message().
   void select_technique(const std::string& technique);
+  /// The shown technique's settings replaced, as the panel's controls do: in place when they
+  /// change only uniforms (the next frame redraws, no program is compiled), else the view is
+  /// built again. Invalid settings (or a view that refuses them) change nothing and set message().
+  void set_settings(const technique_settings& settings);
   void select_layer(view_layer layer);
   view_layer layer() const { return layer_; }
   void show_panel(bool shown) { panel_ = shown; }
@@ -115,6 +119,9 @@ class viewer {
   void handle_input();
   void build_panel();
   void present();
+  /// The family's settings in scenes_ taken by the view (after a settings edit): in place, or a
+  /// new view.
+  void take_stored_settings();
   bool try_action(const std::function<void()>& action);
 
   window_context& window_;

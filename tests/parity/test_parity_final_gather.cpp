@@ -2,7 +2,8 @@
 // whole final_gather_irradiance, receiver by receiver, with both form factors (VPLKIT_FORM_FACTOR
 // 0 polygon, 1 point), on a synthetic distance cube map. The form factors have their own parity
 // test (test_parity_form_factor.cpp); this one catches a twin whose cube-map geometry (faces,
-// corners, the corner distances read across face edges), loop or sum differs.
+// corners, the corner distances read across face edges), loop or sum differs. It runs on every
+// target (tests/parity/targets.hpp): the cube map is a kernel_table, a texture or a storage buffer.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -15,7 +16,7 @@
 
 #include <vplkit/parity/doctest.hpp>
 
-#include "frontend/gl/render_target.hpp"
+#include "tests/parity/targets.hpp"
 
 using namespace vplkit;
 using namespace vplkit::parity;
@@ -59,8 +60,7 @@ synthetic_cube make_cube() {
 
 }  // namespace
 
-TEST_CASE("parity: final_gather_irradiance with the polygon and the point form factor, on a synthetic distance cube map") {
-  test_context_kind();  // makes the GL context, which the textures below need before the first run
+TEST_CASE("parity: final_gather_irradiance with the polygon and the point form factor, on a synthetic distance cube map, on every target") {
   const synthetic_cube cube = make_cube();
   // Receivers within 0.5 of o (the walls are 0.8 or more from o), random normals.
   kernel_inputs inputs = grid_of(32, 32, 2);
@@ -75,25 +75,12 @@ TEST_CASE("parity: final_gather_irradiance with the polygon and the point form f
     inputs.floats[1][i] = glm::vec4(glm::normalize(glm::vec3(normal(random), normal(random), normal(random))), 0.0f);
   }
   inputs.floats[0][0] = glm::vec4(cube.o, 0.0f);  // the reference point itself: the classic baseline
-  const texture_2d cube_texture(6 * resolution, resolution, texel_format::rgba32f, cube.texels.data());
+  kernel_resources resources;
+  resources.tables = {{"cube", 6 * resolution, resolution, cube.texels}};
+  const std::string o = "vec3(" + std::to_string(cube.o.x) + ", " + std::to_string(cube.o.y) + ", " + std::to_string(cube.o.z) + ")";
+  REQUIRE(glm::vec3(std::stof(std::to_string(cube.o.x)), std::stof(std::to_string(cube.o.y)), std::stof(std::to_string(cube.o.z))) == cube.o);
 
   for (int form_factor = 0; form_factor <= 1; ++form_factor) {
-    const std::string name = form_factor == 0 ? "final_gather_irradiance (polygon)" : "final_gather_irradiance (point)";
-    CAPTURE(name);
-    kernel_source source;
-    source.name = name;
-    source.defines = {{"VPLKIT_FORM_FACTOR", std::to_string(form_factor)}};
-    source.includes = {"lib/final_gather.glsl"};
-    source.declarations =
-        "uniform sampler2D cube;\nuniform vec3 o;\n"
-        "vec4 small_cube_fetch(int face, int i, int j) { return texelFetch(cube, ivec2(face * " + std::to_string(resolution) + " + i, j), 0); }\n";
-    source.body = "fout0 = vec4(final_gather_irradiance(fin0.xyz, fin1.xyz, o, " + std::to_string(resolution) + "), 0.0);";
-    source.float_outputs = 1;
-    const kernel_outputs gpu = run_fragment(source, inputs, [&](const program& p) {
-      cube_texture.bind(4);  // above the harness's two input units
-      p.set("cube", 4);
-      p.set("o", cube.o);
-    });
     std::vector<glm::vec4> cpu(inputs.size());
     for (std::size_t i = 0; i < inputs.size(); ++i) {
       const glm::vec3 x(inputs.floats[0][i]), n(inputs.floats[1][i]);
@@ -104,17 +91,31 @@ TEST_CASE("parity: final_gather_irradiance with the polygon and the point form f
     std::size_t lit = 0;
     for (const glm::vec4& e : cpu) lit += e.x > 0.0f;
     CHECK(lit == inputs.size());  // every receiver sees half the box: none is 0 on both sides
-    // The tolerance: each of the N = 6 M^2 terms is a form factor (the polygon's within the few
-    // ulp of atan2 that test_parity_form_factor allows, of the angles it sums; the point's about 8
-    // roundings) of corners a few ulp apart on the two sides (llvmpipe's normalize is an inverse
-    // square root, not correctly rounded), about 4e-6 relative; the texels each corner reads are
-    // exact decisions, no flip allowed (a division in cube_corner_distance once flipped them: see
-    // its comment). The terms are positive and summed in the same order, so the sums part by at
-    // most 2 (N - 1) roundings of the sum: relative 2 N 2^-24 + 4e-6 = 3.0e-5. Measured on
-    // llvmpipe: polygon 7.5e-6, point 4e-7.
-    const int terms = 6 * resolution * resolution;
-    const float relative = static_cast<float>(2.0 * terms * 0x1p-24 + 4e-6);
-    require_parity(compare(name, gpu.floats[0], cpu, inputs,
-                           {1e-6f, relative, 16, 0.0, "form factors of corners a few ulp apart, 2 N roundings of a sum of N positive terms"}, 3));
+    for (const testing::target_run& run : testing::every_target()) {
+      const std::string name = std::string(form_factor == 0 ? "final_gather_irradiance (polygon" : "final_gather_irradiance (point") + ", " +
+                               run.name() + ")";
+      CAPTURE(name);
+      if (!testing::target_runs(run.where)) continue;
+      kernel_source source;
+      source.name = name;
+      source.defines = {{"VPLKIT_FORM_FACTOR", std::to_string(form_factor)}};
+      source.includes = {"lib/final_gather.glsl"};
+      source.declarations = "vec4 small_cube_fetch(int face, int i, int j) { return cube(ivec2(face * " + std::to_string(resolution) + " + i, j)); }\n";
+      source.body = "fout0 = vec4(final_gather_irradiance(fin0.xyz, fin1.xyz, " + o + ", " + std::to_string(resolution) + "), 0.0);";
+      source.float_outputs = 1;
+      const kernel_outputs gpu = run.run(source, inputs, run.where, resources);
+      // The tolerance: each of the N = 6 M^2 terms is a form factor (the polygon's within the few
+      // ulp of atan2 that test_parity_form_factor allows, of the angles it sums; the point's about 8
+      // roundings) of corners a few ulp apart on the two sides (llvmpipe's normalize is an inverse
+      // square root, not correctly rounded), about 4e-6 relative; the texels each corner reads are
+      // exact decisions, no flip allowed (a division in cube_corner_distance once flipped them: see
+      // its comment). The terms are positive and summed in the same order, so the sums part by at
+      // most 2 (N - 1) roundings of the sum: relative 2 N 2^-24 + 4e-6 = 3.0e-5. Measured on
+      // llvmpipe: polygon 7.5e-6, point 4e-7.
+      const int terms = 6 * resolution * resolution;
+      const float relative = static_cast<float>(2.0 * terms * 0x1p-24 + 4e-6);
+      require_parity(compare(name, gpu.floats[0], cpu, inputs,
+                             {1e-6f, relative, 16, 0.0, "form factors of corners a few ulp apart, 2 N roundings of a sum of N positive terms"}, 3));
+    }
   }
 }

@@ -4,7 +4,10 @@
 // synthetic RSM of the kernel tests (tests/kernels/synthetic_rsm.hpp: a lit floor seen from an
 // orthographic light, with a block standing on it). The parts (pattern, Eq. 3.2, the micro linear
 // buffer, the coarse lights) have their own parity tests; this one catches a twin whose loop,
-// skips, order of visibility calls or weighting differs, which the parts' tests cannot see.
+// skips, order of visibility calls or weighting differs, which the parts' tests cannot see. It
+// runs on every target (tests/parity/targets.hpp): the RSM and the coarse lights are
+// kernel_tables (textures or storage buffers), the settings a std140 uniform block
+// (vplkit/std140.hpp), which on Vulkan is a uniform buffer at set 0.
 #include <doctest/doctest.h>
 
 #include <random>
@@ -14,11 +17,10 @@
 #include <vplkit/rsm_coverage.hpp>
 #include <vplkit/rsm_gather.hpp>
 
-#include <vplkit/gl/settings_uniforms.hpp>
 #include <vplkit/parity/doctest.hpp>
 
-#include "frontend/gl/render_target.hpp"
 #include "tests/kernels/synthetic_rsm.hpp"
+#include "tests/parity/targets.hpp"
 
 using namespace vplkit;
 using namespace vplkit::parity;
@@ -130,8 +132,7 @@ const variant variants[] = {
 
 }  // namespace
 
-TEST_CASE("parity: gather_rsm for every pattern and visibility, with and without coverage, on a synthetic RSM") {
-  test_context_kind();  // makes the GL context, which the textures below need before the first run
+TEST_CASE("parity: gather_rsm for every pattern and visibility, with and without coverage, on a synthetic RSM, on every target") {
   const float_rsm rsm = make_rsm();
   const kernel_inputs inputs = make_receivers();
   // 12 paths x 10 samples over 0.4 of the map (102 texels), 8 slots; the disk's 400 samples over
@@ -151,13 +152,14 @@ TEST_CASE("parity: gather_rsm for every pattern and visibility, with and without
       coarse_normal.push_back(glm::vec4(coarse.back().normal, 0.0f));
       coarse_flux.push_back(glm::vec4(coarse.back().flux, 0.0f));
     }
-  // The RSM and the coarse lights as float textures, read exactly: the fetches add no arithmetic.
-  const texture_2d rsm_position(size, size, texel_format::rgba32f, rsm.position.data());
-  const texture_2d rsm_normal(size, size, texel_format::rgba32f, rsm.normal.data());
-  const texture_2d rsm_flux(size, size, texel_format::rgba32f, rsm.flux.data());
-  const texture_2d coarse_a(coverage_blocks, coverage_blocks, texel_format::rgba32f, coarse_position_extent.data());
-  const texture_2d coarse_b(coverage_blocks, coverage_blocks, texel_format::rgba32f, coarse_normal.data());
-  const texture_2d coarse_c(coverage_blocks, coverage_blocks, texel_format::rgba32f, coarse_flux.data());
+  // The RSM and the coarse lights as tables of floats, read exactly: the fetches add no arithmetic.
+  kernel_resources resources;
+  resources.tables = {{"rsm_position", size, size, rsm.position},
+                      {"rsm_normal", size, size, rsm.normal},
+                      {"rsm_flux", size, size, rsm.flux},
+                      {"coarse_a", coverage_blocks, coverage_blocks, coarse_position_extent},
+                      {"coarse_b", coverage_blocks, coverage_blocks, coarse_normal},
+                      {"coarse_c", coverage_blocks, coverage_blocks, coarse_flux}};
 
   std::size_t behind = 0, off_map = 0;
   for (std::size_t i = 0; i < inputs.size(); ++i) {
@@ -173,36 +175,6 @@ TEST_CASE("parity: gather_rsm for every pattern and visibility, with and without
     const std::string variant_name = v.name;
     CAPTURE(variant_name);
     settings.perspective = v.perspective;
-    kernel_source source;
-    source.name = std::string("gather_rsm (") + v.name + ")";
-    source.defines = {{"VPLKIT_RSM_PATTERN", std::to_string(v.pattern)},
-                      {"VPLKIT_VISIBILITY", std::to_string(v.visibility)},
-                      {"VPLKIT_RSM_COVERAGE", v.coverage ? "1" : "0"}};
-    source.includes = {"lib/rsm_gather.glsl"};
-    source.declarations =
-        "uniform sampler2D rsm_position;\nuniform sampler2D rsm_normal;\nuniform sampler2D rsm_flux;\n"
-        "uniform sampler2D coarse_a;\nuniform sampler2D coarse_b;\nuniform sampler2D coarse_c;\n"
-        "uniform rsm_gather_settings settings;\n"
-        "rsm_texel rsm_fetch(ivec2 t) {\n"
-        "  return rsm_texel(texelFetch(rsm_position, t, 0).xyz, texelFetch(rsm_normal, t, 0).xyz, texelFetch(rsm_flux, t, 0).xyz);\n"
-        "}\n"
-        "#if VPLKIT_RSM_COVERAGE\n"
-        "coarse_light rsm_coarse_fetch(ivec2 b) {\n"
-        "  vec4 a = texelFetch(coarse_a, b, 0);\n"
-        "  return coarse_light(a.xyz, texelFetch(coarse_b, b, 0).xyz, texelFetch(coarse_c, b, 0).xyz, a.w);\n"
-        "}\n"
-        "#endif\n";
-    source.body = "fout0 = vec4(gather_rsm(gather_receiver(fin0.xyz, fin1.xyz, fin2.xy, uin0.xy), settings), 0.0);";
-    source.float_outputs = 1;
-    const kernel_outputs gpu = run_fragment(source, inputs, [&](const program& p) {
-      const texture_2d* textures[] = {&rsm_position, &rsm_normal, &rsm_flux, &coarse_a, &coarse_b, &coarse_c};
-      const char* names[] = {"rsm_position", "rsm_normal", "rsm_flux", "coarse_a", "coarse_b", "coarse_c"};
-      for (int k = 0; k < 6; ++k) {
-        textures[k]->bind(8 + k);  // above the harness's input units (4 here)
-        p.set(names[k], 8 + k);
-      }
-      set_uniforms(p, "settings", settings);
-    });
     const std::vector<glm::vec4> cpu = v.cpu(inputs, rsm, coarse, v.coverage, settings);
     // Properties the comparison needs: the variant gathers light at most receivers (a gather that
     // returned 0 everywhere on both sides would pass any tolerance), and the one thing it changes
@@ -229,7 +201,29 @@ TEST_CASE("parity: gather_rsm for every pattern and visibility, with and without
     const int terms = (v.pattern == 0 ? radial.paths * radial.samples_per_path : settings.disk.samples) +
                       (v.coverage ? coverage_blocks * coverage_blocks / (settings.coverage_interleave * settings.coverage_interleave) : 0);
     const float relative = static_cast<float>(2.0 * terms * 0x1p-24 + 2e-6);
-    require_parity(compare(source.name, gpu.floats[0], cpu, inputs,
-                           {1e-6f, relative, 16, 0.0, "Eq. 3.2's error per term and 2 N roundings of a sum of N positive terms"}, 3));
+    resources.blocks = {settings_block("settings", settings)};
+    for (const testing::target_run& run : testing::every_target()) {
+      kernel_source source;
+      source.name = std::string("gather_rsm (") + v.name + ", " + run.name() + ")";
+      CAPTURE(source.name);
+      if (!testing::target_runs(run.where)) continue;
+      source.defines = {{"VPLKIT_RSM_PATTERN", std::to_string(v.pattern)},
+                        {"VPLKIT_VISIBILITY", std::to_string(v.visibility)},
+                        {"VPLKIT_RSM_COVERAGE", v.coverage ? "1" : "0"}};
+      source.includes = {"lib/rsm_gather.glsl"};
+      source.declarations =
+          "rsm_texel rsm_fetch(ivec2 t) { return rsm_texel(rsm_position(t).xyz, rsm_normal(t).xyz, rsm_flux(t).xyz); }\n"
+          "#if VPLKIT_RSM_COVERAGE\n"
+          "coarse_light rsm_coarse_fetch(ivec2 b) {\n"
+          "  vec4 a = coarse_a(b);\n"
+          "  return coarse_light(a.xyz, coarse_b(b).xyz, coarse_c(b).xyz, a.w);\n"
+          "}\n"
+          "#endif\n";
+      source.body = "fout0 = vec4(gather_rsm(gather_receiver(fin0.xyz, fin1.xyz, fin2.xy, uin0.xy), settings), 0.0);";
+      source.float_outputs = 1;
+      const kernel_outputs gpu = run.run(source, inputs, run.where, resources);
+      require_parity(compare(source.name, gpu.floats[0], cpu, inputs,
+                             {1e-6f, relative, 16, 0.0, "Eq. 3.2's error per term and 2 N roundings of a sum of N positive terms"}, 3));
+    }
   }
 }

@@ -329,9 +329,17 @@ rsm_pipeline::rsm_pipeline(const shader_library& shaders, const scene& source, c
                                 {"VPLKIT_SEPARABLE", flag(separable)},
                                 {"VPLKIT_LIGHT_DIRECTIONAL", flag(is_directional(source))}});
 
-  // Uniforms that stay for the pipeline's life; the pose's are set by set_pose_uniforms.
-  rsm_program_.set("rsm_size", glm::ivec2(settings.rsm_size));
-  gbuffer_program_.set("rsm_size", glm::ivec2(settings.rsm_size));
+  set_settings_uniforms();
+  set_pose_uniforms();
+  check_gl("setting up the RSM pipeline");
+}
+
+// The uniforms that come from the settings; the pose's are set by set_pose_uniforms.
+void rsm_pipeline::set_settings_uniforms() {
+  const rsm_technique& technique = constants_.technique;
+  const bool separable = settings_.filter == post_filter::separable;
+  rsm_program_.set("rsm_size", glm::ivec2(settings_.rsm_size));
+  gbuffer_program_.set("rsm_size", glm::ivec2(settings_.rsm_size));
   set_uniforms(gbuffer_program_, "shadow", constants_.shadow);
   gbuffer_program_.set("rsm_packed", 0);
 
@@ -343,7 +351,7 @@ rsm_pipeline::rsm_pipeline(const shader_library& shaders, const scene& source, c
     for (const char* name : {"rsm_packed", "gbuffer_position_depth", "gbuffer_normal"}) gather_program_.set(name, unit++);
     if (with_coverage(constants_)) {
       for (const char* name : {"coarse_position_extent", "coarse_normal", "coarse_flux"}) gather_program_.set(name, unit++);
-      coarse_program_.set("rsm_size", glm::ivec2(settings.rsm_size));
+      coarse_program_.set("rsm_size", glm::ivec2(settings_.rsm_size));
       coarse_program_.set("coverage_blocks", constants_.gather.coverage_blocks);
       coarse_program_.set("rsm_packed", 0);
     }
@@ -372,8 +380,33 @@ rsm_pipeline::rsm_pipeline(const shader_library& shaders, const scene& source, c
   int unit = 0;
   for (const char* name : {"indirect_buffer", "gbuffer_position_depth", "gbuffer_albedo_density", "gbuffer_normal"})
     post_program_.set(name, unit++);
+}
+
+bool rsm_pipeline::apply_settings(const technique_settings& settings) {
+  const auto* typed = dynamic_cast<const described_settings<rsm_pipeline_settings, rsm_technique>*>(&settings);
+  if (!typed) return false;
+  const rsm_pipeline_settings& next = typed->value();
+  if (!validate(next).empty()) return false;
+  const rsm_frame_constants constants = make_frame_constants(scene_, bounds_, triangles_, next);
+  // What the programs' defines and the targets' sizes and formats come from (the constructor).
+  const bool same_build = next.technique == settings_.technique && next.width == settings_.width && next.height == settings_.height &&
+                          next.rsm_size == settings_.rsm_size && next.format == settings_.format && next.filter == settings_.filter &&
+                          constants.indirect_size == constants_.indirect_size && constants.gather.slots.count == constants_.gather.slots.count &&
+                          constants.gather.coverage_blocks == constants_.gather.coverage_blocks &&
+                          with_coverage(constants) == with_coverage(constants_) && with_temporal(constants) == with_temporal(constants_);
+  if (!same_build) return false;
+  settings_ = next;
+  constants_ = constants;
+  set_settings_uniforms();
   set_pose_uniforms();
-  check_gl("setting up the RSM pipeline");
+  check_gl("applying the RSM pipeline's settings");
+  // The G-buffer to the post filter again, and no history from the old settings. The RSM and the
+  // coverage's coarse lights depend on the light, the RSM's size and the blocks only, which a
+  // change in place keeps.
+  view_valid_ = false;
+  history_valid_ = false;
+  sequence_frame_ = 0;
+  return true;
 }
 
 void rsm_pipeline::set_pose_uniforms() {

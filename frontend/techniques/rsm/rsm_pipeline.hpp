@@ -193,6 +193,10 @@ class rsm_pipeline final : public pipeline {
   /// Moves the light. Throws vplkit::error for an invalid light or one of another kind than the
   /// scene's (the programs are built for a spot or a directional light).
   void set_light(const scene_light& light) override;
+  /// In place when only uniforms change: the same technique, slots, coverage blocks, filter,
+  /// temporal accumulation on or off, sizes and format; the next draw_changed() redraws the
+  /// G-buffer to the post filter (the RSM does not depend on what may change in place).
+  bool apply_settings(const technique_settings& settings) override;
   camera current_camera() const override { return scene_.view; }
   scene_light current_light() const override { return scene_.light; }
   /// How many times the RSM has been drawn.
@@ -221,6 +225,8 @@ class rsm_pipeline final : public pipeline {
 
  private:
   void set_pose_uniforms();
+  /// The uniforms that come from the settings (the constructor's, and apply_settings's).
+  void set_settings_uniforms();
   /// The camera and light of the next frame; leaves both as they were when the frame constants
   /// cannot be made.
   void move_to(const camera& view, const scene_light& light);

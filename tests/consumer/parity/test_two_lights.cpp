@@ -5,12 +5,16 @@
 // Two suites, run as two processes (CMakeLists.txt): the default one adds shaders/ as the shader
 // root; "perturbed" adds a copy of it whose two_lights_irradiance returns sum * 1.001, so its
 // first case must fail with a report that names the worst texel (check_perturbed_report.cmake
-// reads it) and its second checks that report's content from inside.
+// reads it) and its second checks that report's content from inside. A third, "targets", runs the
+// same property on the target CONSUMER_TARGET names (gl33, gl45, gles3, vulkan; one process per
+// target, CMakeLists.txt), or exits 77 (ctest: skipped) naming what this machine lacks.
 #define DOCTEST_CONFIG_IMPLEMENT_WITH_MAIN
 #include <doctest/doctest.h>
 
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <iostream>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
@@ -109,4 +113,32 @@ TEST_CASE("perturbed: the report names the worst texel, its values and its input
   CHECK(result.worst.find(fin0.str()) != std::string::npos);
   CHECK(result.summary().find("worst texel (" + std::to_string(x) + ", " + std::to_string(y) + ")") != std::string::npos);
   CHECK(result.summary().find("tolerance: abs <= 6e-06 x the texel's abs_scale or rel <= 0 or ulp <= 0") != std::string::npos);
+}
+
+TEST_CASE("targets: two_lights.glsl equals its C++ twin on the target CONSUMER_TARGET names" * doctest::test_suite("targets")) {
+  const char* name = std::getenv("CONSUMER_TARGET");
+  REQUIRE(name);
+  const std::string wanted = name;
+  const parity::target* chosen = nullptr;
+  for (const parity::target& where : parity::all_targets())
+    if (wanted == parity::target_name(where)) chosen = &where;
+  INFO("CONSUMER_TARGET=" << wanted);
+  REQUIRE(chosen);
+  const parity::target where = *chosen;
+  if (const std::string reason = parity::target_unavailable(where); !reason.empty()) {
+    // Skipped, visibly: ctest lists the test as "Skipped" and prints this line.
+    std::cout << "SKIPPED: target " << wanted << " is not available on this machine: " << reason << std::endl;
+    std::exit(77);
+  }
+  parity::add_shader_root(CONSUMER_SHADERS);
+  for (std::uint32_t seed : {1u, 2u}) {
+    const parity::kernel_inputs in = two_lights::inputs(seed);
+    // Compute where the target has it (gl45, vulkan), fragment where not (gl33, gles3).
+    const bool compute = where == parity::target::gl45 || where == parity::target::vulkan;
+    const parity::kernel_outputs gpu = compute ? parity::run_compute(two_lights::kernel_on_targets(), in, where, two_lights::resources_on_targets())
+                                               : parity::run_fragment(two_lights::kernel_on_targets(), in, where, two_lights::resources_on_targets());
+    const parity::comparison result = two_lights::compare(gpu.floats[0], in);
+    MESSAGE(wanted << std::string(compute ? " compute: " : " fragment: ") << result.summary());
+    parity::require_parity(result);
+  }
 }

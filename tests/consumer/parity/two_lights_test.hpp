@@ -51,6 +51,21 @@ inline parity::kernel_source kernel() {
 inline const glm::vec3 flux(1.0f, 0.25f, 3.0f);
 inline const vplkit::irradiance_settings<float> settings{0.01f};
 
+// The same kernel in a form every target runs (vplkit::parity::target): the settings in a std140
+// uniform block (settings_block, from vplkit/std140.hpp; a uniform buffer on Vulkan, which has no
+// default-block uniforms) and the flux a constant, exact in GLSL as in C++.
+inline parity::kernel_source kernel_on_targets() {
+  parity::kernel_source source = kernel();
+  source.declarations = "const vec3 flux = vec3(1.0, 0.25, 3.0);\n";
+  return source;
+}
+
+inline parity::kernel_resources resources_on_targets() {
+  parity::kernel_resources resources;
+  resources.blocks = {parity::settings_block("settings", settings)};
+  return resources;
+}
+
 inline parity::uniform_setter uniforms() {
   return [](const parity::program& p) {
     parity::set_uniforms(p, "settings", settings);

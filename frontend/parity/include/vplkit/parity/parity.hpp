@@ -36,6 +36,7 @@
 #include <vplkit/gl/program.hpp>
 #include <vplkit/gl/settings_uniforms.hpp>
 #include <vplkit/parity/inputs.hpp>
+#include <vplkit/std140.hpp>
 
 namespace vplkit::parity {
 
@@ -85,6 +86,68 @@ struct kernel_outputs {
 /// set_uniforms) before it draws.
 using uniform_setter = std::function<void(const program&)>;
 
+/// Where a kernel runs: the shading languages and APIs a user ships the twins in.
+///   gl33    GL 3.3 core, `#version 330 core`: fragment and vertex (the default of every run)
+///   gl45    GL 4.5 core, `#version 450 core`: fragment, vertex and compute
+///   gles3   OpenGL ES 3.0 (the WebGL2 subset), `#version 300 es` with highp precision:
+///           fragment and vertex; ES 3.0 has no compute shaders
+///   vulkan  Vulkan 1.0, `#version 450` compiled to SPIR-V by glslang at run time: compute only
+/// Each GL target has its own headless context (EGL; GLES through EGL_OPENGL_ES_API), made on
+/// first use on the thread of the first parity call; the default (gl33) context is current again
+/// after a run on another target, so textures made between runs stay in it. Vulkan takes the
+/// first device that has a compute queue (Mesa's lavapipe on a machine without a GPU).
+enum class target { gl33, gl45, gles3, vulkan };
+/// "gl33", "gl45", "gles3", "vulkan".
+const char* target_name(target where);
+/// Every target, in the order above.
+const std::vector<target>& all_targets();
+/// Empty when this machine runs kernels on `where`; otherwise why not, naming what is missing
+/// (the context that failed and why, the Vulkan loader or a device, with the Debian package).
+/// Tests skip a target only on this reason and print it.
+std::string target_unavailable(target where);
+/// The first lines of every shader a run compiles for `where`: its #version line, and for gles3
+/// the precision statements (highp float, int, sampler2D and usampler2D: ES defaults to mediump
+/// floats in fragment shaders and has no default for integer samplers). The one place a lib file
+/// is wrapped for a target; docs/glsl-twins.md shows the same lines for one's own shaders.
+std::string glsl_preamble(target where);
+
+/// A read-only 2D table of vec4 a kernel reads (an RSM, a cube map laid out flat), the same on
+/// every target: its declarations call `vec4 <name>(ivec2 texel)`. In a fragment or vertex run it
+/// is an RGBA32F texture read with texelFetch; in a compute run a std430 storage buffer read at
+/// texel.y * width + texel.x. A texel outside the table is undefined, as texelFetch's is.
+struct kernel_table {
+  std::string name;
+  int width = 0;
+  int height = 0;
+  std::vector<glm::vec4> texels;  ///< width * height, texel (x, y) at y * width + x
+};
+
+/// A std140 uniform block holding one value of a GLSL struct: declared by the run as
+///   layout(std140[, set = 0, binding = N]) uniform <member>_block { <type> <member>; };
+/// (std140_block's text; Vulkan adds the set and binding), and filled from `bytes`. Make it with
+/// settings_block(member, settings) for a vplkit settings struct.
+struct kernel_block {
+  std::string type;    ///< the GLSL struct's name, e.g. "rsm_gather_settings"
+  std::string member;  ///< the name the kernel reads it by, e.g. "settings"
+  std::vector<std::byte> bytes;
+};
+
+/// `settings` in a uniform block (std140_bytes of vplkit/std140.hpp) read as `member`.
+template <typename Settings>
+kernel_block settings_block(const std::string& member, const Settings& settings) {
+  const auto bytes = std140_bytes(settings);
+  return {settings_description<Settings>::name, member, std::vector<std::byte>(bytes.begin(), bytes.end())};
+}
+
+/// What a run binds besides its inputs: tables, uniform blocks, and, on the GL targets only,
+/// a setter for default-block uniforms (Vulkan has no default block: a run on vulkan with a
+/// setter throws).
+struct kernel_resources {
+  std::vector<kernel_table> tables;
+  std::vector<kernel_block> blocks;
+  uniform_setter uniforms = {};
+};
+
 /// Evaluates the kernel in a fragment shader (#version 330 core), one fragment per grid texel,
 /// into RGBA32F / RGBA32UI render targets. Throws, before making anything, for an empty grid, an
 /// input whose size is not width * height, no outputs, or more inputs than
@@ -96,6 +159,19 @@ kernel_outputs run_fragment(const kernel_source& source, const kernel_inputs& in
 /// the vertex stage's limits: GL_MAX_VERTEX_ATTRIBS inputs (16 in GL 3.3, also llvmpipe's) and
 /// GL_MAX_TRANSFORM_FEEDBACK_SEPARATE_ATTRIBS outputs (at least 4).
 kernel_outputs run_vertex(const kernel_source& source, const kernel_inputs& inputs, const uniform_setter& uniforms = {});
+
+/// The runs on a chosen target, with tables and uniform blocks that work the same on all of
+/// them. In every stage the body also reads `ivec2 texel`, the grid texel it computes.
+/// run_fragment and run_vertex throw for vulkan (vplkit runs Vulkan kernels as compute shaders),
+/// run_compute for gl33 and gles3 (no compute shaders before GL 4.3 / GLES 3.1; WebGL2 has
+/// none), each naming the targets that do; every run throws, with target_unavailable's reason,
+/// on a target this machine cannot run. A compute run has one invocation per texel (index =
+/// y * width + x), inputs and outputs in std430 storage buffers, the same fin*/uin*/fout*/uout*
+/// names, and as many storage blocks as GL_MAX_COMPUTE_SHADER_STORAGE_BLOCKS (or the device's
+/// maxPerStageDescriptorStorageBuffers) allows for inputs, outputs and tables together.
+kernel_outputs run_fragment(const kernel_source& source, const kernel_inputs& inputs, target where, const kernel_resources& resources = {});
+kernel_outputs run_vertex(const kernel_source& source, const kernel_inputs& inputs, target where, const kernel_resources& resources = {});
+kernel_outputs run_compute(const kernel_source& source, const kernel_inputs& inputs, target where, const kernel_resources& resources = {});
 
 /// A test's tolerance. A value passes when any of the bounds holds: |gpu - cpu| <= max_abs (times
 /// the texel's abs_scale where given), or |gpu - cpu| <= max_rel * max(|gpu|, |cpu|), or the two

@@ -8,6 +8,7 @@
 // the parity runs), so it names no GL header: the GL names are plain unsigned and int here.
 #pragma once
 
+#include <cstdint>
 #include <array>
 #include <cstddef>
 #include <filesystem>
@@ -35,8 +36,9 @@ struct expanded_source {
   std::vector<std::filesystem::path> files_read;
 };
 
-/// The shader directory: --shader-dir when given, else $VPLKIT_SHADER_DIR, else the source
-/// tree's shaders/ when it exists, else the installed share/vplkit/shaders.
+/// The shader directory: $VPLKIT_SHADER_DIR when set (the command line's --shader-dir comes
+/// before it), else, for an executable inside vplkit's build tree, the source tree's shaders/,
+/// else the share/vplkit/shaders installed beside the executable, else the configured prefix's.
 std::filesystem::path default_shader_dir();
 
 /// Preprocessor definitions placed right after #version: the GLSL side of a kernel's variant
@@ -78,7 +80,8 @@ class shader_library {
   std::vector<std::filesystem::path> roots_;
 };
 
-enum class shader_stage { vertex, fragment };
+/// compute needs a GL 4.3+ context (vplkit::parity's gl45 target).
+enum class shader_stage { vertex, fragment, compute };
 
 /// A linked program with uniform setters (each binds the program: GL 3.3 has no glProgramUniform).
 /// Setting a uniform that the source declares but the linker removed (a variant that does not
@@ -142,6 +145,10 @@ struct stage_source {
 /// (GL_SEPARATE_ATTRIBS), one buffer each.
 program link_program(const std::string& program_name, const std::vector<stage_source>& stages,
                      const std::vector<std::string>& transform_feedback_varyings = {});
+
+/// How many programs link_program has linked in this process (from any thread): what a change
+/// costs in programs, e.g. that a setting applied in place (pipeline::apply_settings) links none.
+std::uint64_t linked_program_count();
 
 /// Loads a vertex and a fragment shader file from the library and links them; `defines` go
 /// into both stages.
