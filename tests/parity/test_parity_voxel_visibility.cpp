@@ -1,7 +1,10 @@
 // CPU/GPU parity of include/vplkit/voxel_visibility.hpp against shaders/lib/voxel_visibility.glsl:
 // the march (voxel_light_visible, offsets and DDA) over a grid built on the CPU and read by the
 // shader from its packed RGBA32UI texture, for random receivers and pixel lights in a closed room
-// cluttered with random triangles, and from outside the grid.
+// cluttered with random triangles, and from outside the grid, on every target
+// (tests/parity/targets.hpp). The harness's tables are float (RGBA32F textures or std430 buffers),
+// so the packed words travel as two tables of their 16-bit halves, integers a float holds
+// exactly, and the shader's voxel_fetch puts them back together bit for bit.
 #include <doctest/doctest.h>
 
 #include <random>
@@ -9,15 +12,14 @@
 
 #include <vplkit/voxel_visibility.hpp>
 
-#include <vplkit/gl/settings_uniforms.hpp>
 #include <vplkit/parity/doctest.hpp>
 
-#include "frontend/gl/render_target.hpp"
+#include "tests/parity/targets.hpp"
 
 using namespace vplkit;
 using namespace vplkit::parity;
 
-TEST_CASE("parity: voxel_light_visible over a packed grid of a cluttered closed room") {
+TEST_CASE("parity: voxel_light_visible over a packed grid of a cluttered closed room, on every target") {
   std::mt19937 random(41);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
   std::normal_distribution<float> gaussian;
@@ -59,21 +61,14 @@ TEST_CASE("parity: voxel_light_visible over a packed grid of a cluttered closed 
   }
   const voxel_march_settings<float> march;
   const glm::ivec2 texture_size = voxel_texture_size(grid.shape.cells);
-  const texture_2d packed(texture_size.x, texture_size.y, texel_format::rgba32ui, grid.texels.data());
-  kernel_source source;
-  source.name = "voxel_light_visible";
-  source.includes = {"lib/voxel_visibility.glsl"};
-  source.declarations =
-      "uniform usampler2D voxels;\nuniform voxel_grid_shape shape;\nuniform voxel_march_settings march;\n"
-      "uvec4 voxel_fetch(ivec2 texel) { return texelFetch(voxels, texel, 0); }\n";
-  source.body = "fout0 = vec4(voxel_light_visible(shape, march, fin0.xyz, fin1.xyz, fin2.xyz, fin3.xyz), 0.0, 0.0, 0.0);";
-  source.float_outputs = 1;
-  const kernel_outputs gpu = run_fragment(source, inputs, [&](const program& p) {
-    packed.bind(5);
-    p.set("voxels", 5);
-    set_uniforms(p, "shape", grid.shape);
-    set_uniforms(p, "march", march);
-  });
+  std::vector<glm::vec4> low_halves, high_halves;
+  for (const glm::uvec4& word : grid.texels) {
+    low_halves.push_back(glm::vec4(word & 0xffffu));
+    high_halves.push_back(glm::vec4(word >> 16u));
+  }
+  kernel_resources resources;
+  resources.tables = {{"voxels_low", texture_size.x, texture_size.y, low_halves}, {"voxels_high", texture_size.x, texture_size.y, high_halves}};
+  resources.blocks = {settings_block("shape", grid.shape), settings_block("march", march)};
   std::vector<glm::vec4> cpu(inputs.size());
   int hidden = 0;
   for (std::size_t i = 0; i < inputs.size(); ++i) {
@@ -85,8 +80,19 @@ TEST_CASE("parity: voxel_light_visible over a packed grid of a cluttered closed 
   // Both answers are exercised (the clutter hides some pairs, the walls every outside light).
   CHECK(hidden > 400);
   CHECK(hidden < 3600);
-  // A yes/no per pair: the same arithmetic in the same order, but llvmpipe may fuse a multiply-add
+  // A yes/no per pair: the same arithmetic in the same order, but a driver may fuse a multiply-add
   // in the DDA's boundary distances, which flips the cell order where a segment passes within a
   // rounding of a cell's edge, and then the answer where one of the two cells is occupied.
-  require_parity(compare("voxel_light_visible", gpu.floats[0], cpu, inputs, {0.0f, 0.0f, 0, 0.002, "a discrete answer; near-ties at cell edges"}, 1));
+  for (const testing::target_run& run : testing::every_target()) {
+    kernel_source source;
+    source.name = "voxel_light_visible (" + run.name() + ")";
+    CAPTURE(source.name);
+    if (!testing::target_runs(run.where)) continue;
+    source.includes = {"lib/voxel_visibility.glsl"};
+    source.declarations = "uvec4 voxel_fetch(ivec2 t) { return uvec4(voxels_low(t)) | (uvec4(voxels_high(t)) << 16u); }\n";
+    source.body = "fout0 = vec4(voxel_light_visible(shape, march, fin0.xyz, fin1.xyz, fin2.xyz, fin3.xyz), 0.0, 0.0, 0.0);";
+    source.float_outputs = 1;
+    const kernel_outputs gpu = run.run(source, inputs, run.where, resources);
+    require_parity(compare(source.name, gpu.floats[0], cpu, inputs, {0.0f, 0.0f, 0, 0.002, "a discrete answer; near-ties at cell edges"}, 1));
+  }
 }
