@@ -16,7 +16,8 @@
 // VPLKIT_LIGHTWAVE_ENERGY: 0 the thesis's VPL weights (Eq. 4.5), 1 the flux VPLs' irradiance.
 // Shadow maps: layer 0 of the depth array is the spot light's, layers 1 .. maps the VPLs'.
 // Output 1 is the indirect shadow factor (red), output 2 the indirect radiance added to the
-// direct light (after the factor), for tests, reports and the viewer.
+// direct light (after the factor), for tests and reports, output 3 the indirect irradiance: what
+// `vplkit render` writes to -indirect.pfm for every family (see main()).
 // VPLKIT_LIGHTWAVE_INDIRECT_BUFFER (the flux energy): the indirect light comes from the screen
 // buffer lightwave_indirect.frag filled at this pixel from the receivers, not from the vertices.
 #include "lib/direct_light.glsl"
@@ -54,6 +55,7 @@ uniform sampler2D indirect_buffer;
 layout(location = 0) out vec4 colour;
 layout(location = 1) out vec4 indirect_shadow;
 layout(location = 2) out vec4 indirect_out;
+layout(location = 3) out vec4 indirect_irradiance_out;
 
 // (x, y, depth) in [0, 1] and whether the point is inside map `layer`'s frustum (lib/lightwave.glsl),
 // looked up from the receiver moved along its normal and towards the map's origin (the light,
@@ -169,4 +171,11 @@ void main() {
 #endif
   indirect_shadow = vec4(factor, 0.0, 0.0, 1.0);
   indirect_out = vec4(indirect, 1.0);
+  // -indirect.pfm is the indirect irradiance for every family: the quantity the RSM's gather and
+  // final gathering compute and `vplkit reference` writes. Light Wave sums the radiance its
+  // surfaces reflect (Eq. 4.5 and the flux VPLs include the receiver's albedo); the irradiance is
+  // that radiance over the surface's diffuse reflectance albedo / pi, 0 where it reflects none.
+  vec3 reflectance = surface_albedo * texture_colour * 0.318309886183790671538;
+  indirect_irradiance_out = vec4(reflectance.r > 0.0 ? indirect.r / reflectance.r : 0.0, reflectance.g > 0.0 ? indirect.g / reflectance.g : 0.0,
+                                 reflectance.b > 0.0 ? indirect.b / reflectance.b : 0.0, 1.0);
 }

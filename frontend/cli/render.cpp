@@ -3,7 +3,7 @@
 // techniques that read it (technique_options), so an option the technique ignores is an error.
 // --reference measures the frame against ground truth (frontend/reference/quality.hpp) and
 // --stats writes the settings in effect, the pass times and the quality as JSON. --poses renders
-// an RSM technique's sequence in one pipeline (numbered frames, all or nothing).
+// a sequence in one pipeline (numbered frames, all or nothing) for the families that render sequences.
 #include <algorithm>
 #include <cmath>
 #include <iomanip>
@@ -19,7 +19,6 @@
 #include "frontend/core/progress.hpp"
 #include "frontend/reference/quality.hpp"
 #include "frontend/scene/pose.hpp"
-#include "frontend/techniques/rsm/rsm_pipeline.hpp"
 
 namespace vplkit::cli {
 
@@ -46,6 +45,14 @@ std::string json_string(const std::string& text) {
   return out + "\"";
 }
 
+// Who renders --poses sequences, from the families' descriptions (the command line names none).
+std::string sequence_readers() {
+  std::string readers;
+  for (const technique_family& family : technique_families())
+    if (!family.sequence_readers.empty()) readers += (readers.empty() ? "" : " and ") + family.sequence_readers;
+  return readers;
+}
+
 std::string json_number(double value) { return std::isfinite(value) ? format_real(value) : "null"; }
 
 std::string pass_json(const std::vector<pass_time>& passes) {
@@ -65,8 +72,8 @@ std::string frame_suffix(std::size_t frame, std::size_t count) {
   return "-" + std::string(digits - std::min(digits, number.size()), '0') + number;
 }
 
-// The frames of --poses, rendered in one RSM pipeline (render_next: the pattern turns and the
-// temporal accumulation blends with the history); nothing is written unless every frame renders.
+// The frames of --poses, rendered in one pipeline (pipeline::draw_next: for the RSM techniques the
+// pattern turns and the temporal accumulation blends with the history); nothing is written unless every frame renders.
 // A long sequence reports its progress on stderr (a plain line every 5 s, with the time left, when
 // stderr is not a terminal). --max-seconds (counted from the command's start) stops it after the
 // frame during which the time ran out: the frames rendered until then, 1 to k, are written (all or
@@ -78,16 +85,16 @@ int render_sequence(const session& io, const render_state& s, const technique_se
   const headless_session gl(s.options.common);
   std::unique_ptr<scene> source;
   const std::unique_ptr<pipeline> drawn = make_posed_pipeline(gl.shaders, s.options.common, settings, source);
-  auto* rsm = dynamic_cast<rsm_pipeline*>(drawn.get());
-  if (!rsm) throw usage_error("--poses is read by the RSM techniques (direct, rsm-*), not by technique " + s.options.technique);
   // Every frame's files are kept in memory until the end (all or nothing): bound them.
-  const image first = rsm->render().radiance;
+  drawn->draw();
+  drawn->collect_pass_times();
+  const image first = drawn->output().read_image();
   const double bytes_per_frame = static_cast<double>(first.width) * first.height * (s.raw_indirect ? 19.0 : 15.0);
   if (bytes_per_frame * static_cast<double>(frames.size()) > 4.0 * 1024 * 1024 * 1024)
     throw error(s.poses + ": " + std::to_string(frames.size()) + " frames of " + std::to_string(first.width) + "x" + std::to_string(first.height) +
                 " would hold more than 4 GiB until they are written; split the pose file");
-  camera view = rsm->current_camera();
-  scene_light light = rsm->current_light();
+  camera view = drawn->current_camera();
+  scene_light light = drawn->current_light();
   double total_ms = 0.0;
   progress_settings reporting = progress_on_stderr();
   const std::string deadline_name = "--max-seconds " + format_number(static_cast<float>(s.max_seconds));
@@ -104,18 +111,19 @@ int render_sequence(const session& io, const render_state& s, const technique_se
     const std::string where = s.poses + ":" + std::to_string(frame.line);
     if (frame.camera) {
       apply_pose(*frame.camera, view, where + ": --camera");
-      rsm->set_camera(view);
+      drawn->set_camera(view);
     }
     if (frame.light) {
       apply_pose(*frame.light, light, where + ": --light");
-      rsm->set_light(light);
+      drawn->set_light(light);
     }
-    const rsm_frame rendered = rsm->render_next();
-    for (const pass_time& pass : rendered.pass_times) total_ms += pass.milliseconds;
+    drawn->draw_next();
+    for (const pass_time& pass : drawn->collect_pass_times()) total_ms += pass.milliseconds;
     const std::string suffix = frame_suffix(i + 1, frames.size());
-    files.add_png(files.sibling(suffix, ".png"), rendered.radiance);
-    files.add_pfm(files.sibling(suffix + "-indirect", ".pfm"), rendered.indirect);
-    if (s.raw_indirect) files.add_pfm(files.sibling(suffix + "-raw-indirect", ".pfm"), rsm->read_buffers().indirect);
+    files.add_png(files.sibling(suffix, ".png"), drawn->output().read_image());
+    files.add_pfm(files.sibling(suffix + "-indirect", ".pfm"), drawn->indirect_output().read_image());
+    if (s.raw_indirect)
+      if (const std::optional<image> raw = drawn->raw_indirect()) files.add_pfm(files.sibling(suffix + "-raw-indirect", ".pfm"), *raw);
     rendered_frames = i + 1;
     progress.advance();
   }
@@ -254,7 +262,7 @@ command add_render_command(CLI::App& app) {
                                              "render a sequence in one pipeline: a file with one frame per line, each line --camera x,y,z,tx,ty,tz "
                                              "and/or --light x,y,z,tx,ty,tz ('#' comments; a pose a line leaves out stays); writes <out>-0001.png, "
                                              "<out>-0001-indirect.pfm, ... for every frame, or nothing; --temporal-blend sets the accumulation"),
-                           "the RSM techniques (direct, rsm-*)", [](const std::string& technique) { return family_of(technique).name == "rsm"; });
+                           sequence_readers(), [](const std::string& technique) { return !family_of(technique).sequence_readers.empty(); });
   render->add_option("--max-seconds", state->max_seconds,
                      "with --poses: stop after the frame during which this many seconds (counted from the start) have passed, write the "
                      "frames rendered until then, and exit with code 3; 0: no limit")

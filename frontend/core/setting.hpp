@@ -45,7 +45,7 @@ struct setting_info {
   std::vector<std::string> choices;  ///< choice
   std::string unit;                  ///< "of the RSM side", "texels", "" for a count
   std::string help;                  ///< one line
-  std::string glsl;                  ///< the uniform (field) it feeds, "" when none directly
+  std::string glsl;                  ///< the uniforms it feeds, "file: name; ...", "" when none directly (setting::feeds)
   std::string readers;               ///< who reads it, said next to their names: "the radial pattern"
   bool live = true;                  ///< the viewer offers a control (not for the frame size)
   bool in_effect = true;             ///< among the settings in effect (false for another unit of one)
@@ -76,6 +76,39 @@ std::optional<std::vector<double>> parse_point(std::string_view text);
 /// A value as a message shows it: quoted, and cut after 60 characters.
 std::string quote_for_message(std::string_view text);
 
+namespace detail {
+
+/// "radial.paths": the described names of a member path, each member of the previous one's type.
+template <typename Owner, typename Value>
+std::string member_path_name(Value Owner::*member) {
+  return describe_field(member).name;
+}
+template <typename Owner, typename Value, typename Next, typename... Rest>
+std::string member_path_name(Value Owner::*member, Next next, Rest... rest) {
+  static_assert(std::is_member_object_pointer_v<Next>, "a member path is member object pointers");
+  return std::string(describe_field(member).name) + "." + member_path_name(next, rest...);
+}
+
+/// The member at the end of a path, each step checked by the compiler (`value.*member` of the
+/// previous step's type).
+template <typename Value>
+const Value& member_at(const Value& value) {
+  return value;
+}
+template <typename Value, typename Member, typename... Rest>
+decltype(auto) member_at(const Value& value, Member member, Rest... rest) {
+  return member_at(value.*member, rest...);
+}
+
+/// A fed member as a number: itself, or a GLM vector's first component.
+template <typename Value>
+double as_number(const Value& value) {
+  if constexpr (std::is_arithmetic_v<Value>) return static_cast<double>(value);
+  else return static_cast<double>(value[0]);
+}
+
+}  // namespace detail
+
 /// A setting of `Settings` for the techniques `Technique` names (the family's technique table).
 template <typename Settings, typename Technique>
 struct setting : setting_info {
@@ -88,8 +121,28 @@ struct setting : setting_info {
     readers = std::move(who);
     return *this;
   }
+  /// The value of each kernel-struct member the setting feeds (feeds(file, root, derive, path...)),
+  /// as the family derives it from `Settings` for the frame: a test sets the setting and checks
+  /// that every one moves (tests/frontend/techniques/test_registry.cpp).
+  std::vector<std::function<double(const Settings&)>> fed_members;
+
+  /// A uniform or define the setting feeds that is no member of a kernel struct: "file: name"
+  /// (a plain uniform such as "rsm.frag: rsm_size", or a define "post.frag: VPLKIT_SEPARABLE"),
+  /// checked against the shipped shaders by the registry's test.
   setting& feeds(std::string uniform) {
-    glsl = std::move(uniform);
+    glsl += (glsl.empty() ? "" : "; ") + uniform;
+    return *this;
+  }
+  /// The member `path` of the kernel struct that `derive` (the family's derivation: settings ->
+  /// the struct the frame uploads as uniform `root` of `file`) returns: a chain of member
+  /// pointers, `&rsm_gather_settings<float>::radial, &radial_pattern_constants<float>::paths`.
+  /// The compiler checks the chain; the GLSL name ("gather.frag: settings.radial.paths") comes
+  /// from the structs' descriptions, the names the link-time check holds to the shader's.
+  template <typename Derive, typename... Members>
+  setting& feeds(const char* file, const char* root, Derive derive, Members... path) {
+    static_assert(sizeof...(Members) > 0, "feeds: a member path of at least one member");
+    feeds(std::string(file) + ": " + root + "." + detail::member_path_name(path...));
+    fed_members.push_back([derive, path...](const Settings& settings) { return detail::as_number(detail::member_at(derive(settings), path...)); });
     return *this;
   }
   setting& allowing(std::vector<int> values) {
@@ -207,6 +260,9 @@ class technique_settings {
   virtual std::string set(const std::string& name, const std::string& value) = 0;
   /// "" when the settings are usable (every range and every rule of the family), else the first problem.
   virtual std::string validate() const = 0;
+  /// The kernel-struct members the setting feeds, as the frame would upload them (setting::feeds
+  /// with a member path); empty for a setting that feeds none.
+  virtual std::vector<double> fed_values(const std::string& name) const = 0;
 };
 
 /// The name and value of every setting in effect that the current technique reads.
@@ -274,6 +330,12 @@ class described_settings final : public technique_settings {
     return {};
   }
   std::string validate() const override { return family_->validate(value_); }
+  std::vector<double> fed_values(const std::string& name) const override {
+    std::vector<double> values;
+    if (const auto* found = entry(name))
+      for (const auto& fed : found->fed_members) values.push_back(fed(value_));
+    return values;
+  }
 
  private:
   const setting<Settings, Technique>* entry(const std::string& name) const {

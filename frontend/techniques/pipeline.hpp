@@ -32,6 +32,10 @@ class pipeline {
   virtual void draw() = 0;
   /// The passes the moves since the last frame invalidated.
   virtual void draw_changed() = 0;
+  /// The next frame of a sequence (`vplkit render --poses`, for the families whose
+  /// technique_family::sequence_readers says so): a pipeline that accumulates over the frames
+  /// blends this one with those before (the RSM's temporal accumulation); otherwise draw().
+  virtual void draw_next() { draw(); }
   /// Moves the camera. Throws vplkit::error (and keeps the camera) for one the pipeline refuses.
   virtual void set_camera(const camera& view) = 0;
   /// Moves the light. Throws vplkit::error (and keeps the light) for one the pipeline refuses:

@@ -42,6 +42,7 @@ technique_family rsm_family() {
   family.visibility_baseline = [](const std::string& technique) {
     return find_rsm_technique(technique).visibility != rsm_visibility::none ? std::string("rsm-radial") : std::string();
   };
+  family.sequence_readers = "the RSM techniques (direct, rsm-*)";
   return family;
 }
 

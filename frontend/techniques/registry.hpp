@@ -36,6 +36,9 @@ struct technique_family {
   /// The technique whose indirect light, the same frame without visibility, shows what a
   /// technique's visibility removes (Fig. 5.1c of [RSMV]); "" when the technique has none.
   std::function<std::string(const std::string& technique)> visibility_baseline;
+  /// Who renders a --poses sequence in one pipeline (pipeline::draw_next), as the option's scope
+  /// says it: "the RSM techniques (direct, rsm-*)"; "" for a family whose pipelines do not.
+  std::string sequence_readers;
 
   bool reads_scene() const { return !default_scene.empty(); }
   bool has(const std::string& technique) const;

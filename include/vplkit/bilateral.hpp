@@ -48,10 +48,10 @@ struct settings_description<bilateral_settings<T>> {
   static constexpr const char* name = "bilateral_settings";
   static constexpr bool glsl_twin = true;
   static constexpr auto fields() {
-    return std::make_tuple(field(&S::kernel_size, "kernel_size", closed_range(1, 63), "taps", "taps per axis of the post filter (odd)"),
-                           field(&S::spatial_sigma, "spatial_sigma", above(0.0), "indirect texels", "the post filter's spatial Gaussian"),
-                           field(&S::depth_sigma, "depth_sigma", above(0.0), "of the depth", "relative depth difference of half weight"),
-                           field(&S::normal_power, "normal_power", closed_range(0, 64), "", "k of the normal weight max(0, <n_c, n_q>)^k"));
+    return std::make_tuple(schema::field(&S::kernel_size, "kernel_size", schema::closed_range(1, 63), "taps", "taps per axis of the post filter (odd)"),
+                           schema::field(&S::spatial_sigma, "spatial_sigma", schema::above(0.0), "indirect texels", "the post filter's spatial Gaussian"),
+                           schema::field(&S::depth_sigma, "depth_sigma", schema::above(0.0), "of the depth", "relative depth difference of half weight"),
+                           schema::field(&S::normal_power, "normal_power", schema::closed_range(0, 64), "", "k of the normal weight max(0, <n_c, n_q>)^k"));
   }
   static setting_problem rules(const S& settings) {
     if (settings.kernel_size % 2 == 0) return setting_problem("bilateral_settings::kernel_size must be odd and in [1, 63]");

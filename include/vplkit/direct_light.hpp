@@ -44,11 +44,11 @@ struct settings_description<spot_light<T>> {
   static constexpr const char* name = "spot_light";
   static constexpr bool glsl_twin = true;
   static constexpr auto fields() {
-    return std::make_tuple(field(&S::position, "position", any_finite(), "scene units", "where the light is"),
-                           field(&S::direction, "direction", closed_range(-1, 1), "", "unit vector along the cone's axis"),
-                           field(&S::intensity, "intensity", at_least(0.0), "W/sr", "radiant intensity on the axis per colour channel"),
-                           field(&S::cos_inner, "cos_inner", closed_range(-1, 1), "", "cosine of the half-angle where the cone starts to fall off"),
-                           field(&S::cos_outer, "cos_outer", closed_range(-1, 1), "", "cosine of the half-angle where the cone reaches 0"));
+    return std::make_tuple(schema::field(&S::position, "position", schema::any_finite(), "scene units", "where the light is"),
+                           schema::field(&S::direction, "direction", schema::closed_range(-1, 1), "", "unit vector along the cone's axis"),
+                           schema::field(&S::intensity, "intensity", schema::at_least(0.0), "W/sr", "radiant intensity on the axis per colour channel"),
+                           schema::field(&S::cos_inner, "cos_inner", schema::closed_range(-1, 1), "", "cosine of the half-angle where the cone starts to fall off"),
+                           schema::field(&S::cos_outer, "cos_outer", schema::closed_range(-1, 1), "", "cosine of the half-angle where the cone reaches 0"));
   }
   static setting_problem rules(const S& light) {
     if (!(std::abs(glm::length(light.direction) - T(1)) < T(1e-3))) return setting_problem("spot_light::direction must be a unit vector");
@@ -94,8 +94,8 @@ struct settings_description<directional_light<T>> {
   static constexpr const char* name = "directional_light";
   static constexpr bool glsl_twin = true;
   static constexpr auto fields() {
-    return std::make_tuple(field(&S::direction, "direction", closed_range(-1, 1), "", "unit vector the light travels along"),
-                           field(&S::irradiance, "irradiance", at_least(0.0), "W/m^2", "irradiance on a surface facing the light, per colour channel"));
+    return std::make_tuple(schema::field(&S::direction, "direction", schema::closed_range(-1, 1), "", "unit vector the light travels along"),
+                           schema::field(&S::irradiance, "irradiance", schema::at_least(0.0), "W/m^2", "irradiance on a surface facing the light, per colour channel"));
   }
   static setting_problem rules(const S& light) {
     if (!(std::abs(glm::length(light.direction) - T(1)) < T(1e-3))) return setting_problem("directional_light::direction must be a unit vector");

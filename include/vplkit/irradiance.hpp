@@ -33,10 +33,10 @@ struct settings_description<irradiance_settings<T>> {
   static constexpr const char* name = "irradiance_settings";
   static constexpr bool glsl_twin = true;
   static constexpr auto fields() {
-    return std::make_tuple(field(&irradiance_settings<T>::min_distance, "min_distance", above(0.0), "scene units",
+    return std::make_tuple(schema::field(&irradiance_settings<T>::min_distance, "min_distance", schema::above(0.0), "scene units",
                                  "distance clamp of the light terms (Eq. 3.2): it bounds the 1/r^2 singularity"));
   }
-  static setting_problem rules(const irradiance_settings<T>& settings) { return no_rules(settings); }
+  static setting_problem rules(const irradiance_settings<T>& settings) { return schema::no_rules(settings); }
 };
 
 /// Eq. 3.2. x, n: receiver position and unit normal; xp, np: pixel-light position and unit normal;

@@ -91,11 +91,11 @@ struct settings_description<lightwave_layout_settings<T>> {
   static constexpr const char* name = "lightwave_layout_settings";
   static constexpr bool glsl_twin = true;
   static constexpr auto fields() {
-    return std::make_tuple(field(&S::light_position, "light_position", any_finite(), "scene units", "the spot light's position"),
-                           field(&S::light_direction, "light_direction", closed_range(-1, 1), "", "the spot light's axis, unit"),
-                           field(&S::angle_deg, "angle_deg", closed_range(1, 90), "degrees", "between VPL rays, around and away from the axis (divides 90 and 360)"),
-                           field(&S::per_ray, "per_ray", closed_range(1, 32), "", "VPLs per ray: stacked hemispheres"),
-                           field(&S::max_distance, "max_distance", at_least(0.0), "scene units", "the distance the hemispheres approach"));
+    return std::make_tuple(schema::field(&S::light_position, "light_position", schema::any_finite(), "scene units", "the spot light's position"),
+                           schema::field(&S::light_direction, "light_direction", schema::closed_range(-1, 1), "", "the spot light's axis, unit"),
+                           schema::field(&S::angle_deg, "angle_deg", schema::closed_range(1, 90), "degrees", "between VPL rays, around and away from the axis (divides 90 and 360)"),
+                           schema::field(&S::per_ray, "per_ray", schema::closed_range(1, 32), "", "VPLs per ray: stacked hemispheres"),
+                           schema::field(&S::max_distance, "max_distance", schema::at_least(0.0), "scene units", "the distance the hemispheres approach"));
   }
   static setting_problem rules(const S& settings) {
     if (!lightwave_ray_angle_divides(settings.angle_deg))
@@ -324,10 +324,10 @@ struct settings_description<lightwave_shading_settings<T>> {
   static constexpr const char* name = "lightwave_shading_settings";
   static constexpr bool glsl_twin = true;
   static constexpr auto fields() {
-    return std::make_tuple(field(&S::specular_strength, "specular_strength", at_least(0.0), "", "weight of Eq. 4.5's specular term"),
-                           field(&S::specular_exponent, "specular_exponent", closed_range(1, 256), "", "Phong exponent of the specular term"));
+    return std::make_tuple(schema::field(&S::specular_strength, "specular_strength", schema::at_least(0.0), "", "weight of Eq. 4.5's specular term"),
+                           schema::field(&S::specular_exponent, "specular_exponent", schema::closed_range(1, 256), "", "Phong exponent of the specular term"));
   }
-  static setting_problem rules(const S& settings) { return no_rules(settings); }
+  static setting_problem rules(const S& settings) { return schema::no_rules(settings); }
 };
 
 /// One VPL's term of Eq. 4.5 at vertex (x, n) with albedo, seen from `eye`.

@@ -73,9 +73,9 @@ struct settings_description<elevation_slots<T>> {
   static constexpr const char* name = "elevation_slots";
   static constexpr bool glsl_twin = true;
   static constexpr auto fields() {
-    return std::make_tuple(field(&S::count, "count", closed_range(1, micro_linear_buffer_max_slots), "",
+    return std::make_tuple(schema::field(&S::count, "count", schema::closed_range(1, micro_linear_buffer_max_slots), "",
                                  "B: micro linear buffer slots, equal bands of elevation (Alg. 1)"),
-                           field(&S::boundary_tangent, "boundary_tangent", any_finite(), "", "tan of the B - 1 interior slot boundaries, ascending"));
+                           schema::field(&S::boundary_tangent, "boundary_tangent", schema::any_finite(), "", "tan of the B - 1 interior slot boundaries, ascending"));
   }
   static setting_problem rules(const S& slots) {
     for (int k = 0; k + 1 < slots.count - 1; ++k)

@@ -112,16 +112,16 @@ struct settings_description<rsm_gather_settings<T>> {
   static constexpr const char* name = "rsm_gather_settings";
   static constexpr bool glsl_twin = true;
   static constexpr auto fields() {
-    return std::make_tuple(field(&S::irradiance, "irradiance", any_finite(), "", "Eq. 3.2's distance clamp"),
-                           field(&S::radial, "radial", any_finite(), "", "the radial pattern (Alg. 1 and 5)"),
-                           field(&S::disk, "disk", any_finite(), "", "the original RSM's disk pattern"),
-                           field(&S::slots, "slots", any_finite(), "", "the micro linear buffer's elevation slots"),
-                           field(&S::rsm_size, "rsm_size", at_least(1), "texels", "the RSM's width and height"),
-                           field(&S::coverage_blocks, "coverage_blocks", closed_range(0, rsm_coverage_max_blocks), "per RSM side",
+    return std::make_tuple(schema::field(&S::irradiance, "irradiance", schema::any_finite(), "", "Eq. 3.2's distance clamp"),
+                           schema::field(&S::radial, "radial", schema::any_finite(), "", "the radial pattern (Alg. 1 and 5)"),
+                           schema::field(&S::disk, "disk", schema::any_finite(), "", "the original RSM's disk pattern"),
+                           schema::field(&S::slots, "slots", schema::any_finite(), "", "the micro linear buffer's elevation slots"),
+                           schema::field(&S::rsm_size, "rsm_size", schema::at_least(1), "texels", "the RSM's width and height"),
+                           schema::field(&S::coverage_blocks, "coverage_blocks", schema::closed_range(0, rsm_coverage_max_blocks), "per RSM side",
                                  "coarse pixel lights that light the receivers the pattern cannot reach; 0: none"),
-                           field(&S::coverage_interleave, "coverage_interleave", closed_range(1, rsm_coverage_max_interleave), "pixels",
+                           schema::field(&S::coverage_interleave, "coverage_interleave", schema::closed_range(1, rsm_coverage_max_interleave), "pixels",
                                  "side of the pixel tile the coverage's blocks are interleaved over (each receiver gathers 1 / side^2 of them); 1: none"),
-                           field(&S::perspective, "perspective", closed_range(0, 1), "", "1: a spot light (perspective RSM), 0: a directional one"));
+                           schema::field(&S::perspective, "perspective", schema::closed_range(0, 1), "", "1: a spot light (perspective RSM), 0: a directional one"));
   }
   static setting_problem rules(const S& settings) {
     if (!coverage_lattice_holds_a_block(settings.coverage_blocks, settings.coverage_interleave))
@@ -146,13 +146,13 @@ struct settings_description<rsm_gather_preset<T>> {
   static constexpr const char* name = "rsm_gather_preset";
   static constexpr bool glsl_twin = false;  // make_rsm_gather_settings turns it into rsm_gather_settings
   static constexpr auto fields() {
-    return std::make_tuple(field(&S::radius_fraction, "radius_fraction", open_closed_range(0, 2), "of the RSM side",
+    return std::make_tuple(schema::field(&S::radius_fraction, "radius_fraction", schema::open_closed_range(0, 2), "of the RSM side",
                                  "r_max of the radial and disk patterns as a fraction of the RSM's larger side"),
-                           field(&S::paths, describe_field(&radial_pattern_settings<T>::paths)),
-                           field(&S::samples_per_path, describe_field(&radial_pattern_settings<T>::samples_per_path)),
-                           field(&S::slots, describe_field(&elevation_slots<T>::count)));
+                           schema::field(&S::paths, describe_field(&radial_pattern_settings<T>::paths)),
+                           schema::field(&S::samples_per_path, describe_field(&radial_pattern_settings<T>::samples_per_path)),
+                           schema::field(&S::slots, describe_field(&elevation_slots<T>::count)));
   }
-  static setting_problem rules(const S& settings) { return no_rules(settings); }
+  static setting_problem rules(const S& settings) { return schema::no_rules(settings); }
 };
 
 /// The defaults, chosen by the study of bench/rsm-study.sweep (docs/rsm-study.md) against the

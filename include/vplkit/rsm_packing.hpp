@@ -49,11 +49,11 @@ struct settings_description<rsm_unprojection<T>> {
   static constexpr const char* name = "rsm_unprojection";
   static constexpr bool glsl_twin = true;
   static constexpr auto fields() {
-    return std::make_tuple(field(&S::ray_origin, "ray_origin", any_finite(), "", "the centre ray of texel (0, 0)"),
-                           field(&S::ray_step, "ray_step", any_finite(), "", "the centre ray's change per texel"),
-                           field(&S::perspective, "perspective", closed_range(0, 1), "", "1: spot light (perspective RSM), 0: directional (orthographic)"));
+    return std::make_tuple(schema::field(&S::ray_origin, "ray_origin", schema::any_finite(), "", "the centre ray of texel (0, 0)"),
+                           schema::field(&S::ray_step, "ray_step", schema::any_finite(), "", "the centre ray's change per texel"),
+                           schema::field(&S::perspective, "perspective", schema::closed_range(0, 1), "", "1: spot light (perspective RSM), 0: directional (orthographic)"));
   }
-  static setting_problem rules(const S& settings) { return no_rules(settings); }
+  static setting_problem rules(const S& settings) { return schema::no_rules(settings); }
 };
 
 /// The unprojection of an RSM of `size` texels whose frustum is symmetric with half-width `scale`

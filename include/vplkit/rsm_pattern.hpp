@@ -75,14 +75,14 @@ struct settings_description<radial_pattern_settings<T>> {
   static constexpr bool glsl_twin = false;  // the GLSL side reads radial_pattern_constants
   static constexpr auto fields() {
     return std::make_tuple(
-        field(&S::paths, "paths", closed_range(1, 256), "", "P: straight paths from the receiver's projection"),
-        field(&S::samples_per_path, "samples_per_path", closed_range(1, 256), "", "S: samples along each path, near to far"),
-        field(&S::min_radius, "min_radius", above(0.0), "RSM texels", "r_min: the inner radius the rings start from"),
-        field(&S::max_radius, "max_radius", above(0.0), "RSM texels", "r_max: the outer radius of the pattern"),
-        field(&S::rotation_jitter, "rotation_jitter", closed_range(0, 1), "path spacings", "per-pixel rotation of the pattern: uniform in [0, this)"),
-        field(&S::angle_jitter, "angle_jitter", closed_range(0, 1), "path spacings", "per-sample angle jitter: +-half of this"),
-        field(&S::scale_jitter, "scale_jitter", closed_open_range(0, 1), "", "per-pixel radius scale: uniform in [1 - this/2, 1 + this/2)"),
-        field(&S::seed, "seed", closed_range(0, 4294967295.0), "", "changes every per-pixel and per-sample random number"));
+        schema::field(&S::paths, "paths", schema::closed_range(1, 256), "", "P: straight paths from the receiver's projection"),
+        schema::field(&S::samples_per_path, "samples_per_path", schema::closed_range(1, 256), "", "S: samples along each path, near to far"),
+        schema::field(&S::min_radius, "min_radius", schema::above(0.0), "RSM texels", "r_min: the inner radius the rings start from"),
+        schema::field(&S::max_radius, "max_radius", schema::above(0.0), "RSM texels", "r_max: the outer radius of the pattern"),
+        schema::field(&S::rotation_jitter, "rotation_jitter", schema::closed_range(0, 1), "path spacings", "per-pixel rotation of the pattern: uniform in [0, this)"),
+        schema::field(&S::angle_jitter, "angle_jitter", schema::closed_range(0, 1), "path spacings", "per-sample angle jitter: +-half of this"),
+        schema::field(&S::scale_jitter, "scale_jitter", schema::closed_open_range(0, 1), "", "per-pixel radius scale: uniform in [1 - this/2, 1 + this/2)"),
+        schema::field(&S::seed, "seed", schema::closed_range(0, 4294967295.0), "", "changes every per-pixel and per-sample random number"));
   }
   static setting_problem rules(const S& settings) {
     if (!(settings.max_radius > settings.min_radius)) return setting_problem("radial_pattern_settings::max_radius must be finite and > min_radius");
@@ -114,16 +114,16 @@ struct settings_description<radial_pattern_constants<T>> {
   static constexpr const char* name = "radial_pattern_constants";
   static constexpr bool glsl_twin = true;
   static constexpr auto fields() {
-    return std::make_tuple(field(&S::paths, describe_field(&from::paths)), field(&S::samples_per_path, describe_field(&from::samples_per_path)),
-                           field(&S::min_radius, describe_field(&from::min_radius)),
-                           field(&S::ring_ratio, "ring_ratio", at_least(1.0), "", "q = (r_max / r_min)^(1 / S): each ring's outer over inner radius"),
-                           field(&S::path_turns, "path_turns", open_closed_range(0, 1), "turns", "1 / P: the angle between paths"),
-                           field(&S::path_angle, "path_angle", open_closed_range(0, 6.28318530717958647692), "radians", "2 pi / P: the same, for the weights"),
-                           field(&S::rotation_jitter, describe_field(&from::rotation_jitter)), field(&S::angle_jitter, describe_field(&from::angle_jitter)),
-                           field(&S::scale_jitter, describe_field(&from::scale_jitter)), field(&S::seed, describe_field(&from::seed)),
-                           field(&S::max_radius, describe_field(&from::max_radius)));
+    return std::make_tuple(schema::field(&S::paths, describe_field(&from::paths)), schema::field(&S::samples_per_path, describe_field(&from::samples_per_path)),
+                           schema::field(&S::min_radius, describe_field(&from::min_radius)),
+                           schema::field(&S::ring_ratio, "ring_ratio", schema::at_least(1.0), "", "q = (r_max / r_min)^(1 / S): each ring's outer over inner radius"),
+                           schema::field(&S::path_turns, "path_turns", schema::open_closed_range(0, 1), "turns", "1 / P: the angle between paths"),
+                           schema::field(&S::path_angle, "path_angle", schema::open_closed_range(0, 6.28318530717958647692), "radians", "2 pi / P: the same, for the weights"),
+                           schema::field(&S::rotation_jitter, describe_field(&from::rotation_jitter)), schema::field(&S::angle_jitter, describe_field(&from::angle_jitter)),
+                           schema::field(&S::scale_jitter, describe_field(&from::scale_jitter)), schema::field(&S::seed, describe_field(&from::seed)),
+                           schema::field(&S::max_radius, describe_field(&from::max_radius)));
   }
-  static setting_problem rules(const S& settings) { return no_rules(settings); }
+  static setting_problem rules(const S& settings) { return schema::no_rules(settings); }
 };
 
 template <typename T>
@@ -202,14 +202,14 @@ struct settings_description<disk_pattern_settings<T>> {
   static constexpr const char* name = "disk_pattern_settings";
   static constexpr bool glsl_twin = true;
   static constexpr auto fields() {
-    return std::make_tuple(field(&S::samples, "samples", closed_range(1, 65536), "", "N: samples of the original RSM's disk"),
-                           field(&S::max_radius, "max_radius", above(0.0), "RSM texels", "r_max: the disk's radius"),
-                           field(&S::seed, "seed", closed_range(0, 4294967295.0), "", "changes every sample"),
-                           field(&S::printed_weights, "printed_weights", closed_range(0, 1), "", "the original's xi1^2 weights (biased) instead of xi1"),
-                           field(&S::per_pixel_shift, "per_pixel_shift", closed_range(0, 1), "",
+    return std::make_tuple(schema::field(&S::samples, "samples", schema::closed_range(1, 65536), "", "N: samples of the original RSM's disk"),
+                           schema::field(&S::max_radius, "max_radius", schema::above(0.0), "RSM texels", "r_max: the disk's radius"),
+                           schema::field(&S::seed, "seed", schema::closed_range(0, 4294967295.0), "", "changes every sample"),
+                           schema::field(&S::printed_weights, "printed_weights", schema::closed_range(0, 1), "", "the original's xi1^2 weights (biased) instead of xi1"),
+                           schema::field(&S::per_pixel_shift, "per_pixel_shift", schema::closed_range(0, 1), "",
                                  "each pixel shifts the pattern (its errors independent of its neighbours'); 0: the original's fixed pattern"));
   }
-  static setting_problem rules(const S& settings) { return no_rules(settings); }
+  static setting_problem rules(const S& settings) { return schema::no_rules(settings); }
 };
 
 /// The pixel's shift of the disk pattern's (xi1, xi2), each in [0, 1): a hash of the pixel, or 0

@@ -11,8 +11,8 @@
 // A description is a specialisation, next to the struct, of settings_description<S> with
 //   static constexpr const char* name;        the struct's name, and its GLSL twin's
 //   static constexpr bool glsl_twin;          whether shaders/lib declares a struct of that name
-//   static constexpr auto fields();           std::make_tuple(field(&S::member, "member", range, unit, help), ...)
-//   static setting_problem rules(const S&);   what no single range says (no_rules() when nothing)
+//   static constexpr auto fields();           std::make_tuple(schema::field(&S::member, "member", range, unit, help), ...)
+//   static setting_problem rules(const S&);   what no single range says (schema::no_rules() when nothing)
 // GLM and the standard library only, like every kernel header.
 #pragma once
 
@@ -41,18 +41,6 @@ struct setting_range {
   }
 };
 
-constexpr setting_range closed_range(double low, double high) { return {low, high, false, false}; }
-/// (low, high]
-constexpr setting_range open_closed_range(double low, double high) { return {low, high, true, false}; }
-/// [low, high)
-constexpr setting_range closed_open_range(double low, double high) { return {low, high, false, true}; }
-/// > low
-constexpr setting_range above(double low) { return {low, std::numeric_limits<double>::infinity(), true, false}; }
-/// >= low
-constexpr setting_range at_least(double low) { return {low, std::numeric_limits<double>::infinity(), false, false}; }
-/// Any finite number.
-constexpr setting_range any_finite() { return {}; }
-
 /// One field of a settings struct.
 struct field_description {
   const char* name = "";   ///< the C++ field and the GLSL twin's field
@@ -66,17 +54,6 @@ struct described_field {
   Value Owner::*member;
   field_description description;
 };
-
-template <typename Owner, typename Value>
-constexpr described_field<Owner, Value> field(Value Owner::*member, const char* name, setting_range range, const char* unit, const char* help) {
-  return {member, {name, range, unit, help}};
-}
-
-/// A field described elsewhere (a derived struct's field that is a setting's value as it is).
-template <typename Owner, typename Value>
-constexpr described_field<Owner, Value> field(Value Owner::*member, const field_description& description) {
-  return {member, description};
-}
 
 /// The first problem validate() found, as a sentence naming the struct and the field; empty
 /// (false) when the settings are usable. A value, so that several can be held at once.
@@ -121,6 +98,43 @@ inline setting_problem& append_range(setting_problem& problem, const setting_ran
   return problem;
 }
 
+/// The helpers a description is written with, in their own namespace: names as common as `field`
+/// or `above` would otherwise collide with a user's own under `using namespace vplkit` (a user's
+/// `struct field` became ambiguous). Descriptions call them qualified: schema::field(...). (Not
+/// `describe`: vplkit and its users have functions of that name, which a namespace would hide.)
+namespace schema {
+
+constexpr setting_range closed_range(double low, double high) { return {low, high, false, false}; }
+/// (low, high]
+constexpr setting_range open_closed_range(double low, double high) { return {low, high, true, false}; }
+/// [low, high)
+constexpr setting_range closed_open_range(double low, double high) { return {low, high, false, true}; }
+/// > low
+constexpr setting_range above(double low) { return {low, std::numeric_limits<double>::infinity(), true, false}; }
+/// >= low
+constexpr setting_range at_least(double low) { return {low, std::numeric_limits<double>::infinity(), false, false}; }
+/// Any finite number.
+constexpr setting_range any_finite() { return {}; }
+
+template <typename Owner, typename Value>
+constexpr described_field<Owner, Value> field(Value Owner::*member, const char* name, setting_range range, const char* unit, const char* help) {
+  return {member, {name, range, unit, help}};
+}
+
+/// A field described elsewhere (a derived struct's field that is a setting's value as it is).
+template <typename Owner, typename Value>
+constexpr described_field<Owner, Value> field(Value Owner::*member, const field_description& description) {
+  return {member, description};
+}
+
+/// For a description without rules.
+template <typename Settings>
+setting_problem no_rules(const Settings&) {
+  return {};
+}
+
+}  // namespace schema
+
 /// Specialised next to each settings struct (see the top of this file).
 template <typename Settings>
 struct settings_description;
@@ -131,12 +145,6 @@ template <typename Settings>
 struct is_described<Settings, std::void_t<decltype(settings_description<Settings>::fields())>> : std::true_type {};
 template <typename Settings>
 inline constexpr bool is_described_v = is_described<std::remove_cv_t<Settings>>::value;
-
-/// For a description without rules.
-template <typename Settings>
-setting_problem no_rules(const Settings&) {
-  return {};
-}
 
 /// Calls visit(const field_description&, value&) for every field of `settings`, in the
 /// description's order (const or not, as `settings` is).

@@ -62,16 +62,16 @@ struct settings_description<shadow_density_settings<T>> {
   static constexpr const char* name = "shadow_density_settings";
   static constexpr bool glsl_twin = true;
   static constexpr auto fields() {
-    return std::make_tuple(field(&S::kernel_size, "kernel_size", closed_range(1, 32), "RSM texels", "Alg. 4's window: kernel_size^2 RSM texels"),
-                           field(&S::depth_bias, "depth_bias", at_least(0.0), "scene units", "Alg. 4's zBias, against self-shadowing"),
-                           field(&S::normal_offset, "normal_offset", closed_range(0.0, 64.0), "texel footprints",
+    return std::make_tuple(schema::field(&S::kernel_size, "kernel_size", schema::closed_range(1, 32), "RSM texels", "Alg. 4's window: kernel_size^2 RSM texels"),
+                           schema::field(&S::depth_bias, "depth_bias", schema::at_least(0.0), "scene units", "Alg. 4's zBias, against self-shadowing"),
+                           schema::field(&S::normal_offset, "normal_offset", schema::closed_range(0.0, 64.0), "texel footprints",
                                  "the lookup moved along the normal by this times sin(theta)"),
-                           field(&S::slope_scale, "slope_scale", closed_range(0.0, 64.0), "texel footprints",
+                           schema::field(&S::slope_scale, "slope_scale", schema::closed_range(0.0, 64.0), "texel footprints",
                                  "the slope-scaled bias: this times tan(theta) footprints"),
-                           field(&S::max_slope, "max_slope", open_closed_range(0.0, 1000.0), "tan(theta)",
+                           schema::field(&S::max_slope, "max_slope", schema::open_closed_range(0.0, 1000.0), "tan(theta)",
                                  "tan(theta) clamped at this in the bias and the receiver-plane gradient"));
   }
-  static setting_problem rules(const S& settings) { return no_rules(settings); }
+  static setting_problem rules(const S& settings) { return schema::no_rules(settings); }
 };
 
 /// Scene units one texel of a shadow map covers at a receiver of eye depth `eye_depth` (< 0 in

@@ -36,13 +36,13 @@ struct settings_description<temporal_settings<T>> {
   static constexpr const char* name = "temporal_settings";
   static constexpr bool glsl_twin = true;
   static constexpr auto fields() {
-    return std::make_tuple(field(&S::blend, "blend", open_closed_range(0, 1), "", "weight of each new frame's gather against the history; 1: none"),
-                           field(&S::clamp_width, "clamp_width", closed_range(0, 16), "standard deviations",
+    return std::make_tuple(schema::field(&S::blend, "blend", schema::open_closed_range(0, 1), "", "weight of each new frame's gather against the history; 1: none"),
+                           schema::field(&S::clamp_width, "clamp_width", schema::closed_range(0, 16), "standard deviations",
                                  "the history box: the 3 x 3 neighbourhood's mean +- this"),
-                           field(&S::depth_tolerance, "depth_tolerance", closed_range(0, 1), "of the depth",
+                           schema::field(&S::depth_tolerance, "depth_tolerance", schema::closed_range(0, 1), "of the depth",
                                  "relative camera-depth difference at which a reprojected history is still accepted"));
   }
-  static setting_problem rules(const S& settings) { return no_rules(settings); }
+  static setting_problem rules(const S& settings) { return schema::no_rules(settings); }
 };
 
 /// The sums over a neighbourhood of receivers: count, per-channel sum and sum of squares.

@@ -86,16 +86,16 @@ void check_ranges_refused(const Settings& usable) {
 }  // namespace
 
 TEST_CASE("setting_range: open and closed ends, infinite ends, NaN and infinities refused") {
-  CHECK(closed_range(1, 3).contains(1));
-  CHECK(closed_range(1, 3).contains(3));
-  CHECK_FALSE(closed_range(1, 3).contains(3.0001));
-  CHECK_FALSE(open_closed_range(0, 2).contains(0));
-  CHECK(open_closed_range(0, 2).contains(2));
-  CHECK_FALSE(closed_open_range(0, 1).contains(1));
-  CHECK(above(0).contains(1e300));
-  CHECK_FALSE(above(0).contains(std::numeric_limits<double>::infinity()));
-  CHECK_FALSE(any_finite().contains(std::numeric_limits<double>::quiet_NaN()));
-  CHECK(any_finite().contains(-1e300));
+  CHECK(schema::closed_range(1, 3).contains(1));
+  CHECK(schema::closed_range(1, 3).contains(3));
+  CHECK_FALSE(schema::closed_range(1, 3).contains(3.0001));
+  CHECK_FALSE(schema::open_closed_range(0, 2).contains(0));
+  CHECK(schema::open_closed_range(0, 2).contains(2));
+  CHECK_FALSE(schema::closed_open_range(0, 1).contains(1));
+  CHECK(schema::above(0).contains(1e300));
+  CHECK_FALSE(schema::above(0).contains(std::numeric_limits<double>::infinity()));
+  CHECK_FALSE(schema::any_finite().contains(std::numeric_limits<double>::quiet_NaN()));
+  CHECK(schema::any_finite().contains(-1e300));
 }
 
 TEST_CASE("a problem names the struct, the field, the range, the unit and the value") {

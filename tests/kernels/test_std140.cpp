@@ -53,8 +53,8 @@ template <>
 struct settings_description<partly_described> {
   static constexpr const char* name = "partly_described";
   static constexpr bool glsl_twin = false;
-  static constexpr auto fields() { return std::make_tuple(field(&partly_described::listed, "listed", any_finite(), "", "the one listed")); }
-  static setting_problem rules(const partly_described& settings) { return no_rules(settings); }
+  static constexpr auto fields() { return std::make_tuple(schema::field(&partly_described::listed, "listed", schema::any_finite(), "", "the one listed")); }
+  static setting_problem rules(const partly_described& settings) { return schema::no_rules(settings); }
 };
 }  // namespace vplkit
 

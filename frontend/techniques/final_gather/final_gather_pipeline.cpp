@@ -3,9 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <filesystem>
 #include <sstream>
-#include <tuple>
 #include <thread>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -15,121 +13,9 @@
 
 #include "frontend/gl/debug_output.hpp"
 #include "frontend/core/error.hpp"
-#include "frontend/core/named_table.hpp"
-#include "frontend/scene/obj_loader.hpp"
 #include "frontend/core/parallel.hpp"
 
 namespace vplkit {
-
-const std::vector<final_gather_technique>& final_gather_techniques() {
-  static const std::vector<final_gather_technique> techniques = {
-      {"finalgather-polygon", final_gather_variant::polygon, "polygon-to-point form factors (the paper's method, clipped)"},
-      {"finalgather-point", final_gather_variant::point, "point-to-point form factors, a virtual light per texel"},
-      {"envmap", final_gather_variant::environment_map, "one lookup of a convolved environment map (right at o only)"},
-  };
-  return techniques;
-}
-
-const final_gather_technique& find_final_gather_technique(const std::string& name) { return find_by_name(final_gather_techniques(), name, "final gathering technique"); }
-
-final_gather_scene make_final_gather_scene(const std::string& object, glm::vec3 position, float size) {
-  if (!(size > 0.0f)) throw error("the object's size must be > 0");
-  final_gather_scene s;
-  const scene box = make_cornell_box();  // its camera and light
-  add_cornell_room(s.room);
-  // Closed at the front (the paper's box room): the cube map must see a surface everywhere. The
-  // camera looks in through it: the G-buffer pass culls the room's back faces.
-  add_quad(s.room, {1, 0, 1}, {-1, 0, 1}, {-1, 2, 1}, {1, 2, 1}, {0, 0, -1}, glm::vec3(0.73f));
-  s.view = box.view;
-  s.light = box.light.spot;
-  mesh shape;
-  if (object == "sphere") {
-    add_sphere(shape, glm::vec3(0.0f), 1.0f, 24, 48, glm::vec3(0.8f));  // 2304 triangles, the paper's ~2300
-    s.name = "sphere";
-  } else {
-    shape = load_obj(object);
-    for (vertex& v : shape.vertices) v.albedo = glm::vec3(0.8f);
-    s.name = std::filesystem::path(object).stem().string();
-  }
-  const bounding_box box_of_shape = bounds(shape);
-  const float scale = size / std::max({box_of_shape.maximum.x - box_of_shape.minimum.x, box_of_shape.maximum.y - box_of_shape.minimum.y,
-                                        box_of_shape.maximum.z - box_of_shape.minimum.z, 1e-9f});
-  for (vertex& v : shape.vertices) v.position = (v.position - box_of_shape.centre()) * scale;
-  for (const vertex& v : shape.vertices) s.object_radius = std::max(s.object_radius, glm::length(v.position));
-  s.local_object = std::move(shape);
-  s.object = s.local_object;
-  for (std::size_t i = 0; i < s.object.vertices.size(); ++i) s.object.vertices[i].position = s.local_object.vertices[i].position + position;
-  s.reference_point = position;
-  return s;
-}
-
-const std::vector<setting<final_gather_setup, final_gather_technique>>& final_gather_settings_table() {
-  using entry = setting<final_gather_setup, final_gather_technique>;
-  static const std::vector<entry> table = {
-      entry::custom("size", setting_type::size, "pixels", "final image size, N or WxH (the paper: 700)",
-                    [](const final_gather_setup& s) {
-                      const final_gather_settings& p = s.pipeline;
-                      return p.width == p.height ? std::to_string(p.width) : std::to_string(p.width) + "x" + std::to_string(p.height);
-                    },
-                    [](final_gather_setup& s, const std::string& text) { std::tie(s.pipeline.width, s.pipeline.height) = *parse_extent(text); })
-          .within(closed_range(1, max_image_side))
-          .not_live(),
-      entry::choice("format", [](auto& s) -> auto& { return s.pipeline.format; }, {{"rgba16f", texel_format::rgba16f}, {"rgba32f", texel_format::rgba32f}},
-                    "float format of the output targets (the cube map and G-buffer are rgba32f)"),
-      entry::number("min-distance", [](auto& s) -> auto& { return s.pipeline.irradiance.min_distance; },
-                    describe_field(&irradiance_settings<float>::min_distance))
-          .feeds("cube_face.frag: irradiance.min_distance; final_gather_shade.frag: irradiance.min_distance"),
-      entry::number("cube-resolution", [](auto& s) -> auto& { return s.pipeline.resolution; }, closed_range(1, 64), "texels",
-                    "M, the small cube map's face resolution (the paper: 4 or 2)")
-          .feeds("cube_downsample.frag: resolution; final_gather_shade.frag: resolution"),
-      entry::number("face-size", [](auto& s) -> auto& { return s.pipeline.face_size; }, closed_range(1, max_cube_face_size), "texels",
-                    "the cube map's face size before averaging (the paper: 256; its six faces lie side by side in one texture)")
-          .feeds("cube_downsample.frag: face_size"),
-      entry::number("environment-resolution", [](auto& s) -> auto& { return s.pipeline.environment_resolution; }, closed_range(1, 256), "texels",
-                    "K, the face resolution of the baseline's irradiance environment map")
-          .read_by([](const final_gather_technique& t) { return t.variant == final_gather_variant::environment_map; }, "the environment map")
-          .feeds("environment_convolution.frag: environment_resolution; final_gather_shade.frag: environment_resolution"),
-      entry::custom("object", setting_type::text, "", "the dynamic object: sphere or an .obj file (meshes/bunny.obj)",
-                    [](const final_gather_setup& s) { return s.object; }, [](final_gather_setup& s, const std::string& text) { s.object = text; })
-          .not_live(),
-      entry::custom("object-position", setting_type::point, "scene units", "the object's centre x,y,z (the room is [-1,1]x[0,2]x[-1,1])",
-                    [](const final_gather_setup& s) {
-                      return format_real(s.object_position.x) + "," + format_real(s.object_position.y) + "," + format_real(s.object_position.z);
-                    },
-                    [](final_gather_setup& s, const std::string& text) {
-                      const std::vector<double> point = *parse_point(text);
-                      s.object_position = glm::vec3(static_cast<float>(point[0]), static_cast<float>(point[1]), static_cast<float>(point[2]));
-                    })
-          .within(closed_range(-max_object_coordinate, max_object_coordinate))
-          .feeds("cube_face.frag: reference_point; final_gather_shade.frag: reference_point")
-          .not_live(),
-      entry::number("object-size", [](auto& s) -> auto& { return s.object_size; }, open_closed_range(0, 10), "scene units",
-                    "the object's size across (the room is 2 wide)")
-          .not_live(),
-  };
-  return table;
-}
-
-std::string validate(const final_gather_setup& setup) {
-  const final_gather_settings& settings = setup.pipeline;
-  try {
-    find_final_gather_technique(settings.technique);
-  } catch (const error& failure) {
-    return failure.what();
-  }
-  if (const std::string problem = check_settings(final_gather_settings_table(), setup); !problem.empty()) return problem;
-  if (settings.face_size % settings.resolution != 0)
-    return "M = " + std::to_string(settings.resolution) + " does not divide the face size " + std::to_string(settings.face_size) +
-           ": every small texel must average a whole block of face texels";
-  if (const setting_problem problem = validate(settings.irradiance)) return problem.message();
-  return {};
-}
-
-std::string validate(const final_gather_settings& settings) {
-  final_gather_setup setup;
-  setup.pipeline = settings;
-  return validate(setup);
-}
 
 namespace {
 
@@ -266,50 +152,7 @@ void final_gather_pipeline::draw_passes(bool with_cube) {
   glClearColor(0.0f, 0.0f, 0.0f, 0.0f);  // distance 0: nothing seen
   const float room_size = bounds(scene_.room).radius();
 
-  if (with_cube) {
-    timer_.begin("cube map");
-    faces_.bind();
-    glEnable(GL_DEPTH_TEST);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    const glm::mat4 projection = glm::perspective(glm::radians(90.0f), 1.0f, 0.001f * room_size, 4.0f * room_size);
-    for (int face = 0; face < 6; ++face) {
-      glViewport(face * settings_.face_size, 0, settings_.face_size, settings_.face_size);
-      cube_program_.set("view_projection", projection * face_view(face, scene_.reference_point));
-      room_.draw(cube_program_);  // the object is left out
-    }
-    timer_.end();
-
-    glDisable(GL_DEPTH_TEST);
-    glBindVertexArray(empty_vertex_array_.get());
-    timer_.begin("downsample");
-    small_cube_.bind();
-    faces_.colour(0).bind(0);
-    downsample_program_.use();
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    timer_.end();
-
-    // A reference point outside the room, or an object reaching into it, shows as texels that
-    // saw nothing (distance 0) or that are nearer than the object's own radius.
-    const image small = small_cube_.read_image(0);
-    float nearest = 1e30f;
-    for (const glm::vec4& texel : small.texels) nearest = std::min(nearest, texel.w);
-    if (!(nearest > scene_.object_radius))
-      throw error("final gathering: the environment seen from the reference point (" + std::to_string(scene_.reference_point.x) + ", " +
-                  std::to_string(scene_.reference_point.y) + ", " + std::to_string(scene_.reference_point.z) + ") comes as near as " +
-                  std::to_string(nearest) + ", within the object's radius " + std::to_string(scene_.object_radius) +
-                  ": the reference point is outside the room or inside geometry, or the object intersects a wall");
-
-    if (technique_.variant == final_gather_variant::environment_map) {
-      timer_.begin("environment convolution");
-      environment_.bind();
-      small_cube_.colour(0).bind(0);
-      environment_program_.use();
-      glDrawArrays(GL_TRIANGLES, 0, 3);
-      timer_.end();
-    }
-    cube_valid_ = true;
-    ++cube_draws_;
-  }
+  if (with_cube) draw_cube_map(room_size);
 
   timer_.begin("G-buffer");
   gbuffer_.bind();
@@ -338,6 +181,53 @@ void final_gather_pipeline::draw_passes(bool with_cube) {
   check_gl("final gathering, object " + scene_.name + ", " + technique_.name);
   view_valid_ = true;
   ++view_draws_;
+}
+
+// Passes 1 to 3: the cube map around the reference point, averaged down (checked: the object
+// must not reach into the room), and the baseline's environment map.
+void final_gather_pipeline::draw_cube_map(float room_size) {
+  timer_.begin("cube map");
+  faces_.bind();
+  glEnable(GL_DEPTH_TEST);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  const glm::mat4 projection = glm::perspective(glm::radians(90.0f), 1.0f, 0.001f * room_size, 4.0f * room_size);
+  for (int face = 0; face < 6; ++face) {
+    glViewport(face * settings_.face_size, 0, settings_.face_size, settings_.face_size);
+    cube_program_.set("view_projection", projection * face_view(face, scene_.reference_point));
+    room_.draw(cube_program_);  // the object is left out
+  }
+  timer_.end();
+
+  glDisable(GL_DEPTH_TEST);
+  glBindVertexArray(empty_vertex_array_.get());
+  timer_.begin("downsample");
+  small_cube_.bind();
+  faces_.colour(0).bind(0);
+  downsample_program_.use();
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  timer_.end();
+
+  // A reference point outside the room, or an object reaching into it, shows as texels that
+  // saw nothing (distance 0) or that are nearer than the object's own radius.
+  const image small = small_cube_.read_image(0);
+  float nearest = 1e30f;
+  for (const glm::vec4& texel : small.texels) nearest = std::min(nearest, texel.w);
+  if (!(nearest > scene_.object_radius))
+    throw error("final gathering: the environment seen from the reference point (" + std::to_string(scene_.reference_point.x) + ", " +
+                std::to_string(scene_.reference_point.y) + ", " + std::to_string(scene_.reference_point.z) + ") comes as near as " +
+                std::to_string(nearest) + ", within the object's radius " + std::to_string(scene_.object_radius) +
+                ": the reference point is outside the room or inside geometry, or the object intersects a wall");
+
+  if (technique_.variant == final_gather_variant::environment_map) {
+    timer_.begin("environment convolution");
+    environment_.bind();
+    small_cube_.colour(0).bind(0);
+    environment_program_.use();
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    timer_.end();
+  }
+  cube_valid_ = true;
+  ++cube_draws_;
 }
 
 final_gather_buffers final_gather_pipeline::read_buffers() const {

@@ -15,7 +15,8 @@
 #include <vplkit/irradiance.hpp>
 #include <vplkit/gl/program.hpp>
 
-#include "frontend/core/setting.hpp"
+#include "frontend/techniques/final_gather/final_gather_scene.hpp"
+#include "frontend/techniques/final_gather/final_gather_settings.hpp"
 #include "frontend/gl/pass_timer.hpp"
 #include "frontend/scene_gl/mesh_buffers.hpp"
 #include "frontend/gl/render_target.hpp"
@@ -24,71 +25,6 @@
 #include "frontend/techniques/pipeline.hpp"
 
 namespace vplkit {
-
-enum class final_gather_variant { polygon = 0, point = 1, environment_map = 2 };
-
-struct final_gather_technique {
-  const char* name = "";
-  final_gather_variant variant = final_gather_variant::polygon;
-  const char* description = "";
-};
-
-/// finalgather-polygon, finalgather-point, envmap.
-const std::vector<final_gather_technique>& final_gather_techniques();
-const final_gather_technique& find_final_gather_technique(const std::string& name);
-
-/// The room (the environment) and the dynamic object, kept apart: the cube map leaves the object out.
-struct final_gather_scene {
-  std::string name;
-  mesh room;
-  mesh object;
-  /// The object centred at the origin, scaled: `object` is it moved to the reference point, the
-  /// same sum wherever it moves, so a moved object is the object built at its new place, bit for bit.
-  mesh local_object;
-  glm::vec3 reference_point{0.0f};  ///< the object's centre (its bounding box's)
-  float object_radius = 0.0f;       ///< of its bounding sphere around the reference point
-  camera view;
-  spot_light<float> light;
-};
-
-/// The Cornell room without its blocks, closed by a front wall, the object ("sphere": 2304 triangles, or an OBJ file
-/// such as the npm bunny) scaled to `size` across and centred at `position`. Throws
-/// vplkit::error when the object file fails to load.
-final_gather_scene make_final_gather_scene(const std::string& object, glm::vec3 position, float size);
-
-/// The largest cube face: the six faces lie side by side in one texture, at most max_image_side wide.
-inline constexpr int max_cube_face_size = max_image_side / 6;
-
-struct final_gather_settings {
-  std::string technique = "finalgather-polygon";
-  int width = 512;               ///< the paper: 700 x 700
-  int height = 512;
-  int face_size = 256;           ///< the cube map's faces (the paper: 256)
-  int resolution = 4;            ///< M: the faces averaged down to M x M (the paper: 4 or 2)
-  int environment_resolution = 16;  ///< K x K per face of the baseline's irradiance map
-  irradiance_settings<float> irradiance;
-  texel_format format = texel_format::rgba32f;
-};
-
-std::string validate(const final_gather_settings& settings);
-
-/// The largest coordinate of the object's position: the room is [-1, 1] x [0, 2] x [-1, 1].
-constexpr float max_object_coordinate = 1000.0f;
-
-/// What the final-gathering techniques draw and how: the object in the room, and the pipeline's
-/// settings. The family's settings (frontend/techniques/registry.hpp) are this.
-struct final_gather_setup {
-  final_gather_settings pipeline;
-  std::string object = "sphere";                 ///< sphere, or an .obj file (meshes/bunny.obj)
-  glm::vec3 object_position{0.0f, 0.7f, 0.0f};  ///< its centre
-  float object_size = 0.5f;                      ///< across (the room is 2 wide)
-};
-
-/// The description of every setting a user sets (frontend/core/setting.hpp).
-const std::vector<setting<final_gather_setup, final_gather_technique>>& final_gather_settings_table();
-
-/// Empty when usable: the table's ranges, then the pipeline's settings.
-std::string validate(const final_gather_setup& setup);
 
 struct final_gather_frame {
   image radiance;  ///< the final image
@@ -166,6 +102,7 @@ class final_gather_pipeline final : public pipeline {
 
   void set_pose_uniforms();
   void draw_passes(bool with_cube);
+  void draw_cube_map(float room_size);
 };
 
 }  // namespace vplkit

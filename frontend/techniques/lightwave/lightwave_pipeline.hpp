@@ -22,204 +22,15 @@
 #include <vplkit/lightwave.hpp>
 #include <vplkit/gl/program.hpp>
 
-#include "frontend/core/setting.hpp"
 #include "frontend/gl/pass_timer.hpp"
 #include "frontend/scene_gl/mesh_buffers.hpp"
 #include "frontend/gl/render_target.hpp"
 #include "frontend/scene/scene.hpp"
+#include "frontend/techniques/lightwave/lightwave_planning.hpp"
+#include "frontend/techniques/lightwave/lightwave_settings.hpp"
 #include "frontend/techniques/pipeline.hpp"
 
 namespace vplkit {
-
-/// The most VPL shadow maps a frame uses (accurate or integrated): the size of the shader's
-/// arrays of shadow matrices and casters, which it gets as VPLKIT_MAX_SHADOW_MAPS.
-constexpr int lightwave_max_shadow_maps = 64;
-
-enum class lightwave_mode { direct = 0, faked = 1, unshadowed = 2, accurate = 3, integrated = 4 };
-
-enum class lightwave_shadow_variant { importance = 0, thesis = 1 };
-
-/// What the VPLs carry. thesis: strength 1 - attenuation, no distance falloff, on hemispheres
-/// in space (Eq. 4.1, 4.2, 4.5: the Tables 5.x); flux: the flux the light brings to each ray's patch
-/// of its cone, reflected where the ray meets the scene, with a diffuse bounce's falloff.
-enum class lightwave_energy { thesis = 0, flux = 1 };
-
-/// The side of the square map of what the spot light sees (position, normal, albedo) in which the
-/// flux layout looks its rays up: under half a degree a texel for a cone 120 degrees across, finer than
-/// the layout's samples (the VPL sits where its ray meets the texel's plane, not at the texel).
-constexpr int lightwave_surface_map_size = 256;
-
-/// A grid of width x rows >= `receivers` texels, receiver i at texel (i % width, i / width), for
-/// the fragment pass that sums the flux energy's VPLs: rows a multiple of 4 (a software
-/// rasteriser shades 4x4 blocks; a 2-row grid left half of each block's lanes idle, +40 % on the
-/// boxes) and as few as rows of at most 1024 allow; the width a multiple of 4 too, wider than 1024
-/// where the rows would pass `max_side` (the caller checks the width against the GL's largest
-/// texture).
-glm::ivec2 lightwave_receiver_grid(std::size_t receivers, int max_side);
-
-/// The grid of one band of lightwave_capture.frag, which sums lightwave_sum_receivers receivers
-/// per fragment: lightwave_receiver_grid of ceil(receivers / lightwave_sum_receivers) texels with
-/// at most max_texture_side / lightwave_sum_receivers rows, so that the bands stacked hold every
-/// receiver in one texture of at most max_texture_side rows.
-glm::ivec2 lightwave_sum_grid(std::size_t receivers, int max_texture_side);
-
-/// The passes (uniform blocks) that sum `vpls` VPLs per_pass at a time: at least one.
-int lightwave_vpl_pass_count(std::size_t vpls, int per_pass);
-
-/// The receivers' VPLs as the uniform blocks of lightwave_capture.frag's passes: per_pass VPLs a
-/// block (the last one's tail zero), three vec4 each, [position | radius], [normal | 0], [flux | 0];
-/// block k at byte k x stride_bytes (a multiple of 16 and of the GL's offset alignment, at least
-/// 48 x per_pass). At least one block.
-std::vector<glm::vec4> lightwave_vpl_blocks(const std::vector<lightwave_flux_vpl<float>>& vpls, int per_pass, std::size_t stride_bytes);
-
-struct lightwave_technique {
-  const char* name = "";
-  lightwave_mode mode = lightwave_mode::accurate;
-  const char* description = "";
-};
-
-/// lightwave-direct, lightwave-faked, lightwave-unshadowed, lightwave-accurate, lightwave-integrated.
-const std::vector<lightwave_technique>& lightwave_techniques();
-const lightwave_technique& find_lightwave_technique(const std::string& name);
-
-/// Every setting, with the thesis's defaults.
-struct lightwave_settings {
-  std::string technique = "lightwave-accurate";
-  int width = 1280;            ///< the thesis: 1280 x 720
-  int height = 720;
-  int angle_deg = 5;           ///< between VPL rays
-  int per_ray = 5;             ///< VPLs per ray (thesis: stacked hemispheres; flux: samples of the ray's patch)
-  /// flux (the default) or thesis; see lightwave_energy.
-  lightwave_energy energy = lightwave_energy::flux;
-  /// Thesis energy: distance the hemispheres approach; 0 = the distance from the light to the
-  /// farthest corner of the scene's bounding box (the thesis: "varies based off the dimensions of
-  /// the scene"). The flux energy puts its VPLs on the surfaces and must leave it 0.
-  float max_distance = 0.0f;
-  int accurate_maps = 20;      ///< VPL shadow maps of the accurate shadows (0: none, the same as unshadowed)
-  /// How the accurate shadows choose, aim and combine their maps (the integrated shadows keep
-  /// the thesis's maps, whose shared projection their in-between lookups need; both modes skip
-  /// lookups behind a map's camera):
-  /// - importance (the default): the VPLs that light the visible scene split into as many
-  ///   compact groups of equal light as there are maps (lightwave_cluster_casters), one map per
-  ///   group from its medoid VPL, aimed at what that VPL lights; each map shadows the share of a
-  ///   fragment's indirect light its group brings there, trusted the less the larger the group
-  ///   looks from the fragment (lightwave_group_confidence), fading to lit towards the map's
-  ///   border and nothing where it does not cover the fragment; no seed;
-  /// - thesis: VPLs drawn uniformly, each map looking along its VPL's normal with
-  ///   vpl_field_of_view, the plain mean of the lookups, outside a map counting as lit.
-  lightwave_shadow_variant shadow_variant = lightwave_shadow_variant::importance;
-  int integrated_maps = 5;     ///< shadow maps from the innermost hemisphere (integrated shadows)
-  int integrated_steps = 10;   ///< in-between lookups per pair of maps (2, 4, 6, 10 in the thesis)
-  float shadow_map_scale = 3.0f;  ///< shadow map size = this x the screen (the thesis: 3)
-  /// Field of view of a VPL's shadow map in the thesis variant, degrees (the thesis does not give
-  /// it). 120 degrees covers the part of the 240-degree lobe where it is at least 2/3 of its
-  /// peak. The importance variant fits each map to the region its VPL lights instead.
-  float vpl_field_of_view = 120.0f;
-  float faked_multiplier = 1.3f;  ///< m of Eq. 5.2 (the thesis: 1.1 .. 1.5; 1.3 ranked best)
-  /// Flux energy: the indirect light is summed at the vertices of the scene subdivided until no
-  /// edge is longer than this fraction of its bounding radius (lightwave_receivers), at most
-  /// receiver_triangles triangles (the bound grows until it fits). Once per light position: a
-  /// diffuse bounce does not depend on the camera, and the main pass reads it as a vertex attribute.
-  float receiver_spacing = 1.0f / 8.0f;
-  int receiver_triangles = 32768;
-  /// Flux energy: the VPLs the receivers sum in one pass (lightwave_capture.frag); 0: as many as
-  /// one uniform block of the GL holds (GL_MAX_UNIFORM_BLOCK_SIZE / 48 bytes), at most 1365 (64 KiB).
-  /// Any count gives the same sums to the bit; fewer a pass means more passes.
-  int vpls_per_pass = 0;
-  std::uint32_t seed = 1;         ///< draws the VPLs of the accurate shadow maps of the thesis variant
-  lightwave_shading_settings<float> shading;  ///< thesis energy (Eq. 4.5's specular term)
-  irradiance_settings<float> irradiance;      ///< the direct light's and the flux VPLs' distance clamp
-  texel_format format = texel_format::rgba16f;
-};
-
-/// The description of every setting a user sets (frontend/core/setting.hpp).
-const std::vector<setting<lightwave_settings, lightwave_technique>>& lightwave_settings_table();
-
-/// Empty when usable, else the reason: the table's ranges, the VPL count the main pass can loop
-/// over, the shadow maps the layout allows, and the kernels' settings.
-std::string validate(const lightwave_settings& settings);
-
-/// The mesh whose vertices the flux energy's indirect light is summed at: `geometry` subdivided
-/// (subdivide_long_edges) until no edge exceeds settings.receiver_spacing times its bounding
-/// radius, the bound grown by half until at most settings.receiver_triangles triangles result.
-/// The thesis sums Eq. 4.5 at the scene's own vertices, which a diffuse bounce's falloff cannot
-/// afford: a wall's corner vertices see the floor that lights it edge-on (docs/lightwave-shadows.md).
-mesh lightwave_receivers(const mesh& geometry, const lightwave_settings& settings);
-
-/// Where the flux energy evaluates each vertex's indirect light: the mean of the centroids of the
-/// triangles that use the vertex, moved into the vertex's tangent plane. Inside a surface that is
-/// the vertex, near enough; on its border it lies inside the surface, a third of a triangle in:
-/// a wall's bottom vertex sits in the plane of the floor that lights the wall and gets none of its
-/// light (the floor is seen edge-on), while the wall just above gets the most, and interpolating
-/// from the corner would darken the whole band of triangles along it.
-std::vector<glm::vec3> lightwave_receiver_samples(const mesh& receivers);
-
-/// Bytes of a depth texture array of `maps` layers of width x height 32-bit depths: the memory
-/// figure of Eq. 5.4 / 5.5 (3840 x 2160 x 21 x 4 bytes = 664.45 MiB).
-std::uint64_t lightwave_shadow_map_bytes(int width, int height, int maps);
-
-/// Indices of the VPLs that get shadow maps in the thesis's way: `accurate_maps` distinct VPLs
-/// drawn uniformly with the seed (accurate), or the axis VPL and four at a quarter turn apart,
-/// 45 degrees off the axis, of the innermost hemisphere (integrated: "equidistant, for maximum
-/// coverage").
-std::vector<int> lightwave_shadow_vpls(lightwave_mode mode, const lightwave_settings& settings);
-
-/// A surface point the shadow casters are chosen and aimed for.
-struct lightwave_receiver_point {
-  glm::vec3 position;
-  glm::vec3 normal;
-};
-
-/// One accurate indirect shadow map of the importance variant: the group of VPLs it stands for
-/// and the VPL it is rendered from.
-struct lightwave_shadow_caster {
-  int vpl = 0;  ///< the VPL the map is rendered from (an index into the pipeline's VPLs)
-  /// The group as one light, for the share of a fragment's indirect light the map stands for:
-  /// its members' power-weighted position and normal, their spread (the RMS distance from that
-  /// position, with their own patch radii), and their total power (the channel mean of the flux,
-  /// or the thesis's 1 - attenuation).
-  glm::vec3 position{0.0f};
-  glm::vec3 normal{0.0f, 1.0f, 0.0f};
-  float radius = 0.0f;
-  float power = 0.0f;
-  std::vector<int> members;  ///< the group's VPLs (indices into the pipeline's VPLs)
-};
-
-/// What lightwave_cluster_casters needs of a VPL.
-struct lightwave_cluster_vpl {
-  glm::vec3 position{0.0f};
-  glm::vec3 normal{0.0f, 1.0f, 0.0f};
-  float importance = 0.0f;  ///< its light on the visible scene; 0: no group
-  float power = 0.0f;
-  float radius = 0.0f;
-};
-
-/// Splits the VPLs of importance > 0 into `count` groups (fewer when fewer VPLs light anything),
-/// each compact and of about equal importance: a k-d split at the importance median along the
-/// widest extent of position and normal (the normal scaled by `normal_scale`, scene units),
-/// recursively. Each group's map is rendered from its medoid: the member nearest the group's
-/// importance-weighted mean position and normal, the one point whose view stands best for the
-/// group's. Deterministic: no seed, so the shadows do not depend on one.
-std::vector<lightwave_shadow_caster> lightwave_cluster_casters(const std::vector<lightwave_cluster_vpl>& vpls, int count, float normal_scale);
-
-/// The flux VPLs the receivers sum: the samples of one ray of the layout (layout index modulo
-/// `rays`) that met one plane (unit normals within 1e-3 of each other, positions within
-/// `plane_tolerance` of the first's plane) merged into one VPL: their flux summed, at their
-/// flux-weighted mean position, with the radius of their patches' total area (sqrt of the sum
-/// of the radii squared). Beyond a few patch radii the merged VPL gives the receivers the light
-/// of its samples (the same flux from the same patch of surface); closer, the exitance of their
-/// joint patch. Samples of a ray that met different surfaces stay apart. The order: by the first
-/// sample's place in `vpls`. The capture sums per_ray times fewer VPLs. `merged_index`, when
-/// given, receives for each of `vpls` the merged VPL it went into.
-std::vector<lightwave_flux_vpl<float>> lightwave_merge_ray_samples(const std::vector<lightwave_flux_vpl<float>>& vpls, const std::vector<int>& layout_index,
-                                                                   int rays, float plane_tolerance, std::vector<int>* merged_index = nullptr);
-
-/// The view-projection of a shadow map from `eye` that holds the points of weight > 0: looking at
-/// their weighted mean direction, with the field of view of the farthest of them plus a margin
-/// (at most 160 degrees; points beyond do not vote). Looks along `fallback_direction` with
-/// `fallback_fov_degrees` when no point has weight.
-glm::mat4 lightwave_aimed_shadow_matrix(const glm::vec3& eye, const glm::vec3& fallback_direction, const std::vector<lightwave_receiver_point>& points,
-                                        const std::vector<float>& weights, float near_plane, float far_plane, float aspect, float fallback_fov_degrees);
 
 struct lightwave_frame {
   image radiance;  ///< the final image
@@ -255,10 +66,12 @@ class lightwave_pipeline final : public pipeline {
   scene_light current_light() const override { return scene_.light; }
   /// The pass times since the last render() or collect_pass_times().
   std::vector<pass_time> collect_pass_times() override { return timer_.collect(); }
-  /// The last frame's radiance, indirect shadow factor (red) and indirect radiance textures.
+  /// The last frame's radiance and indirect shadow factor (red).
   const texture_2d& output() const override { return target_.colour(0); }
   const texture_2d* indirect_shadow_output() const override;
-  const texture_2d& indirect_output() const override { return target_.colour(2); }
+  /// The indirect irradiance (-indirect.pfm, the quantity of every family): the indirect
+  /// radiance of lightwave_frame::indirect over the surface's reflectance albedo / pi.
+  const texture_2d& indirect_output() const override { return target_.colour(3); }
   bool has_indirect() const override { return technique_.mode != lightwave_mode::direct; }
   int view_draws() const override { return main_draws_; }
   std::string draw_counts() const override;
@@ -305,6 +118,15 @@ class lightwave_pipeline final : public pipeline {
   /// The flux energy's VPLs: each ray of the cone looked up in a map of what the light sees.
   void build_flux_vpls(const glm::mat4& light_view_projection);
   void build_shadow_maps();
+  void draw_shadow_layers();
+  void set_caster_uniforms(const lightwave_vpl_view& view);
+  // The constructor's steps.
+  shader_defines shader_defines_of() const;
+  void load_main_programs(const shader_library& shaders, const shader_defines& defines);
+  void set_up_receivers(const shader_library& shaders, const scene& source);
+  void set_up_vpl_blocks(const shader_library& shaders);
+  void set_up_indirect_buffer(const shader_library& shaders, const scene& source, const shader_defines& defines);
+  void allocate_shadow_maps();
   /// Thesis energy: the vertex stage's indirect colour of every vertex of `vertices` into `buffer` (transform feedback).
   void capture_into(GLuint buffer, const mesh_buffers& vertices);
   /// Flux energy: every receiver's indirect light (lightwave_capture.frag) into indirect_buffer_.
@@ -382,3 +204,4 @@ class lightwave_pipeline final : public pipeline {
 };
 
 }  // namespace vplkit
+

@@ -14,6 +14,7 @@
 #include "frontend/core/error.hpp"
 #include <vplkit/gl/uniform_declarations.hpp>
 #include "frontend/techniques/registry.hpp"
+#include "frontend/techniques/final_gather/final_gather_pipeline.hpp"
 #include <vplkit/parity/parity.hpp>
 
 using namespace vplkit;
@@ -160,6 +161,57 @@ TEST_CASE("every GLSL uniform a setting feeds is declared by the shader it names
   CHECK(checked > 30);
 }
 
+namespace {
+
+// Values to try for a setting other than `value`: its range's closed ends, its allowed values or
+// choices, and the value doubled, halved, plus and minus one.
+std::vector<std::string> other_values(const setting_info& info, const std::string& value) {
+  std::vector<std::string> candidates;
+  if (info.type == setting_type::choice) return info.choices;
+  for (int allowed : info.allowed) candidates.push_back(std::to_string(allowed));
+  const std::optional<double> number = info.number(value);
+  if (!number) return candidates;
+  const auto text = [&](double x) { return info.type == setting_type::integer ? std::to_string(static_cast<long long>(std::llround(x))) : format_real(x); };
+  if (std::isfinite(info.range.low) && !info.range.low_open) candidates.push_back(text(info.range.low));
+  if (std::isfinite(info.range.high) && !info.range.high_open) candidates.push_back(text(info.range.high));
+  for (double x : {*number * 2.0, *number * 0.5, *number + 1.0, *number - 1.0, *number + 0.1, *number - 0.1}) candidates.push_back(text(x));
+  return candidates;
+}
+
+}  // namespace
+
+TEST_CASE("every kernel-struct member a setting feeds moves with the setting, as the frame derives it") {
+  // The member path of setting::feeds names the uniform (checked above against the shaders);
+  // here the binding is real: a technique that reads the setting, given another usable value of
+  // it, derives another value of every member the setting claims to feed.
+  int checked = 0;
+  for (const technique_family& family : technique_families()) {
+    for (const setting_info* info : family.make_settings(family.techniques.front().name)->settings()) {
+      for (const std::string& technique : family.make_settings(family.techniques.front().name)->readers(info->name)) {
+        const std::unique_ptr<technique_settings> settings = family.make_settings(technique);
+        const std::vector<double> before = settings->fed_values(info->name);
+        if (before.empty()) continue;
+        CAPTURE(technique);
+        CAPTURE(info->name);
+        bool moved = false;
+        for (const std::string& candidate : other_values(*info, settings->get(info->name))) {
+          const std::unique_ptr<technique_settings> changed = settings->clone();
+          if (!changed->set(info->name, candidate).empty() || !changed->validate().empty() || changed->get(info->name) == settings->get(info->name)) continue;
+          CAPTURE(candidate);
+          const std::vector<double> after = changed->fed_values(info->name);
+          REQUIRE(after.size() == before.size());
+          for (std::size_t k = 0; k < after.size(); ++k) CHECK(after[k] != before[k]);
+          moved = true;
+          break;
+        }
+        CHECK(moved);  // some other value was usable
+        ++checked;
+      }
+    }
+  }
+  CHECK(checked > 40);
+}
+
 TEST_CASE("every technique's pipeline takes cameras and lights the same way and redraws only what a move invalidated") {
   const shader_library& shaders = parity::test_shaders();
   for (const technique_family& family : technique_families()) {
@@ -202,4 +254,64 @@ TEST_CASE("every technique's pipeline takes cameras and lights the same way and 
       CHECK(drawn->describe().find(technique.name) != std::string::npos);
     }
   }
+}
+
+namespace {
+
+double luminance_sum(const image& picture) {
+  double sum = 0.0;
+  for (const glm::vec4& texel : picture.texels) sum += 0.2126 * texel.r + 0.7152 * texel.g + 0.0722 * texel.b;
+  return sum;
+}
+
+// The sum of pipeline::indirect_output(), what `vplkit render` writes to -indirect.pfm.
+double indirect_sum(const technique_family& family, const std::string& technique, const scene& source) {
+  std::unique_ptr<technique_settings> settings = family.make_settings(technique);
+  REQUIRE(settings->set("size", "32x24") == "");
+  REQUIRE(settings->set("format", "rgba32f") == "");
+  for (const auto& [name, value] : std::map<std::string, std::string>{{"rsm-size", "64"}, {"shadow-map-scale", "1"}})
+    if (settings->find(name)) REQUIRE(settings->set(name, value) == "");
+  const std::unique_ptr<pipeline> drawn = family.make_pipeline(parity::test_shaders(), &source, *settings);
+  drawn->draw();
+  return luminance_sum(drawn->indirect_output().read_image());
+}
+
+}  // namespace
+
+TEST_CASE("-indirect.pfm is the indirect irradiance in every family: one bounce is linear in the reflector's albedo, not in the receiver's") {
+  // Halving every albedo halves the irradiance a bounce brings (the reflected flux halves) but
+  // quarters the radiance the receivers reflect of it: a family that wrote radiance would give 1/4.
+  // Halving is exact in floating point, so the ratio is 1/2 up to the sums' rounding.
+  for (const auto& [family_name, technique] : std::vector<std::pair<std::string, std::string>>{{"rsm", "rsm-radial"}, {"lightwave", "lightwave-unshadowed"}}) {
+    CAPTURE(technique);
+    const technique_family& family = family_of(technique);
+    CHECK(family.name == family_name);
+    scene source = built_in_scene("cornell-box");
+    const double full = indirect_sum(family, technique, source);
+    REQUIRE(full > 0.0);
+    for (vertex& v : source.geometry.vertices) v.albedo *= 0.5f;
+    CHECK(indirect_sum(family, technique, source) / full == doctest::Approx(0.5).epsilon(1e-4));
+  }
+  // Final gathering: the object's own albedo changes its radiance, not the irradiance it gathers.
+  final_gather_scene room = make_final_gather_scene("sphere", glm::vec3(0.0f, 0.7f, 0.0f), 0.5f);
+  final_gather_settings settings;
+  settings.width = settings.height = 24;
+  settings.face_size = 16;
+  // The irradiance over the image, and the radiance of the object's pixels (those it gathers at).
+  const auto gathered = [&] {
+    final_gather_pipeline drawn(parity::test_shaders(), room, settings);
+    const final_gather_frame frame = drawn.render();
+    double object_radiance = 0.0;
+    for (std::size_t i = 0; i < frame.indirect.texels.size(); ++i)
+      if (frame.indirect.texels[i].r + frame.indirect.texels[i].g + frame.indirect.texels[i].b > 0.0f)
+        object_radiance += 0.2126 * frame.radiance.texels[i].r + 0.7152 * frame.radiance.texels[i].g + 0.0722 * frame.radiance.texels[i].b;
+    return std::make_pair(luminance_sum(frame.indirect), object_radiance);
+  };
+  const auto [irradiance, radiance] = gathered();
+  REQUIRE(irradiance > 0.0);
+  for (mesh* part : {&room.object, &room.local_object})
+    for (vertex& v : part->vertices) v.albedo *= 0.5f;
+  const auto [darker_irradiance, darker_radiance] = gathered();
+  CHECK(darker_irradiance == doctest::Approx(irradiance).epsilon(1e-6));
+  CHECK(darker_radiance / radiance == doctest::Approx(0.5).epsilon(1e-4));  // what a radiance output would have halved
 }
