@@ -70,12 +70,12 @@ struct settings_description<voxel_grid_settings<T>> {
   static constexpr const char* name = "voxel_grid_settings";
   static constexpr bool glsl_twin = false;  // the build runs on the CPU; the shader reads voxel_grid_shape
   static constexpr auto fields() {
-    return std::make_tuple(field(&S::resolution, "resolution", closed_range(1, voxel_grid_max_resolution), "cells",
+    return std::make_tuple(schema::field(&S::resolution, "resolution", schema::closed_range(1, voxel_grid_max_resolution), "cells",
                                  "voxel grid cells along the scene's longest side (fewer when the memory bound needs it)"),
-                           field(&S::max_megabytes, "max_megabytes", closed_range(0.001, 1024), "MiB",
+                           schema::field(&S::max_megabytes, "max_megabytes", schema::closed_range(0.001, 1024), "MiB",
                                  "memory bound of the voxel grid: its cells grow until the packed grid fits"));
   }
-  static setting_problem rules(const S& settings) { return no_rules(settings); }
+  static setting_problem rules(const S& settings) { return schema::no_rules(settings); }
 };
 
 /// The march's offsets. GLSL twin: struct voxel_march_settings.
@@ -91,12 +91,12 @@ struct settings_description<voxel_march_settings<T>> {
   static constexpr const char* name = "voxel_march_settings";
   static constexpr bool glsl_twin = true;
   static constexpr auto fields() {
-    return std::make_tuple(field(&S::start_offset, "start_offset", closed_range(0, 16), "cells",
+    return std::make_tuple(schema::field(&S::start_offset, "start_offset", schema::closed_range(0, 16), "cells",
                                  "the voxel march starts this far along the receiver's normal (> 1.74: its own surface does not occlude it)"),
-                           field(&S::end_offset, "end_offset", closed_range(0, 16), "cells",
+                           schema::field(&S::end_offset, "end_offset", schema::closed_range(0, 16), "cells",
                                  "the voxel march ends this far along the sample's normal (> 1.74: its own surface does not occlude it)"));
   }
-  static setting_problem rules(const S& settings) { return no_rules(settings); }
+  static setting_problem rules(const S& settings) { return schema::no_rules(settings); }
 };
 
 /// Where the grid lies: cells of side cell_size from origin (world space). GLSL twin: struct
@@ -114,11 +114,11 @@ struct settings_description<voxel_grid_shape<T>> {
   static constexpr const char* name = "voxel_grid_shape";
   static constexpr bool glsl_twin = true;
   static constexpr auto fields() {
-    return std::make_tuple(field(&S::origin, "origin", any_finite(), "scene units", "the voxel grid's lowest corner"),
-                           field(&S::cell_size, "cell_size", above(0.0), "scene units", "side of one voxel"),
-                           field(&S::cells, "cells", closed_range(1, voxel_grid_max_texture_side), "", "voxels per axis"));
+    return std::make_tuple(schema::field(&S::origin, "origin", schema::any_finite(), "scene units", "the voxel grid's lowest corner"),
+                           schema::field(&S::cell_size, "cell_size", schema::above(0.0), "scene units", "side of one voxel"),
+                           schema::field(&S::cells, "cells", schema::closed_range(1, voxel_grid_max_texture_side), "", "voxels per axis"));
   }
-  static setting_problem rules(const S& settings) { return no_rules(settings); }
+  static setting_problem rules(const S& settings) { return schema::no_rules(settings); }
 };
 
 /// The packed texture's size in texels for `cells`.

@@ -104,7 +104,7 @@ TEST_CASE("who reads a setting is its predicate over the family's techniques") {
   const std::unique_ptr<technique_settings> settings = rsm.make_settings("rsm-alg6");
   CHECK(settings->readers("slots") == std::vector<std::string>{"rsm-alg2", "rsm-alg3", "rsm-alg6", "rsm-alg6-ray"});
   CHECK(settings->readers("disk-samples") == std::vector<std::string>{"rsm-original"});
-  CHECK(settings->readers("paths") == std::vector<std::string>{"rsm-radial", "rsm-alg2", "rsm-alg3", "rsm-alg6", "rsm-alg6-ray"});
+  CHECK(settings->readers("paths") == std::vector<std::string>{"rsm-radial", "rsm-alg2", "rsm-alg3", "rsm-alg6", "rsm-alg6-ray", "rsm-voxel"});
   CHECK(settings->readers("rsm-size").size() == rsm.techniques.size());
   CHECK_FALSE(settings->reads("slots", "rsm-radial"));
   const std::unique_ptr<technique_settings> light_wave = family_of("lightwave-faked").make_settings("lightwave-faked");
