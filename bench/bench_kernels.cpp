@@ -1,7 +1,10 @@
 // Kernel micro-benchmarks (Google Benchmark): Eq. 3.2 throughput in float and double, the cost
-// of Alg. 3 against Alg. 6 over slots x samples per path, and the whole gather with and without
-// visibility.
+// of Alg. 3 against Alg. 6 over slots x samples per path, the whole gather with and without
+// visibility, and the form factors (the polygon's fast and exact forms against the point's).
+// A sweep is a filter (a regular expression over the names), e.g.
 //   build/bench/vplkit_bench --benchmark_filter=alg
+//   build/bench/vplkit_bench --benchmark_filter='form_factor_throughput|final_gather_cost' --benchmark_repetitions=3
+// (docs/performance.md; the GLSL twins: build/bench/vplkit_glsl_bench).
 #include <benchmark/benchmark.h>
 
 #include <random>
@@ -135,6 +138,21 @@ void polygon_form_factor_throughput(benchmark::State& state) {
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * 1024);
 }
 BENCHMARK(polygon_form_factor_throughput);
+
+void polygon_form_factor_exact_throughput(benchmark::State& state) {
+  const form_factor_inputs in;
+  for (auto _ : state) {
+    float sum = 0.0f;
+    for (std::size_t i = 0; i < 1024; ++i) {
+      const glm::vec3 c = glm::vec3(0, 0, 1) + in.offsets[i];
+      sum += vplkit::polygon_form_factor_exact(glm::vec3(0.0f), in.normals[i], c, c + glm::vec3(0.3f, 0, 0), c + glm::vec3(0.3f, 0.3f, 0),
+                                               c + glm::vec3(0, 0.3f, 0));
+    }
+    benchmark::DoNotOptimize(sum);
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * 1024);
+}
+BENCHMARK(polygon_form_factor_exact_throughput);
 
 void point_form_factor_throughput(benchmark::State& state) {
   const form_factor_inputs in;

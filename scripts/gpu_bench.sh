@@ -48,4 +48,23 @@ for section in "${sections[@]}"; do
   build/vplkit sweep --spec bench/lightwave-tables.sweep --section "$section" "${args[@]}" --out "$out/lightwave-tables"
 done
 build/vplkit sweep --spec bench/finalgather-tables.sweep "${final[@]}" --out "$out/finalgather-tables"
-echo "gpu_bench.sh: the tables are in $out/ (a folder per section, each with sweep.md, sweep.csv and plots)"
+# Issue 42's ratios (docs/performance.md), each from one interleaved run: the post filter's share of
+# the frame (atrium 512^2 thesis configuration, Cornell box 256^2) and polygon / point final
+# gathering, whole frame (sphere 512^2, M = 4).
+column() {  # column NAME FILE ROW: the value of column NAME in data row ROW (1-based) of a sweep.csv
+  awk -F, -v name="$1" -v row="$3" 'NR == 1 { for (i = 1; i <= NF; ++i) if ($i == name) c = i } NR == row + 1 { print $c }' "$2"
+}
+build/vplkit sweep --technique rsm-alg6 --scene atrium --size 512 --rsm-size 512 --preset thesis --vary seed=0 --out "$out/ratios/post-atrium"
+build/vplkit sweep --technique rsm-alg6 --scene cornell-box --size 256 --rsm-size 256 --vary seed=0 --out "$out/ratios/post-cornell"
+build/vplkit sweep --technique finalgather-polygon --size 512 --vary technique=finalgather-polygon,finalgather-point --out "$out/ratios/final-gather"
+{
+  for scene in atrium cornell; do
+    csv="$out/ratios/post-$scene/sweep.csv"
+    awk -v post="$(column post_processing_ms "$csv" 1)" -v frame="$(column frame_ms "$csv" 1)" -v scene="$scene" \
+      'BEGIN { printf "post processing share of the frame, %s: %.3f (goal <= 0.15)\n", scene, post / frame }'
+  done
+  csv="$out/ratios/final-gather/sweep.csv"
+  awk -v polygon="$(column frame_ms "$csv" 1)" -v point="$(column frame_ms "$csv" 2)" \
+    'BEGIN { printf "final gathering polygon / point, whole frame: %.3f (goal <= 1.5)\n", polygon / point }'
+} | tee "$out/ratios.txt"
+echo "gpu_bench.sh: the tables are in $out/ (a folder per section, each with sweep.md, sweep.csv and plots), issue 42's ratios in $out/ratios.txt"

@@ -44,7 +44,7 @@ struct sweep_arguments {
   double max_noise_percent = 2.0;
   int interleave = 8;
   long long max_configurations = 100000;
-  std::string out, spec, section;
+  std::string out, spec, section, shard;
   bool plan_only = false;
 };
 
@@ -80,6 +80,9 @@ void register_sweep_options(CLI::App& app, sweep_arguments& a, bool top_level) {
   add_setting_options(app, a.given);
   app.add_option("--out", a.out, "the folder for sweep.csv, sweep.md and the plots (with --spec: a folder per section)");
   if (top_level) {
+    app.add_option("--shard", a.shard,
+                   "K/N: measure only shard K of N of the rows (the same deterministic split on every machine); `vplkit sweep merge` combines the "
+                   "shards' folders");
     app.add_option("--spec", a.spec, "a sweep specification: the arguments of one sweep per [section] (bench/*.sweep)");
     app.add_option("--section", a.section, "with --spec: run only this section");
     app.add_flag("--plan", a.plan_only, "check every sweep and print its configurations, then stop (nothing is drawn or written)");
@@ -114,6 +117,19 @@ sweep_axis parse_axis(const std::string& text) {
   return axis;
 }
 
+// "K/N" with 1 <= K <= N.
+std::pair<int, int> parse_shard(const std::string& text) {
+  const std::size_t slash = text.find('/');
+  const auto whole = [](const std::string& digits) {
+    if (digits.empty() || digits.size() > 6 || !std::all_of(digits.begin(), digits.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; }))
+      return 0;
+    return std::stoi(digits);
+  };
+  const int k = slash == std::string::npos ? 0 : whole(text.substr(0, slash)), n = slash == std::string::npos ? 0 : whole(text.substr(slash + 1));
+  if (k < 1 || n < 1 || k > n) throw usage_error("--shard " + text + ": expected K/N, shard K of N with 1 <= K <= N (e.g. --shard 2/4)");
+  return {k, n};
+}
+
 sweep_request make_request(const sweep_arguments& a, const std::string& title, const std::string& command, const fs::path& out) {
   a.reference_scope.require_read_by(a.reference, "--reference");
   sweep_request request;
@@ -140,6 +156,33 @@ sweep_request make_request(const sweep_arguments& a, const std::string& title, c
   request.group = a.interleave;
   request.max_configurations = static_cast<std::uint64_t>(a.max_configurations);
   request.out = out;
+  return request;
+}
+
+// The words of the options given on `command`, as name-value pairs, without those named in `left_out`.
+std::vector<std::string> option_words(const CLI::App& command, const std::vector<std::string>& left_out) {
+  std::vector<std::string> words;
+  for (const CLI::Option* option : command.get_options()) {
+    if (option->count() == 0 || std::find(left_out.begin(), left_out.end(), option->get_name()) != left_out.end()) continue;
+    for (const std::string& value : option->results()) words.insert(words.end(), {option->get_name(), value});
+  }
+  return words;
+}
+
+// The request and plan that a sweep's words make (the words of one section, or of a shard's record).
+sweep_request parse_request(const std::vector<std::string>& words, const std::string& where, const std::string& title, const std::string& command, const fs::path& out) {
+  CLI::App app{"vplkit sweep (" + where + ")"};
+  app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  sweep_arguments arguments;
+  register_sweep_options(app, arguments, false);
+  std::vector<std::string> reversed(words.rbegin(), words.rend());
+  try {
+    app.parse(reversed);
+  } catch (const CLI::ParseError& failure) {
+    throw usage_error(where + ": " + failure.what());
+  }
+  sweep_request request = make_request(arguments, title, command, out);
+  request.arguments = words;
   return request;
 }
 
@@ -271,18 +314,16 @@ int run(const session& io, CLI::App& command, const sweep_arguments& top) {
   std::vector<std::pair<sweep_request, sweep_plan>> sweeps;
   if (top.spec.empty()) {
     if (!top.section.empty()) throw usage_error("--section needs --spec");
-    std::vector<std::string> words;
-    for (const CLI::Option* option : command.get_options())
-      if (option->count() > 0 && option->get_name() != "--help" && option->get_name() != "--plan")
-        for (const std::string& value : option->results()) words.insert(words.end(), {option->get_name(), value});
+    const std::vector<std::string> words = option_words(command, {"--help", "--plan", "--shard"});
     sweeps.emplace_back(make_request(top, "", shell_words(words), top.out), sweep_plan{});
+    sweeps.back().first.arguments = option_words(command, {"--help", "--plan", "--shard", "--out"});
   } else {
     // The options given next to --spec, as words added to every section's.
     std::vector<std::string> overrides;
     bool scenes_given = false;
     for (const CLI::Option* option : command.get_options()) {
       const std::string name = option->get_name();
-      if (option->count() == 0 || name == "--spec" || name == "--section" || name == "--out" || name == "--plan" || name == "--help") continue;
+      if (option->count() == 0 || name == "--spec" || name == "--section" || name == "--out" || name == "--plan" || name == "--help" || name == "--shard") continue;
       scenes_given = scenes_given || name == "--scene";
       for (const std::string& value : option->results()) overrides.insert(overrides.end(), {name, value});
     }
@@ -299,27 +340,25 @@ int run(const session& io, CLI::App& command, const sweep_arguments& top) {
         words.push_back(section.words[i]);
       }
       words.insert(words.end(), overrides.begin(), overrides.end());
-      CLI::App app{"vplkit sweep (" + top.spec + (section.name.empty() ? "" : ", [" + section.name + "]") + ")"};
-      app.option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
-      sweep_arguments arguments;
-      register_sweep_options(app, arguments, false);
-      std::vector<std::string> reversed(words.rbegin(), words.rend());
-      try {
-        app.parse(reversed);
-      } catch (const CLI::ParseError& failure) {
-        throw usage_error(top.spec + (section.name.empty() ? "" : " [" + section.name + "]") + ": " + failure.what());
-      }
       const fs::path out = section.name.empty() ? fs::path(top.out) : fs::path(top.out) / folder_name(section.name);
       // The command that runs this section again, as sweep.md quotes it.
       std::vector<std::string> command_words = {"--spec", top.spec};
       if (!section.name.empty()) command_words.insert(command_words.end(), {"--section", section.name});
       command_words.insert(command_words.end(), overrides.begin(), overrides.end());
       command_words.insert(command_words.end(), {"--out", top.out});
-      sweeps.emplace_back(make_request(arguments, section.name, shell_words(command_words), out), sweep_plan{});
+      sweeps.emplace_back(parse_request(words, top.spec + (section.name.empty() ? "" : " [" + section.name + "]"), section.name, shell_words(command_words), out),
+                          sweep_plan{});
     }
     if (!found) throw usage_error("--section " + top.section + ": " + top.spec + " has no such section");
   }
   // Every sweep planned and checked before the first runs.
+  if (!top.shard.empty()) {
+    const auto [k, n] = parse_shard(top.shard);
+    for (auto& [request, plan] : sweeps) {
+      request.shard = k;
+      request.shards = n;
+    }
+  }
   for (auto& [request, plan] : sweeps) {
     try {
       plan = plan_sweep(request);
@@ -347,15 +386,66 @@ int run(const session& io, CLI::App& command, const sweep_arguments& top) {
   return 0;
 }
 
+struct merge_arguments {
+  std::vector<std::string> folders;
+  std::string out;
+};
+
+// vplkit sweep merge DIR... --out OUT: the shards' records planned again (one sweep's, every
+// shard once), their rows in an unsharded run's order, written as one sweep.
+int run_merge(const session& io, const CLI::App& sweep, const merge_arguments& m) {
+  const std::vector<std::string> given = option_words(sweep, {"--help"});
+  if (!given.empty()) throw usage_error("sweep merge: " + given.front() + " is an option of a sweep, not of merge (merge reads each shard's sweep-shard.txt)");
+  std::vector<fs::path> folders;
+  std::vector<sweep_record> records;
+  for (const std::string& folder : m.folders) {
+    if (same_file(folder, m.out)) throw usage_error("--out " + m.out + " is the shard folder " + folder + ": merge into a new folder");
+    try {
+      records.push_back(read_sweep_record(folder));
+    } catch (const error& failure) {
+      throw usage_error(failure.what());
+    }
+    folders.emplace_back(folder);
+    if (records.back().arguments != records.front().arguments)
+      throw usage_error(folder + " holds a shard of another sweep than " + m.folders.front() + " (their sweep-shard.txt name other arguments): merge the shards of one sweep");
+  }
+  std::error_code code;
+  if (fs::exists(fs::path(m.out) / "sweep.csv", code)) throw usage_error("--out " + m.out + " already holds a sweep.csv: merge into a new folder");
+  std::vector<std::string> command_words = records.front().arguments;
+  command_words.insert(command_words.end(), {"--out", m.out});
+  const sweep_request request = parse_request(records.front().arguments, folders.front().string() + "/sweep-shard.txt", records.front().title, shell_words(command_words), m.out);
+  sweep_plan plan;
+  try {
+    plan = plan_sweep(request);
+  } catch (const usage_error& failure) {
+    throw usage_error(folders.front().string() + "/sweep-shard.txt: " + failure.what());
+  }
+  if (io.dry_run) return 0;
+  const folder_lock lock = lock_output(request);
+  merge_sweep(io, request, plan, folders, records);
+  return 0;
+}
+
 }  // namespace
 
 command add_sweep_command(CLI::App& app) {
   auto state = std::make_shared<sweep_arguments>();
+  auto merging = std::make_shared<merge_arguments>();
   CLI::App* sweep = app.add_subcommand("sweep",
                                        "time and measure a grid of settings of one technique (--vary NAME=v1,v2,...) on one or more scenes against a "
-                                       "reference: DIR/sweep.csv, sweep.md and plots; resumable");
+                                       "reference: DIR/sweep.csv, sweep.md and plots; resumable; --shard K/N and `sweep merge` spread it over machines");
   register_sweep_options(*sweep, *state, true);
-  return {sweep, [state, sweep](const session& io) { return run(io, *sweep, *state); }, restorer(state)};
+  CLI::App* merge = sweep->add_subcommand("merge", "combine the folders of a sweep's shards (--shard K/N) into one sweep.csv, sweep.md and plots, as an "
+                                                   "unsharded run writes them (up to the timing)");
+  merge->add_option("folders", merging->folders, "the shards' folders (every shard of one sweep, once)")->required();
+  merge->add_option("--out", merging->out, "the folder for the merged sweep.csv, sweep.md and plots (new)")->required();
+  const auto reset_state = restorer(state), reset_merging = restorer(merging);
+  return {sweep,
+          [state, merging, sweep, merge](const session& io) { return merge->parsed() ? run_merge(io, *sweep, *merging) : run(io, *sweep, *state); },
+          [reset_state, reset_merging] {
+            reset_state();
+            reset_merging();
+          }};
 }
 
 }  // namespace vplkit::cli

@@ -3,32 +3,27 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <functional>
+#include <iostream>
 #include <iomanip>
 #include <limits>
 #include <map>
 #include <set>
 #include <sstream>
 
-#include "frontend/cli/sweep_report.hpp"
+#include "frontend/cli/sweep_steps.hpp"
 #include "frontend/core/error.hpp"
-#include "frontend/core/text.hpp"
 #include "frontend/core/files.hpp"
 #include "frontend/core/parallel.hpp"
+#include "frontend/core/text.hpp"
 #include "frontend/gl/context.hpp"
-
-#include <vplkit/lightwave.hpp>
 
 namespace vplkit::cli {
 
 namespace fs = std::filesystem;
+using namespace sweep_steps;
 
 namespace {
-
-std::string joined(const std::vector<std::string>& items, const std::string& separator) {
-  std::string all;
-  for (const std::string& item : items) all += (all.empty() ? "" : separator) + item;
-  return all;
-}
 
 // Sets `values` (name, text) on `settings`: presets first, then the table's order; a setting the
 // technique does not read is skipped. "" on success, else "<name> <why>".
@@ -42,35 +37,6 @@ std::string apply_values(technique_settings& settings, const std::vector<std::pa
   return {};
 }
 
-// The settings in effect as one line: the configuration's identity.
-std::string identity(const technique_settings& settings) {
-  std::string text = "technique=" + settings.technique();
-  for (const auto& [name, value] : settings_in_effect(settings)) text += ";" + name + "=" + value;
-  return text;
-}
-
-// FNV-1a, 64 bits, as hex: the key of a row (configuration, scene, reference, seeds).
-std::string hashed(const std::string& text) {
-  std::uint64_t hash = 1469598103934665603ull;
-  for (char c : text) {
-    hash ^= static_cast<unsigned char>(c);
-    hash *= 1099511628211ull;
-  }
-  std::ostringstream out;
-  out << std::hex << std::setw(16) << std::setfill('0') << hash;
-  return out.str();
-}
-
-std::string slug(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    if (std::isalnum(static_cast<unsigned char>(c))) out += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    else if (!out.empty() && out.back() != '_') out += '_';
-  }
-  while (!out.empty() && out.back() == '_') out.pop_back();
-  return out;
-}
-
 std::string duration(double seconds) {
   const long whole = std::lround(std::max(0.0, seconds));
   std::ostringstream out;
@@ -78,24 +44,6 @@ std::string duration(double seconds) {
   else if (whole >= 60) out << whole / 60 << " min " << whole % 60 << " s";
   else out << whole << " s";
   return out.str();
-}
-
-std::string number_text(double value) { return std::isfinite(value) ? format_real(value) : std::string(); }
-
-struct statistics {
-  double mean = 0.0, sd = 0.0;
-};
-
-statistics of(const std::vector<double>& values) {
-  statistics s;
-  if (values.empty()) return s;
-  for (double v : values) s.mean += v / static_cast<double>(values.size());
-  if (values.size() > 1) {
-    double squares = 0.0;
-    for (double v : values) squares += (v - s.mean) * (v - s.mean);
-    s.sd = std::sqrt(squares / static_cast<double>(values.size() - 1));
-  }
-  return s;
 }
 
 // Who reads `name`, when no technique of the grid does: the message of a usage error.
@@ -254,443 +202,282 @@ sweep_plan plan_sweep(const sweep_request& request) {
 
 namespace {
 
-// What one configuration's timing collected.
-struct timing {
-  std::vector<double> frames;                         // total of the passes, per round
-  std::map<std::string, std::vector<double>> passes;  // per pass, per round
-  std::vector<std::string> pass_order;
-  double noise() const {
-    const statistics s = of(frames);
-    return frames.size() > 1 && s.mean > 0.0 ? s.sd / std::sqrt(static_cast<double>(frames.size())) / s.mean : 1.0;
+// The progress line: how much of the work is done, and an estimate of what is left.
+struct progress_report {
+  const session& io;
+  double total = 0.0, done = 0.0;
+  std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
+
+  void operator()(const std::string& what) const {
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    io.out << "sweep: " << fixed(total > 0.0 ? 100.0 * done / total : 100.0, 0) << " % " << what << "; " << duration(elapsed) << " so far";
+    if (done > 0.0 && done < total) io.out << ", about " << duration(elapsed / done * (total - done)) << " left";
+    io.out << std::endl;
   }
 };
 
-const std::vector<std::string> head_columns = {"scene", "technique"};
-// "undefined": why a row's relative numbers are "undefined" (a black reference), when one is.
-const std::vector<std::string> tail_columns = {"undefined", "receivers", "seeds", "is_base", "rank", "pareto", "key"};
+using pipeline_builder = std::function<std::unique_ptr<pipeline>(const technique_settings&)>;
 
-// The columns in their order: scene, technique, the varied settings, the timing, the passes, the
-// quality numbers, then the bookkeeping.
-void order_columns(sweep_table& table, const std::vector<std::string>& axis_columns) {
-  std::vector<std::string> ordered = head_columns;
-  for (const std::string& name : axis_columns) ordered.push_back(name);
-  for (const char* name : {"frame_ms", "frame_ms_spread", "frame_ms_noise", "timing_rounds", "noise_met", "timing"})
-    if (std::find(table.columns.begin(), table.columns.end(), name) != table.columns.end()) ordered.push_back(name);
-  for (const std::string& name : table.columns)
-    if (std::find(ordered.begin(), ordered.end(), name) == ordered.end() && std::find(tail_columns.begin(), tail_columns.end(), name) == tail_columns.end() &&
-        name.size() > 3 && name.compare(name.size() - 3, 3, "_ms") == 0)
-      ordered.push_back(name);
-  for (const std::string& name : table.columns)
-    if (std::find(ordered.begin(), ordered.end(), name) == ordered.end() && std::find(tail_columns.begin(), tail_columns.end(), name) == tail_columns.end())
-      ordered.push_back(name);
-  for (const std::string& name : tail_columns)
-    if (std::find(table.columns.begin(), table.columns.end(), name) != table.columns.end()) ordered.push_back(name);
-  table.columns = ordered;
+// measure: the quality of one configuration at each seed, the timed pipeline drawing seed 1 (it
+// was built with it) and a pipeline of its own each other seed.
+seed_qualities measure_seeds(scene_references& references, pipeline& timed, const technique_settings& first_seed, int seeds, const pipeline_builder& build,
+                             progress_report& progress) {
+  seed_qualities measured;
+  for (int seed = 1; seed <= seeds; ++seed) {
+    std::unique_ptr<pipeline> other;
+    pipeline* drawn = &timed;
+    std::unique_ptr<technique_settings> settings = first_seed.clone();
+    if (seed > 1) {
+      settings->set("seed", std::to_string(seed));
+      other = build(*settings);
+      drawn = other.get();
+    }
+    drawn->draw();
+    drawn->collect_pass_times();
+    frame_quality quality = references.measure(*drawn, *settings);
+    if (!quality.raw.texels.empty()) measured.raws.push_back(std::move(quality.raw));
+    measured.seeds.push_back(std::move(quality));
+    progress.done += 1.0;
+  }
+  return measured;
 }
 
-// [LW] Table 5.10's rank (Eq. 5.3): the frames per second a configuration gains over the base
-// configuration's, divided by the % of similarity it loses, where the base is one of the rows.
-void rank_against_base(sweep_table& table) {
-  if (std::find(table.columns.begin(), table.columns.end(), "is_base") == table.columns.end()) return;
-  table.add_column("rank");
-  // Each scene's base row first (the last one where a resumed CSV holds several), then the ranks:
-  // one pass each, not a search of every row per row.
-  std::map<std::string, double> base_ms;
-  for (auto& row : table.rows)
-    if (row["is_base"] == "1")
-      if (const std::optional<double> ms = sweep_table::number(row, "frame_ms")) base_ms[row["scene"]] = *ms;
-  for (auto& row : table.rows) {
-    row["rank"] = "";
-    const std::optional<double> ms = sweep_table::number(row, "frame_ms"), similarity = sweep_table::number(row, "similarity");
-    const auto base = base_ms.find(row["scene"]);
-    if (!ms || !similarity || *similarity >= 100.0 || row["is_base"] == "1" || base == base_ms.end()) continue;
-    row["rank"] = format_real(lightwave_rank(1000.0 / *ms - 1000.0 / base->second, *similarity));
+// The base configuration of --reference base at every seed the rows are measured with (once
+// where it reads none), for the scene's references.
+void draw_base(const sweep_keys& keys, scene_references& references, const pipeline_builder& build) {
+  const int base_seeds = keys.seeds_of(*keys.plan.base);
+  for (int seed = 1; seed <= base_seeds; ++seed) {
+    std::unique_ptr<technique_settings> seeded_base = keys.plan.base->clone();
+    if (base_seeds > 1) seeded_base->set("seed", std::to_string(seed));
+    const std::unique_ptr<pipeline> base = build(*seeded_base);
+    base->draw();
+    references.set_base(base->output().read_image(), seeded_base->reads("seed") ? seeded_base->get("seed") : std::string());
+    base->collect_pass_times();
   }
 }
 
-void write_table(const fs::path& path, sweep_table& table, const std::vector<std::string>& axis_columns) {
-  mark_pareto(table, "frame_ms", "rel_rmse");
-  rank_against_base(table);
-  order_columns(table, axis_columns);
-  const std::string text = sweep_csv(table);
-  write_bytes_atomically(path, std::vector<std::uint8_t>(text.begin(), text.end()));
+sweep_record record_of(const sweep_request& request, const sweep_context& context) {
+  return {request.arguments, request.title, request.command, request.shard, request.shards, context.device, context.method, context.coverage};
 }
 
-std::string cell(const std::map<std::string, std::string>& row, const std::string& column) {
-  const auto found = row.find(column);
-  return found == row.end() ? std::string() : found->second;
+// The warnings of the rows: the reference's noise (on stderr too), machines that differ.
+std::vector<std::string> row_warnings(const sweep_table& table) {
+  std::vector<std::string> warnings;
+  if (const std::string noise = noise_warning(table); !noise.empty()) warnings.push_back(noise);
+  std::set<std::string> machines;
+  for (const auto& row : table.rows)
+    if (row.count("machine") && !row.at("machine").empty()) machines.insert(row.at("machine"));
+  if (machines.size() > 1)
+    warnings.push_back("the rows were timed on " + std::to_string(machines.size()) + " machines (" + joined({machines.begin(), machines.end()}, "; ") +
+                       "): frame_ms compares only within one machine (the column machine), and the Pareto front and ranks mix them");
+  return warnings;
 }
 
-// A plot of the sweep: DIR/<name>.png, or why gnuplot did not draw it.
-struct drawn_plot {
-  std::string name, caption, failure;
+void finish(const session& io, const sweep_request& request, const sweep_plan& plan, sweep_table& table, sweep_context& context) {
+  write_table(request.out / "sweep.csv", table, plan);
+  context.warnings = row_warnings(table);
+  for (const std::string& warning : context.warnings) std::cerr << "sweep: warning: " << warning << "\n";
+  write_sweep_record(request.out, record_of(request, context));
+  write_report(io, request, plan, table, context);
+}
+
+}  // namespace
+
+namespace {
+
+// What a run carries from step to step: the table (the rows there and the new ones), the context
+// sweep.md reports, how a row is timed and keyed, and the progress.
+struct sweep_run {
+  const session& io;
+  const sweep_request& request;
+  const sweep_plan& plan;
+  const headless_session& gl;
+  sweep_keys keys;
+  reference_options reference;  ///< request.reference with this machine's threads
+  sweep_table table;
+  sweep_context context;
+  bool wall_clock = false;
+  std::string machine;
+  progress_report progress;
 };
 
-// Draws `plot` as DIR/<name>.png: its script and data are written beside it (NAME.gnuplot and
-// NAME.dat, to be run again by hand), gnuplot draws into a temporary, and the PNG is installed
-// as every output is (write_all_or_nothing). "" on success, else why not.
-std::string draw(const fs::path& folder, const std::string& name, const gnuplot_plot& plot) {
-  const fs::path script = fs::absolute(folder / (name + ".gnuplot")), data = fs::absolute(folder / (name + ".dat")), png = fs::absolute(folder / (name + ".png"));
-  write_all_or_nothing({{script, [&] { return std::vector<std::uint8_t>(plot.script.begin(), plot.script.end()); }},
-                        {data, [&] { return std::vector<std::uint8_t>(plot.data.begin(), plot.data.end()); }}});
-  const fs::path drawn = sibling_temporary_name(png, "partial");
-  std::string failure = run_gnuplot(script, data, drawn);
-  std::error_code code;
-  if (failure.empty() && !fs::is_regular_file(drawn, code)) failure = "gnuplot exited 0 but wrote no PNG";
-  if (failure.empty()) {
-    try {
-      const std::string bytes = read_file(drawn, std::uintmax_t{1} << 28, "PNG gnuplot drew");
-      write_bytes_atomically(png, std::vector<std::uint8_t>(bytes.begin(), bytes.end()));
-    } catch (const error& problem) {
-      failure = problem.what();
-    }
-  }
-  fs::remove(drawn, code);
-  return failure;
+// plan: the rows this run (this shard) still owes, and the work for the estimate (per row one
+// unit for its timing and one per seed).
+std::vector<sweep_unit> plan_rows(sweep_run& run) {
+  std::set<std::string> done;
+  for (const auto& row : run.table.rows) done.insert(row.count("key") ? row.at("key") : std::string());
+  std::vector<sweep_unit> owed = owed_units(run.keys, done);
+  for (const sweep_unit& unit : owed) run.progress.total += 1.0 + run.keys.seeds_of(*unit.configuration->settings);
+  if (run.context.resumed > 0)
+    run.io.out << "sweep: resuming " << (run.request.out / "sweep.csv").string() << ": " << run.context.resumed << " row(s) already there are kept\n";
+  if (run.request.shards > 1) run.io.out << "sweep: shard " << run.request.shard << "/" << run.request.shards << ": " << owed.size() << " row(s) to measure\n";
+  return owed;
 }
 
-// The markdown report. Every name a user gave (a scene, a value, the command, a section) is
-// escaped: shown as it is, never a link, HTML or a table's cell boundary.
-std::string report(const sweep_request& request, const sweep_plan& plan, const sweep_table& table, const std::string& coverage, const std::string& device,
-                   const std::string& method, const std::vector<drawn_plot>& plots, std::size_t resumed) {
-  std::ostringstream md;
-  md << "# vplkit sweep" << (request.title.empty() ? "" : ": " + markdown_text(request.title)) << "\n\n"
-     << markdown_code_block("vplkit sweep " + request.command, "sh") << "\n"
-     << "Technique family: " << plan.family->title << ". ";
-  std::vector<std::string> varied;
-  for (const sweep_axis& axis : request.axes) {
-    std::vector<std::string> points;
-    for (const auto& point : axis.values) points.push_back(joined(point, ":"));
-    varied.push_back(joined(axis.names, ":") + " = " + joined(points, ", "));
+// One group of configurations of a scene, built at their first seed, a warm-up frame each (the
+// shader compilers' lazy work).
+struct timed_group {
+  std::vector<const sweep_unit*> units;
+  std::vector<std::unique_ptr<technique_settings>> seeded;
+  std::vector<std::unique_ptr<pipeline>> pipelines;
+  std::vector<timing> timings;
+};
+
+// time: the group's pipelines timed interleaved.
+timed_group time_rows(sweep_run& run, const std::vector<const sweep_unit*>& units, const pipeline_builder& build) {
+  timed_group group;
+  group.units = units;
+  std::vector<pipeline*> drawn;
+  for (const sweep_unit* unit : units) {
+    group.seeded.push_back(unit->configuration->settings->clone());
+    if (run.keys.seeds_of(*group.seeded.back()) > 1) group.seeded.back()->set("seed", "1");
+    group.pipelines.push_back(build(*group.seeded.back()));
+    group.pipelines.back()->draw();
+    group.pipelines.back()->collect_pass_times();
+    drawn.push_back(group.pipelines.back().get());
   }
-  md << "Varied: " << (varied.empty() ? std::string("nothing") : markdown_text(joined(varied, "; "))) << ". " << plan.configurations.size() << " configurations x "
-     << plan.scenes.size() << " scene(s). The settings in effect before --vary" << (request.seeds > 1 ? " (the seed is 1 to " + std::to_string(request.seeds) + ")" : "")
-     << ":\n\n" << markdown_code_block(settings_json(*plan.defaults, 0), "json") << "\n";
-  md << "**Time**: " << method << ", on:\n\n```\n" << device << "\n```\n\nEvery pass of a frame (the frame the papers time), a warm-up frame first; the "
-     << "configurations of a scene are timed interleaved, " << request.group << " at a time (A B C A B C ...), so that they share whatever else the "
-     << "machine does: compare times within one run. frame_ms is the mean over the rounds of the sum of the passes, frame_ms_spread the rounds' "
-     << "relative standard deviation, frame_ms_noise the mean's relative standard error; rounds are repeated until every configuration's noise is "
-     << "below " << fixed(100.0 * request.max_noise, 1) << " % (at least " << request.min_rounds << ", at most " << request.repeat << " rounds; the noise "
-     << "criterion of NVBench). ";
-  std::vector<std::string> noisy;
-  for (const auto& row : table.rows)
-    if (cell(row, "noise_met") == "no") noisy.push_back(cell(row, "scene") + " " + cell(row, "technique") + " " + cell(row, "key").substr(0, 6));
-  md << (noisy.empty() ? "Every configuration reached it.\n\n"
-                       : std::to_string(noisy.size()) + " configuration(s) stopped at " + std::to_string(request.repeat) +
-                             " rounds without reaching it (noise_met = no in the CSV).\n\n");
-  md << "**Quality**: " << coverage << " ";
-  if (request.reference.kind != reference_kind::none)
-    md << (request.seeds > 1 ? "Each number is the mean over seeds 1 to " + std::to_string(request.seeds) +
-                                   " (the techniques that read a seed); _sd is the seeds' sample standard deviation, _worst the seed furthest from the reference."
-                             : "One seed.")
-       << " The Pareto front: per scene, the configurations that no other beats on both frame_ms and rel_rmse (pareto = 1 in the CSV, * below)."
-       << (plan.base ? " rank: [LW]'s Eq. 5.3 (Table 5.10), the frames per second gained over the base configuration (is_base = 1) divided by the "
-                       "% of similarity lost, where the base configuration is one of the rows."
-                     : "");
-  md << "\n\n";
-  if (resumed > 0)
-    md << resumed << " row(s) were kept from an earlier run of this sweep (resumed): they were timed in another session; compare their times with "
-       << "the others' with care.\n\n";
-  // One table per scene.
-  std::vector<std::string> metrics;
-  for (const std::string& column : table.columns) {
-    const bool quality = std::find(head_columns.begin(), head_columns.end(), column) == head_columns.end() &&
-                         std::find(tail_columns.begin(), tail_columns.end(), column) == tail_columns.end() &&
-                         std::find(plan.axis_columns.begin(), plan.axis_columns.end(), column) == plan.axis_columns.end() && column.rfind("frame_ms", 0) != 0 &&
-                         column != "timing_rounds" && column != "noise_met" && column != "timing" && column.find("_sd") == std::string::npos &&
-                         column.find("_worst") == std::string::npos && !(column.size() > 3 && column.compare(column.size() - 3, 3, "_ms") == 0);
-    if (quality) metrics.push_back(column);
+  group.timings = time_group(run.request, drawn);
+  run.progress.done += static_cast<double>(units.size());
+  const std::string& scene = run.plan.scenes[units.front()->scene_index];
+  run.progress("timed " + std::to_string(units.size()) + " configuration(s) of " + (scene.empty() ? run.plan.family->name : sweep_keys::shown_scene(scene)) +
+               " in " + std::to_string(group.timings.front().rounds) + " round(s)");
+  return group;
+}
+
+// measure: the group's i-th configuration against the reference, seed by seed, into its row.
+std::map<std::string, std::string> measure_row(sweep_run& run, timed_group& group, std::size_t i, scene_references& references, const pipeline_builder& build) {
+  const sweep_unit& unit = *group.units[i];
+  const sweep_configuration& configuration = *unit.configuration;
+  const std::string scene = run.keys.scene_of(configuration, unit.scene_index);
+  const bool measured = run.request.reference.kind != reference_kind::none;
+  sweep_table& table = run.table;
+  std::map<std::string, std::string> row;
+  row["scene"] = sweep_keys::shown_scene(scene);
+  row["technique"] = configuration.settings->technique();
+  for (std::size_t a = 0; a < run.plan.axis_columns.size(); ++a) row[run.plan.axis_columns[a]] = configuration.axis_values[a];
+  timing_columns(table, row, group.timings[i], run.request, run.wall_clock, run.machine);
+  for (const char* column : {"receivers", "seeds", "key"}) table.add_column(column);
+  const int seeds = run.keys.seeds_of(*configuration.settings);
+  double share = -1.0;
+  if (measured) {
+    const seed_qualities qualities = measure_seeds(references, *group.pipelines[i], *group.seeded[i], seeds, build, run.progress);
+    share = quality_columns(table, row, qualities, references, *group.seeded[i]);
+    row["receivers"] = std::to_string(qualities.seeds.back().receivers);
+    run.context.coverage = references.coverage();
+  } else {
+    run.progress.done += static_cast<double>(seeds);
   }
-  std::vector<std::string> scenes;
-  for (const auto& row : table.rows)
-    if (std::find(scenes.begin(), scenes.end(), cell(row, "scene")) == scenes.end()) scenes.push_back(cell(row, "scene"));
-  for (const std::string& scene : scenes) {
-    md << "## " << markdown_text(scene) << "\n\n| " << (plan.technique_axis ? "technique | " : "");
-    for (const std::string& column : plan.axis_columns) md << column << " | ";
-    const bool ranked = std::find(table.columns.begin(), table.columns.end(), "rank") != table.columns.end();
-    md << "frame ms | spread | ";
-    for (const std::string& metric : metrics) md << metric << " | ";
-    md << (ranked ? "rank (Eq. 5.3) | " : "") << "Pareto |\n|" << (plan.technique_axis ? "---|" : "");
-    for (std::size_t i = 0; i < plan.axis_columns.size(); ++i) md << "---:|";
-    md << "---:|---:|";
-    for (std::size_t i = 0; i < metrics.size(); ++i) md << "---:|";
-    md << (ranked ? "---:|" : "") << ":---:|\n";
-    for (const auto& row : table.rows) {
-      if (cell(row, "scene") != scene) continue;
-      md << "| " << (plan.technique_axis ? markdown_text(cell(row, "technique")) + " | " : "");
-      for (const std::string& column : plan.axis_columns) md << (cell(row, column).empty() ? "-" : markdown_text(cell(row, column))) << " | ";
-      const auto number = [&](const std::string& column, int digits) {
-        const std::optional<double> v = sweep_table::number(row, column);
-        return v ? fixed(*v, digits) : std::string(cell(row, column) == "undefined" ? "undefined" : "-");
-      };
-      md << number("frame_ms", 2) << " | " << number("frame_ms_spread", 3) << " | ";
-      for (const std::string& metric : metrics) {
-        md << number(metric, 4);
-        if (sweep_table::number(row, metric + "_sd")) md << " ± " << number(metric + "_sd", 4);
-        md << " | ";
-      }
-      if (ranked) md << (cell(row, "is_base") == "1" ? std::string("base") : number("rank", 2)) << " | ";
-      md << (cell(row, "pareto") == "1" ? "*" : "") << " |\n";
-    }
-    md << "\n";
+  row["seeds"] = std::to_string(measured ? seeds : 0);
+  row["key"] = run.keys.key_of(configuration, unit.scene_index);
+  if (run.plan.base) {
+    table.add_column("is_base");
+    row["is_base"] = identity(*configuration.settings) == identity(*run.plan.base) ? "1" : "0";
   }
-  // Why numbers are undefined, each reason once with its rows' count.
-  std::map<std::string, int> undefined;
-  for (const auto& row : table.rows)
-    if (!cell(row, "undefined").empty()) ++undefined[cell(row, "undefined")];
-  if (!undefined.empty()) {
-    md << "**Undefined numbers**: a relative number has no level to be relative to against a reference that is black where it counts, "
-       << "and none over no receiver (an empty leak region). It is \"undefined\" in the CSV (the column undefined says why), not 0, and a "
-       << "row whose rel_rmse is undefined is never on the Pareto front:\n\n";
-    for (const auto& [why, rows] : undefined) md << "- " << rows << " row(s): " << markdown_text(why) << "\n";
-    md << "\n";
-  }
-  // The plots, and why any is missing: gnuplot's own reason.
-  for (const drawn_plot& plot : plots)
-    if (plot.failure.empty()) md << "![" << plot.caption << "](" << plot.name << ".png)\n\n";
-  for (const drawn_plot& plot : plots)
-    if (!plot.failure.empty()) md << "No " << plot.name << ".png: " << markdown_text(plot.failure) << "\n\n";
-  if (plots.empty()) md << "(no plot: nothing to draw)\n";
-  return md.str();
+  std::string summary = row["scene"] + ": " + configuration.label + ": " + fixed(of(group.timings[i].frames).mean, 2) + " ms";
+  for (const char* name : {"rel_rmse", "rel_bias"})
+    if (row.count(name)) summary += std::string(", ") + name + " " + (row[name] == "undefined" ? std::string("undefined") : fixed(*parse_real(row[name]), 4));
+  if (share >= 0.0) summary += ", reference noise " + fixed(100.0 * share, 0) + " % of rel_rmse";
+  run.progress(summary);
+  return row;
 }
 
 }  // namespace
 
 void run_sweep(const session& io, const sweep_request& request, const sweep_plan& plan) {
   fs::create_directories(request.out);
-  const fs::path csv = request.out / "sweep.csv";
-  sweep_table table;
-  if (fs::exists(csv)) table = read_sweep_csv(csv);
-  std::set<std::string> done;
-  for (const auto& row : table.rows) done.insert(cell(row, "key"));
-  const std::size_t resumed = table.rows.size();
-  for (const std::string& column : head_columns) table.add_column(column);
-  for (const std::string& column : plan.axis_columns) table.add_column(column);
-
   const headless_session gl(request.common);
-  reference_options reference = request.reference;
-  reference.threads = hardware_threads();
-  const std::string method = describe(timing_method_for_current_context());
-  const bool wall_clock = timing_method_for_current_context() == timing_method::wall_clock;
-  const std::string device = describe_current_context();
+  sweep_run run{io, request, plan, gl, sweep_keys{request, plan}, request.reference, {}, {}, false, {}, progress_report{io}};
+  run.reference.threads = hardware_threads();
+  if (fs::exists(request.out / "sweep.csv")) run.table = read_sweep_csv(request.out / "sweep.csv");
+  for (const char* column : {"scene", "technique"}) run.table.add_column(column);
+  for (const std::string& column : plan.axis_columns) run.table.add_column(column);
+  run.context.method = describe(timing_method_for_current_context());
+  run.context.device = describe_current_context();
+  run.context.coverage = scene_references(gl.shaders, run.reference, nullptr).coverage();
+  run.context.resumed = run.table.rows.size();
+  run.wall_clock = timing_method_for_current_context() == timing_method::wall_clock;
+  run.machine = machine_name(run.context.device);
+  write_sweep_record(request.out, record_of(request, run.context));
+
+  const std::vector<sweep_unit> owed = plan_rows(run);
   const technique_family& family = *plan.family;
-
-  // The work, for the estimate: per configuration and scene, one unit for its timing and one per seed.
-  const auto seeds_of = [&](const technique_settings& settings) { return settings.reads("seed") ? request.seeds : 1; };
-  const auto key_of = [&](const sweep_configuration& c, const std::string& scene) {
-    return hashed(identity(*c.settings) + "|scene=" + scene + "|reference=" + reference_name(reference.kind) + "|stride=" +
-                  std::to_string(reference.receiver_stride) + "|samples=" + std::to_string(reference.samples) + "|seeds=" + std::to_string(seeds_of(*c.settings)) +
-                  (plan.base ? "|base=" + identity(*plan.base) : std::string()));
-  };
-  // The scene as the command line named it (a file's path: the key), and as the rows show it.
-  const auto scene_of = [&](const sweep_configuration& c, const std::string& scene) {
-    return family.reads_scene() ? scene : drawn_scene_name(request.common, *c.settings);
-  };
-  const auto shown_scene = [](const std::string& name) { return fs::path(name).stem().string(); };
-  double total_units = 0.0, done_units = 0.0;
-  for (const std::string& scene : plan.scenes)
-    for (const sweep_configuration& c : plan.configurations)
-      if (!done.count(key_of(c, scene_of(c, scene)))) total_units += 1.0 + seeds_of(*c.settings);
-  const auto started = std::chrono::steady_clock::now();
-  const auto progress = [&](const std::string& what) {
-    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-    io.out << "sweep: " << fixed(total_units > 0.0 ? 100.0 * done_units / total_units : 100.0, 0) << " % " << what << "; " << duration(elapsed) << " so far";
-    if (done_units > 0.0 && done_units < total_units) io.out << ", about " << duration(elapsed / done_units * (total_units - done_units)) << " left";
-    io.out << std::endl;
-  };
-  if (resumed > 0) io.out << "sweep: resuming " << csv.string() << ": " << resumed << " row(s) already there are kept\n";
-
-  std::string coverage = scene_references(gl.shaders, reference, nullptr).coverage();
-  for (const std::string& scene_name : plan.scenes) {
+  for (std::size_t scene_index = 0; scene_index < plan.scenes.size(); ++scene_index) {
+    std::vector<const sweep_unit*> pending;
+    for (const sweep_unit& unit : owed)
+      if (unit.scene_index == scene_index) pending.push_back(&unit);
+    if (pending.empty()) continue;
     std::unique_ptr<scene> source;
-    if (family.reads_scene()) source = std::make_unique<scene>(load_scene(request.common, scene_name));
-    scene_references references(gl.shaders, reference, source.get());
-    const auto build = [&](const technique_settings& settings) {
+    if (family.reads_scene()) source = std::make_unique<scene>(load_scene(request.common, plan.scenes[scene_index]));
+    scene_references references(gl.shaders, run.reference, source.get());
+    const pipeline_builder build = [&](const technique_settings& settings) {
       std::unique_ptr<scene> none;
       return family.reads_scene() ? family.make_pipeline(gl.shaders, source.get(), settings) : make_posed_pipeline(gl.shaders, request.common, settings, none);
     };
-    std::vector<const sweep_configuration*> pending;
-    for (const sweep_configuration& c : plan.configurations)
-      if (!done.count(key_of(c, scene_of(c, scene_name)))) pending.push_back(&c);
-    if (pending.empty()) continue;
-    if (plan.base) {
-      // The base configuration at every seed the rows are measured with (once where it reads none).
-      const int base_seeds = seeds_of(*plan.base);
-      for (int seed = 1; seed <= base_seeds; ++seed) {
-        std::unique_ptr<technique_settings> seeded_base = plan.base->clone();
-        if (base_seeds > 1) seeded_base->set("seed", std::to_string(seed));
-        const std::unique_ptr<pipeline> base = build(*seeded_base);
-        base->draw();
-        references.set_base(base->output().read_image(), seeded_base->reads("seed") ? seeded_base->get("seed") : std::string());
-        base->collect_pass_times();
-      }
-    }
+    if (plan.base) draw_base(run.keys, references, build);
     for (std::size_t first = 0; first < pending.size(); first += static_cast<std::size_t>(request.group)) {
       const std::size_t last = std::min(pending.size(), first + static_cast<std::size_t>(request.group));
-      // The group's pipelines at the first seed, timed interleaved.
-      std::vector<std::unique_ptr<technique_settings>> seeded;
-      std::vector<std::unique_ptr<pipeline>> pipelines;
-      for (std::size_t i = first; i < last; ++i) {
-        seeded.push_back(pending[i]->settings->clone());
-        if (seeds_of(*seeded.back()) > 1) seeded.back()->set("seed", "1");
-        pipelines.push_back(build(*seeded.back()));
-        pipelines.back()->draw();  // warm-up: the shader compilers' lazy work
-        pipelines.back()->collect_pass_times();
-      }
-      std::vector<timing> timings(pipelines.size());
-      int rounds = 0;
-      while (rounds < request.repeat) {
-        for (std::size_t i = 0; i < pipelines.size(); ++i) {
-          pipelines[i]->draw();
-          double total = 0.0;
-          for (const pass_time& pass : pipelines[i]->collect_pass_times()) {
-            if (!timings[i].passes.count(pass.pass)) timings[i].pass_order.push_back(pass.pass);
-            timings[i].passes[pass.pass].push_back(pass.milliseconds);
-            total += pass.milliseconds;
-          }
-          timings[i].frames.push_back(total);
-        }
-        ++rounds;
-        bool quiet = rounds >= request.min_rounds;
-        for (const timing& t : timings) quiet = quiet && t.noise() <= request.max_noise;
-        if (quiet) break;
-      }
-      done_units += static_cast<double>(pipelines.size());
-      progress("timed " + std::to_string(pipelines.size()) + " configuration(s) of " + (scene_name.empty() ? family.name : shown_scene(scene_name)) + " in " +
-               std::to_string(rounds) + " round(s)");
-      // Quality, seed by seed, and the rows.
-      for (std::size_t i = 0; i < pipelines.size(); ++i) {
-        const sweep_configuration& configuration = *pending[first + i];
-        const std::string scene = scene_of(configuration, scene_name);
-        std::map<std::string, std::string> row;
-        row["scene"] = shown_scene(scene);
-        row["technique"] = configuration.settings->technique();
-        for (std::size_t a = 0; a < plan.axis_columns.size(); ++a) row[plan.axis_columns[a]] = configuration.axis_values[a];
-        const statistics frames = of(timings[i].frames);
-        for (const char* column : {"frame_ms", "frame_ms_spread", "frame_ms_noise", "timing_rounds", "noise_met", "timing", "receivers", "seeds", "key"})
-          table.add_column(column);
-        row["frame_ms"] = number_text(frames.mean);
-        row["frame_ms_spread"] = number_text(frames.mean > 0.0 ? frames.sd / frames.mean : 0.0);
-        row["frame_ms_noise"] = number_text(timings[i].noise());
-        row["timing_rounds"] = std::to_string(rounds);
-        row["noise_met"] = timings[i].noise() <= request.max_noise ? "yes" : "no";
-        row["timing"] = wall_clock ? "wall clock" : "timer queries";
-        for (const std::string& pass : timings[i].pass_order) {
-          table.add_column(slug(pass) + "_ms");
-          row[slug(pass) + "_ms"] = number_text(of(timings[i].passes[pass]).mean);
-        }
-        const int seeds = seeds_of(*configuration.settings);
-        std::map<std::string, std::vector<double>> metrics;  // the seeds' values of the defined ones
-        std::vector<std::string> metric_order;
-        std::map<std::string, std::string> undefined;  // metric -> why, where a seed's is undefined
-        std::vector<image> raws;
-        std::size_t receivers = 0;
-        if (reference.kind != reference_kind::none) {
-          for (int seed = 1; seed <= seeds; ++seed) {
-            std::unique_ptr<pipeline> other;
-            pipeline* drawn = pipelines[i].get();
-            std::unique_ptr<technique_settings> settings = seeded[i]->clone();
-            if (seed > 1) {
-              settings->set("seed", std::to_string(seed));
-              other = build(*settings);
-              drawn = other.get();
-            }
-            drawn->draw();
-            drawn->collect_pass_times();
-            frame_quality quality = references.measure(*drawn, *settings);
-            for (const quality_metric& metric : quality.metrics) {
-              if (std::find(metric_order.begin(), metric_order.end(), metric.name) == metric_order.end()) metric_order.push_back(metric.name);
-              if (metric.defined) metrics[metric.name].push_back(metric.value);
-              else undefined.emplace(metric.name, metric.why_undefined);
-            }
-            receivers = quality.receivers;
-            if (!quality.raw.texels.empty()) raws.push_back(std::move(quality.raw));
-            done_units += 1.0;
-          }
-          coverage = references.coverage();
-        } else {
-          done_units += static_cast<double>(seeds);
-        }
-        for (const std::string& name : metric_order) {
-          table.add_column(name);
-          // Undefined at one seed is undefined for the mean: never a number a ranking could read.
-          if (undefined.count(name)) {
-            row[name] = "undefined";
-            continue;
-          }
-          const std::vector<double>& values = metrics[name];
-          row[name] = number_text(of(values).mean);
-          if (values.size() > 1) {
-            table.add_column(name + "_sd");
-            row[name + "_sd"] = number_text(of(values).sd);
-            if (name == "rel_rmse" || name == "rel_bias") {
-              // The seed furthest from the reference.
-              double worst = values.front();
-              for (double v : values)
-                if (std::fabs(v) > std::fabs(worst)) worst = v;
-              table.add_column(name + "_worst");
-              row[name + "_worst"] = number_text(worst);
-            }
-          }
-        }
-        if (raws.size() > 1) {
-          table.add_column("seed_noise");
-          const quality_metric noise = references.seed_noise(raws, *seeded[i]);
-          row["seed_noise"] = noise.defined ? number_text(noise.value) : "undefined";
-          if (!noise.defined) undefined.emplace("seed_noise", noise.why_undefined);
-        }
-        if (!undefined.empty()) {
-          // "rel_bias rel_rmse: why | leak_rmse: why", the metrics of one reason together (no comma
-          // or semicolon: the cell needs no CSV quoting in either dialect).
-          std::map<std::string, std::string> by_reason;
-          for (const auto& [name, reason] : undefined) by_reason[reason] += (by_reason[reason].empty() ? "" : " ") + name;
-          std::string why;
-          for (const auto& [reason, names] : by_reason) why += (why.empty() ? "" : " | ") + names + ": " + reason;
-          table.add_column("undefined");
-          row["undefined"] = why;
-        }
-        row["receivers"] = reference.kind == reference_kind::none ? "" : std::to_string(receivers);
-        row["seeds"] = std::to_string(reference.kind == reference_kind::none ? 0 : seeds);
-        row["key"] = key_of(configuration, scene);
-        if (plan.base) {
-          table.add_column("is_base");
-          row["is_base"] = identity(*configuration.settings) == identity(*plan.base) ? "1" : "0";
-        }
-        std::string summary = shown_scene(scene) + ": " + configuration.label + ": " + fixed(frames.mean, 2) + " ms";
-        for (const char* name : {"rel_rmse", "rel_bias"})
-          if (row.count(name)) summary += std::string(", ") + name + " " + (row[name] == "undefined" ? std::string("undefined") : fixed(of(metrics[name]).mean, 4));
-        progress(summary);
-        table.rows.push_back(std::move(row));
-      }
-      write_table(csv, table, plan.axis_columns);
+      timed_group group = time_rows(run, {pending.begin() + static_cast<std::ptrdiff_t>(first), pending.begin() + static_cast<std::ptrdiff_t>(last)}, build);
+      for (std::size_t i = 0; i < group.units.size(); ++i) run.table.rows.push_back(measure_row(run, group, i, references, build));
+      // write: the CSV after every group, so that a stopped sweep resumes from here.
+      write_table(request.out / "sweep.csv", run.table, plan);
     }
   }
-  write_table(csv, table, plan.axis_columns);
+  finish(io, request, plan, run.table, run.context);
+}
 
-  // A plot per varied setting (and the technique when it is varied), and the Pareto front.
-  std::vector<drawn_plot> plots;
-  std::vector<std::string> axes = plan.axis_columns;
-  if (plan.technique_axis) axes.insert(axes.begin(), "technique");
-  std::vector<std::string> errors;
-  for (const char* name : {"rel_rmse", "rel_bias"})
-    if (std::find(table.columns.begin(), table.columns.end(), name) != table.columns.end()) errors.emplace_back(name);
-  for (const std::string& axis : axes) {
-    std::vector<std::string> series = {"scene"};
-    for (const std::string& other : axes)
-      if (other != axis) series.push_back(other);
-    if (const std::optional<gnuplot_plot> plot = axis_plot(table, axis, series, "frame_ms", errors))
-      plots.push_back({slug(axis), "frame_ms and the relative errors against " + axis, draw(request.out, slug(axis), *plot)});
+void merge_sweep(const session& io, const sweep_request& request, const sweep_plan& plan, const std::vector<fs::path>& folders,
+                 const std::vector<sweep_record>& records) {
+  // Every shard of the sweep once.
+  const int shards = records.front().shards;
+  std::map<int, fs::path> shard_folders;
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    if (records[i].shards != shards)
+      throw error(folders[i].string() + " is shard " + std::to_string(records[i].shard) + "/" + std::to_string(records[i].shards) + ", " + folders[0].string() +
+                  " one of " + std::to_string(shards) + ": shards of one sweep split it the same number of ways");
+    const auto [where, fresh] = shard_folders.emplace(records[i].shard, folders[i]);
+    if (!fresh) throw error("shard " + std::to_string(records[i].shard) + "/" + std::to_string(shards) + " is given twice: " + where->second.string() + " and " + folders[i].string());
   }
-  if (!errors.empty())
-    if (const std::optional<gnuplot_plot> plot = pareto_plot(table, "frame_ms", "rel_rmse"))
-      plots.push_back({"pareto", "rel_rmse against frame_ms, the Pareto front joined", draw(request.out, "pareto", *plot)});
-  const std::string md = report(request, plan, table, coverage, device, method, plots, resumed);
-  write_bytes_atomically(request.out / "sweep.md", std::vector<std::uint8_t>(md.begin(), md.end()));
-  io.out << "wrote " << fs::absolute(csv).string() << "\nwrote " << fs::absolute(request.out / "sweep.md").string() << "\n";
-  for (const drawn_plot& plot : plots) {
-    if (plot.failure.empty()) io.out << "wrote " << fs::absolute(request.out / (plot.name + ".png")).string() << "\n";
-    else io.out << "sweep: no plot " << fs::absolute(request.out / (plot.name + ".png")).string() << ": " << plot.failure << "\n";
+  std::vector<std::string> missing;
+  for (int k = 1; k <= shards; ++k)
+    if (!shard_folders.count(k)) missing.push_back(std::to_string(k) + "/" + std::to_string(shards));
+  if (!missing.empty()) throw error("shard " + joined(missing, ", ") + " is missing: give the folder of every shard of the sweep");
+  // The rows in the order of an unsharded run: by the plan's units (scene by scene).
+  sweep_request whole = request;
+  whole.shard = whole.shards = 1;
+  const sweep_keys keys{whole, plan};
+  std::map<std::string, std::size_t> order;
+  for (const sweep_unit& unit : owed_units(keys, {})) order.emplace(keys.key_of(*unit.configuration, unit.scene_index), order.size());
+  sweep_table table;
+  for (const char* column : {"scene", "technique"}) table.add_column(column);
+  for (const std::string& column : plan.axis_columns) table.add_column(column);
+  std::map<std::size_t, std::map<std::string, std::string>> rows;
+  for (const fs::path& folder : folders) {
+    const sweep_table shard = read_sweep_csv(folder / "sweep.csv");
+    for (const std::string& column : shard.columns) table.add_column(column);
+    for (const auto& row : shard.rows) {
+      const auto place = order.find(row.count("key") ? row.at("key") : std::string());
+      if (place == order.end())
+        throw error(folder.string() + "/sweep.csv holds a row (" + row.at("scene") + " " + row.at("technique") + ") that its sweep's plan does not: the shard's CSV is not this sweep's");
+      if (!rows.emplace(place->second, row).second) throw error(folder.string() + "/sweep.csv holds the row " + row.at("key") + " a shard before it holds too");
+    }
   }
+  for (auto& [place, row] : rows) table.rows.push_back(std::move(row));
+  if (table.rows.size() < order.size())
+    std::cerr << "sweep merge: warning: " << order.size() - table.rows.size() << " of " << order.size()
+              << " row(s) are not in any shard's CSV (a shard that stopped early): run that shard again to resume it, then merge again\n";
+  // The context of the shard holding the unsharded run's last row (its coverage names the
+  // references the last scene made), the device of every shard in the warning when they differ.
+  sweep_context context;
+  const std::size_t last_shard = order.empty() ? 1 : (order.size() - 1) % static_cast<std::size_t>(shards) + 1;
+  for (const sweep_record& record : records)
+    if (record.shard == static_cast<int>(last_shard)) {
+      context.device = record.device;
+      context.method = record.method;
+      context.coverage = record.coverage;
+    }
+  fs::create_directories(request.out);
+  io.out << "sweep merge: " << table.rows.size() << " row(s) of " << shards << " shard(s) into " << request.out.string() << "\n";
+  finish(io, whole, plan, table, context);
 }
 
 }  // namespace vplkit::cli

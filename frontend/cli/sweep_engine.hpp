@@ -46,6 +46,11 @@ struct sweep_request {
   /// that a technique reads the same are merged): a larger grid is refused before it is planned.
   std::uint64_t max_configurations = 100000;
   std::filesystem::path out;
+  /// --shard K/N: this run measures shard K of N (sweep_steps::owed_units); 1/1: every row.
+  int shard = 1, shards = 1;
+  /// The sweep's words without --out and --shard (and, for a section of a --spec, the
+  /// section's words): what `vplkit sweep merge` plans the whole sweep from again.
+  std::vector<std::string> arguments;
 };
 
 /// One configuration of the grid.
@@ -73,5 +78,25 @@ sweep_plan plan_sweep(const sweep_request& request);
 /// Runs the plan, skipping the configurations whose rows DIR/sweep.csv already holds, and writes
 /// DIR/sweep.csv after every group of configurations, then sweep.md and the plots.
 void run_sweep(const session& io, const sweep_request& request, const sweep_plan& plan);
+
+/// DIR/sweep-shard.txt, written beside every sweep's sweep.csv: what `vplkit sweep merge`
+/// needs to plan the sweep a folder belongs to again and to write its sweep.md.
+struct sweep_record {
+  std::vector<std::string> arguments;  ///< sweep_request::arguments
+  std::string title, command;
+  int shard = 1, shards = 1;
+  std::string device, method, coverage;
+};
+void write_sweep_record(const std::filesystem::path& folder, const sweep_record& record);
+/// Throws vplkit::error naming the folder when it holds no record, or one this writer did not write.
+sweep_record read_sweep_record(const std::filesystem::path& folder);
+
+/// `vplkit sweep merge`: the rows of the shards' folders (their records planned as `request` and
+/// `plan`, whose out is the merged folder) in an unsharded run's order, written as one sweep.csv,
+/// sweep.md and plots. Throws vplkit::error for a folder of another sweep, a shard given twice or
+/// missing, or a row of the same key in two folders; warns (stderr and sweep.md) when the shards
+/// ran on different machines.
+void merge_sweep(const session& io, const sweep_request& request, const sweep_plan& plan, const std::vector<std::filesystem::path>& folders,
+                 const std::vector<sweep_record>& records);
 
 }  // namespace vplkit::cli

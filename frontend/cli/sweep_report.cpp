@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -166,10 +167,26 @@ sweep_table read_sweep_csv(const fs::path& path) {
   return table;
 }
 
+double time_se(const std::map<std::string, std::string>& row, const std::string& time) {
+  const std::optional<double> t = sweep_table::number(row, time), noise = sweep_table::number(row, time + "_noise");
+  return t && noise && std::isfinite(*t * *noise) && *noise > 0.0 ? std::fabs(*t * *noise) : 0.0;
+}
+
+double quality_se(const std::map<std::string, std::string>& row, const std::string& column) {
+  double variance = 0.0;
+  const std::optional<double> sd = sweep_table::number(row, column + "_sd"), seeds = sweep_table::number(row, "seeds");
+  if (sd && seeds && *seeds >= 2.0 && std::isfinite(*sd)) variance += *sd * *sd / *seeds;
+  const std::optional<double> reference = sweep_table::number(row, column + "_ref_se");
+  if (reference && std::isfinite(*reference) && *reference > 0.0) variance += *reference * *reference;
+  return std::sqrt(variance);
+}
+
 void mark_pareto(sweep_table& table, const std::string& time, const std::string& error) {
   table.add_column("pareto");
+  table.add_column("tie");
+  // Each row as its value +- its standard error on both axes.
   struct point {
-    double time, error;
+    double time, error, time_low, time_high, error_low, error_high;
     std::size_t row;
   };
   std::map<std::string, std::vector<point>> scenes;
@@ -177,23 +194,64 @@ void mark_pareto(sweep_table& table, const std::string& time, const std::string&
     auto& row = table.rows[i];
     const std::optional<double> t = sweep_table::number(row, time), e = sweep_table::number(row, error);
     row["pareto"] = "";
-    if (t && e && std::isfinite(*t) && std::isfinite(*e)) scenes[row["scene"]].push_back({*t, *e, i});
+    row["tie"] = "";
+    if (!t || !e || !std::isfinite(*t) || !std::isfinite(*e)) continue;
+    const double dt = time_se(row, time), de = quality_se(row, error);
+    scenes[row["scene"]].push_back({*t, *e, *t - dt, *t + dt, *e - de, *e + de, i});
   }
-  // Sorted by time, then error: a row is beaten exactly when a faster row has an error at most
-  // its own, or a row as fast has a smaller one. So one pass that carries the least error of the
-  // faster rows decides each group of equal times: O(n log n) for the sort. (Comparing every row
-  // with every other took 5.5 min per rewrite of a 20,000-row sweep.)
+  // B dominates A when B is better beyond both their noises on both axes: B's upper time at most
+  // A's lower time, B's upper error at most A's lower error, and one of them strictly (without
+  // noise: at most as slow and as wrong, and better on one). One sweep over the rows sorted by
+  // their upper time answers each row in the order of its lower time, carrying the least upper
+  // error of the rows strictly faster and, for an equal bound, of the rows at it: O(n log n) for
+  // the sorts (comparing every row with every other took 5.5 min per rewrite of a 20,000-row sweep).
   for (auto& [scene, points] : scenes) {
-    std::sort(points.begin(), points.end(), [](const point& a, const point& b) { return a.time < b.time || (a.time == b.time && a.error < b.error); });
-    double faster = std::numeric_limits<double>::infinity();
-    for (std::size_t first = 0; first < points.size();) {
+    std::vector<const point*> by_high(points.size()), by_low(points.size());
+    for (std::size_t k = 0; k < points.size(); ++k) by_high[k] = by_low[k] = &points[k];
+    std::sort(by_high.begin(), by_high.end(), [](const point* a, const point* b) { return a->time_high < b->time_high; });
+    std::sort(by_low.begin(), by_low.end(), [](const point* a, const point* b) { return a->time_low < b->time_low; });
+    // The least upper error of each run of equal upper times, at every index of the run.
+    std::vector<double> run_least(by_high.size());
+    for (std::size_t first = 0; first < by_high.size();) {
       std::size_t last = first;
-      while (last < points.size() && points[last].time == points[first].time) ++last;
-      const double fastest = points[first].error;  // the group's least error: the sort put it first
-      for (std::size_t k = first; k < last; ++k)
-        table.rows[points[k].row]["pareto"] = std::string(1, faster <= points[k].error || fastest < points[k].error ? '0' : '1');
-      faster = std::min(faster, fastest);
+      double least = std::numeric_limits<double>::infinity();
+      for (; last < by_high.size() && by_high[last]->time_high == by_high[first]->time_high; ++last) least = std::min(least, by_high[last]->error_high);
+      std::fill(run_least.begin() + static_cast<std::ptrdiff_t>(first), run_least.begin() + static_cast<std::ptrdiff_t>(last), least);
       first = last;
+    }
+    double strictly_faster = std::numeric_limits<double>::infinity();
+    std::size_t next = 0;
+    for (const point* a : by_low) {
+      while (next < by_high.size() && by_high[next]->time_high < a->time_low) strictly_faster = std::min(strictly_faster, by_high[next++]->error_high);
+      const double at_bound = next < by_high.size() && by_high[next]->time_high == a->time_low ? run_least[next] : std::numeric_limits<double>::infinity();
+      const bool beaten = strictly_faster <= a->error_low || at_bound < a->error_low;
+      table.rows[a->row]["pareto"] = std::string(1, beaten ? '0' : '1');
+    }
+    // Ties: the front's rows within each other's noise on both axes (their intervals overlap),
+    // joined (union-find) into groups numbered per scene in time order; a row alone is no tie.
+    // Sorted by lower time, a row is compared only with the rows whose lower time is below its
+    // upper time: those it can overlap.
+    std::vector<const point*> front;
+    for (const point& p : points)
+      if (table.rows[p.row]["pareto"] == "1") front.push_back(&p);
+    std::sort(front.begin(), front.end(), [](const point* a, const point* b) { return a->time_low < b->time_low || (a->time_low == b->time_low && a->error < b->error); });
+    std::vector<std::size_t> parent(front.size());
+    for (std::size_t k = 0; k < front.size(); ++k) parent[k] = k;
+    const auto root = [&](std::size_t k) {
+      while (parent[k] != k) k = parent[k] = parent[parent[k]];
+      return k;
+    };
+    for (std::size_t k = 0; k < front.size(); ++k)
+      for (std::size_t j = k + 1; j < front.size() && front[j]->time_low <= front[k]->time_high; ++j)
+        if (front[j]->error_low <= front[k]->error_high && front[k]->error_low <= front[j]->error_high) parent[root(j)] = root(k);
+    std::map<std::size_t, std::size_t> members;
+    for (std::size_t k = 0; k < front.size(); ++k) ++members[root(k)];
+    std::map<std::size_t, int> numbers;
+    for (std::size_t k = 0; k < front.size(); ++k) {
+      const std::size_t group = root(k);
+      if (members[group] < 2) continue;
+      const auto [number, fresh] = numbers.emplace(group, static_cast<int>(numbers.size()) + 1);
+      table.rows[front[k]->row]["tie"] = std::to_string(number->second);
     }
   }
 }
@@ -235,31 +293,33 @@ std::optional<gnuplot_plot> axis_plot(const sweep_table& table, const std::strin
     const auto cell = row.find(x);
     if (cell == row.end() || cell->second.empty()) continue;
     const double position = numeric ? *parse_real(cell->second) : static_cast<double>(category_index.at(cell->second));
-    std::string line = format_real(position) + "\t" + data_number(row, time);
-    for (const std::string& column : measured) line += "\t" + data_number(row, column);
+    // Each value with its standard error beside it (the error bars).
+    std::string line = format_real(position) + "\t" + data_number(row, time) + "\t" + format_real(time_se(row, time));
+    for (const std::string& column : measured) line += "\t" + data_number(row, column) + "\t" + format_real(quality_se(row, column));
     blocks[series_of(row, series)].emplace_back(position, line + "\t" + data_label(cell->second));
   }
   gnuplot_plot plot;
   std::ostringstream data, script;
-  script << script_head("the frame time (left axis) and the relative errors (right axis) against a varied setting, a line per series")
+  script << script_head("the frame time (left axis) and the relative errors (right axis) against a varied setting, a line per series, each value +- its standard error")
          << "set xlabel " << gnuplot_quoted(x) << "\nset ylabel " << gnuplot_quoted(time + " (solid)") << "\nset ytics nomirror\n";
   if (!measured.empty()) script << "set y2label 'relative error (dashed)'\nset y2tics\n";
   if (!numeric) script << "set xrange [-0.5:" << static_cast<double>(categories.size()) - 0.5 << "]\n";
   else script << "set offsets graph 0.05, graph 0.05, 0, 0\n";
   script << "plot ";
   int index = 0;
-  const std::size_t label_column = 3 + measured.size();
+  // Columns: x, time, its standard error, each error and its standard error, x's text.
+  const std::size_t label_column = 4 + 2 * measured.size();
   for (auto& [name, lines] : blocks) {
     std::sort(lines.begin(), lines.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    data << (index ? "\n\n" : "") << "x\t" << data_label(time + ", " + name);
-    for (const std::string& e : measured) data << "\t" << data_label(e + ", " + name);
+    data << (index ? "\n\n" : "") << "x\t" << data_label(time + ", " + name) << "\tse";
+    for (const std::string& e : measured) data << "\t" << data_label(e + ", " + name) << "\tse";
     data << "\t" << data_label(x) << "\n";
     for (const auto& [position, line] : lines) data << line << "\n";
-    script << (index ? ", \\\n     " : "") << "ARG1 index " << index << " using 1:2" << (numeric ? "" : ":xtic(" + std::to_string(label_column) + ")")
-           << " with linespoints lw 2 lc " << index + 1 << " title columnheader(2)";
+    script << (index ? ", \\\n     " : "") << "ARG1 index " << index << " using 1:2:3" << (numeric ? "" : ":xtic(" + std::to_string(label_column) + ")")
+           << " with yerrorlines lw 2 lc " << index + 1 << " title columnheader(2)";
     for (std::size_t e = 0; e < measured.size(); ++e)
-      script << ", \\\n     ARG1 index " << index << " using 1:" << e + 3 << " axes x1y2 with linespoints dt " << e + 2 << " lc " << index + 1
-             << " title columnheader(" << e + 3 << ")";
+      script << ", \\\n     ARG1 index " << index << " using 1:" << 2 * e + 4 << ":" << 2 * e + 5 << " axes x1y2 with yerrorlines dt " << e + 2 << " lc " << index + 1
+             << " title columnheader(" << 2 * e + 4 << ")";
     ++index;
   }
   script << "\n";
@@ -269,29 +329,30 @@ std::optional<gnuplot_plot> axis_plot(const sweep_table& table, const std::strin
 }
 
 std::optional<gnuplot_plot> pareto_plot(const sweep_table& table, const std::string& time, const std::string& error) {
-  std::map<std::string, std::vector<std::pair<double, double>>> points, front;
+  std::map<std::string, std::vector<std::array<double, 4>>> points;
+  std::map<std::string, std::vector<std::pair<double, double>>> front;
   for (const auto& row : table.rows) {
     const std::optional<double> t = sweep_table::number(row, time), e = sweep_table::number(row, error);
     if (!t || !e || !std::isfinite(*t) || !std::isfinite(*e)) continue;
     const std::string scene = row.count("scene") ? row.at("scene") : std::string();
-    points[scene].emplace_back(*t, *e);
+    points[scene].push_back({*t, *e, time_se(row, time), quality_se(row, error)});
     const auto pareto = row.find("pareto");
     if (pareto != row.end() && pareto->second == "1") front[scene].emplace_back(*t, *e);
   }
   if (points.empty()) return std::nullopt;
   std::ostringstream data, script;
-  script << script_head("the relative error against the frame time, per scene, the Pareto front joined") << "set xlabel " << gnuplot_quoted(time)
+  script << script_head("the relative error against the frame time, per scene, each +- its standard errors, the Pareto front joined") << "set xlabel " << gnuplot_quoted(time)
          << "\nset ylabel " << gnuplot_quoted(error) << "\nset offsets graph 0.05, graph 0.05, graph 0.05, graph 0.05\nplot ";
   int index = 0;
   for (auto& [scene, all] : points) {
     std::vector<std::pair<double, double>>& line = front[scene];
     std::sort(line.begin(), line.end());
     // Two blocks per scene: its points, then its front.
-    data << (index ? "\n\n" : "") << "t\t" << data_label(scene) << "\n";
-    for (const auto& [t, e] : all) data << format_real(t) << "\t" << format_real(e) << "\n";
+    data << (index ? "\n\n" : "") << "t\t" << data_label(scene) << "\tt_se\te_se\n";
+    for (const auto& [t, e, dt, de] : all) data << format_real(t) << "\t" << format_real(e) << "\t" << format_real(dt) << "\t" << format_real(de) << "\n";
     data << "\n\nt\t" << data_label("Pareto front, " + scene) << "\n";
     for (const auto& [t, e] : line) data << format_real(t) << "\t" << format_real(e) << "\n";
-    script << (index ? ", \\\n     " : "") << "ARG1 index " << 2 * index << " using 1:2 with points pt 7 lc " << index + 1
+    script << (index ? ", \\\n     " : "") << "ARG1 index " << 2 * index << " using 1:2:3:4 with xyerrorbars pt 7 lc " << index + 1
            << " title columnheader(2), \\\n     ARG1 index " << 2 * index + 1 << " using 1:2 with lines lw 2 lc " << index + 1 << " title columnheader(2)";
     ++index;
   }

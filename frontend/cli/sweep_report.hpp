@@ -29,10 +29,20 @@ sweep_table read_sweep_csv(const std::filesystem::path& path);
 /// The CSV text: RFC 4180 quoting where a cell holds a comma, a quote or a line end.
 std::string sweep_csv(const sweep_table& table);
 
-/// Marks `pareto` = 1 on the rows no other row of the same scene beats on both `time` and
-/// `error` (lower is better; one of them strictly), 0 on the others, and empty where either is
-/// not measured (empty, not a number, or not finite). O(n log n): per scene, one pass over the
-/// rows sorted by time.
+/// The standard error of a row's `time`: its mean's relative standard error (the column
+/// `<time>_noise`) times the time; 0 where either is not measured.
+double time_se(const std::map<std::string, std::string>& row, const std::string& time);
+/// The standard error of a row's quality `column`: the seeds' (`<column>_sd` / sqrt(`seeds`)) and
+/// the reference's (`<column>_ref_se`) together, in quadrature; 0 where neither is known.
+double quality_se(const std::map<std::string, std::string>& row, const std::string& column);
+
+/// Marks `pareto` = 1 on the rows no other row of the same scene beats beyond the noise on both
+/// `time` and `error` (lower is better), 0 on the others, and empty where either is not measured
+/// (empty, not a number, or not finite). With each value +- its standard error (time_se,
+/// quality_se), B beats A when B's upper bound is at most A's lower bound on both axes and below
+/// it on one; without noise, when B is at most as slow and as wrong and better on one. `tie`: the
+/// rows of a scene's front, by time, each within the noise of the next on both axes (their
+/// intervals overlap) share a number (1, 2, ... per scene); empty for a row alone. O(n log n).
 void mark_pareto(sweep_table& table, const std::string& time, const std::string& error);
 
 /// A plot for gnuplot: the script and the data it draws. Nothing a user named (a file name, a

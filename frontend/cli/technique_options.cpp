@@ -145,7 +145,7 @@ void add_reference_options(CLI::App& command, reference_options& options, option
                             "rsm-brute-force: every N-th receiver of the indirect buffer per axis (the others are not computed or counted)")
                 ->check(CLI::Range(1, 64))->capture_default_str(),
             chooser + " rsm-brute-force", named("rsm-brute-force"));
-  scope.add(command.add_option("--samples", options.samples, "monte-carlo: bounce rays per pixel")->check(CLI::Range(1, 1 << 20))->capture_default_str(),
+  scope.add(command.add_option("--samples,--reference-samples", options.samples, "monte-carlo: bounce rays per pixel")->check(CLI::Range(1, 1 << 20))->capture_default_str(),
             chooser + " monte-carlo", named("monte-carlo"));
   scope.add(command.add_option("--reference-seed", options.seed, "monte-carlo: seed of the estimate")->capture_default_str(), chooser + " monte-carlo",
             named("monte-carlo"));

@@ -1,10 +1,13 @@
 #include "frontend/reference/quality.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 
 #include "frontend/core/error.hpp"
 #include "frontend/core/parallel.hpp"
 #include "frontend/image/metrics.hpp"
+#include "frontend/image/reference_noise.hpp"
 #include "frontend/techniques/final_gather/final_gather_pipeline.hpp"
 #include "frontend/techniques/registry.hpp"
 
@@ -50,6 +53,37 @@ const rsm_technique& rsm_technique_of(const technique_settings& settings) { retu
 quality_metric rmse_metric(const std::string& name, const relative_error& error) { return {name, error.rmse, error.defined, error.why_undefined}; }
 quality_metric bias_metric(const std::string& name, const relative_error& error) { return {name, error.bias, error.defined, error.why_undefined}; }
 quality_metric plain_metric(const std::string& name, double value) { return {name, value, true, {}}; }
+quality_metric higher_better_metric(const std::string& name, double value) {
+  quality_metric metric = plain_metric(name, value);
+  metric.higher_is_better = true;
+  return metric;
+}
+
+// The reference's noise in the metrics measured against it (rel_rmse, rel_bias, and
+// similarity and ssim when `second` is given), and the noise-corrected rel_rmse beside them: the
+// image against the first reference is what the rows report; `variance` is the first's.
+void add_reference_noise(frame_quality& quality, const reference_noise& noise, const image* candidate, const image* second) {
+  if (!noise.defined) return;
+  quality.reference_noise = noise.noise;
+  for (quality_metric& metric : quality.metrics) {
+    if (metric.name == "rel_rmse") metric.reference_se = noise.rmse_se;
+    if (metric.name == "rel_bias") metric.reference_se = noise.bias_se;
+  }
+  if (candidate && second) {
+    // Similarity and SSIM have no closed form in the variance: the spread of the two references'
+    // values, |q1 - q2| / sqrt(2), estimates their standard error (one degree of freedom).
+    const image_metrics other = compare_images(*candidate, *second);
+    for (quality_metric& metric : quality.metrics) {
+      if (metric.name == "similarity") metric.reference_se = std::fabs(metric.value - other.similarity) / std::sqrt(2.0);
+      if (metric.name == "ssim") metric.reference_se = std::fabs(metric.value - other.ssim) / std::sqrt(2.0);
+    }
+  }
+  const auto rmse = std::find_if(quality.metrics.begin(), quality.metrics.end(), [](const quality_metric& m) { return m.name == "rel_rmse"; });
+  if (rmse == quality.metrics.end() || !rmse->defined) return;
+  quality_metric corrected = plain_metric("rel_rmse_corrected", noise.rmse_corrected);
+  corrected.reference_se = noise.rmse_se;
+  quality.metrics.insert(rmse + 1, corrected);
+}
 
 }  // namespace
 
@@ -77,6 +111,16 @@ const image& scene_references::monte_carlo(int width, int height) {
   if (found != monte_carlo_.end()) return found->second;
   if (!source_) throw error("the Monte Carlo reference needs a scene");
   return monte_carlo_[key] = reference_one_bounce(*source_, width, height, options_.samples, options_.seed, options_.threads).radiance;
+}
+
+const image& scene_references::monte_carlo_second(int width, int height) {
+  const std::string key = std::to_string(width) + "x" + std::to_string(height);
+  const auto found = monte_carlo_second_.find(key);
+  if (found != monte_carlo_second_.end()) return found->second;
+  if (!source_) throw error("the Monte Carlo reference needs a scene");
+  // Seed + 1: the per-pixel hashes of another seed, an estimate independent of the first. Twice
+  // the reference's cost, once per frame size, for the noise in every row measured against it.
+  return monte_carlo_second_[key] = reference_one_bounce(*source_, width, height, options_.samples, options_.seed + 1u, options_.threads).radiance;
 }
 
 frame_quality scene_references::measure(pipeline& drawn, const technique_settings& settings) {
@@ -121,7 +165,7 @@ frame_quality scene_references::measure(pipeline& drawn, const technique_setting
         scene_light light;
         light.spot = source.light;
         const image& positions = buffers.gbuffer[0];
-        image reference(positions.width, positions.height), mask(positions.width, positions.height);
+        image reference(positions.width, positions.height), second(positions.width, positions.height), mask(positions.width, positions.height);
         const irradiance_settings<float> irradiance = gathering->settings().irradiance;
         parallel_for(static_cast<int>(positions.texels.size()), options_.threads, [&](int i) {
           const auto k = static_cast<std::size_t>(i);
@@ -129,19 +173,27 @@ frame_quality scene_references::measure(pipeline& drawn, const technique_setting
           const glm::vec3 p(positions.texels[k]), n(buffers.gbuffer[1].texels[k]);
           const glm::vec3 e =
               one_bounce_irradiance(room, light, irradiance, p + n * 1e-3f, n, options_.samples, options_.seed, static_cast<std::uint32_t>(i));
+          // A second, independent estimate (seed + 1) for the reference's noise.
+          const glm::vec3 f =
+              one_bounce_irradiance(room, light, irradiance, p + n * 1e-3f, n, options_.samples, options_.seed + 1u, static_cast<std::uint32_t>(i));
           reference.texels[k] = glm::vec4(e, 1.0f);
+          second.texels[k] = glm::vec4(f, 1.0f);
           mask.texels[k] = glm::vec4(1.0f);
         });
         const relative_error errors = relative_error_of(indirect, reference, &mask);
         quality.metrics = {rmse_metric("rel_rmse", errors), bias_metric("rel_bias", errors)};
         quality.receivers = errors.pixels;
+        add_reference_noise(quality, reference_noise_of(indirect, reference, variance_of_two(reference, second), &mask), nullptr, nullptr);
         break;
       }
       const image radiance = drawn.output().read_image();
-      const image_metrics m = compare_images(radiance, monte_carlo(radiance.width, radiance.height));
-      quality.metrics = {rmse_metric("rel_rmse", m.relative), bias_metric("rel_bias", m.relative), plain_metric("similarity", m.similarity),
-                         plain_metric("ssim", m.ssim)};
+      const image& reference = monte_carlo(radiance.width, radiance.height);
+      const image_metrics m = compare_images(radiance, reference);
+      quality.metrics = {rmse_metric("rel_rmse", m.relative), bias_metric("rel_bias", m.relative), higher_better_metric("similarity", m.similarity),
+                         higher_better_metric("ssim", m.ssim)};
       quality.receivers = m.relative.pixels;
+      const image& second = monte_carlo_second(radiance.width, radiance.height);
+      add_reference_noise(quality, reference_noise_of(radiance, reference, variance_of_two(reference, second)), &radiance, &second);
       break;
     }
     case reference_kind::base: {
@@ -150,8 +202,8 @@ frame_quality scene_references::measure(pipeline& drawn, const technique_setting
       if (base == bases_.end()) throw error("the base configuration's image was not rendered");
       const image radiance = stretched(drawn.output().read_image(), base->second.width, base->second.height);
       const image_metrics m = compare_images(radiance, base->second);
-      quality.metrics = {rmse_metric("rel_rmse", m.relative), bias_metric("rel_bias", m.relative), plain_metric("similarity", m.similarity),
-                         plain_metric("ssim", m.ssim)};
+      quality.metrics = {rmse_metric("rel_rmse", m.relative), bias_metric("rel_bias", m.relative), higher_better_metric("similarity", m.similarity),
+                         higher_better_metric("ssim", m.ssim)};
       quality.receivers = m.relative.pixels;
       break;
     }
@@ -187,7 +239,11 @@ std::string scene_references::coverage() const {
              " bounce rays per pixel, seed " + std::to_string(options_.seed) +
              ") of the same scene, camera and size; rel_rmse, rel_bias of the final image over every pixel and its three channels; similarity: "
              "Alg. 1 of [LW] on 8-bit sRGB (%); ssim on luminance. Final gathering: the object's indirect irradiance against one bounce of the "
-             "room's direct light (the room alone blocks the rays, as the cube map leaves the object out), over the object's pixels.";
+             "room's direct light (the room alone blocks the rays, as the cube map leaves the object out), over the object's pixels. The "
+             "reference is an estimate: a second one of seed " + std::to_string(options_.seed + 1u) +
+             " gives its per-pixel variance, from which come each number's _ref_se (the standard error the reference's noise causes), "
+             "ref_noise (the reference's own noise as a rel_rmse: what a perfect image scores), rel_rmse_corrected (sqrt(rel_rmse^2 - "
+             "ref_noise^2)) and ref_noise_share (ref_noise / rel_rmse).";
     case reference_kind::base:
       return "Reference: the base configuration's final image (the sweep's settings without --vary) drawn with the frame's seed where it reads "
              "one, a smaller image stretched to its size (nearest texel, as [LW] Table 5.7); similarity: Alg. 1 of [LW] on 8-bit sRGB (%), the "

@@ -57,12 +57,22 @@ struct quality_metric {
   double value = 0.0;
   bool defined = true;
   std::string why_undefined;
+  /// Similarity and SSIM: a larger value is the better one (the worst seed is the smallest).
+  bool higher_is_better = false;
+  /// Against a stochastic reference (Monte Carlo): the standard error of `value` that the
+  /// reference's own noise causes (frontend/image/reference_noise.hpp); negative: not estimated.
+  double reference_se = -1.0;
 };
 
 /// Named numbers of one drawn frame against the reference, in a fixed order per kind.
 struct frame_quality {
   std::vector<quality_metric> metrics;
   std::size_t receivers = 0;  ///< the pixels or receivers the metrics count
+  /// Against a stochastic reference: its own noise as a rel_rmse (what a perfect image scores),
+  /// estimated from a second reference of another seed; negative: the reference is exact (the
+  /// brute force computes every lit texel; its stride subsamples receivers, not the estimate) or
+  /// the noise is not defined.
+  double reference_noise = -1.0;
   image raw;                  ///< rsm-brute-force: the raw gather (for the noise over seeds)
 };
 
@@ -89,6 +99,9 @@ class scene_references {
  private:
   const frame_reference& brute_force(const technique_settings& settings);
   const image& monte_carlo(int width, int height);
+  /// A second, independent Monte Carlo reference (seed + 1): the first's noise is estimated
+  /// from the two (frontend/image/reference_noise.hpp).
+  const image& monte_carlo_second(int width, int height);
 
   const shader_library& shaders_;
   reference_options options_;
@@ -96,6 +109,7 @@ class scene_references {
   std::map<std::string, std::unique_ptr<frame_reference>> brute_forces_;
   std::map<std::string, image> radius_cuts_;
   std::map<std::string, image> monte_carlo_;
+  std::map<std::string, image> monte_carlo_second_;
   std::size_t last_receivers_ = 0;
   std::map<std::string, image> bases_;  ///< by seed ("": a base without one)
 };

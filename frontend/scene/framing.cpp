@@ -309,9 +309,10 @@ scene frame_mesh(std::string name, mesh geometry, framing_needs needs) {
       const float floor_extent = 3.0f * radius;
       // Grown by exactly the quad: push_back on a full vector doubles its capacity, and a mesh
       // of millions of vertices (a file's, read to its size) then kept that slack for the whole
-      // run (a faceted 2^21-triangle OBJ: 553 MB of vertices instead of 277).
-      geometry.vertices.reserve(geometry.vertices.size() + 4);
-      geometry.indices.reserve(geometry.indices.size() + 6);
+      // run (a faceted 2^21-triangle OBJ: 553 MB of vertices instead of 277). The loaders leave
+      // room for it (framing_floor_vertices), so that this reserves nothing new.
+      geometry.vertices.reserve(geometry.vertices.size() + framing_floor_vertices);
+      geometry.indices.reserve(geometry.indices.size() + framing_floor_indices);
       add_quad(geometry, {c.x - floor_extent, floor_y, c.z + floor_extent}, {c.x + floor_extent, floor_y, c.z + floor_extent},
                {c.x + floor_extent, floor_y, c.z - floor_extent}, {c.x - floor_extent, floor_y, c.z - floor_extent}, {0, 1, 0}, floor_albedo);
     }

@@ -2,9 +2,13 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cstdlib>
 #include <cmath>
 #include <map>
+#include <memory>
+#include <new>
 #include <optional>
+#include <type_traits>
 #include <unordered_map>
 #include <vector>
 
@@ -235,31 +239,48 @@ struct vertex_key_hash {
   }
 };
 
-// Mesh vertices by key: the first key of each position in a flat array (the common case, one
-// vertex per position), any other key of the position in a hash map.
+// Mesh vertices by key: the first key of each position in a flat table (the common case, one
+// vertex per position), any other key of the position in a hash map. Only a position that more
+// than one corner uses can be shared, so only those are ever looked up or written: the table is
+// calloc'd, whose pages the kernel backs only when first written, and a triangle soup (every
+// position used once: three `v` lines a triangle) never touches it. Before, its 20 bytes a
+// position (120 MiB for a faceted 2^21-triangle OBJ) were written up front and held beside the
+// mesh being built: the load's peak.
 class vertex_index {
  public:
-  explicit vertex_index(std::size_t positions) : first_(positions) {}
+  /// `uses[p]`: how many corners use position p, saturated at 2.
+  explicit vertex_index(std::vector<std::uint8_t> uses)
+      : uses_(std::move(uses)), first_(uses_.empty() ? nullptr : static_cast<entry*>(std::calloc(uses_.size(), sizeof(entry)))) {
+    if (!uses_.empty() && !first_) throw std::bad_alloc();
+  }
   static constexpr std::uint32_t none = 0xffffffffu;
+  /// Whether a corner at this position can share a vertex with another corner.
+  bool may_share(std::uint32_t position) const { return uses_[position] > 1; }
   std::uint32_t find(const vertex_key& key) const {
-    const entry& first = first_[key.position];
-    if (first.vertex != none && first.key == key) return first.vertex;
+    const entry& first = first_.get()[key.position];
+    if (first.vertex_plus_one != 0 && first.key == key) return first.vertex_plus_one - 1;
     if (others_.empty()) return none;
     const auto found = others_.find(key);
     return found == others_.end() ? none : found->second;
   }
   void insert(const vertex_key& key, std::uint32_t vertex) {
-    entry& first = first_[key.position];
-    if (first.vertex == none) first = {key, vertex};
+    entry& first = first_.get()[key.position];
+    if (first.vertex_plus_one == 0) first = {key, vertex + 1};
     else others_.emplace(key, vertex);
   }
 
  private:
+  /// All zero (calloc's) is an empty entry.
   struct entry {
     vertex_key key;
-    std::uint32_t vertex = none;
+    std::uint32_t vertex_plus_one;
   };
-  std::vector<entry> first_;
+  static_assert(std::is_trivially_copyable_v<entry> && std::is_trivially_destructible_v<entry>, "entries live in calloc'd memory");
+  struct free_deleter {
+    void operator()(entry* table) const { std::free(table); }
+  };
+  std::vector<std::uint8_t> uses_;
+  std::unique_ptr<entry, free_deleter> first_;
   std::unordered_map<vertex_key, std::uint32_t, vertex_key_hash> others_;
 };
 
@@ -346,10 +367,15 @@ mesh parse_obj_text(std::string_view text, std::string* owned, const std::string
   // Where the file has no normals, each corner takes the area-weighted mean of the normals of the
   // faces around its position (smooth shading, as the meshes were scanned or modelled).
   std::vector<glm::vec3> smooth_normals(positions.size(), glm::vec3(0.0f));
+  std::vector<std::uint8_t> uses(positions.size(), 0);  // corners per position, saturated at 2
   for (std::size_t face = 0; face < corners.size(); face += 3) {
     const glm::vec3 a = positions[corners[face].position], b = positions[corners[face + 1].position], c = positions[corners[face + 2].position];
     const glm::vec3 area_weighted = glm::cross(b - a, c - a);
-    for (std::size_t k = 0; k < 3; ++k) smooth_normals[corners[face + k].position] += area_weighted;
+    for (std::size_t k = 0; k < 3; ++k) {
+      smooth_normals[corners[face + k].position] += area_weighted;
+      std::uint8_t& count = uses[corners[face + k].position];
+      count = static_cast<std::uint8_t>(std::min(count + 1, 2));
+    }
   }
   // The textures of the materials faces use, each file decoded once, and a surface material per
   // textured OBJ material.
@@ -388,12 +414,13 @@ mesh parse_obj_text(std::string_view text, std::string* owned, const std::string
   // coordinate share a vertex, so that memory follows the mesh (about 50 bytes a triangle for a
   // closed surface), not three copies of every vertex.
   mesh result;
-  vertex_index shared(positions.size());
-  result.indices.reserve(corners.size());
+  vertex_index shared(std::move(uses));
   // At most a vertex per corner (a triangle soup, where nothing is shared, has exactly that):
   // reserved, because growing by doubling held the old and the new array at once (185 + 277 MB
   // for a faceted 2^21-triangle mesh). The pages of a closed mesh's unused part are never touched.
-  result.vertices.reserve(corners.size());
+  // Both leave room for frame_mesh's floor, which would otherwise reallocate them.
+  result.indices.reserve(corners.size() + framing_floor_indices);
+  result.vertices.reserve(corners.size() + framing_floor_vertices);
   for (std::size_t face = 0; face < corners.size(); face += 3) {
     const material& face_material = used[triangle_material[face / 3]];
     glm::vec3 corner_position[3];
@@ -422,7 +449,8 @@ mesh parse_obj_text(std::string_view text, std::string* owned, const std::string
         if (smooth_length > 0.0f && std::isfinite(smooth_length) && glm::dot(smooth, face_normal) > 0.0f) normal = glm::normalize(smooth);
       }
       const bool shareable = normal.has_value();
-      if (shareable) {
+      const bool indexed = shareable && shared.may_share(at.position);
+      if (indexed) {
         if (const std::uint32_t found = shared.find(key); found != vertex_index::none) {
           result.indices.push_back(found);
           continue;
@@ -433,7 +461,7 @@ mesh parse_obj_text(std::string_view text, std::string* owned, const std::string
       result.vertices.push_back({corner_position[k], shareable ? *normal : face_normal, face_material.albedo,
                                  uv >= 0 ? texture_coordinates[static_cast<std::size_t>(uv)] : glm::vec2(0.0f)});
       result.indices.push_back(added);
-      if (shareable) shared.insert(key, added);
+      if (indexed) shared.insert(key, added);
     }
     // A textured face (every corner with a vt) joins its material's range; one without vt is plain.
     const int surface = surface_of[triangle_material[face / 3]];
@@ -453,8 +481,13 @@ mesh parse_obj_text(std::string_view text, std::string* owned, const std::string
   // used: a closed mesh has about one vertex per two triangles).
   for (auto* released : {&positions, &smooth_normals}) std::vector<glm::vec3>().swap(*released);
   std::vector<corner>().swap(corners);
-  shared = vertex_index(0);
-  if (result.vertices.capacity() > result.vertices.size() + result.vertices.size() / 8) result.vertices.shrink_to_fit();
+  shared = vertex_index({});
+  if (result.vertices.capacity() > result.vertices.size() + result.vertices.size() / 8 + framing_floor_vertices) {
+    std::vector<vertex> fitted;
+    fitted.reserve(result.vertices.size() + framing_floor_vertices);
+    fitted.assign(result.vertices.begin(), result.vertices.end());
+    result.vertices.swap(fitted);
+  }
   if (!result.material_ranges.empty()) result.materials = std::make_shared<const material_library>(std::move(library));
   return result;
 }

@@ -221,6 +221,13 @@ struct framing_needs {
   bool light = true;
 };
 
+/// What frame_mesh's floor adds to a mesh. A loader that sizes its arrays to the mesh leaves
+/// this much room, so that adding the floor does not reallocate them: a vector grown past its
+/// capacity holds the old and the new array at once (a faceted 2^21-triangle OBJ: 277 MB of
+/// vertices twice, the load's peak).
+inline constexpr std::size_t framing_floor_vertices = 4;
+inline constexpr std::size_t framing_floor_indices = 6;
+
 /// Places a camera and a spot light for a mesh without them (OBJ files, glTF files without a
 /// camera or a light; frontend/scene/framing.hpp measures what the mesh is):
 /// - a closed room (rays from an inside point meet, in nearly every direction, a surface facing

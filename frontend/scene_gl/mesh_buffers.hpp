@@ -19,9 +19,20 @@ namespace vplkit {
 /// pipelines' own textures use the units below it).
 constexpr int material_texture_unit = 8;
 
+/// How draw() splits a long run of triangles (one material range, or the plain triangles
+/// between ranges): a run of more than `threshold_triangles` is drawn in chunks of
+/// `chunk_triangles`, in order, with at most two chunks in flight (mesh_buffers.cpp says why).
+/// The defaults bound llvmpipe's binned triangles for a 2^21-triangle mesh; a test sets tiny
+/// values so that a small mesh takes the chunked path (tests/frontend/scene_gl/test_mesh_buffers.cpp).
+struct draw_chunking {
+  GLsizei threshold_triangles = 1 << 20;  ///< >= 0
+  GLsizei chunk_triangles = 1 << 16;      ///< >= 1
+};
+
 class mesh_buffers {
  public:
-  explicit mesh_buffers(const mesh& source);
+  /// Throws vplkit::error for a `chunking` outside the ranges above.
+  explicit mesh_buffers(const mesh& source, draw_chunking chunking = {});
   /// Draws every triangle with `target`, which must include shaders/surface_material.glsl: for
   /// each material range its texture and sampler are bound to material_texture_unit and the
   /// material's uniforms set; the plain triangles between ranges draw untextured and opaque.
@@ -48,6 +59,12 @@ class mesh_buffers {
   GLsizei vertex_count_;
   /// Sets the constant attributes (albedo, texture coordinate) that this mesh keeps out of its buffer.
   void set_constant_attributes() const;
+  /// Draws `count` indices from `first_index` of the bound vertex array: one draw call, or for
+  /// more than chunking_.threshold_triangles, chunks of chunking_.chunk_triangles with at most
+  /// two in flight.
+  void draw_triangles(std::size_t first_index, GLsizei count) const;
+  draw_chunking chunking_;
+  static constexpr GLuint64 fence_timeout_ns = GLuint64{10} * 1000 * 1000 * 1000;
 
   std::vector<segment> segments_;
   bool per_vertex_albedo_ = true;

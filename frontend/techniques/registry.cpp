@@ -5,6 +5,8 @@
 #include "frontend/techniques/lightwave/lightwave_pipeline.hpp"
 #include "frontend/techniques/rsm/rsm_pipeline.hpp"
 
+#include <vplkit/lightwave.hpp>
+
 namespace vplkit {
 
 namespace {
@@ -65,6 +67,8 @@ technique_family lightwave_family() {
     return std::make_unique<lightwave_pipeline>(shaders, required(source, "Light Wave"), settings_struct<lightwave_settings, lightwave_technique>(settings));
   };
   family.visibility_baseline = [](const std::string&) { return std::string(); };
+  family.base_rank = [](double fps_gain, double similarity_percent) { return lightwave_rank(fps_gain, similarity_percent); };
+  family.base_rank_title = "[LW]'s Eq. 5.3 (Table 5.10)";
   return family;
 }
 

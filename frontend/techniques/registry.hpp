@@ -39,6 +39,12 @@ struct technique_family {
   /// Who renders a --poses sequence in one pipeline (pipeline::draw_next), as the option's scope
   /// says it: "the RSM techniques (direct, rsm-*)"; "" for a family whose pipelines do not.
   std::string sequence_readers;
+  /// How the family ranks a configuration against its base configuration (`vplkit sweep
+  /// --reference base`), from the frames per second it gains over the base and the % similarity to
+  /// the base's image it keeps; empty when the family has no such rank. The sweep writes it as the
+  /// column `rank`, titled base_rank_title.
+  std::function<double(double fps_gain, double similarity_percent)> base_rank;
+  std::string base_rank_title;  ///< e.g. "[LW] Eq. 5.3 (Table 5.10)"
 
   bool reads_scene() const { return !default_scene.empty(); }
   bool has(const std::string& technique) const;

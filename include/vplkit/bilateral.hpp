@@ -7,7 +7,7 @@
 // texels around c; each weighs
 //   w = exp(-|q - c|^2 / (2 sigma_s^2)) * exp(-((z_q - z_c) / (sigma_z z_c))^2 / 2) * max(0, <n_c, n_q>)^k
 // (z: camera eye-space depth, relative difference, so the filter does not depend on the scene's
-// scale; n: normals; k an integer power, computed by repeated multiplication). Taking the taps
+// scale; n: normals; k an integer power, computed by repeated squaring). Taking the taps
 // on the low-resolution grid means kernel 17 spans 17 distinct irradiance samples per axis.
 // The thesis does not give the sigmas or the power: settings.
 // `bilateral_filter` is the full 2D kernel; `bilateral_filter_axis` one axis of the separable
@@ -59,37 +59,73 @@ struct settings_description<bilateral_settings<T>> {
   }
 };
 
+/// base^power for an integer power >= 0 by repeated squaring: log2(power) + popcount(power)
+/// multiplies instead of power (3 instead of 8 at the default k = 8), the same on both twins.
+template <typename T>
+T integer_power(T base, int power) {
+  T result = T(1);
+  for (int k = power; k > 0; k >>= 1) {
+    if ((k & 1) != 0) result *= base;
+    base *= base;
+  }
+  return result;
+}
+
+namespace detail {
+
+/// What a tap's weight needs of its centre, computed once per centre: the filters divide once
+/// per pixel, not twice per tap.
+template <typename T>
+struct bilateral_centre {
+  T depth;                  ///< camera eye-space depth; 0: nothing there
+  glm::vec<3, T> normal;
+  T spatial_scale;          ///< 1 / (2 sigma_s^2)
+  T depth_scale;            ///< 1 / (sigma_z depth); unused at depth 0
+};
+
+template <typename T>
+bilateral_centre<T> make_bilateral_centre(T depth, const glm::vec<3, T>& normal, const bilateral_settings<T>& settings) {
+  return {depth, normal, T(1) / (T(2) * settings.spatial_sigma * settings.spatial_sigma),
+          depth != T(0) ? T(1) / (settings.depth_sigma * depth) : T(0)};
+}
+
+/// The spatial and the depth Gaussians share one exp of the sum of their exponents (one exp per
+/// tap, not two).
+template <typename T>
+T bilateral_weight(const glm::vec<2, T>& offset, T tap_depth, const glm::vec<3, T>& tap_normal, const bilateral_centre<T>& centre,
+                   int normal_power) {
+  T exponent = glm::dot(offset, offset) * centre.spatial_scale;
+  // Relative to the centre's depth; a centre at depth 0 (nothing there) matches only depth 0.
+  T depth = tap_depth == centre.depth ? T(1) : T(0);
+  if (centre.depth != T(0)) {
+    const T relative = (tap_depth - centre.depth) * centre.depth_scale;
+    exponent += T(0.5) * relative * relative;
+    depth = T(1);
+  }
+  const T facing = glm::max(T(0), glm::dot(centre.normal, tap_normal));
+  return std::exp(-exponent) * depth * integer_power(facing, normal_power);
+}
+
+template <typename T, typename Fetch>
+void bilateral_add_tap(const glm::ivec2& texel, const glm::vec<2, T>& centre_coordinate, const bilateral_centre<T>& centre, Fetch& fetch,
+                       const glm::ivec2& size, int normal_power, glm::vec<3, T>& sum, T& weight_sum) {
+  if (texel.x < 0 || texel.y < 0 || texel.x >= size.x || texel.y >= size.y) return;
+  const bilateral_tap<T> tap = fetch(texel);
+  if (!(tap.depth < T(0))) return;
+  const T weight = bilateral_weight(glm::vec<2, T>(texel) + T(0.5) - centre_coordinate, tap.depth, tap.normal, centre, normal_power);
+  sum += weight * tap.value;
+  weight_sum += weight;
+}
+
+}  // namespace detail
+
 /// The weight of one tap at `offset` (low-resolution texels) from the centre.
 template <typename T>
 T bilateral_weight(const glm::vec<2, T>& offset, T centre_depth, T tap_depth, const glm::vec<3, T>& centre_normal,
                    const glm::vec<3, T>& tap_normal, const bilateral_settings<T>& settings) {
-  const T spatial = std::exp(-glm::dot(offset, offset) / (T(2) * settings.spatial_sigma * settings.spatial_sigma));
-  // Relative to the centre's depth; a centre at depth 0 (nothing there) matches only depth 0.
-  T depth = tap_depth == centre_depth ? T(1) : T(0);
-  if (centre_depth != T(0)) {
-    const T relative = (tap_depth - centre_depth) / (settings.depth_sigma * centre_depth);
-    depth = std::exp(T(-0.5) * relative * relative);
-  }
-  const T facing = glm::max(T(0), glm::dot(centre_normal, tap_normal));
-  T normal = T(1);
-  for (int i = 0; i < settings.normal_power; ++i) normal *= facing;
-  return spatial * depth * normal;
+  return detail::bilateral_weight(offset, tap_depth, tap_normal, detail::make_bilateral_centre(centre_depth, centre_normal, settings),
+                                  settings.normal_power);
 }
-
-namespace detail {
-template <typename T, typename Fetch>
-void bilateral_add_tap(const glm::ivec2& texel, const glm::vec<2, T>& centre, T centre_depth,
-                       const glm::vec<3, T>& centre_normal, Fetch& fetch, const glm::ivec2& size,
-                       const bilateral_settings<T>& settings, glm::vec<3, T>& sum, T& weight_sum) {
-  if (texel.x < 0 || texel.y < 0 || texel.x >= size.x || texel.y >= size.y) return;
-  const bilateral_tap<T> tap = fetch(texel);
-  if (!(tap.depth < T(0))) return;
-  const T weight = bilateral_weight(glm::vec<2, T>(texel) + T(0.5) - centre, centre_depth, tap.depth, centre_normal,
-                                    tap.normal, settings);
-  sum += weight * tap.value;
-  weight_sum += weight;
-}
-}  // namespace detail
 
 /// Full 2D kernel around low-resolution coordinate `centre`. Returns 0 where no tap has weight.
 template <typename T, typename Fetch>
@@ -97,11 +133,12 @@ glm::vec<3, T> bilateral_filter(const glm::vec<2, T>& centre, T centre_depth, co
                                 Fetch&& fetch, const glm::ivec2& size, const bilateral_settings<T>& settings) {
   const glm::ivec2 base = glm::ivec2(glm::floor(centre));
   const int radius = settings.kernel_size / 2;
+  const detail::bilateral_centre<T> constants = detail::make_bilateral_centre(centre_depth, centre_normal, settings);
   glm::vec<3, T> sum(0);
   T weight_sum = T(0);
   for (int j = -radius; j <= radius; ++j)
     for (int i = -radius; i <= radius; ++i)
-      detail::bilateral_add_tap(base + glm::ivec2(i, j), centre, centre_depth, centre_normal, fetch, size, settings, sum, weight_sum);
+      detail::bilateral_add_tap(base + glm::ivec2(i, j), centre, constants, fetch, size, settings.normal_power, sum, weight_sum);
   return weight_sum > T(0) ? sum / weight_sum : glm::vec<3, T>(0);
 }
 
@@ -112,10 +149,11 @@ glm::vec<3, T> bilateral_filter_axis(const glm::vec<2, T>& centre, T centre_dept
   const glm::ivec2 base = glm::ivec2(glm::floor(centre));
   const glm::ivec2 step = axis == 0 ? glm::ivec2(1, 0) : glm::ivec2(0, 1);
   const int radius = settings.kernel_size / 2;
+  const detail::bilateral_centre<T> constants = detail::make_bilateral_centre(centre_depth, centre_normal, settings);
   glm::vec<3, T> sum(0);
   T weight_sum = T(0);
   for (int i = -radius; i <= radius; ++i)
-    detail::bilateral_add_tap(base + step * i, centre, centre_depth, centre_normal, fetch, size, settings, sum, weight_sum);
+    detail::bilateral_add_tap(base + step * i, centre, constants, fetch, size, settings.normal_power, sum, weight_sum);
   return weight_sum > T(0) ? sum / weight_sum : glm::vec<3, T>(0);
 }
 

@@ -83,7 +83,7 @@ read_rows("${WORK}/s1/sweep.csv" rows)
 list(LENGTH rows count)
 expect_true("4 rows: 2 radii x 2 scenes (and the header)" count EQUAL 5)
 list(GET rows 0 header)
-expect_true("the CSV names the varied setting and the measures" header MATCHES "^scene,technique,radius,frame_ms,.*,rel_rmse,rel_rmse_sd,.*rel_bias,.*pareto,key$")
+expect_true("the CSV names the varied setting and the measures" header MATCHES "^scene,technique,radius,frame_ms,.*,machine,.*,rel_rmse,rel_rmse_sd,rel_rmse_seed1,rel_rmse_seed2,rel_rmse_worst,rel_rmse_worst_seed,.*rel_bias,.*pareto,tie,key$")
 column_index("${header}" "radius" radius_column)
 column_index("${header}" "rel_bias" bias_column)
 column_index("${header}" "frame_ms" time_column)
@@ -126,11 +126,12 @@ expect_success("a rerun with one more radius runs only it" "resuming"
 read_rows("${WORK}/s1/sweep.csv" grown)
 list(LENGTH grown count)
 expect_true("6 rows after resuming with a third radius" count EQUAL 7)
-# Each earlier row kept as it was, measurements and timing included; only its Pareto flag may
-# change, the front now holding the third radius too (its time varies with the machine's load).
+# Each earlier row kept as it was, measurements and timing included; only its Pareto flag and tie
+# may change, the front now holding the third radius too (its time varies with the machine's load).
+column_index("${header}" "tie" tie_column)
 function(without_pareto row variable)
   string(REPLACE "," ";" cells "${row}")
-  list(REMOVE_AT cells ${pareto_column})
+  list(REMOVE_AT cells ${pareto_column} ${tie_column})
   set(${variable} "${cells}" PARENT_SCOPE)
 endfunction()
 set(grown_measures "")

@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <initializer_list>
 
 #include <vplkit/bilateral.hpp>
 
@@ -43,3 +44,27 @@ TEST_CASE("bilateral filter keeps a constant image and does not blur across a de
         doctest::Approx(std::pow(std::cos(0.5), 8)).epsilon(1e-12));
 }
 
+
+TEST_CASE("integer_power (repeated squaring) equals std::pow for every power the settings allow") {
+  for (int power = 0; power <= 64; ++power)
+    for (double base : {0.0, 0.3, 0.9, 0.999, 1.0}) {
+      CAPTURE(power);
+      CAPTURE(base);
+      CHECK(integer_power(base, power) == doctest::Approx(std::pow(base, power)).epsilon(1e-14));
+      CHECK(double(integer_power(float(base), power)) == doctest::Approx(std::pow(double(float(base)), power)).epsilon(1e-5));
+    }
+  CHECK(integer_power(0.0, 0) == 1.0);  // k = 0: no normal weight, even for opposite normals
+}
+
+TEST_CASE("the one-exp weight equals the product of the two Gaussians and the normal power") {
+  const bilateral_settings<double> settings;
+  for (double depth_ratio : {1.0, 1.02, 1.1, 0.9}) {
+    const glm::dvec2 offset(1.5, -2.5);
+    const double centre_depth = -3.0, tap_depth = centre_depth * depth_ratio;
+    const glm::dvec3 n(0, 0, 1), m = glm::normalize(glm::dvec3(0.2, 0, 1));
+    const double relative = (tap_depth - centre_depth) / (settings.depth_sigma * centre_depth);
+    const double expected = std::exp(-glm::dot(offset, offset) / (2.0 * settings.spatial_sigma * settings.spatial_sigma)) *
+                            std::exp(-0.5 * relative * relative) * std::pow(glm::dot(n, m), settings.normal_power);
+    CHECK(bilateral_weight(offset, centre_depth, tap_depth, n, m, settings) == doctest::Approx(expected).epsilon(1e-13));
+  }
+}

@@ -96,7 +96,7 @@ glm::dvec3 box_reference(const glm::dvec3& x, const glm::dvec3& n) {
   const int faces[6][4] = {{1, 2, 6, 5}, {0, 3, 7, 4}, {3, 2, 6, 7}, {0, 1, 5, 4}, {4, 5, 6, 7}, {0, 1, 2, 3}};
   glm::dvec3 e(0.0);
   for (int f = 0; f < 6; ++f)
-    e += box_cube_map::wall_radiance(f / 2, f % 2 == 0) * (pi * polygon_form_factor(x, n, c[faces[f][0]], c[faces[f][1]], c[faces[f][2]], c[faces[f][3]]));
+    e += box_cube_map::wall_radiance(f / 2, f % 2 == 0) * (pi * polygon_form_factor_exact(x, n, c[faces[f][0]], c[faces[f][1]], c[faces[f][2]], c[faces[f][3]]));
   return e;
 }
 
@@ -111,7 +111,10 @@ TEST_CASE("final gathering in a closed environment of radiance 1 gives E = pi an
   for (int trial = 0; trial < 50; ++trial) {
     const glm::dvec3 x(uniform(random), uniform(random), uniform(random)), n = random_unit(random);
     const glm::dvec3 e = final_gather_irradiance<gather_form_factor::polygon>(x, n, glm::dvec3(0.0), m, constant);
-    REQUIRE(e.x == doctest::Approx(pi).epsilon(1e-9));
+    // The interior edges' terms cancel exactly between neighbouring quads (lambert_edge is odd in
+    // its two ends), so only the closing edges along the tangent plane carry form_factor.hpp's
+    // 2.2e-8 rad each: at most 2 per quad the plane cuts (a few dozen at M = 4), pi / (2 pi) each.
+    REQUIRE(std::fabs(e.x - pi) <= 100 * 2.2e-8 * 0.5);
   }
 }
 

@@ -28,31 +28,38 @@ glm::dvec3 random_unit(std::mt19937& random) {
 
 }  // namespace
 
-TEST_CASE("polygon_form_factor equals Howell's B-3 (parallel rectangle) to 1e-9 in double, 2e-6 in float") {
+// polygon_form_factor's stated bound against the exact form factor (form_factor.hpp): 6 edges
+// of 2.2e-8 rad each over 2 pi, plus double rounding.
+constexpr double fast_bound = 2.2e-8;
+
+TEST_CASE("polygon_form_factor equals Howell's B-3 (parallel rectangle): the exact form to 1e-9, the fast one to 2.2e-8 in double, 2e-6 in float") {
   for (const std::array<double, 3>& sides : std::vector<std::array<double, 3>>{{1, 1, 1}, {2, 0.5, 1}, {0.1, 0.3, 2}, {5, 7, 0.2}, {1e-3, 1e-3, 1}}) {
     const double a = sides[0], b = sides[1], c = sides[2];  // not a structured binding: CAPTURE's lambda cannot capture one (clang 14)
     const double exact = parallel_rectangle(a, b, c);
     const glm::dvec3 x(0.0), n(0, 0, 1);
-    const double f = polygon_form_factor(x, n, glm::dvec3(0, 0, c), glm::dvec3(a, 0, c), glm::dvec3(a, b, c), glm::dvec3(0, b, c));
+    const double f = polygon_form_factor_exact(x, n, glm::dvec3(0, 0, c), glm::dvec3(a, 0, c), glm::dvec3(a, b, c), glm::dvec3(0, b, c));
     CAPTURE(a);
     CAPTURE(b);
     CAPTURE(c);
     CHECK(f == doctest::Approx(exact).epsilon(1e-9));
+    CHECK(std::fabs(polygon_form_factor(x, n, glm::dvec3(0, 0, c), glm::dvec3(a, 0, c), glm::dvec3(a, b, c), glm::dvec3(0, b, c)) - exact) <= fast_bound);
     const float ff = polygon_form_factor(glm::vec3(0.0f), glm::vec3(0, 0, 1), glm::vec3(0, 0, c), glm::vec3(a, 0, c), glm::vec3(a, b, c), glm::vec3(0, b, c));
     CHECK(ff == doctest::Approx(exact).epsilon(2e-6));
   }
 }
 
-TEST_CASE("polygon_form_factor equals Howell's B-2 (perpendicular rectangle) to 1e-9 in double, 2e-6 in float") {
+TEST_CASE("polygon_form_factor equals Howell's B-2 (perpendicular rectangle): the exact form to 1e-9, the fast one to 2.2e-8 in double, 2e-6 in float") {
   for (const std::array<double, 3>& sides : std::vector<std::array<double, 3>>{{1, 1, 1}, {2, 0.5, 1}, {0.3, 3, 0.5}, {4, 4, 0.1}}) {
     const double a = sides[0], b = sides[1], c = sides[2];
     const double exact = perpendicular_rectangle(a, b, c);
     // Element at the origin facing +z; the rectangle in the plane y = c, x in [0, a], z in [0, b].
-    const double f = polygon_form_factor(glm::dvec3(0.0), glm::dvec3(0, 0, 1), glm::dvec3(0, c, 0), glm::dvec3(a, c, 0), glm::dvec3(a, c, b),
-                                         glm::dvec3(0, c, b));
+    const double f = polygon_form_factor_exact(glm::dvec3(0.0), glm::dvec3(0, 0, 1), glm::dvec3(0, c, 0), glm::dvec3(a, c, 0), glm::dvec3(a, c, b),
+                                               glm::dvec3(0, c, b));
     CAPTURE(a);
     CAPTURE(c);
     CHECK(f == doctest::Approx(exact).epsilon(1e-9));
+    CHECK(std::fabs(polygon_form_factor(glm::dvec3(0.0), glm::dvec3(0, 0, 1), glm::dvec3(0, c, 0), glm::dvec3(a, c, 0), glm::dvec3(a, c, b),
+                                        glm::dvec3(0, c, b)) - exact) <= fast_bound);
     const float ff = polygon_form_factor(glm::vec3(0.0f), glm::vec3(0, 0, 1), glm::vec3(0, c, 0), glm::vec3(a, c, 0), glm::vec3(a, c, b), glm::vec3(0, c, b));
     CHECK(ff == doctest::Approx(exact).epsilon(2e-6));
   }
@@ -94,8 +101,13 @@ TEST_CASE("the six faces of a closed cube around a point give F = 1, for any nor
   for (int trial = 0; trial < 200; ++trial) {
     const glm::dvec3 x(uniform(random), uniform(random), uniform(random)), n = random_unit(random);
     double total = 0.0;
-    for (const auto& face : faces) total += polygon_form_factor(x, n, c[face[0]], c[face[1]], c[face[2]], c[face[3]]);
+    double fast_total = 0.0;
+    for (const auto& face : faces) {
+      total += polygon_form_factor_exact(x, n, c[face[0]], c[face[1]], c[face[2]], c[face[3]]);
+      fast_total += polygon_form_factor(x, n, c[face[0]], c[face[1]], c[face[2]], c[face[3]]);
+    }
     REQUIRE(total == doctest::Approx(1.0).epsilon(1e-9));
+    REQUIRE(std::fabs(fast_total - 1.0) <= 6.0 * fast_bound);
   }
 }
 
@@ -146,4 +158,85 @@ TEST_CASE("point_form_factor x area converges to the polygon form factor as the 
   const double point = point_form_factor(x, n, glm::dvec3(0, 0, near), ny) * 1.0;
   CHECK(polygon < 1.0);
   CHECK(point / polygon > 1000.0);
+}
+
+TEST_CASE("the polynomial acos of lambert_edge is within 2.2e-8 of acos over [0, 1], and within 1e-6 of its value at 1 near it") {
+  // Dense in x, and dense near 1 where acos's own slope is infinite: the bound is on
+  // sqrt(1 - x) P(x), the angle the edge term uses.
+  double worst = 0.0;
+  for (int i = 0; i <= 1000000; ++i) {
+    const double x = i / 1000000.0;
+    worst = std::max(worst, std::fabs(std::sqrt(1.0 - x) * detail::acos_over_sqrt_one_minus(x) - std::acos(x)));
+  }
+  for (int i = 1; i <= 60; ++i) {
+    const double x = 1.0 - std::ldexp(1.0, -i);
+    worst = std::max(worst, std::fabs(std::sqrt(1.0 - x) * detail::acos_over_sqrt_one_minus(x) - std::acos(x)));
+  }
+  CAPTURE(worst);
+  CHECK(worst <= 2.2e-8);
+  CHECK(worst > 1e-9);  // the bound is the polynomial's, not vacuous: a wrong coefficient would show
+  // P(1) = acos(x) / sqrt(1 - x) at x -> 1, which is sqrt(2).
+  CHECK(detail::acos_over_sqrt_one_minus(1.0) == doctest::Approx(std::sqrt(2.0)).epsilon(1e-6));
+}
+
+TEST_CASE("lambert_edge is within 2.2e-8 of the exact (atan2) term for every angle, small ones included") {
+  std::mt19937 random(43);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  double worst = 0.0;
+  for (int trial = 0; trial < 200000; ++trial) {
+    const glm::dvec3 n = random_unit(random), a = random_unit(random) * (0.1 + 2.0 * std::fabs(uniform(random)));
+    // Angles from 1e-6 rad to pi - 1e-3 (nearer pi the edge passes through x: ill-conditioned in any form).
+    const double gamma = trial % 4 == 0 ? std::pow(10.0, -6.0 + 6.0 * std::fabs(uniform(random))) : (pi - 1e-3) * std::fabs(uniform(random));
+    const glm::dvec3 axis = glm::normalize(glm::cross(a, random_unit(random)));
+    const glm::dvec3 unit_a = glm::normalize(a), perpendicular = glm::cross(axis, unit_a);
+    const glm::dvec3 b = (unit_a * std::cos(gamma) + perpendicular * std::sin(gamma)) * (0.1 + 2.0 * std::fabs(uniform(random)));
+    const double fast = detail::lambert_edge(a, detail::inverse_length(a), b, detail::inverse_length(b), n);
+    worst = std::max(worst, std::fabs(fast - detail::lambert_edge_exact(a, b, n)));
+  }
+  CAPTURE(worst);
+  CHECK(worst <= 2.2e-8);
+  // Degenerate edges: a zero vector, or both ends on one ray: 0, not NaN; an antipodal edge stays in [-pi, pi].
+  const glm::dvec3 n(0, 0, 1), a(1, 0, 0);
+  CHECK(detail::lambert_edge(a, 1.0, glm::dvec3(0.0), detail::inverse_length(glm::dvec3(0.0)), n) == 0.0);
+  CHECK(detail::lambert_edge(a, 1.0, 2.0 * a, 0.5, n) == 0.0);
+  const double antipodal = detail::lambert_edge(a, 1.0, glm::dvec3(-1, 1e-9, 0), 1.0, n);
+  CHECK(std::fabs(antipodal) <= pi);
+}
+
+TEST_CASE("polygon_form_factor is within its bound of the exact form for random quads across the tangent plane, non-convex ones included") {
+  std::mt19937 random(44);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  int straddling = 0, four_crossings = 0;
+  double worst = 0.0;
+  for (int trial = 0; trial < 100000; ++trial) {
+    const glm::dvec3 x(0.0), n = random_unit(random);
+    glm::dvec3 c[4];
+    if (trial % 2 == 0) {  // a planar parallelogram
+      const glm::dvec3 origin = random_unit(random) * (0.2 + std::fabs(uniform(random))), e1 = random_unit(random) * 0.8, e2 = random_unit(random) * 0.8;
+      c[0] = origin, c[1] = origin + e1, c[2] = origin + e1 + e2, c[3] = origin + e2;
+    } else {  // any four points: non-planar, non-convex, crossing the plane up to four times
+      for (glm::dvec3& corner : c) corner = random_unit(random) * (0.2 + std::fabs(uniform(random)));
+    }
+    int crossings = 0;
+    for (int k = 0; k < 4; ++k) crossings += (glm::dot(n, c[k]) >= 0.0) != (glm::dot(n, c[(k + 1) % 4]) >= 0.0) ? 1 : 0;
+    straddling += crossings > 0 ? 1 : 0;
+    four_crossings += crossings == 4 ? 1 : 0;
+    const double error = std::fabs(polygon_form_factor(x, n, c[0], c[1], c[2], c[3]) - polygon_form_factor_exact(x, n, c[0], c[1], c[2], c[3]));
+    worst = std::max(worst, error);
+  }
+  CAPTURE(worst);
+  CHECK(straddling > 10000);
+  CHECK(four_crossings > 100);  // the pairing of two exits with two entries was exercised
+  CHECK(worst <= fast_bound);
+  // In float, against the exact form in double: rounding, not the polynomial, dominates.
+  double worst_float = 0.0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const glm::dvec3 n = random_unit(random);
+    const glm::dvec3 origin = random_unit(random) * (0.5 + std::fabs(uniform(random))), e1 = random_unit(random) * 0.5, e2 = random_unit(random) * 0.5;
+    const glm::vec3 fn(n), f0(origin), f1(origin + e1), f2(origin + e1 + e2), f3(origin + e2);
+    const double exact = polygon_form_factor_exact(glm::dvec3(0.0), glm::dvec3(fn), glm::dvec3(f0), glm::dvec3(f1), glm::dvec3(f2), glm::dvec3(f3));
+    worst_float = std::max(worst_float, std::fabs(double(polygon_form_factor(glm::vec3(0.0f), fn, f0, f1, f2, f3)) - exact));
+  }
+  CAPTURE(worst_float);
+  CHECK(worst_float <= 2e-6);
 }

@@ -55,6 +55,10 @@ class final_gather_pipeline final : public pipeline {
   void set_light(const scene_light& light) override;
   camera current_camera() const override { return scene_.view; }
   scene_light current_light() const override;
+  /// In place when only min-distance changes (final_gather_pipeline.cpp says why the others need a
+  /// new pipeline): the next frame redraws the cube map and the view. The object's position is a
+  /// pose (set_object_position), as the camera and the light are, and is not compared.
+  bool apply_settings(const technique_settings& settings) override;
   bool has_object() const override { return true; }
   glm::vec3 object_position() const override { return scene_.reference_point; }
   /// Moves the object (and its reference point) so that its centre is at `centre`. The cube map

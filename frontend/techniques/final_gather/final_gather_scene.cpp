@@ -11,6 +11,8 @@ namespace vplkit {
 final_gather_scene make_final_gather_scene(const std::string& object, glm::vec3 position, float size) {
   if (!(size > 0.0f)) throw error("the object's size must be > 0");
   final_gather_scene s;
+  s.object_source = object;
+  s.object_size = size;
   const scene box = make_cornell_box();  // its camera and light
   add_cornell_room(s.room);
   // Closed at the front (the paper's box room): the cube map must see a surface everywhere. The

@@ -16,6 +16,11 @@ namespace vplkit {
 /// The room (the environment) and the dynamic object, kept apart: the cube map leaves the object out.
 struct final_gather_scene {
   std::string name;
+  /// What make_final_gather_scene was given ("sphere" or the .obj file) and the object's size:
+  /// the setup a new scene comes from (final_gather_pipeline::apply_settings keeps the scene
+  /// only while they are the same). Empty for a scene made otherwise.
+  std::string object_source;
+  float object_size = 0.0f;
   mesh room;
   mesh object;
   /// The object centred at the origin, scaled: `object` is it moved to the reference point, the

@@ -115,6 +115,49 @@ void lightwave_pipeline::allocate_shadow_maps() {
 
 std::uint64_t lightwave_pipeline::shadow_map_bytes() const { return lightwave_shadow_map_bytes(shadow_size_.x, shadow_size_.y, shadow_layers_); }
 
+// Which setting applies in place (the viewer's live controls) and why:
+// - rebuild (a new pipeline): size and format (the targets), vpl-energy and shadow-variant (the
+//   main programs' defines, VPLKIT_LIGHTWAVE_ENERGY and _SHADOW_VARIANT, whichever mode), the
+//   technique (the mode's define), shadow-map-scale where the rounded map size changes, and
+//   shadow-maps / integrated-maps where the technique reads them (the shadow maps' layer count);
+//   receiver spacing and triangles (the receivers' mesh, textures and sum targets) and VPLs per
+//   pass (lightwave_capture.frag's VPLKIT_LIGHTWAVE_PASS_VPLS, the VPL blocks' stride);
+// - in place, the VPLs re-planned and the shadow maps redrawn, as after a light move (no program,
+//   no target: the VPL texture and blocks are re-uploaded at their new size at every light move
+//   anyway): ray-angle, vpls-per-ray, vpl-max-distance;
+// - in place, the shadow maps redrawn and (flux energy) the same VPLs summed again at the
+//   receivers: min-distance (the sums' clamp and the importance casters' weights read it, the
+//   VPLs' placement does not; the thesis energy's vertex stage reads it as a uniform);
+// - in place, the shadow maps redrawn: seed (the thesis variant's draw), vpl-field-of-view (the
+//   maps' projection);
+// - in place, the main pass only (uniforms it sets at every draw): integrated-steps,
+//   faked-multiplier, specular-strength, specular-exponent.
+bool lightwave_pipeline::apply_settings(const technique_settings& settings) {
+  const auto* typed = dynamic_cast<const described_settings<lightwave_settings, lightwave_technique>*>(&settings);
+  if (!typed) return false;
+  const lightwave_settings& next = typed->value();
+  if (!validate(next).empty()) return false;
+  const lightwave_derived_settings derived = derive(next), current = derive(settings_);
+  // What the programs' defines, the targets, the shadow maps' array and the receivers come from
+  // (the constructor).
+  const bool same_build = next.technique == settings_.technique && next.width == settings_.width && next.height == settings_.height &&
+                          next.format == settings_.format && next.energy == settings_.energy && next.shadow_variant == settings_.shadow_variant &&
+                          derived.shadow_map_size == current.shadow_map_size && derived.indirect_maps == current.indirect_maps &&
+                          next.receiver_spacing == settings_.receiver_spacing && next.receiver_triangles == settings_.receiver_triangles &&
+                          next.vpls_per_pass == settings_.vpls_per_pass;
+  if (!same_build) return false;
+  const bool vpls_move = next.angle_deg != settings_.angle_deg || next.per_ray != settings_.per_ray || next.max_distance != settings_.max_distance;
+  const bool clamp_moves = next.irradiance.min_distance != settings_.irradiance.min_distance;
+  const bool shadows_move = vpls_move || clamp_moves || next.seed != settings_.seed || next.vpl_field_of_view != settings_.vpl_field_of_view ||
+                            next.accurate_maps != settings_.accurate_maps || next.integrated_maps != settings_.integrated_maps;
+  settings_ = next;
+  if (vpls_move) vpls_dirty_ = true;
+  if (clamp_moves && receiver_buffers_) sums_dirty_ = true;
+  if (shadows_move) shadows_dirty_ = true;
+  view_valid_ = false;
+  return true;
+}
+
 void lightwave_pipeline::set_light(const scene_light& light) {
   if (light.kind != light_kind::spot) throw error("Light Wave needs a spot light; make a new pipeline for a scene with a directional one");
   check_light(light, "Light Wave scene " + scene_.name);
@@ -345,13 +388,18 @@ void lightwave_pipeline::rebuild() {
     timer_.begin("VPLs");
     build_vpls();
     timer_.end();
+  } else if (sums_dirty_) {
+    // The same VPLs, summed again at the receivers (a clamp changed in place).
+    timer_.begin("VPLs");
+    sum_at_receivers();
+    timer_.end();
   }
   if (shadows_dirty_) {
     timer_.begin("shadow maps");
     build_shadow_maps();
     timer_.end();
   }
-  vpls_dirty_ = shadows_dirty_ = false;
+  vpls_dirty_ = shadows_dirty_ = sums_dirty_ = false;
   ++rebuilds_;
 }
 

@@ -64,6 +64,10 @@ class lightwave_pipeline final : public pipeline {
   void set_camera(const camera& view) override;
   camera current_camera() const override { return scene_.view; }
   scene_light current_light() const override { return scene_.light; }
+  /// In place when the settings change no define, no target's or shadow map's size and no
+  /// receiver mesh (lightwave_pipeline.cpp says which setting is which): the next frame redraws
+  /// the main pass, after the VPLs and shadow maps where the change moves them.
+  bool apply_settings(const technique_settings& settings) override;
   /// The pass times since the last render() or collect_pass_times().
   std::vector<pass_time> collect_pass_times() override { return timer_.collect(); }
   /// The last frame's radiance and indirect shadow factor (red).
@@ -198,6 +202,9 @@ class lightwave_pipeline final : public pipeline {
   pass_timer timer_;
   bool vpls_dirty_ = true;     ///< the VPLs (and the flux energy's indirect light) must be rebuilt
   bool shadows_dirty_ = true;  ///< the shadow maps must be rebuilt
+  /// Flux energy: the VPLs must be summed at the receivers again (set with shadows_dirty_; implied
+  /// by vpls_dirty_).
+  bool sums_dirty_ = false;
   bool view_valid_ = false;    ///< the main pass matches the camera and the light
   int rebuilds_ = 0;
   int main_draws_ = 0;

@@ -1,6 +1,8 @@
 // The files of `vplkit sweep` (frontend/cli/sweep_report.hpp): the Pareto marking is the
-// brute force's (every row against every row) on random tables with ties, and takes well under a
-// second on 20,000 rows; the CSV reads back every cell a hostile name can hold; no name reaches a
+// brute force's (every row against every row) on random tables with ties, without noise and
+// within the noise, and takes well under a second on 20,000 rows; rows within each other's noise
+// on the front are ties; the reference's noise (frontend/image/reference_noise.hpp) is what
+// synthetic noise of a known size gives; the CSV reads back every cell a hostile name can hold; no name reaches a
 // gnuplot script; markdown shows names as text; the sweep's folder lock refuses a second holder
 // and leaves the output lock free for the sweep's own writes.
 #include <doctest/doctest.h>
@@ -16,6 +18,8 @@
 #include "frontend/cli/sweep_report.hpp"
 #include "frontend/core/files.hpp"
 #include "frontend/core/setting.hpp"
+#include "frontend/image/metrics.hpp"
+#include "frontend/image/reference_noise.hpp"
 
 namespace fs = std::filesystem;
 using namespace vplkit;
@@ -127,6 +131,157 @@ TEST_CASE("the Pareto marking of 20,000 rows takes well under a second") {
   CHECK(on_front < 2000);
 }
 
+namespace {
+
+// The definition within the noise, pair by pair: B beats A when B's upper bounds are at most A's
+// lower bounds on both axes and below on one, each value +- its standard error.
+std::vector<std::string> brute_force_noisy_pareto(const sweep_table& table) {
+  std::vector<std::string> marks;
+  for (const auto& row : table.rows) {
+    const std::optional<double> t = sweep_table::number(row, "frame_ms"), e = sweep_table::number(row, "rel_rmse");
+    if (!t || !e) {
+      marks.emplace_back();
+      continue;
+    }
+    const double dt = cli::time_se(row, "frame_ms"), de = cli::quality_se(row, "rel_rmse");
+    bool beaten = false;
+    for (const auto& other : table.rows) {
+      if (other.at("scene") != row.at("scene")) continue;
+      const std::optional<double> ot = sweep_table::number(other, "frame_ms"), oe = sweep_table::number(other, "rel_rmse");
+      if (!ot || !oe) continue;
+      const double odt = cli::time_se(other, "frame_ms"), ode = cli::quality_se(other, "rel_rmse");
+      const double t_high = *ot + odt, e_high = *oe + ode, t_low = *t - dt, e_low = *e - de;
+      if (t_high <= t_low && e_high <= e_low && (t_high < t_low || e_high < e_low)) beaten = true;
+    }
+    marks.emplace_back(beaten ? "0" : "1");
+  }
+  return marks;
+}
+
+}  // namespace
+
+TEST_CASE("the Pareto front within the noise is the brute force's on random noisy tables") {
+  std::mt19937 random(41);
+  int fronts = 0, kept_by_noise = 0, tied = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    sweep_table table = random_table(random, 1 + static_cast<std::size_t>(trial % 50), 3 + trial % 9, 1 + trial % 2);
+    std::uniform_int_distribution<int> noise(0, 4), seeds(1, 3);
+    for (auto& row : table.rows) {
+      // Relative timing noise 0 to 20 %, the error's from seeds and the reference, some rows without.
+      row["frame_ms_noise"] = format_real(0.05 * noise(random));
+      row["rel_rmse_ref_se"] = noise(random) == 0 ? std::string() : format_real(0.004 * noise(random));
+      row["rel_rmse_sd"] = format_real(0.01 * noise(random));
+      row["seeds"] = std::to_string(seeds(random));
+    }
+    const std::vector<std::string> exact = brute_force_pareto(table), expected = brute_force_noisy_pareto(table);
+    cli::mark_pareto(table, "frame_ms", "rel_rmse");
+    REQUIRE(pareto_column(table) == expected);
+    for (std::size_t i = 0; i < expected.size(); ++i) {
+      fronts += expected[i] == "1";
+      kept_by_noise += expected[i] == "1" && exact[i] == "0";
+      tied += !table.rows[i].at("tie").empty();
+      // A tie is a row of the front.
+      if (!table.rows[i].at("tie").empty()) CHECK(expected[i] == "1");
+    }
+  }
+  // The noise kept rows the exact front drops, and ties were marked.
+  CHECK(fronts > 300);
+  CHECK(kept_by_noise > 100);
+  CHECK(tied > 100);
+}
+
+TEST_CASE("a noisy machine's front: rows within each other's noise are ties, a row beyond it is dominated") {
+  sweep_table table;
+  table.columns = {"scene", "frame_ms", "frame_ms_noise", "rel_rmse", "rel_rmse_ref_se"};
+  const std::vector<std::vector<std::string>> rows = {
+      {"a", "1.0", "0.2", "0.50", "0.02"},   // A
+      {"a", "1.1", "0.2", "0.49", "0.02"},   // B: within A's noise on both: a tie with A
+      {"a", "1.05", "0.2", "0.60", "0.01"},  // C: slower and worse than A, but not beyond the time's noise: kept, no tie
+      {"a", "3.0", "0.05", "0.70", "0.01"},  // D: slower and worse beyond both noises: dominated
+      {"a", "5.0", "0.05", "0.10", "0.01"},  // E: slow, far better: on the front alone
+  };
+  for (const auto& cells : rows)
+    table.rows.push_back({{"scene", cells[0]}, {"frame_ms", cells[1]}, {"frame_ms_noise", cells[2]}, {"rel_rmse", cells[3]}, {"rel_rmse_ref_se", cells[4]}});
+  cli::mark_pareto(table, "frame_ms", "rel_rmse");
+  CHECK(pareto_column(table) == std::vector<std::string>{"1", "1", "1", "0", "1"});
+  std::vector<std::string> ties;
+  for (const auto& row : table.rows) ties.push_back(row.at("tie"));
+  CHECK(ties == std::vector<std::string>{"1", "1", "", "", ""});
+  // Without the noise columns, the exact front: C and D are dominated by A, B and E stay.
+  for (auto& row : table.rows) row.erase("frame_ms_noise"), row.erase("rel_rmse_ref_se");
+  cli::mark_pareto(table, "frame_ms", "rel_rmse");
+  CHECK(pareto_column(table) == std::vector<std::string>{"1", "1", "0", "0", "1"});
+}
+
+TEST_CASE("the Pareto marking within the noise of 20,000 rows takes well under a second") {
+  std::mt19937 random(2041);
+  sweep_table table = random_table(random, 20000, 5000, 4);
+  for (auto& row : table.rows) {
+    row["frame_ms_noise"] = "0.1";
+    row["rel_rmse_ref_se"] = "0.01";
+  }
+  const auto start = std::chrono::steady_clock::now();
+  cli::mark_pareto(table, "frame_ms", "rel_rmse");
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  MESSAGE("mark_pareto with noise on 20,000 rows: " << seconds << " s");
+  CHECK(seconds < 2.0);
+}
+
+TEST_CASE("the reference's noise: synthetic Gaussian noise of a known size is what reference_noise_of reports") {
+  // A truth of level 1 +- 0.5, a candidate 10 % off it everywhere (its rel_rmse against the truth
+  // is known), two references with noise sigma = 0.2 per value.
+  std::mt19937 random(64);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  std::uniform_real_distribution<double> level(0.5, 1.5);
+  const int w = 96, h = 64;
+  const double sigma = 0.2;
+  image truth(w, h), candidate(w, h);
+  for (std::size_t i = 0; i < truth.texels.size(); ++i)
+    for (int c = 0; c < 3; ++c) {
+      truth.texels[i][c] = static_cast<float>(level(random));
+      candidate.texels[i][c] = truth.texels[i][c] * 1.1f;
+    }
+  const double true_rmse = relative_error_of(candidate, truth).rmse;
+  std::vector<double> biases, rmses;
+  double bias_se = 0.0, rmse_se = 0.0;
+  const int trials = 60;
+  for (int trial = 0; trial < trials; ++trial) {
+    image first(w, h), second(w, h);
+    for (std::size_t i = 0; i < truth.texels.size(); ++i)
+      for (int c = 0; c < 3; ++c) {
+        first.texels[i][c] = static_cast<float>(truth.texels[i][c] + sigma * gauss(random));
+        second.texels[i][c] = static_cast<float>(truth.texels[i][c] + sigma * gauss(random));
+      }
+    const reference_noise noise = reference_noise_of(candidate, first, variance_of_two(first, second));
+    REQUIRE(noise.defined);
+    const relative_error raw = relative_error_of(candidate, first);
+    // The noise as a rel_rmse: sigma / mean level (1), within the estimate's own spread.
+    CHECK(noise.noise == doctest::Approx(sigma).epsilon(0.03));
+    // Raw: the truth's error and the noise in quadrature; corrected: the truth's error alone.
+    CHECK(raw.rmse == doctest::Approx(std::sqrt(true_rmse * true_rmse + sigma * sigma)).epsilon(0.03));
+    CHECK(noise.rmse_corrected == doctest::Approx(true_rmse).epsilon(0.05));
+    CHECK(noise.share == doctest::Approx(noise.noise / raw.rmse).epsilon(1e-9));
+    biases.push_back(raw.bias);
+    rmses.push_back(raw.rmse);
+    bias_se += noise.bias_se / trials;
+    rmse_se += noise.rmse_se / trials;
+  }
+  // The standard errors are the trials' spreads (within what 60 trials resolve, about 20 %).
+  const auto spread = [](const std::vector<double>& values) {
+    double mean = 0.0, squares = 0.0;
+    for (double v : values) mean += v / static_cast<double>(values.size());
+    for (double v : values) squares += (v - mean) * (v - mean);
+    return std::sqrt(squares / static_cast<double>(values.size() - 1));
+  };
+  CHECK(bias_se == doctest::Approx(spread(biases)).epsilon(0.25));
+  CHECK(rmse_se == doctest::Approx(spread(rmses)).epsilon(0.25));
+  // Refusals: a negative variance, another size.
+  image negative(w, h);
+  negative.texels[3] = glm::vec4(-1.0f);
+  CHECK_THROWS_WITH_AS(reference_noise_of(candidate, truth, negative), doctest::Contains("variance is negative"), vplkit::error);
+  CHECK_THROWS_AS(reference_noise_of(candidate, truth, image(4, 4)), vplkit::error);
+}
+
 TEST_CASE("the CSV reads back every cell a hostile name can hold") {
   const scratch_folder folder;
   sweep_table table;
@@ -173,7 +328,8 @@ TEST_CASE("no name reaches a gnuplot script: the titles and categories are field
     CHECK(plot->script.find("ARG1 index 0") != std::string::npos);
   }
   // The categories (technique names here) are tic labels read from the data too.
-  CHECK(axis->script.find(":xtic(4)") != std::string::npos);
+  // Columns x, time, its error bar, rel_rmse, its error bar, the label.
+  CHECK(axis->script.find(":xtic(6)") != std::string::npos);
 }
 
 TEST_CASE("markdown shows names as text: no table cell, heading, link or HTML comes from a name") {

@@ -188,6 +188,26 @@ TEST_CASE("a loaded OBJ stays indexed: corners with the same position, normal an
   }
 }
 
+TEST_CASE("a triangle soup gets a vertex per corner, shared corners still share, and the floor frame_mesh adds reallocates nothing") {
+  // Two soup triangles (each `v` line used once, as STL conversions write) and a quad whose
+  // diagonal two triangles share.
+  const std::string text = "v 0 0 0\nv 1 0 0\nv 0 0 -1\nv 2 0 0\nv 3 0 0\nv 2 0 -1\nv 5 0 0\nv 6 0 0\nv 6 0 -1\nv 5 0 -1\n"
+                           "f 1 2 3\nf 4 5 6\nf 7 8 9 10\n";
+  mesh soup = parse_obj(text, "soup.obj", [](const std::string&) -> std::string { throw vplkit::error("no library"); });
+  CHECK(soup.triangle_count() == 4);
+  CHECK(soup.vertices.size() == 10);  // 3 + 3 + the quad's 4, shared by its two triangles
+  // Room for the framing's floor: adding it must not reallocate the arrays (a reallocation holds
+  // the old and the new array at once: 277 MB twice for a faceted 2^21-triangle mesh).
+  CHECK(soup.vertices.capacity() >= soup.vertices.size() + framing_floor_vertices);
+  CHECK(soup.indices.capacity() >= soup.indices.size() + framing_floor_indices);
+  const vertex* vertices_before = soup.vertices.data();
+  const std::uint32_t* indices_before = soup.indices.data();
+  const scene framed = frame_mesh("soup", std::move(soup));
+  REQUIRE(framed.geometry.vertices.size() == 10 + framing_floor_vertices);  // the floor was added
+  CHECK(framed.geometry.vertices.data() == vertices_before);
+  CHECK(framed.geometry.indices.data() == indices_before);
+}
+
 namespace {
 
 // The summed area of a mesh's triangles.

@@ -297,8 +297,11 @@ TEST_CASE("a screenshot writes the window PNG and the indirect PFM, or nothing")
 // no program is linked, the next frame redraws, and the window shows what a viewer built with the
 // new settings shows; a setting that changes a define builds a new view. The frame times are
 // printed (docs/cli.md, "Live settings", records them; nothing is asserted about them): a still
-// frame, the frame after a uniform-only slider move, the frame after a define change.
-TEST_CASE("live settings: a uniform-only slider move redraws the next frame without linking a program") {
+// frame, the frame after a uniform-only slider move (between `slider_value` and the default), the
+// frame after a define or size change (between `rebuild_values`).
+void check_live_slider(const std::string& technique, const std::string& slider, const std::string& slider_value, const std::string& rebuild,
+                       const std::pair<std::string, std::string>& rebuild_values) {
+  CAPTURE(technique);
   const auto timed_frame = [](viewer& app, window_pixels& pixels) {
     const auto start = std::chrono::steady_clock::now();
     app.frame();
@@ -307,7 +310,10 @@ TEST_CASE("live settings: a uniform-only slider move redraws the next frame with
     window().swap_and_poll();
     return ms;
   };
-  viewer app(window(), shaders(), small_setup("rsm-alg6"));
+  const auto settings_of = [&] { return small_setup(technique).scenes.of(technique).settings->clone(); };
+  const std::string slider_default = settings_of()->get(slider);
+  REQUIRE(slider_default != slider_value);
+  viewer app(window(), shaders(), small_setup(technique));
   app.show_panel(false);
   window_pixels first, pixels, moved;
   timed_frame(app, first);
@@ -316,41 +322,59 @@ TEST_CASE("live settings: a uniform-only slider move redraws the next frame with
   constexpr int rounds = 6;
   for (int round = 0; round < rounds; ++round) {
     still_ms += timed_frame(app, pixels) / rounds;
-    std::unique_ptr<technique_settings> edited = small_setup("rsm-alg6").scenes.of("rsm-alg6").settings->clone();
-    REQUIRE(edited->set("radius", round % 2 ? "0.75" : "0.3").empty());
+    std::unique_ptr<technique_settings> edited = settings_of();
+    REQUIRE(edited->set(slider, round % 2 ? slider_default : slider_value).empty());
     const std::uint64_t links = linked_program_count();
     app.set_settings(*edited);
     CHECK(app.message().empty());
     slider_ms += timed_frame(app, moved) / rounds;
     CHECK(linked_program_count() == links);
   }
-  // The last move (round 5: radius 0.75, the default) shows the first frame's pixels again; that
-  // a radius of 0.3 changes the image is checked below.
+  // The last move (round 5: the default) shows the first frame's pixels again; that the other
+  // value changes the image is checked below.
   CHECK(changed_share(first, moved, 0) == 0.0);
   CHECK(app.view().draw_counts() != counts_before);  // the moves redrew
   {
-    std::unique_ptr<technique_settings> edited = small_setup("rsm-alg6").scenes.of("rsm-alg6").settings->clone();
-    REQUIRE(edited->set("radius", "0.3").empty());
+    std::unique_ptr<technique_settings> edited = settings_of();
+    REQUIRE(edited->set(slider, slider_value).empty());
     app.set_settings(*edited);
-    window_pixels narrow;
-    timed_frame(app, narrow);
-    CHECK(changed_share(first, narrow, 0) > 0.0);
-    // The window is what a viewer built with radius 0.3 shows, bit for bit.
-    viewer_options options = small_setup("rsm-alg6");
-    options.scenes.of("rsm-alg6").settings = edited->clone();
+    window_pixels changed;
+    timed_frame(app, changed);
+    CHECK(changed_share(first, changed, 0) > 0.0);
+    // The window is what a viewer built with the other value shows, bit for bit.
+    viewer_options options = small_setup(technique);
+    options.scenes.of(technique).settings = edited->clone();
     check_same_as_new_pipeline(app, options.scenes);
   }
   for (int round = 0; round < rounds; ++round) {
-    std::unique_ptr<technique_settings> edited = small_setup("rsm-alg6").scenes.of("rsm-alg6").settings->clone();
-    REQUIRE(edited->set("slots", round % 2 ? "8" : "4").empty());
+    std::unique_ptr<technique_settings> edited = settings_of();
+    REQUIRE(edited->set(rebuild, round % 2 ? rebuild_values.second : rebuild_values.first).empty());
     const std::uint64_t links = linked_program_count();
     app.set_settings(*edited);
     CHECK(app.message().empty());
     rebuild_ms += timed_frame(app, moved) / rounds;
-    CHECK(linked_program_count() > links);  // a define: new programs
+    CHECK(linked_program_count() > links);  // a new pipeline: new programs
   }
-  MESSAGE("rsm-alg6 at " << side << "x" << side << ", RSM 64^2, mean of " << rounds << " frames: still " << still_ms << " ms, slider (radius, in place) "
-          << slider_ms << " ms, define change (slots, new pipeline) " << rebuild_ms << " ms");
+  MESSAGE(technique << " at " << side << "x" << side << ", mean of " << rounds << " frames: still " << still_ms << " ms, slider (" << slider
+          << ", in place) " << slider_ms << " ms, " << rebuild << " change (new pipeline) " << rebuild_ms << " ms");
+}
+
+TEST_CASE("live settings: a uniform-only slider move redraws the next frame without linking a program") {
+  SUBCASE("rsm-alg6 (RSM 64^2): radius") { check_live_slider("rsm-alg6", "radius", "0.3", "slots", {"4", "8"}); }
+  // min-distance: the receivers' sums, the shadow maps (at 1 x the screen) and the main pass
+  // redrawn.
+  SUBCASE("lightwave-accurate: min-distance") {
+    check_live_slider("lightwave-accurate", "min-distance", "0.3", "shadow-variant", {"thesis", "importance"});
+  }
+  // integrated-steps: the main pass only.
+  SUBCASE("lightwave-integrated: integrated-steps") {
+    check_live_slider("lightwave-integrated", "integrated-steps", "2", "integrated-maps", {"3", "5"});
+  }
+  // min-distance: the cube map (faces of 32^2) and the view redrawn (1.5: a clamp that shows, on
+  // the object's top and the walls' upper parts).
+  SUBCASE("finalgather-polygon: min-distance") {
+    check_live_slider("finalgather-polygon", "min-distance", "1.5", "cube-resolution", {"2", "4"});
+  }
 }
 
 int main(int argc, char** argv) { return vplkit::testing::run_tests_then_check_gl_errors(argc, argv); }

@@ -1,0 +1,167 @@
+// The glTF reader's materials: base colour factors, samplers, and textures decoded once per
+// distinct image within the scene's budget.
+#include "frontend/scene/gltf_reader.hpp"
+
+#include <algorithm>
+#include <functional>
+
+namespace vplkit::gltf_detail {
+
+glm::vec3 reader::albedo_of(int material) const {
+  if (material < 0) return glm::vec3(1.0f);
+  if (material >= static_cast<int>(model_.materials.size())) fail("material " + std::to_string(material) + " does not exist");
+  const std::vector<double>& factor = model_.materials[static_cast<std::size_t>(material)].pbrMetallicRoughness.baseColorFactor;
+  if (factor.size() != 4) fail("material " + std::to_string(material) + ": baseColorFactor needs 4 numbers");
+  const glm::dvec3 albedo(factor[0], factor[1], factor[2]);
+  if (!finite(albedo) || glm::any(glm::lessThan(albedo, glm::dvec3(0.0))) || glm::any(glm::greaterThan(albedo, glm::dvec3(1.0))))
+    fail("material " + std::to_string(material) + ": baseColorFactor must be in [0, 1]");
+  return glm::vec3(albedo);
+}
+
+// A number of a JSON value, or fail.
+double reader::number(const tinygltf::Value& value, const std::string& what) const {
+  if (!value.IsNumber() || !std::isfinite(value.GetNumberAsDouble())) fail(what + " must be a finite number");
+  return value.GetNumberAsDouble();
+}
+
+texture_wrap reader::wrap_of(int mode, bool& known) {
+  known = true;
+  if (mode == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE) return texture_wrap::clamp_to_edge;
+  if (mode == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT) return texture_wrap::mirrored_repeat;
+  known = mode == TINYGLTF_TEXTURE_WRAP_REPEAT;
+  return texture_wrap::repeat;
+}
+
+texture_sampler reader::sampler_of(int index) const {
+  texture_sampler sampler;  // glTF leaves the filters to the renderer: linear, mipmapped
+  if (index < 0) return sampler;
+  if (index >= static_cast<int>(model_.samplers.size())) fail("sampler " + std::to_string(index) + " does not exist");
+  const tinygltf::Sampler& source = model_.samplers[static_cast<std::size_t>(index)];
+  const std::string where = "sampler " + std::to_string(index);
+  bool known_s = false, known_t = false;
+  sampler.wrap_s = wrap_of(source.wrapS, known_s);
+  sampler.wrap_t = wrap_of(source.wrapT, known_t);
+  if (!known_s || !known_t) fail(where + ": wrapS and wrapT must be 33071 (CLAMP_TO_EDGE), 33648 (MIRRORED_REPEAT) or 10497 (REPEAT)");
+  if (source.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST) sampler.mag = texture_filter::nearest;
+  else if (source.magFilter != TINYGLTF_TEXTURE_FILTER_LINEAR && source.magFilter != -1) fail(where + ": magFilter must be 9728 (NEAREST) or 9729 (LINEAR)");
+  switch (source.minFilter) {
+    case -1: break;
+    case TINYGLTF_TEXTURE_FILTER_NEAREST: sampler.min = texture_filter::nearest; sampler.mipmaps = false; break;
+    case TINYGLTF_TEXTURE_FILTER_LINEAR: sampler.mipmaps = false; break;
+    case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST: sampler.min = sampler.between_levels = texture_filter::nearest; break;
+    case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_NEAREST: sampler.between_levels = texture_filter::nearest; break;
+    case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR: sampler.min = texture_filter::nearest; break;
+    case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR: break;
+    default: fail(where + ": minFilter " + std::to_string(source.minFilter) + " is not a GL minification filter");
+  }
+  return sampler;
+}
+
+// The encoded bytes of image `index`: from its buffer view (bounds checked) or as tinygltf read
+// its URI; both stay in memory while the model is read (they are not copied).
+std::string_view reader::bytes_of_image(int index, const std::string& what) const {
+  const tinygltf::Image& image = model_.images[static_cast<std::size_t>(index)];
+  if (image.bufferView >= 0) {
+    if (image.bufferView >= static_cast<int>(model_.bufferViews.size())) fail(what + ": buffer view " + std::to_string(image.bufferView) + " does not exist");
+    const tinygltf::BufferView& view = model_.bufferViews[static_cast<std::size_t>(image.bufferView)];
+    if (view.buffer < 0 || view.buffer >= static_cast<int>(model_.buffers.size())) fail(what + ": buffer " + std::to_string(view.buffer) + " does not exist");
+    const std::vector<unsigned char>& data = model_.buffers[static_cast<std::size_t>(view.buffer)].data;
+    if (view.byteOffset > data.size() || view.byteLength > data.size() - view.byteOffset) fail(what + ": its buffer view lies outside its buffer");
+    return std::string_view(reinterpret_cast<const char*>(data.data() + view.byteOffset), view.byteLength);
+  }
+  const auto found = images_.find(index);
+  if (found == images_.end()) fail(what + ": its file '" + image.uri + "' could not be read (missing, not a regular file, or over the size limit)");
+  return found->second;
+}
+
+// Image `index` decoded into the library, or fail naming it. Each distinct content is decoded
+// once: images that name one file (or carry the same bytes) share its texture, so a file named
+// by four images costs one decode and one budget share, not four.
+int reader::texture_of(int index) {
+  if (index < 0 || index >= static_cast<int>(model_.images.size())) fail("image " + std::to_string(index) + " does not exist");
+  int& cached = texture_of_[static_cast<std::size_t>(index)];
+  if (cached != unread) return cached;
+  const tinygltf::Image& image = model_.images[static_cast<std::size_t>(index)];
+  const std::string what = "image " + std::to_string(index) + (image.name.empty() ? "" : " '" + image.name + "'") + (image.uri.empty() || image.uri.rfind("data:", 0) == 0 ? "" : " (" + image.uri + ")");
+  const std::string_view bytes = bytes_of_image(index, what);
+  const auto [first, last] = texture_of_bytes_.equal_range(std::hash<std::string_view>{}(bytes));
+  for (auto same = first; same != last; ++same)
+    if (same->second.first == bytes) return cached = same->second.second;
+  cached = texture_budget_.decode_into(library_, bytes, name_ + ": " + what, what, limits_.textures);
+  texture_of_bytes_.emplace(std::hash<std::string_view>{}(bytes), std::make_pair(bytes, cached));
+  return cached;
+}
+
+reader::material_use reader::material_for(int index) {
+  if (index < 0) return {};
+  int& cached = material_of_[static_cast<std::size_t>(index)];
+  const tinygltf::Material& source = model_.materials[static_cast<std::size_t>(index)];
+  const tinygltf::TextureInfo& base = source.pbrMetallicRoughness.baseColorTexture;
+  // KHR_texture_transform may name another TEXCOORD set.
+  int texcoord_set = base.texCoord;
+  const auto transform = base.extensions.find("KHR_texture_transform");
+  if (transform != base.extensions.end() && transform->second.IsObject() && transform->second.Has("texCoord"))
+    texcoord_set = static_cast<int>(number(transform->second.Get("texCoord"), "material " + std::to_string(index) + " KHR_texture_transform texCoord"));
+  if (cached != unread) return {cached, cached >= 0 && library_.materials[static_cast<std::size_t>(cached)].texture >= 0 ? texcoord_set : -1};
+  const std::string where = "material " + std::to_string(index) + (source.name.empty() ? "" : " '" + source.name + "'");
+  surface_material made;
+  made.name = source.name;
+  const std::vector<double>& factor = source.pbrMetallicRoughness.baseColorFactor;
+  if (factor.size() == 4) {
+    if (!(factor[3] >= 0.0 && factor[3] <= 1.0)) fail(where + ": baseColorFactor's alpha must be in [0, 1]");
+    made.alpha_factor = static_cast<float>(factor[3]);
+  }
+  if (source.alphaMode == "MASK") {
+    if (!(source.alphaCutoff >= 0.0 && std::isfinite(source.alphaCutoff))) fail(where + ": alphaCutoff must be a finite number >= 0");
+    made.alpha_mask = true;
+    made.alpha_cutoff = static_cast<float>(std::min(source.alphaCutoff, 1.0));
+  } else if (source.alphaMode != "OPAQUE" && source.alphaMode != "BLEND") {
+    fail(where + ": alphaMode must be OPAQUE, MASK or BLEND, not '" + source.alphaMode + "'");
+  }
+  if (base.index >= 0) {
+    if (base.index >= static_cast<int>(model_.textures.size())) fail(where + ": baseColorTexture names texture " + std::to_string(base.index) + ", which does not exist");
+    const tinygltf::Texture& texture = model_.textures[static_cast<std::size_t>(base.index)];
+    if (texture.source < 0) {
+      std::string in;
+      for (const auto& [extension, value] : texture.extensions) in += (in.empty() ? "" : ", ") + extension;
+      note("texture images given only by " + (in.empty() ? std::string("no source") : in), "those textures are left out: their factor alone is the albedo");
+    } else if (texcoord_set < 0 || texcoord_set > 7) {
+      fail(where + ": baseColorTexture's texCoord must be in [0, 7]");
+    } else {
+      made.texture = texture_of(texture.source);
+      made.sampler = sampler_of(texture.sampler);
+    }
+    if (transform != base.extensions.end() && transform->second.IsObject()) {
+      const tinygltf::Value& t = transform->second;
+      const std::string in = where + " KHR_texture_transform";
+      glm::dvec2 offset(0.0), scale(1.0);
+      double rotation = 0.0;
+      for (const auto& [key, target] : {std::pair<const char*, glm::dvec2*>{"offset", &offset}, {"scale", &scale}}) {
+        if (!t.Has(key)) continue;
+        const tinygltf::Value& pair = t.Get(key);
+        if (!pair.IsArray() || pair.ArrayLen() != 2) fail(in + ": " + key + " needs 2 numbers");
+        *target = glm::dvec2(number(pair.Get(0), in + " " + key), number(pair.Get(1), in + " " + key));
+      }
+      if (t.Has("rotation")) rotation = number(t.Get("rotation"), in + " rotation");
+      // The extension's matrix: translation x rotation x scale, the rotation counter-clockwise
+      // in the image (v points down): [cos sin; -sin cos].
+      const double c = std::cos(rotation), s = std::sin(rotation);
+      const glm::dmat2 rotate(glm::dvec2(c, -s), glm::dvec2(s, c));  // columns
+      const glm::dmat2 matrix = rotate * glm::dmat2(glm::dvec2(scale.x, 0.0), glm::dvec2(0.0, scale.y));
+      made.texture_matrix = glm::mat2(matrix);
+      made.texture_offset = glm::vec2(offset);
+      if (!std::isfinite(made.texture_matrix[0][0] + made.texture_matrix[0][1] + made.texture_matrix[1][0] + made.texture_matrix[1][1]) ||
+          !std::isfinite(made.texture_offset.x + made.texture_offset.y))
+        fail(in + ": the transform is not finite as floats");
+    }
+  }
+  if (made.texture < 0 && !made.alpha_mask) {
+    cached = -1;  // plain: the factor alone, opaque
+    return {};
+  }
+  library_.materials.push_back(std::move(made));
+  cached = static_cast<int>(library_.materials.size() - 1);
+  return {cached, library_.materials.back().texture >= 0 ? texcoord_set : -1};
+}
+
+}  // namespace vplkit::gltf_detail
