@@ -227,6 +227,16 @@ int main(int argc, char** argv) {
   app.add_option("--disk-pattern", disk_pattern, "targets: rsm-original's disk pattern (render's --disk-pattern); the \"as printed\" column keeps "
                                                  "the original's fixed pattern and weights")
       ->check(CLI::IsMember({"per-pixel", "fixed"}))->capture_default_str();
+  bool voxel = false;
+  app.add_flag("--voxel", voxel, "voxel mode (docs/rsm-study.md, \"Beyond one RSM\"): rsm-voxel against rsm-radial on every frame: the filtered "
+                                 "indirect / Monte Carlo, the leak-region bias and the raw RMSE against the brute force relative to rsm-radial's, "
+                                 "and the frame's cost (--timing frames, default 5; the grid's build apart)");
+  voxel_grid_settings<float> grid_settings;
+  voxel_march_settings<float> voxel_march;
+  app.add_option("--voxel-resolution", grid_settings.resolution, "voxel mode: rsm-voxel's grid cells along the scene's longest side")
+      ->check(CLI::Range(1, voxel_grid_max_resolution))->capture_default_str();
+  app.add_option("--voxel-offset", voxel_march.start_offset, "voxel mode: rsm-voxel's start and end offsets (cells)")
+      ->check(CLI::Range(0.0, 16.0))->capture_default_str();
   app.add_option("--timing-size", timing_size, "timing mode: image side (the RSM: --rsm-size)")->check(CLI::Range(16, 4096))->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   if (coverage_blocks == 0 && flicker == 0) {
@@ -269,6 +279,97 @@ int main(int argc, char** argv) {
       md << "\nRatio with / without coverage, min / median / max over the frames: " << ratios.describe(3) << "\n";
       write_all_or_nothing({{fs::path(out) / "timing.md", [text = md.str()] { return std::vector<std::uint8_t>(text.begin(), text.end()); }}});
       std::cout << md.str() << "\nwrote " << fs::absolute(fs::path(out) / "timing.md").string() << "\n";
+      return 0;
+    }
+    if (voxel) {
+      // Voxel mode: the targets for rsm-voxel, frame by frame, against rsm-radial (the same
+      // pattern without visibility): the image within +-15 % of the Monte Carlo reference, the leak
+      // region's bias at most 1/4 of the radial gather's (region >= 2 %), the raw RMSE against
+      // exact visibility below the radial gather's, the frame at most 2x the radial gather's.
+      const int repeat = timing > 0 ? timing : 5;
+      std::ostringstream md, rows;
+      int image_met = 0, leak_met = 0, leak_counted = 0, rmse_met = 0, cost_met = 0, counted = 0;
+      spread image_ratios, leak_ratios, rmse_ratios, cost_ratios, build_ms;
+      for (const pose_frame& frame : frames) {
+        const posed_frame posed = load_frame(frame, poses);
+        const scene& source = posed.source;
+        const std::string& label = posed.label;
+        std::cerr << label << "\n";
+        rsm_pipeline_settings settings;
+        settings.coverage_blocks = coverage_blocks;
+        settings.coverage_interleave = coverage_interleave;
+        settings.width = settings.height = size;
+        settings.rsm_size = rsm_size;
+        const std::string identity = study::scene_identity(frame.scene, source) + "\nframe " + std::to_string(size) + " rsm " +
+                                     std::to_string(rsm_size) + " stride " + std::to_string(stride);
+        const std::string key = cache.empty() ? std::string() : (fs::path(cache) / cache_key(identity)).string();
+        const frame_reference reference = make_frame_reference(shaders, source, settings, stride, threads, key);
+        image monte_carlo;
+        const std::string mc_file = key + "-mc" + std::to_string(mc_samples) + "-r" + std::to_string(monte_carlo_revision) + ".pfm";
+        if (!key.empty() && fs::exists(mc_file)) {
+          monte_carlo = read_image_file(mc_file);
+        } else {
+          monte_carlo = reference_one_bounce(source, size, size, mc_samples, 1u, threads).indirect;
+          if (!key.empty()) write_all_or_nothing({{mc_file, [&] { return encode_pfm(monte_carlo); }}});
+        }
+        const double mc_mean = image_mean(monte_carlo);
+        if (!(mc_mean > 0.0) || !(image_mean(reference.exact) > 0.0)) {
+          rows << "| " << label << " | no indirect light in view (left out) |||||||\n";
+          continue;
+        }
+        ++counted;
+        rsm_pipeline_settings radial_settings = settings, voxel_settings = settings;
+        radial_settings.technique = "rsm-radial";
+        voxel_settings.technique = "rsm-voxel";
+        voxel_settings.voxel_grid = grid_settings;
+        voxel_settings.voxel_march.start_offset = voxel_settings.voxel_march.end_offset = voxel_march.start_offset;
+        const technique_errors radial = measure_technique(shaders, source, radial_settings, reference, seeds);
+        const technique_errors voxels = measure_technique(shaders, source, voxel_settings, reference, seeds);
+        const std::vector<double> ms = interleaved_frame_ms(shaders, source, {radial_settings, voxel_settings}, repeat);
+        const rsm_pipeline built(shaders, source, voxel_settings);
+        const voxel_grid& grid = *built.voxels();
+        const double image_voxel = image_mean(voxels.filtered_image) / mc_mean, image_radial = image_mean(radial.filtered_image) / mc_mean;
+        const double leak_share = reference.receiver_count ? static_cast<double>(reference.leak_count) / static_cast<double>(reference.receiver_count) : 0.0;
+        const bool leak_counts = leak_share >= 0.02;
+        const double leak = radial.raw_leak.bias != 0.0 ? std::fabs(voxels.raw_leak.bias) / std::fabs(radial.raw_leak.bias) : 0.0;
+        const double rmse = voxels.raw_vs_exact.rmse / radial.raw_vs_exact.rmse;
+        const double cost = ms[1] / ms[0];
+        image_met += std::fabs(image_voxel - 1.0) <= 0.15;
+        if (leak_counts) {
+          ++leak_counted;
+          leak_met += leak <= 0.25;
+          leak_ratios.add(leak);
+        }
+        rmse_met += rmse < 1.0;
+        cost_met += cost <= 2.0;
+        image_ratios.add(image_voxel);
+        rmse_ratios.add(rmse);
+        cost_ratios.add(cost);
+        build_ms.add(built.voxel_build_ms());
+        rows << "| " << label << " | " << percent(leak_share) << " % | " << fixed(image_voxel, 2) << " (" << fixed(image_radial, 2) << ") | "
+             << (leak_counts ? fixed(leak, 2) : std::string("-")) << " (" << percent(voxels.raw_leak.bias) << " % / " << percent(radial.raw_leak.bias)
+             << " %) | " << fixed(rmse, 2) << " (" << percent(voxels.raw_vs_exact.rmse) << " % / " << percent(radial.raw_vs_exact.rmse) << " %) | "
+             << fixed(ms[0], 1) << " / " << fixed(ms[1], 1) << " (" << fixed(cost, 2) << ") | " << grid.shape.cells.x << "x" << grid.shape.cells.y << "x"
+             << grid.shape.cells.z << ", " << grid.bytes() / 1024 << " KiB, " << fixed(built.voxel_build_ms(), 1) << " ms |\n";
+        std::cerr << "  image " << fixed(image_voxel, 2) << " (radial " << fixed(image_radial, 2) << "), leak " << fixed(leak, 2)
+                  << (leak_counts ? "" : " (region < 2 %)") << ", rmse " << fixed(rmse, 2) << ", cost " << fixed(cost, 2) << "\n";
+      }
+      md << "# rsm-voxel on " << poses << "\n\n" << counted << " frames, " << size << "^2 image, RSM " << rsm_size << "^2, brute force at every "
+         << stride << "th receiver per axis, seeds 1-" << seeds << ", Monte Carlo " << mc_samples << " bounce rays per pixel, "
+         << describe_coverage(coverage_blocks, coverage_interleave) << ", the grid " << grid_settings.resolution << " cells along the scene's longest side, "
+         << "offsets " << fixed(voxel_march.start_offset, 2) << " cells; frame cost: wall clock around glFinish, median of "
+         << repeat << ", rsm-radial and rsm-voxel interleaved; the grid's build (CPU, once per scene) apart; on:\n\n```\n" << describe_current_context()
+         << "\n```\n\n| target | frames met | min / median / max |\n|---|---:|---:|\n"
+         << "| filtered indirect / Monte Carlo in [0.85, 1.15] | " << image_met << " / " << counted << " | " << image_ratios.describe(2) << " |\n"
+         << "| leak-region bias / radial's <= 0.25 (region >= 2 %) | " << leak_met << " / " << leak_counted << " | " << leak_ratios.describe(2) << " |\n"
+         << "| raw rel. RMSE vs exact / radial's < 1 | " << rmse_met << " / " << counted << " | " << rmse_ratios.describe(2) << " |\n"
+         << "| frame ms / radial's <= 2 | " << cost_met << " / " << counted << " | " << cost_ratios.describe(2) << " |\n"
+         << "\nGrid build (ms, min / median / max): " << build_ms.describe(1) << ".\n\n## Frame by frame\n\n"
+         << "| frame | leak region | filtered / MC: voxel (radial) | leak bias / radial's (voxel / radial) | raw rel. RMSE / radial's (voxel / radial) "
+            "| frame ms: radial / voxel (ratio) | grid: cells, memory, build |\n|---|---:|---:|---:|---:|---:|---|\n"
+         << rows.str();
+      write_all_or_nothing({{fs::path(out) / "voxel.md", [text = md.str()] { return std::vector<std::uint8_t>(text.begin(), text.end()); }}});
+      std::cout << md.str() << "\nwrote " << fs::absolute(fs::path(out) / "voxel.md").string() << "\n";
       return 0;
     }
     if (flicker > 0) {

@@ -8,6 +8,9 @@
 // the light's eye space.
 #include "lib/rsm_gather.glsl"
 #include "lib/rsm_packing.glsl"
+#if VPLKIT_VISIBILITY == 8
+#include "lib/voxel_visibility.glsl"
+#endif
 
 uniform rsm_gather_settings settings;
 uniform rsm_unprojection unprojection;
@@ -24,6 +27,14 @@ uniform sampler2D coarse_normal;
 uniform sampler2D coarse_flux;
 #endif
 
+#if VPLKIT_VISIBILITY == 8
+// rsm-voxel: the scene's occupancy grid (vplkit/voxel_visibility.hpp), built on the CPU.
+uniform usampler2D voxel_packed;
+uniform voxel_grid_shape voxel_shape;
+uniform voxel_march_settings voxel_march;
+uniform mat4 light_view_inverse;
+#endif
+
 layout(location = 0) out vec4 indirect;
 
 rsm_texel rsm_fetch(ivec2 texel) { return unpack_rsm_texel(texelFetch(rsm_packed, texel, 0), texel, unprojection); }
@@ -31,6 +42,14 @@ rsm_texel rsm_fetch(ivec2 texel) { return unpack_rsm_texel(texelFetch(rsm_packed
 coarse_light rsm_coarse_fetch(ivec2 block) {
   vec4 position_extent = texelFetch(coarse_position_extent, block, 0);
   return coarse_light(position_extent.xyz, texelFetch(coarse_normal, block, 0).xyz, texelFetch(coarse_flux, block, 0).xyz, position_extent.w);
+}
+#endif
+#if VPLKIT_VISIBILITY == 8
+uvec4 voxel_fetch(ivec2 texel) { return texelFetch(voxel_packed, texel, 0); }
+// The C++ twin is voxel_rsm_visibility's operator(): back from the light's eye space to the world.
+float rsm_voxel_visibility(vec3 x, vec3 n, vec3 xp, vec3 np) {
+  return voxel_light_visible(voxel_shape, voxel_march, transform_point(light_view_inverse, x), transform_direction(light_view_inverse, n),
+                             transform_point(light_view_inverse, xp), transform_direction(light_view_inverse, np));
 }
 #endif
 

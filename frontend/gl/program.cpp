@@ -572,6 +572,7 @@ void program::set(const std::string& uniform, const glm::vec2& value) const { us
 void program::set(const std::string& uniform, const glm::vec3& value) const { use(); glUniform3fv(location(uniform), 1, glm::value_ptr(value)); }
 void program::set(const std::string& uniform, const glm::vec4& value) const { use(); glUniform4fv(location(uniform), 1, glm::value_ptr(value)); }
 void program::set(const std::string& uniform, const glm::ivec2& value) const { use(); glUniform2iv(location(uniform), 1, glm::value_ptr(value)); }
+void program::set(const std::string& uniform, const glm::ivec3& value) const { use(); glUniform3iv(location(uniform), 1, glm::value_ptr(value)); }
 void program::set(const std::string& uniform, const glm::mat4& value) const { use(); glUniformMatrix4fv(location(uniform), 1, GL_FALSE, glm::value_ptr(value)); }
 
 }  // namespace vplkit

@@ -60,8 +60,9 @@ enum class rsm_pattern { radial = 0, disk = 1 };                 ///< GLSL: VPLK
 /// `up` towards the light), without the samples that lie in or behind the receiver's tangent plane
 /// (they light nothing and hide nothing), and with Alg. 3's same-slot rule only between samples
 /// that cannot hide one another (micro_linear_buffer_alg6_ray; docs/errata.md, RSMV-12). GLSL:
-/// VPLKIT_VISIBILITY.
-enum class rsm_visibility { none = 0, alg2 = 2, alg3 = 3, alg6 = 6, alg6_ray = 7 };
+/// VPLKIT_VISIBILITY. voxel: the scene's occupancy grid beyond the RSM (vplkit/voxel_visibility.hpp,
+/// voxel_rsm_visibility; gather_rsm_with takes it: gather_rsm has no grid).
+enum class rsm_visibility { none = 0, alg2 = 2, alg3 = 3, alg6 = 6, alg6_ray = 7, voxel = 8 };
 
 /// "none", "alg2", "alg3", "alg6", "alg6-ray".
 inline const char* visibility_name(rsm_visibility visibility) {
@@ -71,6 +72,7 @@ inline const char* visibility_name(rsm_visibility visibility) {
     case rsm_visibility::alg3: return "alg3";
     case rsm_visibility::alg6: return "alg6";
     case rsm_visibility::alg6_ray: return "alg6-ray";
+    case rsm_visibility::voxel: return "voxel";
   }
   return "unknown";
 }
@@ -368,6 +370,7 @@ template <rsm_pattern Pattern, rsm_visibility Visibility, typename T, typename F
 glm::vec<3, T> gather_rsm(const gather_receiver<T>& receiver, Fetch&& fetch, CoarseFetch&& coarse_fetch, const rsm_gather_settings<T>& settings) {
   static_assert(Pattern == rsm_pattern::radial || Visibility == rsm_visibility::none,
                 "the disk pattern has no paths: visibility needs rsm_pattern::radial");
+  static_assert(Visibility != rsm_visibility::voxel, "the voxel visibility needs its grid: gather_rsm_with with voxel_rsm_visibility (voxel_visibility.hpp)");
   detail::micro_linear_buffer_visibility<Visibility, T> visibility{settings.slots};
   if constexpr (Visibility == rsm_visibility::alg6_ray) {
     // Behind the light there is no path (the coverage alone): no `up` to compute.

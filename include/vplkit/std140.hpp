@@ -54,6 +54,7 @@
 #include <vplkit/settings.hpp>
 #include <vplkit/shadow.hpp>
 #include <vplkit/temporal_accumulation.hpp>
+#include <vplkit/voxel_visibility.hpp>
 
 namespace vplkit {
 
@@ -70,6 +71,7 @@ std::string glsl_type_name() {
   else if constexpr (std::is_same_v<Value, glm::vec3>) return "vec3";
   else if constexpr (std::is_same_v<Value, glm::vec4>) return "vec4";
   else if constexpr (std::is_same_v<Value, glm::ivec2>) return "ivec2";
+  else if constexpr (std::is_same_v<Value, glm::ivec3>) return "ivec3";
   else static_assert(std::is_void_v<Value>, "a field type without a GLSL twin type");
 }
 
@@ -90,7 +92,7 @@ using glsl_twin_settings =
     settings_list<irradiance_settings<float>, radial_pattern_constants<float>, disk_pattern_settings<float>, elevation_slots<float>,
                   rsm_gather_settings<float>, rsm_unprojection<float>, shadow_density_settings<float>, bilateral_settings<float>,
                   spot_light<float>, directional_light<float>, lightwave_layout_settings<float>, lightwave_shading_settings<float>,
-                  temporal_settings<float>>;
+                  temporal_settings<float>, voxel_march_settings<float>, voxel_grid_shape<float>>;
 
 namespace detail {
 

@@ -3,7 +3,9 @@
 // Before including, define
 //   VPLKIT_RSM_PATTERN  0 radial, 1 disk
 //   VPLKIT_VISIBILITY   0 none, 2 Alg. 2, 3 Alg. 3, 6 Alg. 6, 7 Alg. 6 about the receiver's light ray
-//                       (rsm_visibility::alg6_ray)
+//                       (rsm_visibility::alg6_ray), 8 the voxel grid of lib/voxel_visibility.glsl through
+//                       `float rsm_voxel_visibility(vec3 x, vec3 n, vec3 xp, vec3 np)` (light eye
+//                       space; the C++ gather given vplkit/voxel_visibility.hpp's voxel_rsm_visibility)
 //   VPLKIT_SLOT_COUNT   (optional) settings.slots.count, as a constant: see lib/micro_linear_buffer.glsl
 //   VPLKIT_RSM_COVERAGE (optional) 1: the coverage of vplkit/rsm_coverage.hpp, reading the coarse
 //                       lights through `coarse_light rsm_coarse_fetch(ivec2 block)` (the C++
@@ -24,7 +26,7 @@
 #error "define VPLKIT_RSM_PATTERN (0 radial, 1 disk) before including lib/rsm_gather.glsl"
 #endif
 #ifndef VPLKIT_VISIBILITY
-#error "define VPLKIT_VISIBILITY (0, 2, 3, 6 or 7) before including lib/rsm_gather.glsl"
+#error "define VPLKIT_VISIBILITY (0, 2, 3, 6, 7 or 8) before including lib/rsm_gather.glsl"
 #endif
 #if VPLKIT_RSM_PATTERN == 1 && VPLKIT_VISIBILITY != 0
 #error "the disk pattern has no paths: visibility needs VPLKIT_RSM_PATTERN 0"
@@ -35,6 +37,9 @@
 #endif
 
 rsm_texel rsm_fetch(ivec2 texel);
+#if VPLKIT_VISIBILITY == 8
+float rsm_voxel_visibility(vec3 x, vec3 n, vec3 xp, vec3 np);
+#endif
 #if VPLKIT_RSM_COVERAGE
 coarse_light rsm_coarse_fetch(ivec2 block);
 #endif
@@ -79,7 +84,9 @@ void rsm_gather_accumulate(gather_receiver receiver, pattern_sample s, rsm_gathe
   rsm_texel light = rsm_fetch(texel);
   if (!(light.position.z < 0.0)) return;
   float visibility = 1.0;
-#if VPLKIT_VISIBILITY == 7
+#if VPLKIT_VISIBILITY == 8
+  visibility = rsm_voxel_visibility(receiver.position, receiver.normal, light.position, light.normal);
+#elif VPLKIT_VISIBILITY == 7
   if (alg6_ray_in_front(receiver.position, receiver.normal, light.position, settings.irradiance.min_distance))
     visibility = clamp(micro_linear_buffer_alg6_ray(linear_buffer, elevation_bucket_about(receiver.position, light.position, up, settings.slots),
                                                     receiver.position, light.position, light.normal),

@@ -14,7 +14,7 @@ endforeach()
 expect_success("render prints the pass table of Table 5.3"
                "\\| RSM generation \\|.*\\| G-buffer generation \\|.*\\| RSM sampling \\|.*\\| post processing \\|.*\\| total \\|"
                "${VPLKIT}" render --size 16 --rsm-size 32 --format rgba32f --out "${WORK}/f32.png")
-foreach(technique direct rsm-original rsm-radial rsm-alg2 rsm-alg3 rsm-alg6 rsm-alg6-ray)
+foreach(technique direct rsm-original rsm-radial rsm-alg2 rsm-alg3 rsm-alg6 rsm-alg6-ray rsm-voxel)
   expect_success("render --technique ${technique}" "technique ${technique}"
                  "${VPLKIT}" render --technique ${technique} --scene indirect-shadow --size 24 --rsm-size 32
                  --out "${WORK}/t-${technique}.png")

@@ -66,7 +66,7 @@ expect_failure("--visibility of the Monte Carlo reference" "--visibility is read
                "${VPLKIT}" reference --visibility none --size 16 --out "${WORK}/mc.pfm")
 expect_failure("--samples of the brute-force reference" "--samples is read by --method monte-carlo, not by method rsm-brute-force" "${WORK}/bf2.pfm"
                "${VPLKIT}" reference --method rsm-brute-force --samples 4 --size 16 --out "${WORK}/bf2.pfm")
-expect_failure("--raw-indirect without indirect light" "--raw-indirect is read by rsm-original, rsm-radial, rsm-alg2, rsm-alg3, rsm-alg6 and rsm-alg6-ray \\(the techniques that gather indirect light\\), not by technique direct" "${WORK}/direct-raw.png"
+expect_failure("--raw-indirect without indirect light" "--raw-indirect is read by rsm-original, rsm-radial, rsm-alg2, rsm-alg3, rsm-alg6, rsm-alg6-ray and rsm-voxel \\(the techniques that gather indirect light\\), not by technique direct" "${WORK}/direct-raw.png"
                "${VPLKIT}" render --technique direct --raw-indirect --size 16 --rsm-size 32 --out "${WORK}/direct-raw.png")
 if(EXISTS "${WORK}/direct-raw-indirect.pfm")
   message(SEND_ERROR "FAILED --raw-indirect without indirect light: left ${WORK}/direct-raw-indirect.pfm behind")

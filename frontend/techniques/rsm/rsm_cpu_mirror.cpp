@@ -1,5 +1,6 @@
 #include "frontend/techniques/rsm/rsm_cpu_mirror.hpp"
 
+#include "frontend/core/error.hpp"
 #include "frontend/core/parallel.hpp"
 
 #include <algorithm>
@@ -18,6 +19,7 @@ struct gather_inputs {
   int rsm_width;
   const std::vector<coarse_light<float>>& coarse;
   int blocks;
+  const voxel_grid* voxels;  ///< rsm-voxel's grid (null otherwise)
 };
 
 template <rsm_pattern Pattern, rsm_visibility Visibility>
@@ -25,11 +27,19 @@ glm::vec3 gather_variant(const gather_receiver<float>& receiver, const gather_in
   const auto fetch = [&](glm::ivec2 texel) {
     return in.rsm[static_cast<std::size_t>(texel.y) * static_cast<std::size_t>(in.rsm_width) + static_cast<std::size_t>(texel.x)];
   };
-  if (in.coarse.empty()) return gather_rsm<Pattern, Visibility>(receiver, fetch, constants.gather);
   const auto coarse_fetch = [&](glm::ivec2 block) {
     return in.coarse[static_cast<std::size_t>(block.y) * static_cast<std::size_t>(in.blocks) + static_cast<std::size_t>(block.x)];
   };
-  return gather_rsm<Pattern, Visibility>(receiver, fetch, coarse_fetch, constants.gather);
+  if constexpr (Visibility == rsm_visibility::voxel) {
+    // gather.frag's rsm_voxel_visibility: the grid's march, back in the world by the same matrix.
+    voxel_rsm_visibility<float, voxel_grid_fetch> visibility{voxel_grid_fetch{in.voxels}, in.voxels->shape, constants.voxel_march,
+                                                             constants.light_view_inverse};
+    if (in.coarse.empty()) return gather_rsm_with<Pattern>(receiver, fetch, constants.gather, visibility);
+    return gather_rsm_with<Pattern>(receiver, fetch, coarse_fetch, constants.gather, visibility);
+  } else {
+    if (in.coarse.empty()) return gather_rsm<Pattern, Visibility>(receiver, fetch, constants.gather);
+    return gather_rsm<Pattern, Visibility>(receiver, fetch, coarse_fetch, constants.gather);
+  }
 }
 
 glm::vec3 gather_dispatch(const gather_receiver<float>& receiver, const gather_inputs& in, const rsm_frame_constants& constants) {
@@ -41,6 +51,7 @@ glm::vec3 gather_dispatch(const gather_receiver<float>& receiver, const gather_i
     case rsm_visibility::alg3: return gather_variant<rsm_pattern::radial, rsm_visibility::alg3>(receiver, in, constants);
     case rsm_visibility::alg6: return gather_variant<rsm_pattern::radial, rsm_visibility::alg6>(receiver, in, constants);
     case rsm_visibility::alg6_ray: return gather_variant<rsm_pattern::radial, rsm_visibility::alg6_ray>(receiver, in, constants);
+    case rsm_visibility::voxel: return gather_variant<rsm_pattern::radial, rsm_visibility::voxel>(receiver, in, constants);
   }
   return glm::vec3(0.0f);
 }
@@ -115,7 +126,8 @@ image cpu_gather_pass(const rsm_pass_buffers& buffers, const rsm_frame_constants
   out.texels.assign(static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height), glm::vec4(0.0f));
   const std::vector<rsm_texel<float>> rsm = unpack_rsm(buffers, constants);
   const std::vector<coarse_light<float>> coarse = coarse_lights_of(buffers);
-  const gather_inputs in{rsm, buffers.rsm.width, coarse, buffers.coarse[0].width};
+  if (constants.technique.visibility == rsm_visibility::voxel && !buffers.voxels) throw error("cpu_gather_pass: rsm-voxel's buffers hold no voxel grid");
+  const gather_inputs in{rsm, buffers.rsm.width, coarse, buffers.coarse[0].width, buffers.voxels.get()};
   parallel_tiles(out.width, out.height, threads, [&](int x, int y) {
     const glm::ivec2 texel(x, y);
     const std::optional<gather_receiver<float>> receiver = gather_receiver_at(texel, buffers, constants);

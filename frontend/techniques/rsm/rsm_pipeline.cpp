@@ -56,6 +56,8 @@ rsm_frame_constants make_frame_constants(const scene& source, const bounding_box
   constants.gather = derive(settings).gather;
   constants.gather.perspective = source.light.kind == light_kind::spot ? 1 : 0;
   const bool spot = source.light.kind == light_kind::spot;
+  constants.light_view_inverse = glm::inverse(constants.light.view);
+  constants.voxel_march = settings.voxel_march;
   constants.unprojection = make_rsm_unprojection(spot ? constants.light.tan_half_fov : constants.light.half_extent, spot, glm::ivec2(settings.rsm_size));
   constants.camera_view = camera_view_matrix(source.view);
   constants.camera_view_projection =
@@ -78,6 +80,21 @@ bool is_directional(const scene& source) { return source.light.kind == light_kin
 
 // Whether the frame reduces the RSM to coarse lights: a gathering technique with coverage.
 bool with_coverage(const rsm_frame_constants& constants) { return constants.technique.indirect && constants.gather.coverage_blocks > 0; }
+
+// Whether the gather marches the scene's voxel grid (rsm-voxel).
+bool with_voxels(const rsm_frame_constants& constants) { return constants.technique.indirect && constants.technique.visibility == rsm_visibility::voxel; }
+
+// The gather's texture unit of the voxel grid: after the RSM, the G-buffer and the coarse lights.
+int voxel_unit(const rsm_frame_constants& constants) { return with_coverage(constants) ? 6 : 3; }
+
+// The conservative occupancy grid of every triangle of `geometry` (vplkit/voxel_visibility.hpp).
+voxel_grid build_voxel_grid(const mesh& geometry, const bounding_box& box, const voxel_grid_settings<float>& settings) {
+  voxel_grid grid = make_voxel_grid(make_voxel_grid_shape(box.minimum, box.maximum, settings));
+  for (std::size_t i = 0; i + 2 < geometry.indices.size(); i += 3)
+    voxel_grid_add_triangle(grid, geometry.vertices[geometry.indices[i]].position, geometry.vertices[geometry.indices[i + 1]].position,
+                            geometry.vertices[geometry.indices[i + 2]].position);
+  return grid;
+}
 
 // Whether sequences accumulate: a gathering technique with a blend below 1.
 bool with_temporal(const rsm_frame_constants& constants) { return constants.technique.indirect && constants.temporal.blend < 1.0f; }
@@ -111,6 +128,14 @@ rsm_pipeline::rsm_pipeline(const shader_library& shaders, const scene& source, c
                      settings.filter == post_filter::separable ? constants_.indirect_size.y : 1, {settings.format}, false),
       post_target_(settings.width, settings.height, {settings.format, settings.format}, false),
       empty_vertex_array_(generate_vertex_array()) {
+  if (with_voxels(constants_)) {
+    // Built once: a pipeline's triangles are fixed for its life (a new scene is a new pipeline).
+    const auto start = std::chrono::steady_clock::now();
+    voxels_ = std::make_shared<const voxel_grid>(build_voxel_grid(source.geometry, bounds_, settings_.voxel_grid));
+    voxel_build_ms_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    const glm::ivec2 size = voxel_texture_size(voxels_->shape.cells);
+    voxel_texture_.emplace(size.x, size.y, texel_format::rgba32ui, voxels_->texels.data());
+  }
   load_programs(shaders, source);
   set_settings_uniforms();
   set_pose_uniforms();
@@ -159,6 +184,11 @@ void rsm_pipeline::set_settings_uniforms() {
       coarse_program_.set("coverage_blocks", constants_.gather.coverage_blocks);
       coarse_program_.set("rsm_packed", 0);
     }
+    if (with_voxels(constants_)) {
+      gather_program_.set("voxel_packed", voxel_unit(constants_));
+      set_uniforms(gather_program_, "voxel_shape", voxels_->shape);
+      set_uniforms(gather_program_, "voxel_march", constants_.voxel_march);
+    }
     if (with_temporal(constants_)) {
       set_uniforms(temporal_program_, "temporal", constants_.temporal);
       temporal_program_.set("indirect_divisor", constants_.indirect_divisor);
@@ -197,7 +227,9 @@ bool rsm_pipeline::apply_settings(const technique_settings& settings) {
                           next.rsm_size == settings_.rsm_size && next.format == settings_.format && next.filter == settings_.filter &&
                           constants.indirect_size == constants_.indirect_size && constants.gather.slots.count == constants_.gather.slots.count &&
                           constants.gather.coverage_blocks == constants_.gather.coverage_blocks &&
-                          with_coverage(constants) == with_coverage(constants_) && with_temporal(constants) == with_temporal(constants_);
+                          with_coverage(constants) == with_coverage(constants_) && with_temporal(constants) == with_temporal(constants_) &&
+                          next.voxel_grid.resolution == settings_.voxel_grid.resolution &&
+                          next.voxel_grid.max_megabytes == settings_.voxel_grid.max_megabytes;  // the grid is built with the pipeline
   if (!same_build) return false;
   settings_ = next;
   constants_ = constants;
@@ -230,6 +262,7 @@ void rsm_pipeline::set_pose_uniforms() {
     set_uniforms(gather_program_, "unprojection", constants_.unprojection);
     gather_program_.set("light_view", light.view);
     gather_program_.set("light_view_projection", light.view_projection);
+    if (with_voxels(constants_)) gather_program_.set("light_view_inverse", constants_.light_view_inverse);
   }
   set_light_uniforms(post_program_, constants_);
 }
@@ -377,6 +410,7 @@ void rsm_pipeline::draw_gather() {
   gbuffer_target_.colour(2).bind(2);
   if (with_coverage(constants_))
     for (int i = 0; i < 3; ++i) coarse_target_.colour(static_cast<std::size_t>(i)).bind(3 + i);
+  if (with_voxels(constants_)) voxel_texture_->bind(voxel_unit(constants_));
   gather_program_.use();
   glDrawArrays(GL_TRIANGLES, 0, 3);
   timer_.end();
@@ -440,7 +474,11 @@ std::string rsm_pipeline::draw_counts() const {
 std::string rsm_pipeline::describe() const {
   return "scene " + scene_.name + " (" + std::to_string(triangles_) + " triangles), technique " + settings_.technique + ", " +
          std::to_string(settings_.width) + "x" + std::to_string(settings_.height) + ", RSM " + std::to_string(settings_.rsm_size) + "^2, indirect " +
-         std::to_string(constants_.indirect_size.x) + "x" + std::to_string(constants_.indirect_size.y);
+         std::to_string(constants_.indirect_size.x) + "x" + std::to_string(constants_.indirect_size.y) +
+         (voxels_ ? ", voxel grid " + std::to_string(voxels_->shape.cells.x) + "x" + std::to_string(voxels_->shape.cells.y) + "x" +
+                        std::to_string(voxels_->shape.cells.z) + " (" + std::to_string(voxels_->bytes() / 1024) + " KiB, built in " +
+                        std::to_string(static_cast<int>(voxel_build_ms_ + 0.5)) + " ms)"
+                  : std::string());
 }
 
 std::optional<image> rsm_pipeline::raw_indirect() const {
@@ -458,6 +496,7 @@ rsm_pass_buffers rsm_pipeline::read_buffers() const {
   for (std::size_t i = 0; i < 3; ++i) buffers.gbuffer[i] = gbuffer_target_.read_image(i);
   if (with_coverage(constants_))
     for (std::size_t i = 0; i < 3; ++i) buffers.coarse[i] = coarse_target_.read_image(i);
+  buffers.voxels = voxels_;
   if (constants_.technique.indirect) {
     buffers.indirect = indirect_target_.read_image(0);
     if (last_accumulated_) {

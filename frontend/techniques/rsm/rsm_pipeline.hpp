@@ -7,6 +7,8 @@
 // pattern without visibility or with Alg. 2, 3 or 6.
 #pragma once
 
+#include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -18,6 +20,7 @@
 #include <vplkit/rsm_packing.hpp>
 #include <vplkit/shadow.hpp>
 #include <vplkit/temporal_accumulation.hpp>
+#include <vplkit/voxel_visibility.hpp>
 #include <vplkit/gl/program.hpp>
 
 #include "frontend/techniques/rsm/rsm_settings.hpp"
@@ -48,6 +51,8 @@ struct rsm_frame_constants {
   rsm_gather_settings<float> gather;
   light_frustum light;
   rsm_unprojection<float> unprojection;  ///< the packed RSM's centre rays (from light)
+  glm::mat4 light_view_inverse{1.0f};    ///< rsm-voxel: the light's eye space back to the world (the grid's space)
+  voxel_march_settings<float> voxel_march;  ///< rsm-voxel: the march's offsets
   scene_light primary;
   glm::mat4 camera_view{1.0f};
   glm::mat4 camera_view_projection{1.0f};
@@ -81,6 +86,7 @@ struct rsm_pass_buffers {
   image accumulated; ///< after temporal accumulation: [irradiance | depth] (empty unless the last frame was render_next's with a history)
   image history;     ///< the accumulated buffer of the frame before, which pass 3b read (empty with `accumulated`)
   image blurred_x;   ///< the separable filter's x pass (empty for the full filter)
+  std::shared_ptr<const voxel_grid> voxels;  ///< rsm-voxel: the grid the gather marched (null otherwise)
 };
 
 struct rsm_frame {
@@ -145,6 +151,10 @@ class rsm_pipeline final : public pipeline {
   /// (llvmpipe's timer queries measure only the span of its last rasterizer tiles).
   double draw_wall_clock_ms();
   const rsm_frame_constants& constants() const { return constants_; }
+  /// rsm-voxel: the scene's occupancy grid (null for the other techniques) and the wall-clock ms
+  /// its CPU build took when the pipeline was made (reported apart from the frame's cost).
+  const std::shared_ptr<const voxel_grid>& voxels() const { return voxels_; }
+  double voxel_build_ms() const { return voxel_build_ms_; }
   /// The intermediate buffers of the last frame.
   rsm_pass_buffers read_buffers() const;
   /// The final radiance texture of the last frame.
@@ -188,6 +198,9 @@ class rsm_pipeline final : public pipeline {
   program temporal_program_;
   program blur_x_program_;
   program post_program_;
+  std::shared_ptr<const voxel_grid> voxels_;
+  double voxel_build_ms_ = 0.0;
+  std::optional<texture_2d> voxel_texture_;
   framebuffer rsm_target_;
   framebuffer coarse_target_;
   framebuffer gbuffer_target_;

@@ -17,6 +17,9 @@ const std::vector<rsm_technique>& rsm_techniques() {
       {"rsm-alg6", true, rsm_pattern::radial, rsm_visibility::alg6, "radial pattern, micro linear buffer Alg. 6 (the thesis)"},
       {"rsm-alg6-ray", true, rsm_pattern::radial, rsm_visibility::alg6_ray,
        "radial pattern, Alg. 6 with the elevation about the receiver's light ray and without the samples in its tangent plane (docs/errata.md RSMV-12)"},
+      {"rsm-voxel", true, rsm_pattern::radial, rsm_visibility::voxel,
+       "radial pattern, each sample's visibility by a 3D DDA through a conservative voxel grid of the scene's triangles (vplkit/voxel_visibility.hpp; "
+       "docs/rsm-study.md, \"Beyond one RSM\")"},
   };
   return techniques;
 }
@@ -28,7 +31,10 @@ const std::vector<setting<rsm_pipeline_settings, rsm_technique>>& rsm_settings_t
   const auto gathers = [](const rsm_technique& t) { return t.indirect; };
   const auto radial = [](const rsm_technique& t) { return t.indirect && t.pattern == rsm_pattern::radial; };
   const auto disk = [](const rsm_technique& t) { return t.indirect && t.pattern == rsm_pattern::disk; };
-  const auto with_visibility = [](const rsm_technique& t) { return t.indirect && t.visibility != rsm_visibility::none; };
+  const auto with_visibility = [](const rsm_technique& t) {
+    return t.indirect && t.visibility != rsm_visibility::none && t.visibility != rsm_visibility::voxel;
+  };
+  const auto voxel = [](const rsm_technique& t) { return t.indirect && t.visibility == rsm_visibility::voxel; };
   const std::string gathering = "the techniques that gather indirect light";
   const rsm_gather_preset<float> defaults = default_rsm_gather_preset<float>(), thesis = thesis_rsm_gather_preset<float>();
   const auto preset_text = [](const rsm_gather_preset<float>& p) {
@@ -48,6 +54,8 @@ const std::vector<setting<rsm_pipeline_settings, rsm_technique>>& rsm_settings_t
   const auto bilateral = [](const rsm_pipeline_settings& s) { return s.bilateral; };
   const auto shadow = [](const rsm_pipeline_settings& s) { return s.shadow; };
   const auto temporal = [](const rsm_pipeline_settings& s) { return s.temporal; };
+  const auto voxel_march = [](const rsm_pipeline_settings& s) { return s.voxel_march; };
+  using V = voxel_march_settings<float>;
   static const std::vector<entry> table = {
       entry::custom("size", setting_type::size, "pixels", "final image size, N or WxH",
                     [](const rsm_pipeline_settings& s) { return s.width == s.height ? std::to_string(s.width) : std::to_string(s.width) + "x" + std::to_string(s.height); },
@@ -155,6 +163,20 @@ const std::vector<setting<rsm_pipeline_settings, rsm_technique>>& rsm_settings_t
                     describe_field(&rsm_gather_settings<float>::coverage_interleave))
           .read_by(gathers, gathering)
           .feeds("gather.frag", "settings", gather, &G::coverage_interleave),
+      entry::number("voxel-resolution", [](auto& s) -> auto& { return s.voxel_grid.resolution; }, describe_field(&voxel_grid_settings<float>::resolution))
+          .read_by(voxel, "rsm-voxel")
+          .not_live()
+          .feeds("gather.frag: voxel_shape; gather.frag: voxel_packed"),
+      entry::number("voxel-memory", [](auto& s) -> auto& { return s.voxel_grid.max_megabytes; }, describe_field(&voxel_grid_settings<float>::max_megabytes))
+          .read_by(voxel, "rsm-voxel")
+          .not_live()
+          .feeds("gather.frag: voxel_shape; gather.frag: voxel_packed"),
+      entry::number("voxel-start-offset", [](auto& s) -> auto& { return s.voxel_march.start_offset; }, describe_field(&V::start_offset))
+          .read_by(voxel, "rsm-voxel")
+          .feeds("gather.frag", "voxel_march", voxel_march, &V::start_offset),
+      entry::number("voxel-end-offset", [](auto& s) -> auto& { return s.voxel_march.end_offset; }, describe_field(&V::end_offset))
+          .read_by(voxel, "rsm-voxel")
+          .feeds("gather.frag", "voxel_march", voxel_march, &V::end_offset),
       entry::number("temporal-blend", [](auto& s) -> auto& { return s.temporal.blend; }, describe_field(&temporal_settings<float>::blend))
           .read_by(gathers, gathering)
           .not_live()
@@ -217,7 +239,7 @@ std::string validate(const rsm_pipeline_settings& settings) {
   if (const std::string problem = check_settings(rsm_settings_table(), settings); !problem.empty()) return problem;
   const rsm_derived_settings derived = derive(settings);
   for (const setting_problem& problem : {validate(derived.radial), validate(derived.gather.disk), validate(settings.irradiance), validate(settings.shadow), validate(settings.bilateral),
-                                         validate(settings.temporal)})
+                                         validate(settings.temporal), validate(settings.voxel_grid), validate(settings.voxel_march)})
     if (problem) return problem.message();
   if (const char* problem = validate_coverage_blocks(settings.coverage_blocks)) return problem;
   if (const char* problem = validate_coverage_interleave(settings.coverage_interleave)) return problem;

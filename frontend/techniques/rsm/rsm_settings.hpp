@@ -12,6 +12,7 @@
 #include <vplkit/rsm_gather.hpp>
 #include <vplkit/shadow.hpp>
 #include <vplkit/temporal_accumulation.hpp>
+#include <vplkit/voxel_visibility.hpp>
 
 #include "frontend/core/setting.hpp"
 #include "frontend/gl/render_target.hpp"
@@ -64,6 +65,10 @@ struct rsm_pipeline_settings {
   /// Temporal accumulation of the frames of a sequence (render_next; vplkit/temporal_accumulation.hpp);
   /// blend 1 keeps no history (and the pattern does not turn between frames).
   temporal_settings<float> temporal;
+  /// rsm-voxel: the scene's occupancy grid (built on the CPU when the pipeline is made: the scene's
+  /// triangles are fixed for its life) and the march's offsets (vplkit/voxel_visibility.hpp).
+  voxel_grid_settings<float> voxel_grid;
+  voxel_march_settings<float> voxel_march;
 
   static radial_pattern_settings<float> default_radial_settings() {
     radial_pattern_settings<float> radial;

@@ -52,10 +52,12 @@ const char* const lib_prelude =
     "#include \"lib/direct_light.glsl\"\n"
     "#include \"lib/lightwave.glsl\"\n"
     "#include \"lib/temporal_accumulation.glsl\"\n"
+    "#include \"lib/voxel_visibility.glsl\"\n"
     // The fetches the lib files' kernels call (they are not run here, but the linker resolves them).
     "rsm_texel rsm_fetch(ivec2 texel) { return rsm_texel(vec3(0.0), vec3(0.0), vec3(0.0)); }\n"
     "float rsm_depth_fetch(ivec2 texel) { return 0.0; }\n"
-    "bilateral_tap bilateral_fetch(ivec2 texel) { return bilateral_tap(vec3(0.0), 0.0, vec3(0.0)); }\n";
+    "bilateral_tap bilateral_fetch(ivec2 texel) { return bilateral_tap(vec3(0.0), 0.0, vec3(0.0)); }\n"
+    "uvec4 voxel_fetch(ivec2 texel) { return uvec4(0u); }\n";
 
 program link_with_vertex(const std::string& name, const std::string& fragment) {
   const shader_library& library = test_shaders();

@@ -104,17 +104,19 @@ TEST_CASE("who reads a setting is its predicate over the family's techniques") {
   const std::unique_ptr<technique_settings> settings = rsm.make_settings("rsm-alg6");
   CHECK(settings->readers("slots") == std::vector<std::string>{"rsm-alg2", "rsm-alg3", "rsm-alg6", "rsm-alg6-ray"});
   CHECK(settings->readers("disk-samples") == std::vector<std::string>{"rsm-original"});
-  CHECK(settings->readers("paths") == std::vector<std::string>{"rsm-radial", "rsm-alg2", "rsm-alg3", "rsm-alg6", "rsm-alg6-ray"});
+  CHECK(settings->readers("paths") == std::vector<std::string>{"rsm-radial", "rsm-alg2", "rsm-alg3", "rsm-alg6", "rsm-alg6-ray", "rsm-voxel"});
   CHECK(settings->readers("rsm-size").size() == rsm.techniques.size());
   CHECK_FALSE(settings->reads("slots", "rsm-radial"));
   const std::unique_ptr<technique_settings> light_wave = family_of("lightwave-faked").make_settings("lightwave-faked");
+  CHECK(settings->readers("voxel-resolution") == std::vector<std::string>{"rsm-voxel"});
+  CHECK(settings->readers("voxel-start-offset") == std::vector<std::string>{"rsm-voxel"});
   CHECK(light_wave->readers("faked-multiplier") == std::vector<std::string>{"lightwave-faked"});
   CHECK(light_wave->readers("integrated-steps") == std::vector<std::string>{"lightwave-integrated"});
   CHECK(light_wave->find("radius") == nullptr);
   CHECK_THROWS_AS(light_wave->set_technique("rsm-alg6"), vplkit::error);
   CHECK(family_of("envmap").name == "final-gather");
   CHECK_THROWS_WITH_AS(family_of("rsm-alg7"), doctest::Contains("unknown technique 'rsm-alg7'"), vplkit::error);
-  CHECK(technique_names().size() == 15u);
+  CHECK(technique_names().size() == 16u);
 }
 
 TEST_CASE("the settings in effect as JSON: the settings the technique reads, numbers as numbers") {

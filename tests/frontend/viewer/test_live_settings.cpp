@@ -162,6 +162,12 @@ TEST_CASE("viewer: a setting that changes a define or a buffer's size needs a ne
   CHECK_FALSE(view.take_settings(other));
 }
 
+TEST_CASE("viewer: rsm-voxel's march offsets apply in place; its grid's resolution and memory bound need a new view") {
+  // The offsets are uniforms (voxel_march); the grid is built with the pipeline.
+  check_applied_in_place("rsm-voxel", {{"size", "48"}, {"rsm-size", "64"}}, {{"voxel-start-offset", "4"}, {"voxel-end-offset", "0.5"}});
+  check_refused("rsm-voxel", {{"size", "48"}, {"rsm-size", "64"}}, {{"voxel-resolution", "64"}, {"voxel-memory", "0.01"}});
+}
+
 // Light Wave (lightwave_pipeline::apply_settings says which setting is which): small maps.
 const setting_values lightwave_base = {{"size", "48"}, {"shadow-map-scale", "1"}};
 

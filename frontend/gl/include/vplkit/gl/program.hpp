@@ -113,6 +113,7 @@ class program {
   void set(const std::string& uniform, const glm::vec3& value) const;
   void set(const std::string& uniform, const glm::vec4& value) const;
   void set(const std::string& uniform, const glm::ivec2& value) const;
+  void set(const std::string& uniform, const glm::ivec3& value) const;
   void set(const std::string& uniform, const glm::mat4& value) const;
   /// Fills the uniform block `block` from `size` bytes (e.g. vplkit::std140_bytes(settings), for
   /// a `layout(std140) uniform block { twin member; };` that vplkit::std140_block writes): into a

@@ -1,0 +1,333 @@
+// Visibility beyond one RSM: a conservative voxel occupancy grid of the scene, marched from the
+// receiver to each RSM sample with a 3D DDA (Amanatides and Woo 1987). One RSM cannot tell a solid
+// wall from a thin screen (docs/rsm-study.md, "Any frame"): the sun-lit ground outside a closed
+// room leaks through its walls under every micro-linear-buffer variant. A grid of the scene's own
+// triangles knows the wall is there.
+//
+// The grid (built on the CPU, voxel_grid_add_triangle): cubic cells over the scene's bounds, one
+// cell of margin on every side; a cell is occupied when a triangle overlaps it, by the exact
+// separating-axis test of Akenine-Moller (2001) on the cell grown by a ten-thousandth of its side
+// so that rounding cannot drop a triangle that touches it. So a zero-thickness quad occupies every
+// cell it passes through and is an occluder, and every segment that crosses a triangle visits a
+// cell holding the crossing point: a sample behind a closed wall is never visible. Its resolution
+// follows the scene's size (voxel_grid_settings::resolution cells along the longest side), bounded
+// by voxel_grid_settings::max_megabytes (64 MiB by default: the cells grow until the packed grid
+// fits) and by 2048 texels per side of the packed texture (GLSL ES 3.00's least
+// GL_MAX_TEXTURE_SIZE).
+//
+// Packing (the CPU grid holds the GPU texture's words): one RGBA32UI texel holds 128 cells along z,
+// z = 32 c + b in component c, bit b; the texel of cell (x, y, z) is (x, y + (z / 128) * cells.y),
+// so the texture is cells.x wide and cells.y * ceil(cells.z / 128) high: 16 bytes per 128 cells.
+// GL 3.3 and ES 3.0 read it with texelFetch on a usampler2D.
+//
+// The march (voxel_segment_visible): from the receiver x moved start_offset cell sides along its
+// normal to the sample x_p moved end_offset cell sides along its normal, every cell the segment
+// passes through is visited (6-connected); one occupied cell hides the sample. A point farther
+// than sqrt(3) cell sides from a plane lies in a cell the plane cannot touch, so with offsets of
+// 2 (the defaults; sqrt(3) plus the growth and a margin) neither the receiver's nor the sample's
+// own (locally flat) surface occludes them. Larger offsets step over walls thinner than the
+// offset near the receiver; smaller ones darken every receiver by its own surface.
+//
+// In the gather (voxel_rsm_visibility, the Visibility of gather_rsm_with): the receiver and the
+// pixel lights are in the light's eye space, the grid in world space, so both are moved back by
+// the inverse light view. A sample the receiver's or its own tangent plane faces away from lights
+// nothing (Eq. 3.2's positive parts) and is not marched.
+//
+// GLSL twin: shaders/lib/voxel_visibility.glsl.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include <vplkit/rsm_gather.hpp>
+#include <vplkit/settings.hpp>
+#include <vplkit/transform.hpp>
+
+namespace vplkit {
+
+/// Largest voxel_grid_settings::resolution: 512 cells (with the margin 514) keep the packed texture
+/// within 2048 texels per side for any scene's shape.
+inline constexpr int voxel_grid_max_resolution = 512;
+/// The packed texture's largest side (GLSL ES 3.00's least GL_MAX_TEXTURE_SIZE).
+inline constexpr int voxel_grid_max_texture_side = 2048;
+/// Cells per packed texel (RGBA32UI: 4 x 32 bits along z).
+inline constexpr int voxel_cells_per_texel = 128;
+
+/// How the grid is built (CPU only).
+template <typename T>
+struct voxel_grid_settings {
+  int resolution = 128;       ///< cells along the scene's longest side
+  T max_megabytes = T(64);    ///< bound on the packed grid (MiB)
+};
+
+template <typename T>
+struct settings_description<voxel_grid_settings<T>> {
+  using S = voxel_grid_settings<T>;
+  static constexpr const char* name = "voxel_grid_settings";
+  static constexpr bool glsl_twin = false;  // the build runs on the CPU; the shader reads voxel_grid_shape
+  static constexpr auto fields() {
+    return std::make_tuple(schema::field(&S::resolution, "resolution", schema::closed_range(1, voxel_grid_max_resolution), "cells",
+                                 "voxel grid cells along the scene's longest side (fewer when the memory bound needs it)"),
+                           schema::field(&S::max_megabytes, "max_megabytes", schema::closed_range(0.001, 1024), "MiB",
+                                 "memory bound of the voxel grid: its cells grow until the packed grid fits"));
+  }
+  static setting_problem rules(const S& settings) { return schema::no_rules(settings); }
+};
+
+/// The march's offsets. GLSL twin: struct voxel_march_settings.
+template <typename T>
+struct voxel_march_settings {
+  T start_offset = T(2);  ///< cell sides along the receiver's normal
+  T end_offset = T(2);    ///< cell sides along the sample's normal
+};
+
+template <typename T>
+struct settings_description<voxel_march_settings<T>> {
+  using S = voxel_march_settings<T>;
+  static constexpr const char* name = "voxel_march_settings";
+  static constexpr bool glsl_twin = true;
+  static constexpr auto fields() {
+    return std::make_tuple(schema::field(&S::start_offset, "start_offset", schema::closed_range(0, 16), "cells",
+                                 "the voxel march starts this far along the receiver's normal (> 1.74: its own surface does not occlude it)"),
+                           schema::field(&S::end_offset, "end_offset", schema::closed_range(0, 16), "cells",
+                                 "the voxel march ends this far along the sample's normal (> 1.74: its own surface does not occlude it)"));
+  }
+  static setting_problem rules(const S& settings) { return schema::no_rules(settings); }
+};
+
+/// Where the grid lies: cells of side cell_size from origin (world space). GLSL twin: struct
+/// voxel_grid_shape.
+template <typename T>
+struct voxel_grid_shape {
+  glm::vec<3, T> origin{T(0)};
+  T cell_size = T(1);
+  glm::ivec3 cells{1};
+};
+
+template <typename T>
+struct settings_description<voxel_grid_shape<T>> {
+  using S = voxel_grid_shape<T>;
+  static constexpr const char* name = "voxel_grid_shape";
+  static constexpr bool glsl_twin = true;
+  static constexpr auto fields() {
+    return std::make_tuple(schema::field(&S::origin, "origin", schema::any_finite(), "scene units", "the voxel grid's lowest corner"),
+                           schema::field(&S::cell_size, "cell_size", schema::above(0.0), "scene units", "side of one voxel"),
+                           schema::field(&S::cells, "cells", schema::closed_range(1, voxel_grid_max_texture_side), "", "voxels per axis"));
+  }
+  static setting_problem rules(const S& settings) { return schema::no_rules(settings); }
+};
+
+/// The packed texture's size in texels for `cells`.
+inline glm::ivec2 voxel_texture_size(glm::ivec3 cells) {
+  return glm::ivec2(cells.x, cells.y * ((cells.z + voxel_cells_per_texel - 1) / voxel_cells_per_texel));
+}
+
+/// The packed texel holding cell `cell`. GLSL twin: voxel_texel.
+inline glm::ivec2 voxel_texel(glm::ivec3 cell, glm::ivec3 cells) { return glm::ivec2(cell.x, cell.y + (cell.z >> 7) * cells.y); }
+
+/// Whether cell z's bit is set in its packed texel. GLSL twin: voxel_bit.
+inline bool voxel_bit(const glm::uvec4& texel, int z) { return ((texel[(z >> 5) & 3] >> static_cast<unsigned>(z & 31)) & 1u) != 0u; }
+
+/// The packed grid's size in bytes.
+inline std::size_t voxel_grid_bytes(glm::ivec3 cells) {
+  const glm::ivec2 size = voxel_texture_size(cells);
+  return static_cast<std::size_t>(size.x) * static_cast<std::size_t>(size.y) * sizeof(glm::uvec4);
+}
+
+/// The shape for a scene whose triangles lie in [low, high]: resolution cells along the longest
+/// side plus one of margin on every side, the cells grown by 1 % steps until the packed grid fits
+/// max_megabytes and 2048 texels per side. A flat or empty extent gets one cell's thickness.
+template <typename T>
+voxel_grid_shape<T> make_voxel_grid_shape(const glm::vec<3, T>& low, const glm::vec<3, T>& high, const voxel_grid_settings<T>& settings) {
+  const glm::vec<3, T> extent = glm::max(high - low, glm::vec<3, T>(T(0)));
+  const T longest = glm::max(extent.x, glm::max(extent.y, extent.z));
+  const int resolution = glm::clamp(settings.resolution, 1, voxel_grid_max_resolution);
+  T cell = longest > T(0) ? longest / T(resolution) : T(1);
+  const double bound = static_cast<double>(settings.max_megabytes) * 1024.0 * 1024.0;
+  voxel_grid_shape<T> shape;
+  for (;;) {
+    // +2: the margin, so that a surface on the bounds lies inside and the offsets' points beside it.
+    shape.cells = glm::ivec3(glm::ceil(extent / cell)) + 2;
+    shape.cells = glm::max(shape.cells, glm::ivec3(3));
+    const glm::ivec2 texture = voxel_texture_size(shape.cells);
+    const bool fits = static_cast<double>(voxel_grid_bytes(shape.cells)) <= bound && texture.x <= voxel_grid_max_texture_side &&
+                      texture.y <= voxel_grid_max_texture_side;
+    if (fits || (shape.cells.x <= 3 && shape.cells.y <= 3 && shape.cells.z <= 3)) break;
+    cell *= T(1.01);
+  }
+  shape.cell_size = cell;
+  // Centred: the margin is at least one cell on every side.
+  shape.origin = (low + high) * T(0.5) - glm::vec<3, T>(shape.cells) * (cell * T(0.5));
+  return shape;
+}
+
+/// Whether the triangle (a, b, c) overlaps the axis-aligned box centre +- half: the separating
+/// axis test of Akenine-Moller ("Fast 3D triangle-box overlap testing", 2001): the box's three
+/// axes, the triangle's normal and the nine cross products of the box's axes with its edges.
+/// Exact up to rounding; degenerate triangles (segments, points) are tested as what they are.
+template <typename T>
+bool triangle_box_overlap(const glm::vec<3, T>& centre, const glm::vec<3, T>& half, const glm::vec<3, T>& a, const glm::vec<3, T>& b,
+                          const glm::vec<3, T>& c) {
+  const glm::vec<3, T> v[3] = {a - centre, b - centre, c - centre};
+  const glm::vec<3, T> edges[3] = {v[1] - v[0], v[2] - v[1], v[0] - v[2]};
+  const auto separated = [&](const glm::vec<3, T>& axis) {
+    const T p0 = glm::dot(v[0], axis), p1 = glm::dot(v[1], axis), p2 = glm::dot(v[2], axis);
+    const T r = half.x * std::abs(axis.x) + half.y * std::abs(axis.y) + half.z * std::abs(axis.z);
+    return glm::min(p0, glm::min(p1, p2)) > r || glm::max(p0, glm::max(p1, p2)) < -r;
+  };
+  for (int i = 0; i < 3; ++i) {
+    glm::vec<3, T> axis(T(0));
+    axis[i] = T(1);
+    if (separated(axis)) return false;
+    for (const glm::vec<3, T>& edge : edges)
+      if (separated(glm::cross(axis, edge))) return false;
+  }
+  return !separated(glm::cross(edges[0], edges[1]));
+}
+
+/// The CPU grid: its shape and the packed texture's texels (row by row, voxel_texture_size).
+struct voxel_grid {
+  voxel_grid_shape<float> shape;
+  std::vector<glm::uvec4> texels;
+  std::size_t occupied_cells = 0;
+
+  bool occupied(glm::ivec3 cell) const {
+    const glm::ivec2 t = voxel_texel(cell, shape.cells);
+    return voxel_bit(texels[static_cast<std::size_t>(t.y) * static_cast<std::size_t>(shape.cells.x) + static_cast<std::size_t>(t.x)], cell.z);
+  }
+  void mark(glm::ivec3 cell) {
+    const glm::ivec2 t = voxel_texel(cell, shape.cells);
+    std::uint32_t& word = texels[static_cast<std::size_t>(t.y) * static_cast<std::size_t>(shape.cells.x) + static_cast<std::size_t>(t.x)][(cell.z >> 5) & 3];
+    const std::uint32_t bit = 1u << static_cast<unsigned>(cell.z & 31);
+    occupied_cells += (word & bit) == 0u ? 1u : 0u;
+    word |= bit;
+  }
+  std::size_t bytes() const { return texels.size() * sizeof(glm::uvec4); }
+};
+
+/// An empty grid of `shape`.
+inline voxel_grid make_voxel_grid(const voxel_grid_shape<float>& shape) {
+  voxel_grid grid;
+  grid.shape = shape;
+  const glm::ivec2 size = voxel_texture_size(shape.cells);
+  grid.texels.assign(static_cast<std::size_t>(size.x) * static_cast<std::size_t>(size.y), glm::uvec4(0u));
+  return grid;
+}
+
+/// Marks every cell the triangle overlaps (the test in double; each cell grown by 1e-4 of its side).
+/// Non-finite corners are skipped: they bound no cell.
+inline void voxel_grid_add_triangle(voxel_grid& grid, const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
+  const glm::dvec3 o(grid.shape.origin);
+  const double h = grid.shape.cell_size;
+  const glm::dvec3 p[3] = {(glm::dvec3(a) - o) / h, (glm::dvec3(b) - o) / h, (glm::dvec3(c) - o) / h};  // in cells
+  for (const glm::dvec3& corner : p)
+    if (!std::isfinite(corner.x) || !std::isfinite(corner.y) || !std::isfinite(corner.z)) return;
+  constexpr double grow = 1e-4;
+  const glm::dvec3 low = glm::min(p[0], glm::min(p[1], p[2])) - grow, high = glm::max(p[0], glm::max(p[1], p[2])) + grow;
+  const glm::ivec3 last = grid.shape.cells - 1;
+  const glm::ivec3 first_cell = glm::clamp(glm::ivec3(glm::floor(low)), glm::ivec3(0), last);
+  const glm::ivec3 last_cell = glm::clamp(glm::ivec3(glm::floor(high)), glm::ivec3(0), last);
+  if (high.x < 0.0 || high.y < 0.0 || high.z < 0.0 || low.x > last.x + 1.0 || low.y > last.y + 1.0 || low.z > last.z + 1.0) return;
+  const glm::dvec3 half(0.5 + grow);
+  for (int z = first_cell.z; z <= last_cell.z; ++z)
+    for (int y = first_cell.y; y <= last_cell.y; ++y)
+      for (int x = first_cell.x; x <= last_cell.x; ++x)
+        if (triangle_box_overlap(glm::dvec3(x, y, z) + 0.5, half, p[0], p[1], p[2])) grid.mark(glm::ivec3(x, y, z));
+}
+
+/// Whether nothing occupied lies on the segment from `from` to `to` (world space): a 3D DDA over
+/// every cell the segment passes through, clipped to the grid (outside it is empty). 1 visible, 0
+/// hidden. `fetch(glm::ivec2 texel) -> glm::uvec4` reads the packed grid. GLSL twin:
+/// voxel_segment_visible. The steps are written in the order the twin computes them, without a
+/// division by a zero direction (infinite steps are a large number instead).
+template <typename T, typename Fetch>
+T voxel_segment_visible(Fetch&& fetch, const voxel_grid_shape<T>& shape, const glm::vec<3, T>& from, const glm::vec<3, T>& to) {
+  const T inverse_cell = T(1) / shape.cell_size;
+  const glm::vec<3, T> u0 = (from - shape.origin) * inverse_cell;
+  const glm::vec<3, T> d = (to - from) * inverse_cell;  // cells per unit of t, t in [0, 1]
+  const glm::vec<3, T> size(shape.cells);
+  constexpr T far = T(1e30);
+  // Clip t to the grid's box (slabs).
+  T t_enter = T(0), t_exit = T(1);
+  glm::vec<3, T> inverse_d(far);
+  for (int i = 0; i < 3; ++i) {
+    if (std::abs(d[i]) > T(1e-12)) {
+      inverse_d[i] = T(1) / d[i];
+      const T ta = (T(0) - u0[i]) * inverse_d[i], tb = (size[i] - u0[i]) * inverse_d[i];
+      t_enter = glm::max(t_enter, glm::min(ta, tb));
+      t_exit = glm::min(t_exit, glm::max(ta, tb));
+    } else if (u0[i] < T(0) || u0[i] > size[i]) {
+      return T(1);  // parallel to this slab and outside it
+    }
+  }
+  if (t_enter > t_exit) return T(1);
+  const glm::vec<3, T> start = u0 + d * t_enter;
+  glm::ivec3 cell = glm::clamp(glm::ivec3(glm::floor(start)), glm::ivec3(0), shape.cells - 1);
+  glm::ivec3 step(0);
+  glm::vec<3, T> t_max(far), t_delta(far);
+  for (int i = 0; i < 3; ++i) {
+    if (std::abs(d[i]) > T(1e-12)) {
+      step[i] = d[i] > T(0) ? 1 : -1;
+      const T boundary = T(cell[i] + (d[i] > T(0) ? 1 : 0));
+      t_max[i] = (boundary - u0[i]) * inverse_d[i];
+      t_delta[i] = std::abs(inverse_d[i]);
+    }
+  }
+  const int steps = shape.cells.x + shape.cells.y + shape.cells.z;
+  for (int n = 0; n <= steps; ++n) {
+    if (voxel_bit(fetch(voxel_texel(cell, shape.cells)), cell.z)) return T(0);
+    // The axis whose boundary comes first; ties to the lower axis.
+    int axis = 0;
+    if (t_max.y < t_max[axis]) axis = 1;
+    if (t_max.z < t_max[axis]) axis = 2;
+    if (t_max[axis] > t_exit) break;
+    cell[axis] += step[axis];
+    if (cell[axis] < 0 || cell[axis] >= shape.cells[axis]) break;
+    t_max[axis] += t_delta[axis];
+  }
+  return T(1);
+}
+
+/// The visibility of a pixel light (position x_p, unit normal n_p) from a receiver (x, n), all in
+/// world space: the segment between the points moved along their normals by the settings' offsets
+/// (cell sides). 1 (no claim) when either tangent plane faces away: such a light lights nothing.
+/// GLSL twin: voxel_light_visible.
+template <typename T, typename Fetch>
+T voxel_light_visible(Fetch&& fetch, const voxel_grid_shape<T>& shape, const voxel_march_settings<T>& settings, const glm::vec<3, T>& x,
+                      const glm::vec<3, T>& n, const glm::vec<3, T>& xp, const glm::vec<3, T>& np) {
+  const glm::vec<3, T> to_light = xp - x;
+  if (!(glm::dot(n, to_light) > T(0)) || !(glm::dot(np, to_light) < T(0))) return T(1);
+  return voxel_segment_visible(fetch, shape, x + n * (settings.start_offset * shape.cell_size), xp + np * (settings.end_offset * shape.cell_size));
+}
+
+/// The packed grid's fetch for the C++ gather.
+struct voxel_grid_fetch {
+  const voxel_grid* grid;
+  glm::uvec4 operator()(glm::ivec2 texel) const {
+    return grid->texels[static_cast<std::size_t>(texel.y) * static_cast<std::size_t>(grid->shape.cells.x) + static_cast<std::size_t>(texel.x)];
+  }
+};
+
+/// The Visibility of gather_rsm_with (rsm_gather.hpp) by the grid: the receiver and the pixel
+/// light moved from the light's eye space back to the world by `light_view_inverse` (rigid).
+/// GLSL: VPLKIT_VISIBILITY 8 in lib/rsm_gather.glsl, which calls the including shader's
+/// rsm_voxel_visibility.
+template <typename T, typename Fetch>
+struct voxel_rsm_visibility {
+  Fetch fetch;
+  voxel_grid_shape<T> shape;
+  voxel_march_settings<T> settings;
+  glm::mat<4, 4, T> light_view_inverse;
+  void begin_path() {}
+  T operator()(const gather_receiver<T>& receiver, const rsm_texel<T>& light) {
+    return voxel_light_visible(fetch, shape, settings, transform_point(light_view_inverse, receiver.position),
+                               transform_direction(light_view_inverse, receiver.normal), transform_point(light_view_inverse, light.position),
+                               transform_direction(light_view_inverse, light.normal));
+  }
+};
+
+}  // namespace vplkit

@@ -1,0 +1,242 @@
+// Properties of the voxel visibility (include/vplkit/voxel_visibility.hpp): the grid of an
+// axis-aligned box is exactly its shell of cells and the march is hidden exactly when a segment
+// meets the box; a sample behind a closed wall (a room of zero-thickness quads) is never visible,
+// one in the open always is, in any orientation; the grid of random triangles holds every point
+// of every triangle and no cell farther from it than a cell's half diagonal; the memory bound.
+// The GLSL twin's parity: tests/parity/test_parity_voxel_visibility.cpp.
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <vplkit/voxel_visibility.hpp>
+
+using namespace vplkit;
+
+namespace {
+
+// A grid of 16^3 unit cells at the origin.
+voxel_grid unit_grid(int cells = 16) {
+  voxel_grid_shape<float> shape;
+  shape.origin = glm::vec3(0.0f);
+  shape.cell_size = 1.0f;
+  shape.cells = glm::ivec3(cells);
+  return make_voxel_grid(shape);
+}
+
+// The 12 triangles of the surface of the box [low, high], transformed by `m`.
+void add_box(voxel_grid& grid, glm::vec3 low, glm::vec3 high, const glm::mat4& m = glm::mat4(1.0f)) {
+  glm::vec3 c[8];
+  for (int i = 0; i < 8; ++i) c[i] = transform_point(m, glm::vec3(i & 1 ? high.x : low.x, i & 2 ? high.y : low.y, i & 4 ? high.z : low.z));
+  const int faces[6][4] = {{0, 1, 3, 2}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 3, 7, 6}, {0, 2, 6, 4}, {1, 3, 7, 5}};
+  for (const auto& f : faces) {
+    voxel_grid_add_triangle(grid, c[f[0]], c[f[1]], c[f[2]]);
+    voxel_grid_add_triangle(grid, c[f[0]], c[f[2]], c[f[3]]);
+  }
+}
+
+// Whether the segment a -> b meets the box [low, high] (slabs, in double).
+bool segment_meets_box(glm::dvec3 a, glm::dvec3 b, glm::dvec3 low, glm::dvec3 high) {
+  double t0 = 0.0, t1 = 1.0;
+  for (int i = 0; i < 3; ++i) {
+    const double d = b[i] - a[i];
+    if (std::abs(d) < 1e-15) {
+      if (a[i] < low[i] || a[i] > high[i]) return false;
+      continue;
+    }
+    double ta = (low[i] - a[i]) / d, tb = (high[i] - a[i]) / d;
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+  }
+  return t0 <= t1;
+}
+
+// The closest point of triangle (a, b, c) to p (Ericson, Real-Time Collision Detection, 5.1.5).
+glm::dvec3 closest_on_triangle(glm::dvec3 p, glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) {
+  const glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
+  if (d1 <= 0 && d2 <= 0) return a;
+  const glm::dvec3 bp = p - b;
+  const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
+  if (d3 >= 0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + ab * (d1 / (d1 - d3));
+  const glm::dvec3 cp = p - c;
+  const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
+  if (d6 >= 0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + ac * (d2 / (d2 - d6));
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  const double denominator = 1.0 / (va + vb + vc);
+  return a + ab * (vb * denominator) + ac * (vc * denominator);
+}
+
+}  // namespace
+
+TEST_CASE("the grid of an axis-aligned box is exactly the shell of cells its faces cross") {
+  voxel_grid grid = unit_grid();
+  add_box(grid, glm::vec3(3.3f, 4.5f, 2.2f), glm::vec3(9.6f, 7.4f, 11.8f));
+  // Cells x in [3, 9], y in [4, 7], z in [2, 11]; the faces cross the outermost index of each range.
+  std::size_t expected = 0;
+  for (int z = 0; z < 16; ++z)
+    for (int y = 0; y < 16; ++y)
+      for (int x = 0; x < 16; ++x) {
+        const bool inside = x >= 3 && x <= 9 && y >= 4 && y <= 7 && z >= 2 && z <= 11;
+        const bool shell = inside && (x == 3 || x == 9 || y == 4 || y == 7 || z == 2 || z == 11);
+        expected += shell ? 1 : 0;
+        CAPTURE(x); CAPTURE(y); CAPTURE(z);
+        CHECK(grid.occupied(glm::ivec3(x, y, z)) == shell);
+      }
+  CHECK(grid.occupied_cells == expected);
+}
+
+TEST_CASE("the march is exact on an axis-aligned box: hidden exactly when the segment meets the box of its shell cells") {
+  voxel_grid grid = unit_grid();
+  add_box(grid, glm::vec3(4.3f, 5.5f, 6.2f), glm::vec3(10.6f, 9.4f, 11.8f));
+  const glm::dvec3 low(4, 5, 6), high(11, 10, 12);  // the shell's outer cell boundaries
+  const voxel_grid_fetch fetch{&grid};
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> coordinate(-2.0f, 18.0f);
+  int hidden = 0, visible = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const glm::vec3 a(coordinate(random), coordinate(random), coordinate(random)), b(coordinate(random), coordinate(random), coordinate(random));
+    if (segment_meets_box(a, b, low - 1e-3, high + 1e-3) && !segment_meets_box(a, b, low, high)) continue;  // a graze: either answer
+    if (segment_meets_box(a, b, low + 1e-3, high - 1e-3) != segment_meets_box(a, b, low, high)) continue;
+    const bool inside_a = glm::all(glm::greaterThan(glm::dvec3(a), low)) && glm::all(glm::lessThan(glm::dvec3(a), high));
+    const bool inside_b = glm::all(glm::greaterThan(glm::dvec3(b), low)) && glm::all(glm::lessThan(glm::dvec3(b), high));
+    if (inside_a || inside_b) continue;  // from inside the shell the interior cells are empty: not this property
+    const bool meets = segment_meets_box(a, b, low, high);
+    CAPTURE(a); CAPTURE(b);
+    REQUIRE(voxel_segment_visible(fetch, grid.shape, a, b) == (meets ? 0.0f : 1.0f));
+    (meets ? hidden : visible) += 1;
+  }
+  // Both answers are exercised.
+  CHECK(hidden > 2000);
+  CHECK(visible > 2000);
+}
+
+TEST_CASE("a sample behind a closed wall is never visible, one in the open always is, in any orientation") {
+  std::mt19937 random(11);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::normal_distribution<float> gaussian;
+  const voxel_march_settings<float> march;  // offsets of 2 cells
+  for (int orientation = 0; orientation < 8; ++orientation) {
+    // A rotation about a random axis and a shift, so the walls cross the cells at any angle.
+    const glm::vec3 axis = glm::normalize(glm::vec3(gaussian(random), gaussian(random), gaussian(random)));
+    const glm::mat4 m = glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(32.0f)), orientation == 0 ? 0.0f : 6.2831853f * unit(random), axis);
+    voxel_grid room = unit_grid(64);
+    voxel_grid open = unit_grid(64);
+    add_box(room, glm::vec3(-10.0f), glm::vec3(10.0f), m);  // a closed room of zero-thickness quads, 20 cells wide
+    // The open scene: a floor z = -10 and one wall x = -10 (an L), nothing else.
+    const glm::vec3 floor_quad[4] = {{-20, -20, -10}, {20, -20, -10}, {20, 20, -10}, {-20, 20, -10}};
+    const glm::vec3 wall_quad[4] = {{-10, -20, -10}, {-10, 20, -10}, {-10, 20, 20}, {-10, -20, 20}};
+    for (const glm::vec3* q : {floor_quad, wall_quad}) {
+      voxel_grid_add_triangle(open, transform_point(m, q[0]), transform_point(m, q[1]), transform_point(m, q[2]));
+      voxel_grid_add_triangle(open, transform_point(m, q[0]), transform_point(m, q[2]), transform_point(m, q[3]));
+    }
+    const voxel_grid_fetch room_fetch{&room}, open_fetch{&open};
+    const glm::vec3 up = transform_direction(m, glm::vec3(0, 0, 1)), east = transform_direction(m, glm::vec3(1, 0, 0));
+    for (int i = 0; i < 400; ++i) {
+      // Inside the room on its floor, at least 3 cells from the walls; a light outside on the ground
+      // beyond a wall, at least 3 cells from it (a shared floor plane: the street's ground).
+      const glm::vec3 x = transform_point(m, glm::vec3(-7.0f + 14.0f * unit(random), -7.0f + 14.0f * unit(random), -10.0f));
+      const glm::vec3 xp = transform_point(m, glm::vec3(13.0f + 5.0f * unit(random), -18.0f + 36.0f * unit(random), -9.0f + 14.0f * unit(random)));
+      const glm::vec3 np = transform_direction(m, glm::normalize(glm::vec3(-1.0f, gaussian(random) * 0.3f, gaussian(random) * 0.3f)));
+      CAPTURE(orientation); CAPTURE(x); CAPTURE(xp);
+      if (!(glm::dot(np, x - xp) > 0.0f)) continue;  // the light must face the receiver for the march to decide
+      REQUIRE(voxel_light_visible(room_fetch, room.shape, march, x, up, xp, np) == 0.0f);
+      // In the open: a receiver on the floor 3+ cells from the wall, a light on the wall 3+ cells
+      // above the floor facing it; the segment between the offset points stays 2 cells from both.
+      const glm::vec3 y = transform_point(m, glm::vec3(-7.0f + 26.0f * unit(random), -18.0f + 36.0f * unit(random), -10.0f));
+      const glm::vec3 yp = transform_point(m, glm::vec3(-10.0f, -18.0f + 36.0f * unit(random), -7.0f + 26.0f * unit(random)));
+      CAPTURE(y); CAPTURE(yp);
+      REQUIRE(voxel_light_visible(open_fetch, open.shape, march, y, up, yp, east) == 1.0f);
+    }
+  }
+}
+
+TEST_CASE("the grid of random triangles holds every point of every triangle and no cell farther than half a cell diagonal") {
+  std::mt19937 random(13);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::uniform_real_distribution<float> coordinate(0.5f, 23.5f);
+  for (int t = 0; t < 60; ++t) {
+    voxel_grid grid = unit_grid(24);
+    // Large, small, slivers and degenerate ones (a point, a segment).
+    glm::vec3 a(coordinate(random), coordinate(random), coordinate(random));
+    const float scale = t % 3 == 0 ? 0.3f : t % 3 == 1 ? 4.0f : 12.0f;
+    glm::vec3 b = glm::clamp(a + scale * (glm::vec3(unit(random), unit(random), unit(random)) - 0.5f), glm::vec3(0.0f), glm::vec3(24.0f));
+    glm::vec3 c = glm::clamp(a + scale * (glm::vec3(unit(random), unit(random), unit(random)) - 0.5f), glm::vec3(0.0f), glm::vec3(24.0f));
+    if (t == 10) b = c = a;
+    if (t == 11) c = 0.5f * (a + b);
+    voxel_grid_add_triangle(grid, a, b, c);
+    CAPTURE(t); CAPTURE(a); CAPTURE(b); CAPTURE(c);
+    REQUIRE(grid.occupied_cells > 0);
+    // Conservative: every point on the triangle lies in an occupied cell.
+    for (int s = 0; s < 4000; ++s) {
+      float u = unit(random), v = unit(random);
+      if (u + v > 1.0f) u = 1.0f - u, v = 1.0f - v;
+      const glm::vec3 p = a + u * (b - a) + v * (c - a);
+      const glm::ivec3 cell = glm::clamp(glm::ivec3(glm::floor(p)), glm::ivec3(0), glm::ivec3(23));
+      REQUIRE(grid.occupied(cell));
+    }
+    // Tight: an occupied cell's centre is within half a diagonal (plus the growth) of the triangle.
+    for (int z = 0; z < 24; ++z)
+      for (int y = 0; y < 24; ++y)
+        for (int x = 0; x < 24; ++x) {
+          if (!grid.occupied(glm::ivec3(x, y, z))) continue;
+          const glm::dvec3 centre = glm::dvec3(x, y, z) + 0.5;
+          CAPTURE(x); CAPTURE(y); CAPTURE(z);
+          REQUIRE(glm::length(centre - closest_on_triangle(centre, a, b, c)) <= std::sqrt(3.0) * (0.5 + 1e-4) + 1e-9);
+        }
+  }
+}
+
+TEST_CASE("the grid's shape follows the scene's size and keeps within its memory bound and the texture's side") {
+  voxel_grid_settings<float> settings;  // 128 cells along the longest side, 64 MiB
+  const voxel_grid_shape<float> shape = make_voxel_grid_shape(glm::vec3(-1.0f, 0.0f, -3.0f), glm::vec3(7.0f, 4.0f, 1.0f), settings);
+  CHECK(shape.cell_size == doctest::Approx(8.0 / 128.0));
+  CHECK(shape.cells == glm::ivec3(130, 66, 66));
+  CHECK(voxel_grid_bytes(shape.cells) == std::size_t(130) * 66 * 1 * 16);
+  // The grid holds the bounds with a margin.
+  CHECK(glm::all(glm::lessThan(shape.origin, glm::vec3(-1.0f, 0.0f, -3.0f))));
+  CHECK(glm::all(glm::greaterThan(shape.origin + glm::vec3(shape.cells) * shape.cell_size, glm::vec3(7.0f, 4.0f, 1.0f))));
+  for (const float megabytes : {0.01f, 0.5f, 4.0f, 64.0f}) {
+    settings.resolution = 512;
+    settings.max_megabytes = megabytes;
+    const voxel_grid_shape<float> cube = make_voxel_grid_shape(glm::vec3(0.0f), glm::vec3(10.0f), settings);
+    CAPTURE(megabytes);
+    CHECK(static_cast<double>(voxel_grid_bytes(cube.cells)) <= megabytes * 1024.0 * 1024.0);
+    CHECK(voxel_texture_size(cube.cells).x <= voxel_grid_max_texture_side);
+    CHECK(voxel_texture_size(cube.cells).y <= voxel_grid_max_texture_side);
+    // No coarser than the bound needs: 2 % finer cells (two 1 % steps) would not fit.
+    const glm::ivec3 finer = glm::ivec3(glm::ceil(glm::vec3(10.0f) / (cube.cell_size / 1.0201f))) + 2;
+    CHECK((static_cast<double>(voxel_grid_bytes(finer)) > megabytes * 1024.0 * 1024.0 || voxel_texture_size(finer).y > voxel_grid_max_texture_side ||
+           cube.cell_size == doctest::Approx(10.0 / 512.0)));
+  }
+  CHECK(validate(voxel_grid_settings<float>{0, 64.0f}));
+  CHECK(validate(voxel_march_settings<float>{-1.0f, 2.0f}));
+  CHECK_FALSE(validate(voxel_grid_settings<float>{}));
+  CHECK_FALSE(validate(voxel_march_settings<float>{}));
+}
+
+TEST_CASE("the gather's voxel visibility moves the light's eye space back to the world: a wall between hides, no wall shows") {
+  // A receiver and a pixel light 8 units apart facing each other, in a light view rotated and
+  // shifted; a wall between them in world space hides it, the same light without the wall shows.
+  const glm::mat4 light_view = glm::lookAt(glm::vec3(3.0f, 20.0f, 5.0f), glm::vec3(16.0f, 0.0f, 16.0f), glm::vec3(0, 0, 1));
+  const glm::mat4 inverse = glm::inverse(light_view);
+  voxel_grid walled = unit_grid(32), empty = unit_grid(32);
+  add_box(walled, glm::vec3(15.8f, 2.0f, 2.0f), glm::vec3(16.2f, 30.0f, 30.0f));
+  const glm::vec3 x(12.0f, 16.0f, 16.0f), xp(20.0f, 16.0f, 16.0f);
+  const gather_receiver<float> receiver{transform_point(light_view, x), transform_direction(light_view, glm::vec3(1, 0, 0)), glm::vec2(0.0f),
+                                        glm::uvec2(0)};
+  const rsm_texel<float> light{transform_point(light_view, xp), transform_direction(light_view, glm::vec3(-1, 0, 0)), glm::vec3(1.0f)};
+  voxel_rsm_visibility<float, voxel_grid_fetch> through_wall{{&walled}, walled.shape, {}, inverse};
+  voxel_rsm_visibility<float, voxel_grid_fetch> in_the_open{{&empty}, empty.shape, {}, inverse};
+  CHECK(through_wall(receiver, light) == 0.0f);
+  CHECK(in_the_open(receiver, light) == 1.0f);
+}
