@@ -10,6 +10,7 @@
 #include "frontend/image/reference_noise.hpp"
 #include "frontend/techniques/final_gather/final_gather_pipeline.hpp"
 #include "frontend/techniques/registry.hpp"
+#include "frontend/techniques/rsm/rsm_settings.hpp"
 
 namespace vplkit {
 
@@ -138,7 +139,7 @@ frame_quality scene_references::measure(pipeline& drawn, const technique_setting
       const rsm_technique& technique = rsm_technique_of(settings);
       const rsm_pipeline_settings& frame = rsm.settings();
       if (technique.indirect) {
-        const float radius = rsm_radius_in_texels(frame.radius, glm::ivec2(frame.rsm_size));
+        const float radius = derive(frame).radial.max_radius;  // the frame's own radius in texels (rsm_settings)
         std::string key;
         for (const char* name : {"size", "rsm-size", "indirect-divisor", "format", "min-distance", "radius"}) key += settings.get(name) + "|";
         auto cut = radius_cuts_.find(key);
