@@ -284,7 +284,10 @@ TEST_CASE("-indirect.pfm is the indirect irradiance in every family: one bounce 
   // Halving every albedo halves the irradiance a bounce brings (the reflected flux halves) but
   // quarters the radiance the receivers reflect of it: a family that wrote radiance would give 1/4.
   // Halving is exact in floating point, so the ratio is 1/2 up to the sums' rounding.
-  for (const auto& [family_name, technique] : std::vector<std::pair<std::string, std::string>>{{"rsm", "rsm-radial"}, {"lightwave", "lightwave-unshadowed"}}) {
+  // A pair, not a structured binding: clang 14 cannot capture one in CAPTURE's lambda.
+  for (const auto& family_and_technique : std::vector<std::pair<std::string, std::string>>{{"rsm", "rsm-radial"}, {"lightwave", "lightwave-unshadowed"}}) {
+    const std::string& family_name = family_and_technique.first;
+    const std::string& technique = family_and_technique.second;
     CAPTURE(technique);
     const technique_family& family = family_of(technique);
     CHECK(family.name == family_name);
