@@ -13,6 +13,7 @@
 #include <vplkit/parity/doctest.hpp>
 
 #include "frontend/gl/render_target.hpp"
+#include "tests/parity/targets.hpp"
 
 using namespace vplkit;
 using namespace vplkit::parity;
@@ -59,7 +60,7 @@ TEST_CASE("parity: lightwave_layout_vpl for all 6485 VPLs of the thesis's layout
   require_parity(compare("lightwave_layout_vpl normal, count", gpu.floats[1], normals, inputs, bounds));
 }
 
-TEST_CASE("parity: lightwave_lobe, lightwave_attenuation, lightwave_integrated_step, lightwave_faked_indirect") {
+TEST_CASE("parity: lightwave_lobe, lightwave_attenuation, lightwave_integrated_step, lightwave_faked_indirect, on every target") {
   kernel_inputs inputs;
   inputs.width = 64;
   inputs.height = 64;
@@ -77,7 +78,6 @@ TEST_CASE("parity: lightwave_lobe, lightwave_attenuation, lightwave_integrated_s
                 "fout0 = vec4(lightwave_lobe(fin0.x), lightwave_attenuation(int(fin1.z)), lightwave_faked_indirect(fin0.yzw, fin1.x, 1.3).xy);\n"
                 "fout1 = lightwave_integrated_step(fin0.xyz, fin1.xyw, min(lookup, steps + 1), steps);";
   source.float_outputs = 2;
-  const kernel_outputs gpu = run_fragment(source, inputs);
   std::vector<glm::vec4> first(inputs.size()), second(inputs.size());
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     const glm::vec4 a = inputs.floats[0][i], b = inputs.floats[1][i];
@@ -88,11 +88,18 @@ TEST_CASE("parity: lightwave_lobe, lightwave_attenuation, lightwave_integrated_s
   }
   // One divide in the lobe and in the step (llvmpipe's divide need not be correctly rounded):
   // 4 ulp; the map choice (w) is an integer decision and must match.
-  require_parity(compare("lobe, attenuation, faked indirect", gpu.floats[0], first, inputs, {1e-7f, 0.0f, 4, 0.0, "one divide"}));
-  require_parity(compare("lightwave_integrated_step", gpu.floats[1], second, inputs, {1e-7f, 0.0f, 4, 0.0, "one divide"}));
+  for (const testing::target_run& run : testing::every_target()) {
+    const std::string target = run.name();
+    CAPTURE(target);
+    if (!testing::target_runs(run.where)) continue;
+    source.name = std::string("lightwave small kernels") + " (" + target + ")";
+    const kernel_outputs gpu = run.run(source, inputs, run.where, {});
+    require_parity(compare("lobe, attenuation, faked indirect (" + target + ")", gpu.floats[0], first, inputs, {1e-7f, 0.0f, 4, 0.0, "one divide"}));
+    require_parity(compare("lightwave_integrated_step (" + target + ")", gpu.floats[1], second, inputs, {1e-7f, 0.0f, 4, 0.0, "one divide"}));
+  }
 }
 
-TEST_CASE("parity: lightwave_vpl_weight, lightwave_map_coordinate (behind, outside and inside a map) and lightwave_map_fade") {
+TEST_CASE("parity: lightwave_vpl_weight, lightwave_map_coordinate (behind, outside and inside a map) and lightwave_map_fade, on every target") {
   kernel_inputs inputs;
   inputs.width = 64;
   inputs.height = 64;
@@ -114,7 +121,6 @@ TEST_CASE("parity: lightwave_vpl_weight, lightwave_map_coordinate (behind, outsi
                 "fout1 = lightwave_map_coordinate(fin3);\n"
                 "fout2 = vec4(lightwave_map_fade(fout1, 0.05), 0.0, 0.0, 0.0);";
   source.float_outputs = 3;
-  const kernel_outputs gpu = run_fragment(source, inputs);
   std::vector<glm::vec4> weights(inputs.size()), coordinates(inputs.size()), fades(inputs.size());
   std::size_t behind = 0, outside = 0, inside = 0;
   for (std::size_t i = 0; i < inputs.size(); ++i) {
@@ -132,10 +138,18 @@ TEST_CASE("parity: lightwave_vpl_weight, lightwave_map_coordinate (behind, outsi
   CHECK(inside > 100);
   // Two normalisations and the lobe's divide: 8 ulp, 1e-7 absolute near 0. The coordinate: one
   // divide and a multiply-add (4 ulp); its validity (w) is a decision and must match exactly.
-  require_parity(compare("lightwave_vpl_weight", gpu.floats[0], weights, inputs, {1e-7f, 0.0f, 8, 0.0, "two normalisations and a divide"}));
-  require_parity(compare("lightwave_map_coordinate", gpu.floats[1], coordinates, inputs, {1e-7f, 0.0f, 4, 0.0, "one divide"}));
-  // The fade: a min, a divide and the smoothstep's polynomial of the coordinate above.
-  require_parity(compare("lightwave_map_fade", gpu.floats[2], fades, inputs, {1e-6f, 0.0f, 16, 0.0, "a divide of a coordinate with its own error"}));
+  for (const testing::target_run& run : testing::every_target()) {
+    const std::string target = run.name();
+    CAPTURE(target);
+    if (!testing::target_runs(run.where)) continue;
+    source.name = std::string("lightwave_vpl_weight, lightwave_map_coordinate") + " (" + target + ")";
+    const kernel_outputs gpu = run.run(source, inputs, run.where, {});
+    require_parity(compare("lightwave_vpl_weight (" + target + ")", gpu.floats[0], weights, inputs, {1e-7f, 0.0f, 8, 0.0, "two normalisations and a divide"}));
+    require_parity(compare("lightwave_map_coordinate (" + target + ")", gpu.floats[1], coordinates, inputs, {1e-7f, 0.0f, 4, 0.0, "one divide"}));
+    // The fade: a min, a divide and the smoothstep's polynomial of the coordinate above.
+    require_parity(compare("lightwave_map_fade (" + target + ")", gpu.floats[2], fades, inputs,
+                           {1e-6f, 0.0f, 16, 0.0, "a divide of a coordinate with its own error"}));
+  }
 }
 
 TEST_CASE("parity: Eq. 4.5 summed over 1625 VPLs per vertex, in the vertex stage through transform feedback") {
