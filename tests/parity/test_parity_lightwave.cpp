@@ -32,7 +32,7 @@ lightwave_layout_settings<float> test_layout() {
 
 }  // namespace
 
-TEST_CASE("parity: lightwave_layout_vpl for all 6485 VPLs of the thesis's layout") {
+TEST_CASE("parity: lightwave_layout_vpl for all 6485 VPLs of the thesis's layout, on every target") {
   const lightwave_layout_settings<float> layout = test_layout();
   kernel_inputs inputs;
   inputs.width = 128;
@@ -42,11 +42,12 @@ TEST_CASE("parity: lightwave_layout_vpl for all 6485 VPLs of the thesis's layout
   kernel_source source;
   source.name = "lightwave_layout_vpl";
   source.includes = {"lib/lightwave.glsl"};
-  source.declarations = "uniform lightwave_layout_settings layout_settings;\n";
   source.body = "lightwave_vpl vpl = lightwave_layout_vpl(int(uin0.x), layout_settings);\n"
                 "fout0 = vec4(vpl.position, vpl.attenuation);\nfout1 = vec4(vpl.normal, float(lightwave_vpl_count(layout_settings.angle_deg, layout_settings.per_ray)));";
   source.float_outputs = 2;
-  const kernel_outputs gpu = run_fragment(source, inputs, [&](const program& p) { set_uniforms(p, "layout_settings", layout); });
+  // The layout as a std140 block, which every target has.
+  kernel_resources resources;
+  resources.blocks = {settings_block("layout_settings", layout)};
   std::vector<glm::vec4> positions(inputs.size()), normals(inputs.size());
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     const lightwave_vpl<float> vpl = lightwave_layout_vpl(static_cast<int>(inputs.uints[0][i].x), layout);
@@ -56,8 +57,15 @@ TEST_CASE("parity: lightwave_layout_vpl for all 6485 VPLs of the thesis's layout
   // Integer layout arithmetic, the polynomial sin/cos, a normalise (sqrt and divide) and a cross
   // product: a few ulp, and values near 0 from cancelling terms: 1e-6 absolute.
   const tolerance bounds{1e-6f, 0.0f, 8, 0.0, "polynomial sin/cos, normalize, cross"};
-  require_parity(compare("lightwave_layout_vpl position, attenuation", gpu.floats[0], positions, inputs, bounds));
-  require_parity(compare("lightwave_layout_vpl normal, count", gpu.floats[1], normals, inputs, bounds));
+  for (const testing::target_run& run : testing::every_target()) {
+    const std::string target = run.name();
+    CAPTURE(target);
+    if (!testing::target_runs(run.where)) continue;
+    source.name = "lightwave_layout_vpl (" + target + ")";
+    const kernel_outputs gpu = run.run(source, inputs, run.where, resources);
+    require_parity(compare("lightwave_layout_vpl position, attenuation (" + target + ")", gpu.floats[0], positions, inputs, bounds));
+    require_parity(compare("lightwave_layout_vpl normal, count (" + target + ")", gpu.floats[1], normals, inputs, bounds));
+  }
 }
 
 TEST_CASE("parity: lightwave_lobe, lightwave_attenuation, lightwave_integrated_step, lightwave_faked_indirect, on every target") {
