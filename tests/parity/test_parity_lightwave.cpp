@@ -252,7 +252,7 @@ TEST_CASE("parity: lightwave_cone_sample for all 6485 samples of the flux layout
   }
 }
 
-TEST_CASE("parity: lightwave_ray_flux, lightwave_patch_radius, lightwave_bounce_irradiance, lightwave_bounce_weight, lightwave_flux_vpl_faces and lightwave_group_confidence") {
+TEST_CASE("parity: lightwave_ray_flux, lightwave_patch_radius, lightwave_bounce_irradiance, lightwave_bounce_weight, lightwave_flux_vpl_faces and lightwave_group_confidence, on every target") {
   kernel_inputs inputs;
   inputs.width = 64;
   inputs.height = 64;
@@ -278,7 +278,6 @@ TEST_CASE("parity: lightwave_ray_flux, lightwave_patch_radius, lightwave_bounce_
   kernel_source source;
   source.name = "flux VPL kernels";
   source.includes = {"lib/lightwave.glsl"};
-  source.declarations = "uniform spot_light light;\n";
   source.body = "vec3 direction = normalize(fin2.xyz - light.position);\n"
                 "vec3 flux = lightwave_ray_flux(light, direction, fin0.w, vec3(0.5, 0.7, 0.9), fin3.xyz);\n"
                 "lightwave_flux_vpl vpl = lightwave_flux_vpl(fin2.xyz, fin3.xyz, vec3(1.0, 0.5, 0.25), fin2.w);\n"
@@ -286,7 +285,9 @@ TEST_CASE("parity: lightwave_ray_flux, lightwave_patch_radius, lightwave_bounce_
                 "fout1 = vec4(lightwave_bounce_irradiance(fin0.xyz, fin1.xyz, vpl, 0.01), lightwave_bounce_weight(fin0.xyz, fin1.xyz, vpl, 0.01));\n"
                 "fout2 = vec4(lightwave_group_confidence(fin0.xyz, fin2.xyz, fin2.w), lightwave_flux_vpl_faces(fin0.xyz, fin1.xyz, fin2.xyz, fin3.xyz) ? 1.0 : 0.0, 0.0, 0.0);";
   source.float_outputs = 3;
-  const kernel_outputs gpu = run_fragment(source, inputs, [&](const program& p) { set_uniforms(p, "light", light); });
+  // The light as a std140 block, which every target has.
+  kernel_resources resources;
+  resources.blocks = {settings_block("light", light)};
   std::vector<glm::vec4> first(inputs.size()), second(inputs.size()), third(inputs.size());
   std::size_t lit = 0, clamped = 0;
   for (std::size_t i = 0; i < inputs.size(); ++i) {
@@ -305,10 +306,20 @@ TEST_CASE("parity: lightwave_ray_flux, lightwave_patch_radius, lightwave_bounce_
   // A normalise, the cone's divide and a square root: a few ulp; the irradiance's two divides by a
   // squared distance (llvmpipe's divide is not correctly rounded, and a VPL within its clamp of the
   // receiver divides twice by 1e-4) and the 1/pi multiply: 5e-6 relative, 1e-7 absolute near 0.
-  require_parity(compare("lightwave_ray_flux, lightwave_patch_radius", gpu.floats[0], first, inputs, {1e-7f, 0.0f, 8, 0.0, "normalize, divide, sqrt"}));
-  require_parity(compare("lightwave_bounce_irradiance, lightwave_bounce_weight", gpu.floats[1], second, inputs, {1e-7f, 5e-6f, 8, 0.0, "two divides"}));
-  // The confidence: two divides; whether the VPL faces the receiver: a decision, exact.
-  require_parity(compare("lightwave_group_confidence, lightwave_flux_vpl_faces", gpu.floats[2], third, inputs, {1e-7f, 0.0f, 4, 0.0, "two divides"}));
+  for (const testing::target_run& run : testing::every_target()) {
+    const std::string target = run.name();
+    CAPTURE(target);
+    if (!testing::target_runs(run.where)) continue;
+    source.name = "flux VPL kernels (" + target + ")";
+    const kernel_outputs gpu = run.run(source, inputs, run.where, resources);
+    require_parity(compare("lightwave_ray_flux, lightwave_patch_radius (" + target + ")", gpu.floats[0], first, inputs,
+                           {1e-7f, 0.0f, 8, 0.0, "normalize, divide, sqrt"}));
+    require_parity(compare("lightwave_bounce_irradiance, lightwave_bounce_weight (" + target + ")", gpu.floats[1], second, inputs,
+                           {1e-7f, 5e-6f, 8, 0.0, "two divides"}));
+    // The confidence: two divides; whether the VPL faces the receiver: a decision, exact.
+    require_parity(compare("lightwave_group_confidence, lightwave_flux_vpl_faces (" + target + ")", gpu.floats[2], third, inputs,
+                           {1e-7f, 0.0f, 4, 0.0, "two divides"}));
+  }
 }
 
 TEST_CASE("parity: the flux VPLs' light summed per vertex (lightwave_vertex_bounce), in the vertex stage through transform feedback") {
