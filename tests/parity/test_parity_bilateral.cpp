@@ -13,10 +13,12 @@
 #include <vplkit/gl/settings_uniforms.hpp>
 #include <vplkit/parity/doctest.hpp>
 
+#include "tests/parity/targets.hpp"
+
 using namespace vplkit;
 using namespace vplkit::parity;
 
-TEST_CASE("parity: bilateral_filter and bilateral_filter_axis over a synthetic indirect buffer") {
+TEST_CASE("parity: bilateral_filter and bilateral_filter_axis over a synthetic indirect buffer, on every target") {
   // float input 0: tap values and depth (two planes at depth -4 and -6 with a noisy value),
   // float input 1: tap normals, float input 2: the centre to filter (coordinate, depth).
   kernel_inputs inputs = grid_of(48, 48, 3);
@@ -34,14 +36,16 @@ TEST_CASE("parity: bilateral_filter and bilateral_filter_axis over a synthetic i
   kernel_source source;
   source.name = "bilateral";
   source.includes = {"lib/bilateral.glsl"};
-  source.declarations = "uniform bilateral_settings settings;\n"
-                        "bilateral_tap bilateral_fetch(ivec2 t) {\n"
-                        "  vec4 v = texelFetch(float_input0, t, 0);\n"
-                        "  return bilateral_tap(v.xyz, v.w, texelFetch(float_input1, t, 0).xyz);\n}\n";
+  // The taps as tables and the settings as a std140 block: both exist on every target.
+  source.declarations = "bilateral_tap bilateral_fetch(ivec2 t) {\n"
+                        "  vec4 v = taps(t);\n"
+                        "  return bilateral_tap(v.xyz, v.w, tap_normals(t).xyz);\n}\n";
   source.body = "fout0 = vec4(bilateral_filter(fin2.xy, fin2.z, vec3(0.0, 0.0, 1.0), ivec2(48), settings), 0.0);\n"
                 "fout1 = vec4(bilateral_filter_axis(fin2.xy, fin2.z, vec3(0.0, 0.0, 1.0), ivec2(48), 1, settings), 0.0);";
   source.float_outputs = 2;
-  const kernel_outputs gpu = run_fragment(source, inputs, [&](const program& p) { set_uniforms(p, "settings", settings); });
+  kernel_resources resources;
+  resources.tables = {{"taps", 48, 48, inputs.floats[0]}, {"tap_normals", 48, 48, inputs.floats[1]}};
+  resources.blocks = {settings_block("settings", settings)};
   const auto fetch = [&](glm::ivec2 t) {
     const std::size_t i = static_cast<std::size_t>(t.y * 48 + t.x);
     return bilateral_tap<float>{glm::vec3(inputs.floats[0][i]), inputs.floats[0][i].w, glm::vec3(inputs.floats[1][i])};
@@ -55,6 +59,13 @@ TEST_CASE("parity: bilateral_filter and bilateral_filter_axis over a synthetic i
   // exp() differs between llvmpipe and the C library by a few ulp, and 81 weighted terms are
   // summed and divided by the weight sum: a normalised average of values in [0, 1], so 1e-5
   // absolute.
-  require_parity(compare("bilateral_filter", gpu.floats[0], full, inputs, {1e-5f, 0.0f, 0, 0.0, "exp ulps over 81 taps"}, 3));
-  require_parity(compare("bilateral_filter_axis", gpu.floats[1], axis, inputs, {1e-5f, 0.0f, 0, 0.0, "exp ulps over 9 taps"}, 3));
+  for (const testing::target_run& run : testing::every_target()) {
+    const std::string target = run.name();
+    CAPTURE(target);
+    if (!testing::target_runs(run.where)) continue;
+    source.name = std::string("bilateral") + " (" + target + ")";
+    const kernel_outputs gpu = run.run(source, inputs, run.where, resources);
+    require_parity(compare("bilateral_filter (" + target + ")", gpu.floats[0], full, inputs, {1e-5f, 0.0f, 0, 0.0, "exp ulps over 81 taps"}, 3));
+    require_parity(compare("bilateral_filter_axis (" + target + ")", gpu.floats[1], axis, inputs, {1e-5f, 0.0f, 0, 0.0, "exp ulps over 9 taps"}, 3));
+  }
 }

@@ -8,10 +8,12 @@
 
 #include <vplkit/parity/doctest.hpp>
 
+#include "tests/parity/targets.hpp"
+
 using namespace vplkit;
 using namespace vplkit::parity;
 
-TEST_CASE("parity: polygon_form_factor (clipped, unclipped and exact) and point_form_factor") {
+TEST_CASE("parity: polygon_form_factor (clipped, unclipped and exact) and point_form_factor, on every target") {
   kernel_inputs inputs;
   inputs.width = 64;
   inputs.height = 64;
@@ -41,7 +43,6 @@ TEST_CASE("parity: polygon_form_factor (clipped, unclipped and exact) and point_
                 "             point_form_factor(x, fin0.xyz, fin1.xyz, normalize(cross(fin2.xyz - fin1.xyz, fin4.xyz - fin1.xyz))),\n"
                 "             polygon_form_factor_exact(x, fin0.xyz, fin1.xyz, fin2.xyz, fin3.xyz, fin4.xyz));";
   source.float_outputs = 1;
-  const kernel_outputs gpu = run_fragment(source, inputs);
   std::vector<glm::vec4> cpu(inputs.size());
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     const glm::vec3 n(inputs.floats[0][i]), c0(inputs.floats[1][i]), c1(inputs.floats[2][i]), c2(inputs.floats[3][i]), c3(inputs.floats[4][i]);
@@ -53,6 +54,13 @@ TEST_CASE("parity: polygon_form_factor (clipped, unclipped and exact) and point_
   // to a small F: a few ulp of each term (the polynomial's square roots on both sides; atan2 in
   // the exact form, llvmpipe's and the C library's differing by a few ulp) give an absolute error
   // of a few ulp of pi whatever F is: 2e-6 absolute, or 1e-5 relative.
-  require_parity(compare("form factors", gpu.floats[0], cpu, inputs, {2e-6f, 1e-5f, 32, 0.0, "ulps of O(1) edge terms that cancel"}, 4));
+  for (const testing::target_run& run : testing::every_target()) {
+    const std::string target = run.name();
+    CAPTURE(target);
+    if (!testing::target_runs(run.where)) continue;
+    source.name = std::string("form factors") + " (" + target + ")";
+    const kernel_outputs gpu = run.run(source, inputs, run.where, {});
+    require_parity(compare(source.name, gpu.floats[0], cpu, inputs, {2e-6f, 1e-5f, 32, 0.0, "ulps of O(1) edge terms that cancel"}, 4));
+  }
 }
 

@@ -13,6 +13,8 @@
 #include <vplkit/gl/settings_uniforms.hpp>
 #include <vplkit/parity/doctest.hpp>
 
+#include "tests/parity/targets.hpp"
+
 using namespace vplkit;
 using namespace vplkit::parity;
 
@@ -49,16 +51,27 @@ tolerance irradiance_tolerance() {
 
 }  // namespace
 
-TEST_CASE("parity: pixel_light_irradiance (Eq. 3.2) in the fragment stage") {
+TEST_CASE("parity: pixel_light_irradiance (Eq. 3.2) in the fragment or compute stage, on every target") {
   const kernel_inputs inputs = geometry_inputs(8);
   const glm::vec3 flux(1.0f, 0.25f, 3.0f);
   const irradiance_settings<float> settings{0.01f};
-  const kernel_outputs gpu = run_fragment(irradiance_kernel(), inputs, [&](const program& p) {
-    set_uniforms(p, "settings", settings);
-    p.set("flux", flux);
-  });
-  require_parity(compare("pixel_light_irradiance", gpu.floats[0], irradiance_on_cpu(inputs, flux, settings), inputs,
-                         irradiance_tolerance(), 3));
+  // Vulkan has no default-block uniforms: the settings go in a std140 block and the flux in a
+  // one-texel table (read exactly), on every target alike.
+  kernel_source source = irradiance_kernel();
+  source.declarations = "";
+  source.body = "fout0 = vec4(pixel_light_irradiance(fin0.xyz, fin1.xyz, fin2.xyz, fin3.xyz, flux_table(ivec2(0)).xyz, settings), 0.0);";
+  kernel_resources resources;
+  resources.tables = {{"flux_table", 1, 1, {glm::vec4(flux, 0.0f)}}};
+  resources.blocks = {settings_block("settings", settings)};
+  const std::vector<glm::vec4> cpu = irradiance_on_cpu(inputs, flux, settings);
+  for (const testing::target_run& run : testing::every_target()) {
+    const std::string target = run.name();
+    CAPTURE(target);
+    if (!testing::target_runs(run.where)) continue;
+    source.name = "pixel_light_irradiance (" + target + ")";
+    const kernel_outputs gpu = run.run(source, inputs, run.where, resources);
+    require_parity(compare(source.name, gpu.floats[0], cpu, inputs, irradiance_tolerance(), 3));
+  }
 }
 
 TEST_CASE("parity: pixel_light_irradiance (Eq. 3.2) in the vertex stage, through transform feedback") {

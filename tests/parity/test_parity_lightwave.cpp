@@ -13,6 +13,7 @@
 #include <vplkit/parity/doctest.hpp>
 
 #include "frontend/gl/render_target.hpp"
+#include "tests/parity/targets.hpp"
 
 using namespace vplkit;
 using namespace vplkit::parity;
@@ -31,7 +32,7 @@ lightwave_layout_settings<float> test_layout() {
 
 }  // namespace
 
-TEST_CASE("parity: lightwave_layout_vpl for all 6485 VPLs of the thesis's layout") {
+TEST_CASE("parity: lightwave_layout_vpl for all 6485 VPLs of the thesis's layout, on every target") {
   const lightwave_layout_settings<float> layout = test_layout();
   kernel_inputs inputs;
   inputs.width = 128;
@@ -41,11 +42,12 @@ TEST_CASE("parity: lightwave_layout_vpl for all 6485 VPLs of the thesis's layout
   kernel_source source;
   source.name = "lightwave_layout_vpl";
   source.includes = {"lib/lightwave.glsl"};
-  source.declarations = "uniform lightwave_layout_settings layout_settings;\n";
   source.body = "lightwave_vpl vpl = lightwave_layout_vpl(int(uin0.x), layout_settings);\n"
                 "fout0 = vec4(vpl.position, vpl.attenuation);\nfout1 = vec4(vpl.normal, float(lightwave_vpl_count(layout_settings.angle_deg, layout_settings.per_ray)));";
   source.float_outputs = 2;
-  const kernel_outputs gpu = run_fragment(source, inputs, [&](const program& p) { set_uniforms(p, "layout_settings", layout); });
+  // The layout as a std140 block, which every target has.
+  kernel_resources resources;
+  resources.blocks = {settings_block("layout_settings", layout)};
   std::vector<glm::vec4> positions(inputs.size()), normals(inputs.size());
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     const lightwave_vpl<float> vpl = lightwave_layout_vpl(static_cast<int>(inputs.uints[0][i].x), layout);
@@ -55,11 +57,18 @@ TEST_CASE("parity: lightwave_layout_vpl for all 6485 VPLs of the thesis's layout
   // Integer layout arithmetic, the polynomial sin/cos, a normalise (sqrt and divide) and a cross
   // product: a few ulp, and values near 0 from cancelling terms: 1e-6 absolute.
   const tolerance bounds{1e-6f, 0.0f, 8, 0.0, "polynomial sin/cos, normalize, cross"};
-  require_parity(compare("lightwave_layout_vpl position, attenuation", gpu.floats[0], positions, inputs, bounds));
-  require_parity(compare("lightwave_layout_vpl normal, count", gpu.floats[1], normals, inputs, bounds));
+  for (const testing::target_run& run : testing::every_target()) {
+    const std::string target = run.name();
+    CAPTURE(target);
+    if (!testing::target_runs(run.where)) continue;
+    source.name = "lightwave_layout_vpl (" + target + ")";
+    const kernel_outputs gpu = run.run(source, inputs, run.where, resources);
+    require_parity(compare("lightwave_layout_vpl position, attenuation (" + target + ")", gpu.floats[0], positions, inputs, bounds));
+    require_parity(compare("lightwave_layout_vpl normal, count (" + target + ")", gpu.floats[1], normals, inputs, bounds));
+  }
 }
 
-TEST_CASE("parity: lightwave_lobe, lightwave_attenuation, lightwave_integrated_step, lightwave_faked_indirect") {
+TEST_CASE("parity: lightwave_lobe, lightwave_attenuation, lightwave_integrated_step, lightwave_faked_indirect, on every target") {
   kernel_inputs inputs;
   inputs.width = 64;
   inputs.height = 64;
@@ -77,7 +86,6 @@ TEST_CASE("parity: lightwave_lobe, lightwave_attenuation, lightwave_integrated_s
                 "fout0 = vec4(lightwave_lobe(fin0.x), lightwave_attenuation(int(fin1.z)), lightwave_faked_indirect(fin0.yzw, fin1.x, 1.3).xy);\n"
                 "fout1 = lightwave_integrated_step(fin0.xyz, fin1.xyw, min(lookup, steps + 1), steps);";
   source.float_outputs = 2;
-  const kernel_outputs gpu = run_fragment(source, inputs);
   std::vector<glm::vec4> first(inputs.size()), second(inputs.size());
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     const glm::vec4 a = inputs.floats[0][i], b = inputs.floats[1][i];
@@ -88,11 +96,18 @@ TEST_CASE("parity: lightwave_lobe, lightwave_attenuation, lightwave_integrated_s
   }
   // One divide in the lobe and in the step (llvmpipe's divide need not be correctly rounded):
   // 4 ulp; the map choice (w) is an integer decision and must match.
-  require_parity(compare("lobe, attenuation, faked indirect", gpu.floats[0], first, inputs, {1e-7f, 0.0f, 4, 0.0, "one divide"}));
-  require_parity(compare("lightwave_integrated_step", gpu.floats[1], second, inputs, {1e-7f, 0.0f, 4, 0.0, "one divide"}));
+  for (const testing::target_run& run : testing::every_target()) {
+    const std::string target = run.name();
+    CAPTURE(target);
+    if (!testing::target_runs(run.where)) continue;
+    source.name = std::string("lightwave small kernels") + " (" + target + ")";
+    const kernel_outputs gpu = run.run(source, inputs, run.where, {});
+    require_parity(compare("lobe, attenuation, faked indirect (" + target + ")", gpu.floats[0], first, inputs, {1e-7f, 0.0f, 4, 0.0, "one divide"}));
+    require_parity(compare("lightwave_integrated_step (" + target + ")", gpu.floats[1], second, inputs, {1e-7f, 0.0f, 4, 0.0, "one divide"}));
+  }
 }
 
-TEST_CASE("parity: lightwave_vpl_weight, lightwave_map_coordinate (behind, outside and inside a map) and lightwave_map_fade") {
+TEST_CASE("parity: lightwave_vpl_weight, lightwave_map_coordinate (behind, outside and inside a map) and lightwave_map_fade, on every target") {
   kernel_inputs inputs;
   inputs.width = 64;
   inputs.height = 64;
@@ -114,7 +129,6 @@ TEST_CASE("parity: lightwave_vpl_weight, lightwave_map_coordinate (behind, outsi
                 "fout1 = lightwave_map_coordinate(fin3);\n"
                 "fout2 = vec4(lightwave_map_fade(fout1, 0.05), 0.0, 0.0, 0.0);";
   source.float_outputs = 3;
-  const kernel_outputs gpu = run_fragment(source, inputs);
   std::vector<glm::vec4> weights(inputs.size()), coordinates(inputs.size()), fades(inputs.size());
   std::size_t behind = 0, outside = 0, inside = 0;
   for (std::size_t i = 0; i < inputs.size(); ++i) {
@@ -132,10 +146,18 @@ TEST_CASE("parity: lightwave_vpl_weight, lightwave_map_coordinate (behind, outsi
   CHECK(inside > 100);
   // Two normalisations and the lobe's divide: 8 ulp, 1e-7 absolute near 0. The coordinate: one
   // divide and a multiply-add (4 ulp); its validity (w) is a decision and must match exactly.
-  require_parity(compare("lightwave_vpl_weight", gpu.floats[0], weights, inputs, {1e-7f, 0.0f, 8, 0.0, "two normalisations and a divide"}));
-  require_parity(compare("lightwave_map_coordinate", gpu.floats[1], coordinates, inputs, {1e-7f, 0.0f, 4, 0.0, "one divide"}));
-  // The fade: a min, a divide and the smoothstep's polynomial of the coordinate above.
-  require_parity(compare("lightwave_map_fade", gpu.floats[2], fades, inputs, {1e-6f, 0.0f, 16, 0.0, "a divide of a coordinate with its own error"}));
+  for (const testing::target_run& run : testing::every_target()) {
+    const std::string target = run.name();
+    CAPTURE(target);
+    if (!testing::target_runs(run.where)) continue;
+    source.name = std::string("lightwave_vpl_weight, lightwave_map_coordinate") + " (" + target + ")";
+    const kernel_outputs gpu = run.run(source, inputs, run.where, {});
+    require_parity(compare("lightwave_vpl_weight (" + target + ")", gpu.floats[0], weights, inputs, {1e-7f, 0.0f, 8, 0.0, "two normalisations and a divide"}));
+    require_parity(compare("lightwave_map_coordinate (" + target + ")", gpu.floats[1], coordinates, inputs, {1e-7f, 0.0f, 4, 0.0, "one divide"}));
+    // The fade: a min, a divide and the smoothstep's polynomial of the coordinate above.
+    require_parity(compare("lightwave_map_fade (" + target + ")", gpu.floats[2], fades, inputs,
+                           {1e-6f, 0.0f, 16, 0.0, "a divide of a coordinate with its own error"}));
+  }
 }
 
 TEST_CASE("parity: Eq. 4.5 summed over 1625 VPLs per vertex, in the vertex stage through transform feedback") {
@@ -230,7 +252,7 @@ TEST_CASE("parity: lightwave_cone_sample for all 6485 samples of the flux layout
   }
 }
 
-TEST_CASE("parity: lightwave_ray_flux, lightwave_patch_radius, lightwave_bounce_irradiance, lightwave_bounce_weight, lightwave_flux_vpl_faces and lightwave_group_confidence") {
+TEST_CASE("parity: lightwave_ray_flux, lightwave_patch_radius, lightwave_bounce_irradiance, lightwave_bounce_weight, lightwave_flux_vpl_faces and lightwave_group_confidence, on every target") {
   kernel_inputs inputs;
   inputs.width = 64;
   inputs.height = 64;
@@ -256,7 +278,6 @@ TEST_CASE("parity: lightwave_ray_flux, lightwave_patch_radius, lightwave_bounce_
   kernel_source source;
   source.name = "flux VPL kernels";
   source.includes = {"lib/lightwave.glsl"};
-  source.declarations = "uniform spot_light light;\n";
   source.body = "vec3 direction = normalize(fin2.xyz - light.position);\n"
                 "vec3 flux = lightwave_ray_flux(light, direction, fin0.w, vec3(0.5, 0.7, 0.9), fin3.xyz);\n"
                 "lightwave_flux_vpl vpl = lightwave_flux_vpl(fin2.xyz, fin3.xyz, vec3(1.0, 0.5, 0.25), fin2.w);\n"
@@ -264,7 +285,9 @@ TEST_CASE("parity: lightwave_ray_flux, lightwave_patch_radius, lightwave_bounce_
                 "fout1 = vec4(lightwave_bounce_irradiance(fin0.xyz, fin1.xyz, vpl, 0.01), lightwave_bounce_weight(fin0.xyz, fin1.xyz, vpl, 0.01));\n"
                 "fout2 = vec4(lightwave_group_confidence(fin0.xyz, fin2.xyz, fin2.w), lightwave_flux_vpl_faces(fin0.xyz, fin1.xyz, fin2.xyz, fin3.xyz) ? 1.0 : 0.0, 0.0, 0.0);";
   source.float_outputs = 3;
-  const kernel_outputs gpu = run_fragment(source, inputs, [&](const program& p) { set_uniforms(p, "light", light); });
+  // The light as a std140 block, which every target has.
+  kernel_resources resources;
+  resources.blocks = {settings_block("light", light)};
   std::vector<glm::vec4> first(inputs.size()), second(inputs.size()), third(inputs.size());
   std::size_t lit = 0, clamped = 0;
   for (std::size_t i = 0; i < inputs.size(); ++i) {
@@ -283,10 +306,20 @@ TEST_CASE("parity: lightwave_ray_flux, lightwave_patch_radius, lightwave_bounce_
   // A normalise, the cone's divide and a square root: a few ulp; the irradiance's two divides by a
   // squared distance (llvmpipe's divide is not correctly rounded, and a VPL within its clamp of the
   // receiver divides twice by 1e-4) and the 1/pi multiply: 5e-6 relative, 1e-7 absolute near 0.
-  require_parity(compare("lightwave_ray_flux, lightwave_patch_radius", gpu.floats[0], first, inputs, {1e-7f, 0.0f, 8, 0.0, "normalize, divide, sqrt"}));
-  require_parity(compare("lightwave_bounce_irradiance, lightwave_bounce_weight", gpu.floats[1], second, inputs, {1e-7f, 5e-6f, 8, 0.0, "two divides"}));
-  // The confidence: two divides; whether the VPL faces the receiver: a decision, exact.
-  require_parity(compare("lightwave_group_confidence, lightwave_flux_vpl_faces", gpu.floats[2], third, inputs, {1e-7f, 0.0f, 4, 0.0, "two divides"}));
+  for (const testing::target_run& run : testing::every_target()) {
+    const std::string target = run.name();
+    CAPTURE(target);
+    if (!testing::target_runs(run.where)) continue;
+    source.name = "flux VPL kernels (" + target + ")";
+    const kernel_outputs gpu = run.run(source, inputs, run.where, resources);
+    require_parity(compare("lightwave_ray_flux, lightwave_patch_radius (" + target + ")", gpu.floats[0], first, inputs,
+                           {1e-7f, 0.0f, 8, 0.0, "normalize, divide, sqrt"}));
+    require_parity(compare("lightwave_bounce_irradiance, lightwave_bounce_weight (" + target + ")", gpu.floats[1], second, inputs,
+                           {1e-7f, 5e-6f, 8, 0.0, "two divides"}));
+    // The confidence: two divides; whether the VPL faces the receiver: a decision, exact.
+    require_parity(compare("lightwave_group_confidence, lightwave_flux_vpl_faces (" + target + ")", gpu.floats[2], third, inputs,
+                           {1e-7f, 0.0f, 4, 0.0, "two divides"}));
+  }
 }
 
 TEST_CASE("parity: the flux VPLs' light summed per vertex (lightwave_vertex_bounce), in the vertex stage through transform feedback") {

@@ -13,10 +13,12 @@
 #include <vplkit/gl/settings_uniforms.hpp>
 #include <vplkit/parity/doctest.hpp>
 
+#include "tests/parity/targets.hpp"
+
 using namespace vplkit;
 using namespace vplkit::parity;
 
-TEST_CASE("parity: elevation_bucket makes the same decision on both sides, boundaries included") {
+TEST_CASE("parity: elevation_bucket makes the same decision on both sides, boundaries included, on every target") {
   random_inputs random(11);
   kernel_inputs inputs = grid_of(64, 64, 2);
   const int slots = 5;
@@ -37,19 +39,27 @@ TEST_CASE("parity: elevation_bucket makes the same decision on both sides, bound
   kernel_source source;
   source.name = "elevation_bucket";
   source.includes = {"lib/micro_linear_buffer.glsl"};
-  source.declarations = "uniform elevation_slots slots;\n";
   source.body = "uout0 = uvec4(uint(elevation_bucket(fin0.xyz, fin1.xyz, slots)), 0u, 0u, 0u);";
   source.uint_outputs = 1;
-  const kernel_outputs gpu = run_fragment(source, inputs, [&](const program& p) { set_uniforms(p, "slots", table); });
+  // The table as a std140 block (its float array at a 16-byte stride), which every target has.
+  kernel_resources resources;
+  resources.blocks = {settings_block("slots", table)};
   std::vector<glm::uvec4> cpu(inputs.size());
   for (std::size_t i = 0; i < inputs.size(); ++i)
     cpu[i] = glm::uvec4(static_cast<unsigned>(elevation_bucket(glm::vec3(inputs.floats[0][i]), glm::vec3(inputs.floats[1][i]), table)), 0u, 0u, 0u);
   // Subtractions, multiplies, one add, sqrt and compares are IEEE-exact on both sides, and the
   // tangents are the same floats: no flip is allowed, even on the boundaries.
-  require_parity(compare_exact("elevation_bucket (exact)", gpu.uints[0], cpu, inputs, 0.0, 1));
+  for (const testing::target_run& run : testing::every_target()) {
+    const std::string target = run.name();
+    CAPTURE(target);
+    if (!testing::target_runs(run.where)) continue;
+    source.name = std::string("elevation_bucket") + " (" + target + ")";
+    const kernel_outputs gpu = run.run(source, inputs, run.where, resources);
+    require_parity(compare_exact(source.name + " (exact)", gpu.uints[0], cpu, inputs, 0.0, 1));
+  }
 }
 
-TEST_CASE("parity: elevation_bucket_about makes the same decision on both sides, boundaries included") {
+TEST_CASE("parity: elevation_bucket_about makes the same decision on both sides, boundaries included, on every target") {
   random_inputs random(12);
   kernel_inputs inputs = grid_of(64, 64, 3);
   const int slots = 8;
@@ -68,10 +78,11 @@ TEST_CASE("parity: elevation_bucket_about makes the same decision on both sides,
   kernel_source source;
   source.name = "elevation_bucket_about";
   source.includes = {"lib/micro_linear_buffer.glsl"};
-  source.declarations = "uniform elevation_slots slots;\n";
   source.body = "uout0 = uvec4(uint(elevation_bucket_about(fin0.xyz, fin1.xyz, fin2.xyz, slots)), 0u, 0u, 0u);";
   source.uint_outputs = 1;
-  const kernel_outputs gpu = run_fragment(source, inputs, [&](const program& p) { set_uniforms(p, "slots", table); });
+  // The table as a std140 block (its float array at a 16-byte stride), which every target has.
+  kernel_resources resources;
+  resources.blocks = {settings_block("slots", table)};
   std::vector<glm::uvec4> cpu(inputs.size());
   for (std::size_t i = 0; i < inputs.size(); ++i)
     cpu[i] = glm::uvec4(static_cast<unsigned>(elevation_bucket_about(glm::vec3(inputs.floats[0][i]), glm::vec3(inputs.floats[1][i]),
@@ -80,10 +91,17 @@ TEST_CASE("parity: elevation_bucket_about makes the same decision on both sides,
   // A dot product and a vector less its projection: multiply-adds that llvmpipe may fuse, so a
   // point within an ulp of a boundary can fall on either side. None did in this grid (the
   // boundary points above included); allow none.
-  require_parity(compare_exact("elevation_bucket_about", gpu.uints[0], cpu, inputs, 0.0, 1));
+  for (const testing::target_run& run : testing::every_target()) {
+    const std::string target = run.name();
+    CAPTURE(target);
+    if (!testing::target_runs(run.where)) continue;
+    source.name = std::string("elevation_bucket_about") + " (" + target + ")";
+    const kernel_outputs gpu = run.run(source, inputs, run.where, resources);
+    require_parity(compare_exact(source.name, gpu.uints[0], cpu, inputs, 0.0, 1));
+  }
 }
 
-TEST_CASE("parity: alg6_ray's verdicts on random three-sample paths, and alg6_ray_in_front") {
+TEST_CASE("parity: alg6_ray's verdicts on random three-sample paths, and alg6_ray_in_front, on every target") {
   // Each texel: a receiver (fin0) and three samples, position | slot (fin1..3) and normal (fin4..6),
   // on a few shared planes so that predecessors pass their verdicts on, or not, both ways.
   random_inputs random(13);
@@ -110,7 +128,6 @@ TEST_CASE("parity: alg6_ray's verdicts on random three-sample paths, and alg6_ra
     float v2 = micro_linear_buffer_alg6_ray(b, int(fin3.w), fin0.xyz, fin3.xyz, fin6.xyz);
     fout0 = vec4(v0, v1, v2, alg6_ray_in_front(fin0.xyz, fin4.xyz, fin2.xyz, 0.01) ? 1.0 : 0.0);)";
   source.float_outputs = 1;
-  const kernel_outputs gpu = run_fragment(source, inputs);
   std::vector<glm::vec4> cpu(inputs.size());
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     micro_linear_buffer<float> b;
@@ -126,10 +143,17 @@ TEST_CASE("parity: alg6_ray's verdicts on random three-sample paths, and alg6_ra
   }
   // Verdicts are small integers decided by comparisons of dot products that llvmpipe may fuse: a
   // decision within an ulp of its threshold could flip; none did on this grid, and none is allowed.
-  require_parity(compare("micro_linear_buffer_alg6_ray", gpu.floats[0], cpu, inputs, {0.0f, 0.0f, 0, 0.0, "integer verdicts"}, 4));
+  for (const testing::target_run& run : testing::every_target()) {
+    const std::string target = run.name();
+    CAPTURE(target);
+    if (!testing::target_runs(run.where)) continue;
+    source.name = std::string("micro_linear_buffer_alg6_ray") + " (" + target + ")";
+    const kernel_outputs gpu = run.run(source, inputs, run.where, {});
+    require_parity(compare(source.name, gpu.floats[0], cpu, inputs, {0.0f, 0.0f, 0, 0.0, "integer verdicts"}, 4));
+  }
 }
 
-TEST_CASE("parity: micro_linear_buffer Alg. 2, 3 and 6 verdicts on random slot sequences") {
+TEST_CASE("parity: micro_linear_buffer Alg. 2, 3 and 6 verdicts on random slot sequences, on every target") {
   // Each texel holds a path of 10 slot indices (4 bits each, packed into two words) and a slot
   // count; the outputs are the verdict bit masks of the three algorithms, and the sum of the
   // unclamped Alg. 6 values (which exercises the decrements).
@@ -167,7 +191,6 @@ TEST_CASE("parity: micro_linear_buffer Alg. 2, 3 and 6 verdicts on random slot s
     }
     uout0 = uvec4(mask2, mask3, mask6, floatBitsToUint(sum6));)";
   source.uint_outputs = 1;
-  const kernel_outputs gpu = run_fragment(source, inputs);
   std::vector<glm::uvec4> cpu(inputs.size());
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     const glm::uvec4& in = inputs.uints[0][i];
@@ -192,9 +215,16 @@ TEST_CASE("parity: micro_linear_buffer Alg. 2, 3 and 6 verdicts on random slot s
     cpu[i] = glm::uvec4(mask2, mask3, mask6, sum_bits);
   }
   // Small integers in float: every operation is exact, so everything must match to the bit.
-  require_parity(compare_exact("micro_linear_buffer (exact)", gpu.uints[0], cpu, inputs));
-  // And on the GPU too, Alg. 6 agrees with Alg. 3.
-  std::size_t alg6_differs = 0;
-  for (const glm::uvec4& out : gpu.uints[0]) alg6_differs += out.y != out.z;
-  CHECK(alg6_differs == 0);
+  for (const testing::target_run& run : testing::every_target()) {
+    const std::string target = run.name();
+    CAPTURE(target);
+    if (!testing::target_runs(run.where)) continue;
+    source.name = std::string("micro_linear_buffer") + " (" + target + ")";
+    const kernel_outputs gpu = run.run(source, inputs, run.where, {});
+    require_parity(compare_exact(source.name + " (exact)", gpu.uints[0], cpu, inputs));
+    // And on the GPU too, Alg. 6 agrees with Alg. 3.
+    std::size_t alg6_differs = 0;
+    for (const glm::uvec4& out : gpu.uints[0]) alg6_differs += out.y != out.z;
+    CHECK(alg6_differs == 0);
+  }
 }

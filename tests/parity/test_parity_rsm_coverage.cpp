@@ -12,12 +12,14 @@
 #include <vplkit/gl/settings_uniforms.hpp>
 #include <vplkit/parity/doctest.hpp>
 
+#include "tests/parity/targets.hpp"
+
 #include "frontend/gl/render_target.hpp"
 
 using namespace vplkit;
 using namespace vplkit::parity;
 
-TEST_CASE("parity: coarse_light_irradiance on random geometry, extents and unnormalised normals") {
+TEST_CASE("parity: coarse_light_irradiance on random geometry, extents and unnormalised normals, on every target") {
   kernel_inputs inputs = geometry_inputs(23);
   std::mt19937 random(29);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
@@ -30,10 +32,11 @@ TEST_CASE("parity: coarse_light_irradiance on random geometry, extents and unnor
   kernel_source source;
   source.name = "coarse_light_irradiance";
   source.includes = {"lib/rsm_coverage.glsl"};
-  source.declarations = "uniform irradiance_settings settings;\n";
   source.body = "fout0 = vec4(coarse_light_irradiance(fin0.xyz, fin1.xyz, coarse_light(fin2.xyz, fin3.xyz, fin4.xyz, fin4.w), settings), 0.0);";
   source.float_outputs = 1;
-  const kernel_outputs gpu = run_fragment(source, inputs, [&](const program& p) { set_uniforms(p, "settings", settings); });
+  // The settings in a std140 block, which every target has (Vulkan has no default-block uniforms).
+  kernel_resources resources;
+  resources.blocks = {settings_block("settings", settings)};
   std::vector<glm::vec4> cpu(inputs.size());
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     const coarse_light<float> light{glm::vec3(inputs.floats[2][i]), glm::vec3(inputs.floats[3][i]), glm::vec3(inputs.floats[4][i]),
@@ -41,8 +44,15 @@ TEST_CASE("parity: coarse_light_irradiance on random geometry, extents and unnor
     cpu[i] = glm::vec4(coarse_light_irradiance(glm::vec3(inputs.floats[0][i]), glm::vec3(inputs.floats[1][i]), light, settings), 0.0f);
   }
   // Eq. 3.2's arithmetic (test_parity_irradiance.cpp's tolerance and its reasoning) and one more add.
-  require_parity(compare("coarse_light_irradiance", gpu.floats[0], cpu, inputs,
-                         {1e-6f, 1e-5f, 16, 0.0, "about 8 roundings, FMA contraction on llvmpipe, cancellation near tangency"}, 3));
+  for (const testing::target_run& run : testing::every_target()) {
+    const std::string target = run.name();
+    CAPTURE(target);
+    if (!testing::target_runs(run.where)) continue;
+    source.name = std::string("coarse_light_irradiance") + " (" + target + ")";
+    const kernel_outputs gpu = run.run(source, inputs, run.where, resources);
+    require_parity(compare(source.name, gpu.floats[0], cpu, inputs,
+                           {1e-6f, 1e-5f, 16, 0.0, "about 8 roundings, FMA contraction on llvmpipe, cancellation near tangency"}, 3));
+  }
 }
 
 TEST_CASE("parity: reduce_rsm_block over a packed RSM, 8 x 8 blocks of 64^2 texels, empty texels among them") {

@@ -12,10 +12,12 @@
 #include <vplkit/gl/settings_uniforms.hpp>
 #include <vplkit/parity/doctest.hpp>
 
+#include "tests/parity/targets.hpp"
+
 using namespace vplkit;
 using namespace vplkit::parity;
 
-TEST_CASE("parity: pack_rsm_texel bit for bit, unpack_rsm_texel exactly") {
+TEST_CASE("parity: pack_rsm_texel bit for bit, unpack_rsm_texel exactly, on every target") {
   std::mt19937 random(41);
   std::normal_distribution<float> normal;
   std::uniform_real_distribution<float> exponent(-12.0f, 6.0f), unit(0.0f, 1.0f);
@@ -34,8 +36,6 @@ TEST_CASE("parity: pack_rsm_texel bit for bit, unpack_rsm_texel exactly") {
   kernel_source source;
   source.name = "rsm_packing";
   source.includes = {"lib/rsm_packing.glsl"};
-  source.declarations =
-      "uniform rsm_unprojection light;\n";
   source.body =
       "uvec4 bits = pack_rsm_texel(fin0.w, fin0.xyz, fin1.xyz);\n"
       "rsm_texel back = unpack_rsm_texel(bits, texel, light);\n"
@@ -45,9 +45,9 @@ TEST_CASE("parity: pack_rsm_texel bit for bit, unpack_rsm_texel exactly") {
       "fout2 = vec4(back.flux, 0.0);";
   source.float_outputs = 3;
   source.uint_outputs = 1;
-  const kernel_outputs gpu = run_fragment(source, inputs, [&](const program& p) {
-    set_uniforms(p, "light", light);
-  });
+  // The light's unprojection as a std140 block, which every target has.
+  kernel_resources resources;
+  resources.blocks = {settings_block("light", light)};
   std::vector<glm::uvec4> bits(inputs.size());
   std::vector<glm::vec4> position(inputs.size()), normal_back(inputs.size()), flux_back(inputs.size());
   for (std::size_t i = 0; i < inputs.size(); ++i) {
@@ -58,12 +58,18 @@ TEST_CASE("parity: pack_rsm_texel bit for bit, unpack_rsm_texel exactly") {
     normal_back[i] = glm::vec4(back.normal, 0.0f);
     flux_back[i] = glm::vec4(back.flux, 0.0f);
   }
-  for (std::size_t i = 0; i < inputs.size(); ++i) {
-    CAPTURE(i);
-    REQUIRE(gpu.uints[0][i] == bits[i]);  // integer and exact float operations only: the same bits
+  for (const testing::target_run& run : testing::every_target()) {
+    const std::string target = run.name();
+    CAPTURE(target);
+    if (!testing::target_runs(run.where)) continue;
+    source.name = "rsm_packing (" + target + ")";
+    const kernel_outputs gpu = run.run(source, inputs, run.where, resources);
+    // Integer and exact float operations only: the same bits.
+    require_parity(compare_exact("pack_rsm_texel (" + target + ")", gpu.uints[0], bits, inputs));
+    require_parity(compare("unpack_rsm_texel flux (" + target + ")", gpu.floats[2], flux_back, inputs, {0.0f, 0.0f, 0, 0.0, "bit shifts only: exact"}, 3));
+    require_parity(compare("unpack_rsm_texel normal (" + target + ")", gpu.floats[1], normal_back, inputs,
+                           {0.0f, 0.0f, 0, 0.0, "an exact conversion and one product"}, 3));
+    require_parity(compare("unpack_rsm_texel position (" + target + ")", gpu.floats[0], position, inputs,
+                           {1e-7f, 1e-6f, 2, 0.0, "the centre ray: a product and a sum that may fuse, then a product"}, 3));
   }
-  require_parity(compare("unpack_rsm_texel flux", gpu.floats[2], flux_back, inputs, {0.0f, 0.0f, 0, 0.0, "bit shifts only: exact"}, 3));
-  require_parity(compare("unpack_rsm_texel normal", gpu.floats[1], normal_back, inputs, {0.0f, 0.0f, 0, 0.0, "an exact conversion and one product"}, 3));
-  require_parity(compare("unpack_rsm_texel position", gpu.floats[0], position, inputs,
-                         {1e-7f, 1e-6f, 2, 0.0, "the centre ray: a product and a sum that may fuse, then a product"}, 3));
 }

@@ -14,10 +14,12 @@
 #include <vplkit/gl/settings_uniforms.hpp>
 #include <vplkit/parity/doctest.hpp>
 
+#include "tests/parity/targets.hpp"
+
 using namespace vplkit;
 using namespace vplkit::parity;
 
-TEST_CASE("parity: radial_pattern_sample, rsm_disk_pixel_shift and rsm_disk_sample, offsets and weights") {
+TEST_CASE("parity: radial_pattern_sample, rsm_disk_pixel_shift and rsm_disk_sample, offsets and weights, on every target") {
   // Texel (x, y) evaluates path x % 16, sample y % 16 for receiver pixel (x, y): 4096 samples.
   const kernel_inputs inputs = grid_of(64, 64, 0, 1);
   kernel_inputs indexed = inputs;
@@ -35,7 +37,6 @@ TEST_CASE("parity: radial_pattern_sample, rsm_disk_pixel_shift and rsm_disk_samp
   kernel_source source;
   source.name = "patterns";
   source.includes = {"lib/rsm_pattern.glsl"};
-  source.declarations = "uniform radial_pattern_constants radial;\nuniform disk_pattern_settings disk;\nuniform disk_pattern_settings printed;\n";
   source.body = R"(
     pattern_sample r = radial_pattern_sample(int(uin0.x % 16u), int(uin0.y % 16u), uin0.xy, radial);
     vec2 shift = rsm_disk_pixel_shift(uin0.xy, disk);
@@ -46,11 +47,9 @@ TEST_CASE("parity: radial_pattern_sample, rsm_disk_pixel_shift and rsm_disk_samp
     fout2 = vec4(q.offset, q.weight, 0.0);
     fout3 = vec4(shift, 0.0, 0.0);)";
   source.float_outputs = 4;
-  const kernel_outputs gpu = run_fragment(source, indexed, [&](const program& p) {
-    set_uniforms(p, "radial", constants);
-    set_uniforms(p, "disk", disk);
-    set_uniforms(p, "printed", printed);
-  });
+  // The settings as std140 blocks, which every target has.
+  kernel_resources resources;
+  resources.blocks = {settings_block("radial", constants), settings_block("disk", disk), settings_block("printed", printed)};
   std::vector<glm::vec4> cpu_radial(indexed.size()), cpu_disk(indexed.size()), cpu_printed(indexed.size()), cpu_shift(indexed.size());
   for (std::size_t i = 0; i < indexed.size(); ++i) {
     const glm::uvec2 pixel(indexed.uints[0][i]);
@@ -65,9 +64,17 @@ TEST_CASE("parity: radial_pattern_sample, rsm_disk_pixel_shift and rsm_disk_samp
   }
   // Hash bits, exact float-from-bits, +,* and the polynomial: bit-identical unless llvmpipe
   // contracts multiply-adds; offsets decide which texel is fetched, so allow 2 ulp at most.
-  require_parity(compare("rsm_disk_pixel_shift", gpu.floats[3], cpu_shift, indexed, {0.0f, 0.0f, 0, 0.0, "hash bits to float"}, 2));
-  require_parity(compare("radial_pattern_sample", gpu.floats[0], cpu_radial, indexed, {0.0f, 0.0f, 2, 0.0, "+,* only"}, 3));
-  // The disk weight divides by N (llvmpipe's divide need not be correctly rounded): 4 ulp.
-  require_parity(compare("rsm_disk_sample", gpu.floats[1], cpu_disk, indexed, {0.0f, 0.0f, 4, 0.0, "+,*, one divide"}, 3));
-  require_parity(compare("rsm_disk_sample, printed weights", gpu.floats[2], cpu_printed, indexed, {0.0f, 0.0f, 4, 0.0, "+,*, one divide"}, 3));
+  for (const testing::target_run& run : testing::every_target()) {
+    const std::string target = run.name();
+    CAPTURE(target);
+    if (!testing::target_runs(run.where)) continue;
+    source.name = "patterns (" + target + ")";
+    const kernel_outputs gpu = run.run(source, indexed, run.where, resources);
+    require_parity(compare("rsm_disk_pixel_shift (" + target + ")", gpu.floats[3], cpu_shift, indexed, {0.0f, 0.0f, 0, 0.0, "hash bits to float"}, 2));
+    require_parity(compare("radial_pattern_sample (" + target + ")", gpu.floats[0], cpu_radial, indexed, {0.0f, 0.0f, 2, 0.0, "+,* only"}, 3));
+    // The disk weight divides by N (llvmpipe's divide need not be correctly rounded): 4 ulp.
+    require_parity(compare("rsm_disk_sample (" + target + ")", gpu.floats[1], cpu_disk, indexed, {0.0f, 0.0f, 4, 0.0, "+,*, one divide"}, 3));
+    require_parity(compare("rsm_disk_sample, printed weights (" + target + ")", gpu.floats[2], cpu_printed, indexed,
+                           {0.0f, 0.0f, 4, 0.0, "+,*, one divide"}, 3));
+  }
 }

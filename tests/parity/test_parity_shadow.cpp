@@ -14,10 +14,12 @@
 #include <vplkit/gl/settings_uniforms.hpp>
 #include <vplkit/parity/doctest.hpp>
 
+#include "tests/parity/targets.hpp"
+
 using namespace vplkit;
 using namespace vplkit::parity;
 
-TEST_CASE("parity: shadow_density (Alg. 4) over a synthetic depth map") {
+TEST_CASE("parity: shadow_density (Alg. 4) over a synthetic depth map, on every target") {
   // float input 0 is the depth map (x), a slope with steps, and float input 1 the receivers:
   // (rsm coordinate, receiver depth, gradient x); gradient y is 0.
   kernel_inputs inputs = grid_of(64, 64, 2);
@@ -37,11 +39,13 @@ TEST_CASE("parity: shadow_density (Alg. 4) over a synthetic depth map") {
   kernel_source source;
   source.name = "shadow_density";
   source.includes = {"lib/shadow.glsl"};
-  source.declarations = "uniform shadow_density_settings settings;\n"
-                        "float rsm_depth_fetch(ivec2 texel) { return texelFetch(float_input0, texel, 0).x; }\n";
+  // The depth map as a table and the settings as a std140 block: both exist on every target.
+  source.declarations = "float rsm_depth_fetch(ivec2 texel) { return depth_map(texel).x; }\n";
   source.body = "fout0 = vec4(shadow_density(fin1.xy, fin1.z, vec2(fin1.w, 0.0), ivec2(64), settings), 0.0, 0.0, 0.0);";
   source.float_outputs = 1;
-  const kernel_outputs gpu = run_fragment(source, inputs, [&](const program& p) { set_uniforms(p, "settings", settings); });
+  kernel_resources resources;
+  resources.tables = {{"depth_map", 64, 64, inputs.floats[0]}};
+  resources.blocks = {settings_block("settings", settings)};
   std::vector<glm::vec4> cpu(inputs.size());
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     const glm::vec4 r = inputs.floats[1][i];
@@ -52,10 +56,17 @@ TEST_CASE("parity: shadow_density (Alg. 4) over a synthetic depth map") {
   }
   // A count of depth tests over exactly the same floats (the plane depth is +,* only): the
   // result is a multiple of 1/25 and must match exactly.
-  require_parity(compare("shadow_density", gpu.floats[0], cpu, inputs, {0.0f, 0.0f, 0, 0.0, "exact count"}, 1));
+  for (const testing::target_run& run : testing::every_target()) {
+    const std::string target = run.name();
+    CAPTURE(target);
+    if (!testing::target_runs(run.where)) continue;
+    source.name = std::string("shadow_density") + " (" + target + ")";
+    const kernel_outputs gpu = run.run(source, inputs, run.where, resources);
+    require_parity(compare(source.name, gpu.floats[0], cpu, inputs, {0.0f, 0.0f, 0, 0.0, "exact count"}, 1));
+  }
 }
 
-TEST_CASE("parity: the slope-scaled, normal-offset bias (footprint, normal offset, slope bias)") {
+TEST_CASE("parity: the slope-scaled, normal-offset bias (footprint, normal offset, slope bias), on every target") {
   // float input 0: (position, eye depth), input 1: (unit normal, -), input 2: (unit direction to
   // the light, -). Outputs: (offset position, footprint), (slope bias, -).
   kernel_inputs inputs = grid_of(64, 64, 3);
@@ -79,16 +90,19 @@ TEST_CASE("parity: the slope-scaled, normal-offset bias (footprint, normal offse
     kernel_source source;
     source.name = "shadow_bias";
     source.includes = {"lib/shadow.glsl"};
-    source.declarations = "uniform shadow_density_settings settings;\nuniform mat4 projection;\n"
-                          "float rsm_depth_fetch(ivec2 texel) { return texelFetch(float_input0, texel, 0).x; }\n";
-    source.body = "float footprint = shadow_texel_footprint(projection, fin0.w, 512);\n"
+    // The settings as a std140 block and the projection as a table of its columns (read exactly):
+    // Vulkan has no default-block uniforms. shadow.glsl needs an rsm_depth_fetch for
+    // shadow_density, which this case does not call: its value is never read.
+    source.declarations = "float rsm_depth_fetch(ivec2 texel) { return 0.0; }\n";
+    source.body = "mat4 projection = mat4(projection_columns(ivec2(0, 0)), projection_columns(ivec2(1, 0)), projection_columns(ivec2(2, 0)),\n"
+                  "                       projection_columns(ivec2(3, 0)));\n"
+                  "float footprint = shadow_texel_footprint(projection, fin0.w, 512);\n"
                   "fout0 = vec4(shadow_normal_offset(fin0.xyz, fin1.xyz, fin2.xyz, footprint, settings), footprint);\n"
                   "fout1 = vec4(shadow_slope_bias(dot(fin1.xyz, fin2.xyz), footprint, settings), 0.0, 0.0, 0.0);";
     source.float_outputs = 2;
-    const kernel_outputs gpu = run_fragment(source, inputs, [&](const program& p) {
-      set_uniforms(p, "settings", settings);
-      p.set("projection", projection);
-    });
+    kernel_resources resources;
+    resources.tables = {{"projection_columns", 4, 1, {projection[0], projection[1], projection[2], projection[3]}}};
+    resources.blocks = {settings_block("settings", settings)};
     std::vector<glm::vec4> offset(inputs.size()), bias(inputs.size());
     for (std::size_t i = 0; i < inputs.size(); ++i) {
       const glm::vec4 p = inputs.floats[0][i];
@@ -98,7 +112,16 @@ TEST_CASE("parity: the slope-scaled, normal-offset bias (footprint, normal offse
     }
     // A dot product, a sqrt and a divide: a few roundings; the offset is added to a position up
     // to 10, so its error is absolute; tan = sqrt(1 - c^2) / c grows as c -> 0 (until max_slope).
-    require_parity(compare("shadow_normal_offset", gpu.floats[0], offset, inputs, {1e-5f, 1e-5f, 16, 0.0, "a few roundings added to positions up to 10"}, 4));
-    require_parity(compare("shadow_slope_bias", gpu.floats[1], bias, inputs, {1e-6f, 1e-4f, 64, 0.0, "tan from sqrt(1 - c^2) / c amplifies c's rounding near grazing"}, 1));
+    for (const testing::target_run& run : testing::every_target()) {
+      const std::string target = run.name();
+      CAPTURE(target);
+      if (!testing::target_runs(run.where)) continue;
+      source.name = "shadow_bias (" + target + ")";
+      const kernel_outputs gpu = run.run(source, inputs, run.where, resources);
+      require_parity(compare("shadow_normal_offset (" + target + ")", gpu.floats[0], offset, inputs,
+                             {1e-5f, 1e-5f, 16, 0.0, "a few roundings added to positions up to 10"}, 4));
+      require_parity(compare("shadow_slope_bias (" + target + ")", gpu.floats[1], bias, inputs,
+                             {1e-6f, 1e-4f, 64, 0.0, "tan from sqrt(1 - c^2) / c amplifies c's rounding near grazing"}, 1));
+    }
   }
 }

@@ -11,10 +11,12 @@
 #include <vplkit/gl/settings_uniforms.hpp>
 #include <vplkit/parity/doctest.hpp>
 
+#include "tests/parity/targets.hpp"
+
 using namespace vplkit;
 using namespace vplkit::parity;
 
-TEST_CASE("parity: temporal_resolve and temporal_history_matches on random neighbourhoods") {
+TEST_CASE("parity: temporal_resolve and temporal_history_matches on random neighbourhoods, on every target") {
   std::mt19937 random(17);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
   kernel_inputs inputs = grid_of(64, 64, 5);
@@ -29,7 +31,6 @@ TEST_CASE("parity: temporal_resolve and temporal_history_matches on random neigh
   kernel_source source;
   source.name = "temporal_accumulation";
   source.includes = {"lib/temporal_accumulation.glsl"};
-  source.declarations = "uniform temporal_settings settings;\n";
   source.body = R"(
     neighbourhood_moments m = neighbourhood_moments(vec3(0.0), vec3(0.0), 0.0);
     neighbourhood_add(m, fin0.xyz);
@@ -38,7 +39,9 @@ TEST_CASE("parity: temporal_resolve and temporal_history_matches on random neigh
     bool valid = temporal_history_matches(fin3.w, fin4.w, settings);
     fout0 = vec4(temporal_resolve(fin3.xyz, fin4.xyz, valid, m, settings), valid ? 1.0 : 0.0);)";
   source.float_outputs = 1;
-  const kernel_outputs gpu = run_fragment(source, inputs, [&](const program& p) { set_uniforms(p, "settings", settings); });
+  // The settings as a std140 block, which every target has.
+  kernel_resources resources;
+  resources.blocks = {settings_block("settings", settings)};
   std::vector<glm::vec4> cpu(inputs.size());
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     neighbourhood_moments<float> m;
@@ -48,5 +51,12 @@ TEST_CASE("parity: temporal_resolve and temporal_history_matches on random neigh
   }
   // Sums, a square root and a blend: a few roundings, some of which llvmpipe may fuse; the depth
   // test's decision must match exactly (w).
-  require_parity(compare("temporal_resolve", gpu.floats[0], cpu, inputs, {1e-6f, 1e-5f, 16, 0.0, "sums, sqrt, a blend"}, 4));
+  for (const testing::target_run& run : testing::every_target()) {
+    const std::string target = run.name();
+    CAPTURE(target);
+    if (!testing::target_runs(run.where)) continue;
+    source.name = std::string("temporal_resolve") + " (" + target + ")";
+    const kernel_outputs gpu = run.run(source, inputs, run.where, resources);
+    require_parity(compare(source.name, gpu.floats[0], cpu, inputs, {1e-6f, 1e-5f, 16, 0.0, "sums, sqrt, a blend"}, 4));
+  }
 }
