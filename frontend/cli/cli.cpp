@@ -41,7 +41,9 @@ std::string without_long_arguments(std::string text, int argc, const char* const
 }  // namespace
 
 struct command_line::parser {
-  CLI::App app{"vplkit: real-time one-bounce indirect illumination (reflective shadow maps with visibility, Light Wave, robust final gathering)"};
+  // Named, not argv[0]: the help says "Usage: vplkit ..." wherever the executable is (a path with a
+  // space was cut in two in the usage line).
+  CLI::App app{"vplkit: real-time one-bounce indirect illumination (reflective shadow maps with visibility, Light Wave, robust final gathering)", "vplkit"};
   std::vector<cli::command> commands;
 
   explicit parser(const std::vector<command_adder>& more_commands) {
