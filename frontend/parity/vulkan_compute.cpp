@@ -48,7 +48,10 @@ std::string result_text(VkResult result) { return "VkResult " + std::to_string(s
 class vulkan_device {
  public:
   static vulkan_device& get() {
-    static vulkan_device device;
+    // Never destroyed, like the GL contexts: destroying the instance at exit makes the loader
+    // unload the driver (lavapipe), and LeakSanitizer then cannot name the driver's own
+    // process-lifetime caches (tests/sanitizer/lsan.supp: leak:libvulkan_lvp).
+    static vulkan_device& device = *new vulkan_device;
     return device;
   }
   const std::string& unavailable() const { return unavailable_; }
