@@ -106,7 +106,8 @@ void final_gather_pipeline::set_light(const scene_light& light) {
 // Which setting applies in place (the viewer's live controls) and why:
 // - in place: min-distance, the irradiance clamp the cube map's faces and the shading read as
 //   uniforms (the cube map is redrawn, as after a light move); environment-resolution where the
-//   technique does not read it (its map is a 1 x 1 placeholder then);
+//   technique does not read it (the polygon and point techniques allocate a 1 x 1 map they never
+//   sample, so no target depends on it);
 // - rebuild (a new pipeline): size and format (the G-buffer and output targets), face-size (the
 //   faces' target), cube-resolution (the small cube map's target), environment-resolution for
 //   envmap (its map's target), the technique (the shading's VPLKIT_FINAL_GATHER define), and the
