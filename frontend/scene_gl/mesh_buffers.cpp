@@ -184,10 +184,10 @@ void mesh_buffers::draw_triangles(std::size_t first_index, GLsizei count) const 
       // A wait that times out only lets more work queue up; the drawing is the same.
       glClientWaitSync(in_flight, GL_SYNC_FLUSH_COMMANDS_BIT, fence_timeout_ns);
       glDeleteSync(in_flight);
+      in_flight = nullptr;
     }
-    in_flight = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    if (done < count) in_flight = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
   }
-  if (in_flight) glDeleteSync(in_flight);
 }
 
 void mesh_buffers::draw_points() const {
