@@ -132,6 +132,30 @@ posed_frame load_frame(const pose_frame& frame, const std::string& poses) {
   return {cli::load_scene(options, frame.scene), frame.comment.empty() ? poses + ":" + std::to_string(frame.line) : frame.comment};
 }
 
+// A frame's two references, each cached under `cache` when it is not empty: the brute force of
+// the frame's own RSM (exact and unoccluded) and the one-bounce Monte Carlo image. The key is the
+// scene (its bytes, the posed camera and light) and the frame.
+struct frame_references {
+  frame_reference brute_force;
+  image monte_carlo;
+};
+
+frame_references load_references(const shader_library& shaders, const pose_frame& frame, const scene& source, const rsm_pipeline_settings& settings,
+                                 int stride, int threads, int mc_samples, const std::string& cache) {
+  const std::string identity = study::scene_identity(frame.scene, source) + "\nframe " + std::to_string(settings.width) + " rsm " +
+                               std::to_string(settings.rsm_size) + " stride " + std::to_string(stride);
+  const std::string key = cache.empty() ? std::string() : (fs::path(cache) / cache_key(identity)).string();
+  frame_references references{make_frame_reference(shaders, source, settings, stride, threads, key), image{}};
+  const std::string mc_file = key + "-mc" + std::to_string(mc_samples) + "-r" + std::to_string(monte_carlo_revision) + ".pfm";
+  if (!key.empty() && fs::exists(mc_file)) {
+    references.monte_carlo = read_image_file(mc_file);
+  } else {
+    references.monte_carlo = reference_one_bounce(source, settings.width, settings.height, mc_samples, 1u, threads).indirect;
+    if (!key.empty()) write_all_or_nothing({{mc_file, [&] { return encode_pfm(references.monte_carlo); }}});
+  }
+  return references;
+}
+
 // Mean of the three channels over every pixel of an image.
 double image_mean(const image& values) {
   double sum = 0.0;
@@ -300,18 +324,9 @@ int main(int argc, char** argv) {
         settings.coverage_interleave = coverage_interleave;
         settings.width = settings.height = size;
         settings.rsm_size = rsm_size;
-        const std::string identity = study::scene_identity(frame.scene, source) + "\nframe " + std::to_string(size) + " rsm " +
-                                     std::to_string(rsm_size) + " stride " + std::to_string(stride);
-        const std::string key = cache.empty() ? std::string() : (fs::path(cache) / cache_key(identity)).string();
-        const frame_reference reference = make_frame_reference(shaders, source, settings, stride, threads, key);
-        image monte_carlo;
-        const std::string mc_file = key + "-mc" + std::to_string(mc_samples) + "-r" + std::to_string(monte_carlo_revision) + ".pfm";
-        if (!key.empty() && fs::exists(mc_file)) {
-          monte_carlo = read_image_file(mc_file);
-        } else {
-          monte_carlo = reference_one_bounce(source, size, size, mc_samples, 1u, threads).indirect;
-          if (!key.empty()) write_all_or_nothing({{mc_file, [&] { return encode_pfm(monte_carlo); }}});
-        }
+        const frame_references references = load_references(shaders, frame, source, settings, stride, threads, mc_samples, cache);
+        const frame_reference& reference = references.brute_force;
+        const image& monte_carlo = references.monte_carlo;
         const double mc_mean = image_mean(monte_carlo);
         if (!(mc_mean > 0.0) || !(image_mean(reference.exact) > 0.0)) {
           rows << "| " << label << " | no indirect light in view (left out) |||||||\n";
@@ -533,19 +548,9 @@ int main(int argc, char** argv) {
       settings.coverage_interleave = coverage_interleave;
       settings.width = settings.height = size;
       settings.rsm_size = rsm_size;
-      // The cache key: the scene (its bytes, the posed camera and light) and the frame.
-      const std::string identity = study::scene_identity(frame.scene, source) + "\nframe " + std::to_string(size) + " rsm " +
-                                   std::to_string(rsm_size) + " stride " + std::to_string(stride);
-      const std::string key = cache.empty() ? std::string() : (fs::path(cache) / cache_key(identity)).string();
-      const frame_reference reference = make_frame_reference(shaders, source, settings, stride, threads, key);
-      image monte_carlo;
-      const std::string mc_file = key + "-mc" + std::to_string(mc_samples) + "-r" + std::to_string(monte_carlo_revision) + ".pfm";
-      if (!key.empty() && fs::exists(mc_file)) {
-        monte_carlo = read_image_file(mc_file);
-      } else {
-        monte_carlo = reference_one_bounce(source, size, size, mc_samples, 1u, threads).indirect;
-        if (!key.empty()) write_all_or_nothing({{mc_file, [&] { return encode_pfm(monte_carlo); }}});
-      }
+      const frame_references references = load_references(shaders, frame, source, settings, stride, threads, mc_samples, cache);
+      const frame_reference& reference = references.brute_force;
+      const image& monte_carlo = references.monte_carlo;
       const double mc_mean = image_mean(monte_carlo);
       if (!(mc_mean > 0.0) || !(image_mean(reference.exact) > 0.0)) {
         empty_frames.push_back(label);
