@@ -7,7 +7,6 @@
 // and leaves the output lock free for the sweep's own writes.
 #include <doctest/doctest.h>
 
-#include <chrono>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -36,9 +35,14 @@ struct scratch_folder {
   }
 };
 
-// The definition, pair by pair: beaten when another row of the scene is at most as slow and at
-// most as wrong, and strictly better on one of them.
-std::vector<std::string> brute_force_pareto(const sweep_table& table) {
+// The definition, pair by pair: B beats A when B's upper bounds are at most A's lower bounds on
+// both axes and below on one, each value +- its standard error when `within_noise`, else exact
+// (B at most as slow and as wrong as A, and strictly better on one). A row never beats itself:
+// its bounds are not below its own.
+std::vector<std::string> brute_force_pareto(const sweep_table& table, bool within_noise = false) {
+  const auto noise = [&](const std::map<std::string, std::string>& row) {
+    return within_noise ? std::pair(cli::time_se(row, "frame_ms"), cli::quality_se(row, "rel_rmse")) : std::pair(0.0, 0.0);
+  };
   std::vector<std::string> marks;
   for (const auto& row : table.rows) {
     const std::optional<double> t = sweep_table::number(row, "frame_ms"), e = sweep_table::number(row, "rel_rmse");
@@ -46,11 +50,15 @@ std::vector<std::string> brute_force_pareto(const sweep_table& table) {
       marks.emplace_back();
       continue;
     }
+    const auto [dt, de] = noise(row);
     bool beaten = false;
     for (const auto& other : table.rows) {
-      if (&other == &row || other.at("scene") != row.at("scene")) continue;
+      if (other.at("scene") != row.at("scene")) continue;
       const std::optional<double> ot = sweep_table::number(other, "frame_ms"), oe = sweep_table::number(other, "rel_rmse");
-      if (ot && oe && *ot <= *t && *oe <= *e && (*ot < *t || *oe < *e)) beaten = true;
+      if (!ot || !oe) continue;
+      const auto [odt, ode] = noise(other);
+      const double t_high = *ot + odt, e_high = *oe + ode, t_low = *t - dt, e_low = *e - de;
+      if (t_high <= t_low && e_high <= e_low && (t_high < t_low || e_high < e_low)) beaten = true;
     }
     marks.emplace_back(beaten ? "0" : "1");
   }
@@ -115,16 +123,11 @@ TEST_CASE("the Pareto front of hand-made cases: equal rows both on it, an equal 
   CHECK(pareto_column(table) == std::vector<std::string>{"1", "1", "0", "0", "1", "1", "", "", ""});
 }
 
-TEST_CASE("the Pareto marking of 20,000 rows takes well under a second") {
+// Its time on 20,000 rows is bench/sweep_pareto.cpp's (vplkit_sweep_bench), not asserted here.
+TEST_CASE("the Pareto marking of 20,000 rows keeps a front, not every row") {
   std::mt19937 random(20000);
   sweep_table table = random_table(random, 20000, 5000, 4);
-  const auto start = std::chrono::steady_clock::now();
   cli::mark_pareto(table, "frame_ms", "rel_rmse");
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  MESSAGE("mark_pareto on 20,000 rows: " << seconds << " s");
-  // Comparing every pair took minutes; the bound leaves room for a loaded machine and the
-  // sanitizers, and still catches the quadratic version by a factor of tens.
-  CHECK(seconds < 2.0);
   int on_front = 0;
   for (const auto& row : table.rows) on_front += row.at("pareto") == "1";
   CHECK(on_front > 0);
@@ -132,31 +135,6 @@ TEST_CASE("the Pareto marking of 20,000 rows takes well under a second") {
 }
 
 namespace {
-
-// The definition within the noise, pair by pair: B beats A when B's upper bounds are at most A's
-// lower bounds on both axes and below on one, each value +- its standard error.
-std::vector<std::string> brute_force_noisy_pareto(const sweep_table& table) {
-  std::vector<std::string> marks;
-  for (const auto& row : table.rows) {
-    const std::optional<double> t = sweep_table::number(row, "frame_ms"), e = sweep_table::number(row, "rel_rmse");
-    if (!t || !e) {
-      marks.emplace_back();
-      continue;
-    }
-    const double dt = cli::time_se(row, "frame_ms"), de = cli::quality_se(row, "rel_rmse");
-    bool beaten = false;
-    for (const auto& other : table.rows) {
-      if (other.at("scene") != row.at("scene")) continue;
-      const std::optional<double> ot = sweep_table::number(other, "frame_ms"), oe = sweep_table::number(other, "rel_rmse");
-      if (!ot || !oe) continue;
-      const double odt = cli::time_se(other, "frame_ms"), ode = cli::quality_se(other, "rel_rmse");
-      const double t_high = *ot + odt, e_high = *oe + ode, t_low = *t - dt, e_low = *e - de;
-      if (t_high <= t_low && e_high <= e_low && (t_high < t_low || e_high < e_low)) beaten = true;
-    }
-    marks.emplace_back(beaten ? "0" : "1");
-  }
-  return marks;
-}
 
 }  // namespace
 
@@ -173,7 +151,7 @@ TEST_CASE("the Pareto front within the noise is the brute force's on random nois
       row["rel_rmse_sd"] = format_real(0.01 * noise(random));
       row["seeds"] = std::to_string(seeds(random));
     }
-    const std::vector<std::string> exact = brute_force_pareto(table), expected = brute_force_noisy_pareto(table);
+    const std::vector<std::string> exact = brute_force_pareto(table), expected = brute_force_pareto(table, true);
     cli::mark_pareto(table, "frame_ms", "rel_rmse");
     REQUIRE(pareto_column(table) == expected);
     for (std::size_t i = 0; i < expected.size(); ++i) {
@@ -213,18 +191,26 @@ TEST_CASE("a noisy machine's front: rows within each other's noise are ties, a r
   CHECK(pareto_column(table) == std::vector<std::string>{"1", "1", "0", "0", "1"});
 }
 
-TEST_CASE("the Pareto marking within the noise of 20,000 rows takes well under a second") {
+TEST_CASE("the Pareto marking within the noise of 20,000 rows keeps at least the exact front") {
+  // Within the noise fewer rows are beaten: every row on the exact front stays on it.
   std::mt19937 random(2041);
   sweep_table table = random_table(random, 20000, 5000, 4);
+  cli::mark_pareto(table, "frame_ms", "rel_rmse");
+  const std::vector<std::string> exact = pareto_column(table);
   for (auto& row : table.rows) {
     row["frame_ms_noise"] = "0.1";
     row["rel_rmse_ref_se"] = "0.01";
   }
-  const auto start = std::chrono::steady_clock::now();
   cli::mark_pareto(table, "frame_ms", "rel_rmse");
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  MESSAGE("mark_pareto with noise on 20,000 rows: " << seconds << " s");
-  CHECK(seconds < 2.0);
+  const std::vector<std::string> noisy = pareto_column(table);
+  int exact_front = 0, noisy_front = 0, dropped = 0;
+  for (std::size_t i = 0; i < exact.size(); ++i) {
+    dropped += exact[i] == "1" && noisy[i] != "1";
+    exact_front += exact[i] == "1";
+    noisy_front += noisy[i] == "1";
+  }
+  CHECK(dropped == 0);
+  CHECK(noisy_front > exact_front);
 }
 
 TEST_CASE("the reference's noise: synthetic Gaussian noise of a known size is what reference_noise_of reports") {
