@@ -93,7 +93,7 @@ scene load_study_scene(const std::string& spec, std::string& label) {
     if (equals == std::string::npos || (key != "camera" && key != "light")) throw error("scene " + spec + ": expected @camera=... or @light=...");
     if (const std::string problem = parse_pose(parts[i].substr(equals + 1), where); !problem.empty()) throw error("scene " + spec + ": " + problem);
     if (key == "camera") apply_pose(where, loaded.view, "scene " + spec + " camera");
-    if (key == "light") apply_pose(where, loaded.light, "scene " + spec + " light");
+    if (key == "light") apply_pose(where, loaded.lights[0], "scene " + spec + " light");
     label += "-" + key + std::to_string(i);
   }
   check_scene(loaded);

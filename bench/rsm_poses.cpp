@@ -416,7 +416,7 @@ int main(int argc, char** argv) {
         settings.rsm_size = rsm_size;
         const int measured_end = warmup + flicker, total = measured_end + after_jump;
         const auto light_of = [&](int k) {
-          return tilted(source.light, k < measured_end ? step * static_cast<float>(k) : step * static_cast<float>(measured_end - 1) + jump);
+          return tilted(source.lights[0], k < measured_end ? step * static_cast<float>(k) : step * static_cast<float>(measured_end - 1) + jump);
         };
         // The brute force of the measured frames and of the pose after the jump.
         std::vector<image> reference_filtered(static_cast<std::size_t>(total)), reference_raw(static_cast<std::size_t>(total));
@@ -428,7 +428,7 @@ int main(int argc, char** argv) {
               reference_filtered[i] = reference_filtered[i - 1];
               continue;
             }
-            pipeline.set_light(light_of(k));
+            pipeline.set_light(0, light_of(k));
             pipeline.render();
             reference_filtered[i] = filtered_brute_force(pipeline, rays, threads, &reference_raw[i]);
           }
@@ -445,7 +445,7 @@ int main(int argc, char** argv) {
           pipeline.render();  // the shader compilers' lazy work
           std::vector<image> filtered(static_cast<std::size_t>(total)), raw(static_cast<std::size_t>(total));
           for (int k = 0; k < total; ++k) {
-            pipeline.set_light(light_of(k));
+            pipeline.set_light(0, light_of(k));
             const rsm_frame rendered = pipeline.render_next();
             if (k < warmup) continue;
             filtered[static_cast<std::size_t>(k)] = rendered.indirect;

@@ -24,7 +24,8 @@ inline std::string scene_identity(const std::string& name, const scene& posed) {
   if (std::filesystem::is_regular_file(name, ignored)) identity += "\nbytes " + read_file(name, std::uintmax_t{1} << 30, "scene");
   identity += "\ncamera " + format_pose(pose_of(posed.view)) + " up " + format_point(posed.view.up) + " fov " +
               std::to_string(posed.view.vertical_fov_degrees);
-  identity += "\nlight " + std::to_string(static_cast<int>(posed.light.kind)) + " " + format_pose(pose_of(posed.light));
+  for (const scene_light& light : posed.lights)
+    identity += "\nlight " + std::to_string(static_cast<int>(light.kind)) + " " + format_pose(pose_of(light)) + " " + format_point(light_power(light));
   return identity;
 }
 

@@ -107,12 +107,12 @@ study_scene living_room() {
   sc.view.position = {2.4f, 1.6f, 2.2f};
   sc.view.target = {-1.0f, 0.8f, -1.0f};
   sc.view.vertical_fov_degrees = 60.0f;
-  sc.light.kind = light_kind::spot;
-  sc.light.spot.position = {0.0f, 2.9f, 0.0f};
-  sc.light.spot.direction = {0.0f, -1.0f, 0.0f};
-  sc.light.spot.intensity = glm::vec3(8.0f);
-  sc.light.spot.cos_inner = std::cos(glm::radians(50.0f));
-  sc.light.spot.cos_outer = std::cos(glm::radians(70.0f));
+  sc.lights.emplace_back().kind = light_kind::spot;
+  sc.lights[0].spot.position = {0.0f, 2.9f, 0.0f};
+  sc.lights[0].spot.direction = {0.0f, -1.0f, 0.0f};
+  sc.lights[0].spot.intensity = glm::vec3(8.0f);
+  sc.lights[0].spot.cos_inner = std::cos(glm::radians(50.0f));
+  sc.lights[0].spot.cos_outer = std::cos(glm::radians(70.0f));
   pose_space& p = s.space;
   p.camera_low = {-2.6f, 0.6f, -0.8f};
   p.camera_high = {2.6f, 2.5f, 2.2f};
@@ -149,9 +149,9 @@ study_scene courtyard() {
   sc.view.target = {-2.0f, 1.2f, -2.5f};
   sc.view.vertical_fov_degrees = 65.0f;
   sc.view.far_plane = 60.0f;
-  sc.light.kind = light_kind::directional;
-  sc.light.directional.direction = glm::normalize(glm::vec3(0.3f, -1.0f, 0.6f));
-  sc.light.directional.irradiance = glm::vec3(3.0f);
+  sc.lights.emplace_back().kind = light_kind::directional;
+  sc.lights[0].directional.direction = glm::normalize(glm::vec3(0.3f, -1.0f, 0.6f));
+  sc.lights[0].directional.irradiance = glm::vec3(3.0f);
   pose_space& p = s.space;
   p.camera_low = {-3.6f, 0.5f, -1.8f};
   p.camera_high = {3.6f, 3.5f, 3.6f};
@@ -177,12 +177,12 @@ study_scene thin_walls() {
   sc.view.position = {1.8f, 1.5f, 2.2f};
   sc.view.target = {-0.4f, 0.7f, -1.6f};
   sc.view.vertical_fov_degrees = 60.0f;
-  sc.light.kind = light_kind::spot;
-  sc.light.spot.position = {1.0f, 2.7f, 1.0f};
-  sc.light.spot.direction = glm::normalize(glm::vec3(-1.0f, -2.0f, -2.5f));
-  sc.light.spot.intensity = glm::vec3(9.0f);
-  sc.light.spot.cos_inner = std::cos(glm::radians(40.0f));
-  sc.light.spot.cos_outer = std::cos(glm::radians(55.0f));
+  sc.lights.emplace_back().kind = light_kind::spot;
+  sc.lights[0].spot.position = {1.0f, 2.7f, 1.0f};
+  sc.lights[0].spot.direction = glm::normalize(glm::vec3(-1.0f, -2.0f, -2.5f));
+  sc.lights[0].spot.intensity = glm::vec3(9.0f);
+  sc.lights[0].spot.cos_inner = std::cos(glm::radians(40.0f));
+  sc.lights[0].spot.cos_outer = std::cos(glm::radians(55.0f));
   pose_space& p = s.space;
   p.camera_low = {-2.2f, 0.5f, 0.2f};
   p.camera_high = {2.2f, 2.4f, 2.2f};
@@ -222,12 +222,12 @@ study_scene corridor() {
   sc.view.position = {0.8f, 1.6f, 1.0f};
   sc.view.target = {8.0f, 1.2f, 1.0f};
   sc.view.vertical_fov_degrees = 60.0f;
-  sc.light.kind = light_kind::spot;
-  sc.light.spot.position = {4.0f, 2.72f, 1.0f};
-  sc.light.spot.direction = {0.0f, -1.0f, 0.0f};
-  sc.light.spot.intensity = glm::vec3(7.0f);
-  sc.light.spot.cos_inner = std::cos(glm::radians(55.0f));
-  sc.light.spot.cos_outer = std::cos(glm::radians(75.0f));
+  sc.lights.emplace_back().kind = light_kind::spot;
+  sc.lights[0].spot.position = {4.0f, 2.72f, 1.0f};
+  sc.lights[0].spot.direction = {0.0f, -1.0f, 0.0f};
+  sc.lights[0].spot.intensity = glm::vec3(7.0f);
+  sc.lights[0].spot.cos_inner = std::cos(glm::radians(55.0f));
+  sc.lights[0].spot.cos_outer = std::cos(glm::radians(75.0f));
   pose_space& p = s.space;
   p.camera_low = {0.5f, 0.8f, 0.5f};
   p.camera_high = {8.5f, 2.3f, 1.5f};
@@ -258,12 +258,12 @@ study_scene loft() {
   sc.view.position = {3.0f, 1.7f, 2.6f};
   sc.view.target = {-2.0f, 2.0f, -1.0f};
   sc.view.vertical_fov_degrees = 65.0f;
-  sc.light.kind = light_kind::spot;
-  sc.light.spot.position = {1.8f, 4.9f, 0.0f};
-  sc.light.spot.direction = glm::normalize(glm::vec3(-0.4f, -1.0f, 0.0f));
-  sc.light.spot.intensity = glm::vec3(16.0f);
-  sc.light.spot.cos_inner = std::cos(glm::radians(45.0f));
-  sc.light.spot.cos_outer = std::cos(glm::radians(65.0f));
+  sc.lights.emplace_back().kind = light_kind::spot;
+  sc.lights[0].spot.position = {1.8f, 4.9f, 0.0f};
+  sc.lights[0].spot.direction = glm::normalize(glm::vec3(-0.4f, -1.0f, 0.0f));
+  sc.lights[0].spot.intensity = glm::vec3(16.0f);
+  sc.lights[0].spot.cos_inner = std::cos(glm::radians(45.0f));
+  sc.lights[0].spot.cos_outer = std::cos(glm::radians(65.0f));
   pose_space& p = s.space;
   p.camera_low = {0.4f, 0.6f, -2.0f};
   p.camera_high = {3.2f, 4.5f, 2.7f};
@@ -300,9 +300,9 @@ study_scene street() {
   sc.view.target = {4.0f, 2.5f, -0.5f};
   sc.view.vertical_fov_degrees = 60.0f;
   sc.view.far_plane = 80.0f;
-  sc.light.kind = light_kind::directional;
-  sc.light.directional.direction = glm::normalize(glm::vec3(0.5f, -1.0f, 0.4f));
-  sc.light.directional.irradiance = glm::vec3(3.0f);
+  sc.lights.emplace_back().kind = light_kind::directional;
+  sc.lights[0].directional.direction = glm::normalize(glm::vec3(0.5f, -1.0f, 0.4f));
+  sc.lights[0].directional.irradiance = glm::vec3(3.0f);
   pose_space& p = s.space;
   p.camera_low = {-9.0f, 0.8f, -1.5f};
   p.camera_high = {9.0f, 4.0f, 1.5f};
@@ -343,12 +343,12 @@ study_scene attic() {
   sc.view.position = {2.5f, 1.5f, 1.5f};
   sc.view.target = {-2.5f, 1.2f, -0.5f};
   sc.view.vertical_fov_degrees = 65.0f;
-  sc.light.kind = light_kind::spot;
-  sc.light.spot.position = {0.0f, 3.3f, 0.0f};
-  sc.light.spot.direction = {0.0f, -1.0f, 0.0f};
-  sc.light.spot.intensity = glm::vec3(8.0f);
-  sc.light.spot.cos_inner = std::cos(glm::radians(50.0f));
-  sc.light.spot.cos_outer = std::cos(glm::radians(72.0f));
+  sc.lights.emplace_back().kind = light_kind::spot;
+  sc.lights[0].spot.position = {0.0f, 3.3f, 0.0f};
+  sc.lights[0].spot.direction = {0.0f, -1.0f, 0.0f};
+  sc.lights[0].spot.intensity = glm::vec3(8.0f);
+  sc.lights[0].spot.cos_inner = std::cos(glm::radians(50.0f));
+  sc.lights[0].spot.cos_outer = std::cos(glm::radians(72.0f));
   pose_space& p = s.space;
   p.camera_low = {-2.7f, 0.6f, -1.0f};
   p.camera_high = {2.7f, 1.8f, 1.0f};
@@ -460,7 +460,7 @@ int main(int argc, char** argv) {
       for (int i = 0; i < poses_per_scene; ++i) {
         const std::string kinds = s.space.kinds[static_cast<std::size_t>(i) % s.space.kinds.size()];
         const std::string camera_kind = kinds.substr(0, kinds.find('/')), light_kind_name = kinds.substr(kinds.find('/') + 1);
-        const bool sun = s.content.light.kind == light_kind::directional;
+        const bool sun = s.content.lights[0].kind == light_kind::directional;
         pose light, view;
         // Draw again (a bounded number of times) when the camera pose is one the scene cannot take.
         for (int attempt = 0;; ++attempt) {
@@ -469,7 +469,7 @@ int main(int argc, char** argv) {
           scene moved = s.content;
           try {
             apply_pose(view, moved.view, "camera");
-            apply_pose(light, moved.light, "light");
+            apply_pose(light, moved.lights[0], "light");
             break;
           } catch (const error&) {
             if (attempt > 20) throw;

@@ -1,5 +1,6 @@
 #include "frontend/cli/options.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <iostream>
@@ -134,13 +135,25 @@ void add_pose_options(CLI::App& command, common_options& options) {
   };
   pose_option("--camera", options.camera_pose, "start from this camera: its position and the point it looks at (the viewer prints its pose)");
   pose_option("--light", options.light_pose,
-              "start from this light: a spot light's position and the point it aims at; a directional light shines from the first point "
-              "towards the second");
+              "start from this light (the first of --lights): a spot light's position and the point it aims at; a directional light "
+              "shines from the first point towards the second; a point light moves to the first point");
+  command
+      .add_option_function<std::string>(
+          "--lights",
+          [&options](const std::string& text) {
+            std::string problem;
+            options.light_choice = parse_light_choice(text, problem);
+            if (!problem.empty()) throw CLI::ValidationError("--lights", problem + ", got " + shown(text));
+          },
+          "which of the scene's lights are drawn: all (the default), none, or their indices in the file's order (0,2); at most " +
+              std::to_string(max_scene_lights))
+      ->type_name("all|none|i,j");
   command
       .add_option_function<float>(
           "--light-intensity", [&options](const float& value) { options.light_intensity = value; },
-          "the light's radiant intensity, W/sr (a spot light), or irradiance, W/m^2 (a directional light), instead of the scene's; its colour "
-          "is kept (the brightest channel becomes this); every output is linear in it")
+          "the light's radiant intensity, W/sr (a spot or point light), or irradiance, W/m^2 (a directional light), instead of the "
+          "scene's; its colour is kept (the brightest channel becomes this); several lights are scaled together, the brightest to this; "
+          "every output is linear in it")
       ->check(number_in(0.0, 1.0e12, false, "W/sr or W/m^2"))
       ->type_name("W");
 }
@@ -179,21 +192,59 @@ float exposure_scale(const common_options& options, const image& linear, std::os
 
 namespace {
 
-// --light-intensity: the colour kept, its brightest channel set to the intensity.
-void apply_light_intensity(const common_options& options, scene_light& light) {
-  if (options.light_intensity) set_light_intensity(light, *options.light_intensity);
+// --light-intensity: the colours kept, the brightest channel of the brightest light set to the
+// intensity, the others scaled with it.
+void apply_light_intensity(const common_options& options, std::vector<scene_light>& lights) {
+  if (options.light_intensity) scale_light_intensities(lights, *options.light_intensity);
 }
 
 }  // namespace
 
-void apply_poses(const common_options& options, camera& view, scene_light& light) {
+std::optional<std::vector<std::size_t>> parse_light_choice(const std::string& text, std::string& problem) {
+  problem.clear();
+  if (text == "all") return std::nullopt;
+  std::vector<std::size_t> chosen;
+  if (text == "none") return chosen;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', start), text.size());
+    const std::string item = text.substr(start, comma - start);
+    if (item.empty() || item.size() > 3 || item.find_first_not_of("0123456789") != std::string::npos) {
+      problem = "expected all, none or light indices separated by commas (0,2)";
+      return std::nullopt;
+    }
+    const std::size_t index = static_cast<std::size_t>(std::stoul(item));
+    if (std::find(chosen.begin(), chosen.end(), index) != chosen.end()) {
+      problem = "light " + item + " is chosen twice";
+      return std::nullopt;
+    }
+    chosen.push_back(index);
+    start = comma + 1;
+  }
+  return chosen;
+}
+
+void apply_poses(const common_options& options, camera& view, std::vector<scene_light>& lights) {
   try {
+    if (options.light_choice) {
+      std::vector<scene_light> chosen;
+      for (const std::size_t index : *options.light_choice) {
+        if (index >= lights.size())
+          throw vplkit::error("--lights: the scene has no light " + std::to_string(index) + " (it has " + std::to_string(lights.size()) +
+                              (lights.empty() ? "" : ", 0 to " + std::to_string(lights.size() - 1)) + ")");
+        chosen.push_back(lights[index]);
+      }
+      lights = std::move(chosen);
+    }
     if (options.camera_pose) apply_pose(*options.camera_pose, view, "--camera");
-    if (options.light_pose) apply_pose(*options.light_pose, light, "--light");
+    if (options.light_pose) {
+      if (lights.empty()) throw vplkit::error("--light: the scene has no light to place (--lights none, or a file without lights)");
+      apply_pose(*options.light_pose, lights.front(), "--light");
+    }
+    apply_light_intensity(options, lights);
   } catch (const vplkit::error& failure) {
     throw usage_error(failure.what());
   }
-  apply_light_intensity(options, light);
 }
 
 void apply_poses(const common_options& options, pipeline& target) {
@@ -203,11 +254,12 @@ void apply_poses(const common_options& options, pipeline& target) {
       apply_pose(*options.camera_pose, view, "--camera");
       target.set_camera(view);
     }
+    if (options.light_choice) throw vplkit::error("--lights: this technique builds its own scene; its light is not chosen from a file");
     if (options.light_pose || options.light_intensity) {
-      scene_light light = target.current_light();
-      if (options.light_pose) apply_pose(*options.light_pose, light, "--light");
-      apply_light_intensity(options, light);
-      target.set_light(light);
+      std::vector<scene_light> lights = target.current_lights();
+      if (options.light_pose) apply_pose(*options.light_pose, lights.front(), "--light");
+      apply_light_intensity(options, lights);
+      for (std::size_t k = 0; k < lights.size(); ++k) target.set_light(k, lights[k]);
     }
   } catch (const vplkit::error& failure) {
     throw usage_error(failure.what());
@@ -219,7 +271,7 @@ scene load_scene(const common_options& options, const std::string& name) {
   scene loaded = extension == ".obj"                          ? frame_mesh(fs::path(name).stem().string(), load_obj(name))
                  : extension == ".gltf" || extension == ".glb" ? load_gltf(name)
                                                                : built_in_scene(name);
-  apply_poses(options, loaded.view, loaded.light);
+  apply_poses(options, loaded.view, loaded.lights);
   check_scene(loaded);
   // std::cout, not a session's stream: loading happens after the dry run stops, where a command
   // writes to standard output.

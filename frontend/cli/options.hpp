@@ -86,10 +86,13 @@ struct common_options {
   std::string context = "auto";  ///< headless context: a name of headless_api_names()
   int device = -1;               ///< EGL device index, -1: automatic
   std::optional<pose> camera_pose;  ///< --camera: instead of the scene's camera
-  std::optional<pose> light_pose;   ///< --light: instead of the scene's light
-  /// --light-intensity: the light's radiant intensity (W/sr, a spot) or irradiance (W/m^2, a
-  /// sun) instead of the scene's, its colour kept (the brightest channel becomes this).
+  std::optional<pose> light_pose;   ///< --light: where the first of the chosen lights is
+  /// --light-intensity: the light's radiant intensity (W/sr, a spot or point light) or
+  /// irradiance (W/m^2, a sun) instead of the scene's, its colour kept (the brightest channel
+  /// becomes this); several lights are scaled together (scale_light_intensities).
   std::optional<float> light_intensity;
+  /// --lights: which of the scene's lights are drawn, by index in the file's order; absent: all.
+  std::optional<std::vector<std::size_t>> light_choice;
   /// --exposure: the final PNG (and the viewer's image) is scaled by 2^EV; auto_exposure picks EV
   /// from the image (exposure_scale). PFMs stay linear.
   float exposure_ev = 0.0f;
@@ -133,10 +136,14 @@ void add_pose_options(CLI::App& command, common_options& options);
 /// --exposure EV|auto (the final image's PNG; the viewer's image).
 CLI::Option* add_exposure_option(CLI::App& command, common_options& options);
 
-/// The camera and light moved to --camera and --light where given, and the light's intensity set
-/// to --light-intensity. Throws usage_error naming the option when the scene cannot take the pose
-/// (e.g. a camera looking along its up vector).
-void apply_poses(const common_options& options, camera& view, scene_light& light);
+/// The lights chosen by --lights, the camera and the first light moved to --camera and --light
+/// where given, and the lights' intensity set by --light-intensity. Throws usage_error naming
+/// the option when the scene cannot take it (a light index it does not have, a camera looking
+/// along its up vector, --light without a light).
+void apply_poses(const common_options& options, camera& view, std::vector<scene_light>& lights);
+/// --lights' text: nullopt for all, the indices otherwise (none: empty); `problem` says what is
+/// wrong with a bad text (nullopt then too).
+std::optional<std::vector<std::size_t>> parse_light_choice(const std::string& text, std::string& problem);
 /// The same for a pipeline that built its own scene (final gathering).
 void apply_poses(const common_options& options, pipeline& target);
 

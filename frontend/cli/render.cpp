@@ -94,7 +94,8 @@ int render_sequence(const session& io, const render_state& s, const technique_se
     throw error(s.poses + ": " + std::to_string(frames.size()) + " frames of " + std::to_string(first.width) + "x" + std::to_string(first.height) +
                 " would hold more than 4 GiB until they are written; split the pose file");
   camera view = drawn->current_camera();
-  scene_light light = drawn->current_light();
+  // A pose file's --light moves the first light, as --light does.
+  std::vector<scene_light> lights = drawn->current_lights();
   double total_ms = 0.0;
   progress_settings reporting = progress_on_stderr();
   const std::string deadline_name = "--max-seconds " + format_number(static_cast<float>(s.max_seconds));
@@ -114,8 +115,9 @@ int render_sequence(const session& io, const render_state& s, const technique_se
       drawn->set_camera(view);
     }
     if (frame.light) {
-      apply_pose(*frame.light, light, where + ": --light");
-      drawn->set_light(light);
+      if (lights.empty()) throw error(where + ": --light: the scene has no light to place");
+      apply_pose(*frame.light, lights.front(), where + ": --light");
+      drawn->set_light(0, lights.front());
     }
     drawn->draw_next();
     for (const pass_time& pass : drawn->collect_pass_times()) total_ms += pass.milliseconds;

@@ -74,7 +74,7 @@ int run_view(const session& io, const view_state& s) {
       std::unique_ptr<scene> none;
       const std::unique_ptr<pipeline> posed = make_posed_pipeline(shaders, o.common, *state.settings, none);
       state.view = posed->current_camera();
-      state.light = posed->current_light();
+      state.lights = posed->current_lights();
     }
   return run_viewer(window, shaders, std::move(options), s.frames, s.frames > 0 && !s.screenshot.empty(), io.out);
 }

@@ -27,17 +27,29 @@ glm::vec3 direct_irradiance(const ray_scene& rays, const scene_light& light, con
     if (e == glm::vec3(0.0f)) return e;
     return rays.occluded(x + n * 1e-4f, light.spot.position) ? glm::vec3(0.0f) : e;
   }
+  if (light.kind == light_kind::point) {
+    const glm::vec3 e = point_light_irradiance(x, n, light.point, irradiance);
+    if (e == glm::vec3(0.0f)) return e;
+    return rays.occluded(x + n * 1e-4f, light.point.position) ? glm::vec3(0.0f) : e;
+  }
   const glm::vec3 e = directional_light_irradiance(n, light.directional);
   if (e == glm::vec3(0.0f)) return e;
   return rays.occluded(x + n * 1e-4f, x - light.directional.direction * 100.0f) ? glm::vec3(0.0f) : e;
 }
 
-glm::vec3 one_bounce_irradiance(const ray_scene& rays, const scene_light& light, const irradiance_settings<float>& irradiance, const glm::vec3& x,
-                                const glm::vec3& n, int samples, std::uint32_t seed, std::uint32_t key) {
-  return one_bounce_irradiance(rays, rays, light, irradiance, x, n, samples, seed, key);
+glm::vec3 direct_irradiance(const ray_scene& rays, const std::vector<scene_light>& lights, const irradiance_settings<float>& irradiance,
+                            const glm::vec3& x, const glm::vec3& n) {
+  glm::vec3 sum(0.0f);
+  for (const scene_light& light : lights) sum += direct_irradiance(rays, light, irradiance, x, n);
+  return sum;
 }
 
-glm::vec3 one_bounce_irradiance(const ray_scene& bounce_rays, const ray_scene& light_rays, const scene_light& light,
+glm::vec3 one_bounce_irradiance(const ray_scene& rays, const std::vector<scene_light>& lights, const irradiance_settings<float>& irradiance, const glm::vec3& x,
+                                const glm::vec3& n, int samples, std::uint32_t seed, std::uint32_t key) {
+  return one_bounce_irradiance(rays, rays, lights, irradiance, x, n, samples, seed, key);
+}
+
+glm::vec3 one_bounce_irradiance(const ray_scene& bounce_rays, const ray_scene& light_rays, const std::vector<scene_light>& lights,
                                 const irradiance_settings<float>& irradiance, const glm::vec3& x, const glm::vec3& n, int samples,
                                 std::uint32_t seed, std::uint32_t key) {
   // Cosine-weighted directions about n: the estimator of the irradiance integral is pi times the
@@ -53,7 +65,7 @@ glm::vec3 one_bounce_irradiance(const ray_scene& bounce_rays, const ray_scene& l
     const glm::vec3 direction = glm::normalize(u * (radius * std::cos(angle)) + v * (radius * std::sin(angle)) + n * std::sqrt(std::max(0.0f, 1.0f - r1)));
     const ray_scene::hit y = bounce_rays.intersect(x + n * 1e-4f, direction);
     if (!y.found || glm::dot(y.normal, direction) >= 0.0f) continue;  // nothing, or the back of a surface
-    sum += diffuse_radiance(y.albedo, direct_irradiance(light_rays, light, irradiance, y.position, y.normal), 1.0f, glm::vec3(0.0f));
+    sum += diffuse_radiance(y.albedo, direct_irradiance(light_rays, lights, irradiance, y.position, y.normal), 1.0f, glm::vec3(0.0f));
   }
   return sum * (3.14159265358979323846f / static_cast<float>(std::max(samples, 1)));
 }
@@ -120,8 +132,8 @@ std::optional<one_bounce_pixel> trace_one_bounce_pixel(const ray_scene& rays, co
   // with reversed faces would read as a technique's missing light.
   const glm::vec3& n = hit.normal;
   const std::uint32_t key = static_cast<std::uint32_t>(y * width + x);
-  const glm::vec3 direct = direct_irradiance(rays, source.light, irradiance, hit.position, n);
-  const glm::vec3 bounce = samples > 0 ? one_bounce_irradiance(rays, source.light, irradiance, hit.position, n, samples, seed, key) : glm::vec3(0.0f);
+  const glm::vec3 direct = direct_irradiance(rays, source.lights, irradiance, hit.position, n);
+  const glm::vec3 bounce = samples > 0 ? one_bounce_irradiance(rays, source.lights, irradiance, hit.position, n, samples, seed, key) : glm::vec3(0.0f);
   return one_bounce_pixel{diffuse_radiance(hit.albedo, direct, 1.0f, bounce), bounce, glm::dot(hit.normal, ray.direction) > 0.0f};
 }
 

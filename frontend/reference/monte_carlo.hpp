@@ -18,19 +18,23 @@
 
 namespace vplkit {
 
-/// Direct irradiance at (x, n) from the scene's light, with an occlusion ray.
+/// Direct irradiance at (x, n) from one light, with an occlusion ray (a spot, a point light: to
+/// its position; a sun: 100 units against its direction).
 glm::vec3 direct_irradiance(const ray_scene& rays, const scene_light& light, const irradiance_settings<float>& irradiance,
                             const glm::vec3& x, const glm::vec3& n);
+/// The sum over the lights: light adds linearly, so several lights are the sum of each alone.
+glm::vec3 direct_irradiance(const ray_scene& rays, const std::vector<scene_light>& lights, const irradiance_settings<float>& irradiance,
+                            const glm::vec3& x, const glm::vec3& n);
 
-/// One diffuse bounce of direct light at (x, n): the irradiance from every surface the light
-/// reaches, estimated with `samples` cosine-weighted rays; deterministic for (seed, key).
-glm::vec3 one_bounce_irradiance(const ray_scene& rays, const scene_light& light, const irradiance_settings<float>& irradiance,
+/// One diffuse bounce of direct light at (x, n): the irradiance from every surface the lights
+/// reach, estimated with `samples` cosine-weighted rays; deterministic for (seed, key).
+glm::vec3 one_bounce_irradiance(const ray_scene& rays, const std::vector<scene_light>& lights, const irradiance_settings<float>& irradiance,
                                 const glm::vec3& x, const glm::vec3& n, int samples, std::uint32_t seed, std::uint32_t key);
 
 /// The same with separate scenes for the bounce rays (`bounce_rays`: what blocks the view of the
 /// environment, e.g. the environment plus a dynamic object, for self-shadowing) and for the
 /// direct light of the surfaces they reach (`light_rays`).
-glm::vec3 one_bounce_irradiance(const ray_scene& bounce_rays, const ray_scene& light_rays, const scene_light& light,
+glm::vec3 one_bounce_irradiance(const ray_scene& bounce_rays, const ray_scene& light_rays, const std::vector<scene_light>& lights,
                                 const irradiance_settings<float>& irradiance, const glm::vec3& x, const glm::vec3& n, int samples,
                                 std::uint32_t seed, std::uint32_t key);
 

@@ -163,8 +163,8 @@ frame_quality scene_references::measure(pipeline& drawn, const technique_setting
         const image indirect = gathering->indirect_output().read_image();
         const final_gather_scene& source = gathering->source();
         const ray_scene room(source.room);
-        scene_light light;
-        light.spot = source.light;
+        std::vector<scene_light> lights(1);
+        lights[0].spot = source.light;
         const image& positions = buffers.gbuffer[0];
         image reference(positions.width, positions.height), second(positions.width, positions.height), mask(positions.width, positions.height);
         const irradiance_settings<float> irradiance = gathering->settings().irradiance;
@@ -173,10 +173,10 @@ frame_quality scene_references::measure(pipeline& drawn, const technique_setting
           if (positions.texels[k].w < 1.5f) return;  // not the object
           const glm::vec3 p(positions.texels[k]), n(buffers.gbuffer[1].texels[k]);
           const glm::vec3 e =
-              one_bounce_irradiance(room, light, irradiance, p + n * 1e-3f, n, options_.samples, options_.seed, static_cast<std::uint32_t>(i));
+              one_bounce_irradiance(room, lights, irradiance, p + n * 1e-3f, n, options_.samples, options_.seed, static_cast<std::uint32_t>(i));
           // A second, independent estimate (seed + 1) for the reference's noise.
           const glm::vec3 f =
-              one_bounce_irradiance(room, light, irradiance, p + n * 1e-3f, n, options_.samples, options_.seed + 1u, static_cast<std::uint32_t>(i));
+              one_bounce_irradiance(room, lights, irradiance, p + n * 1e-3f, n, options_.samples, options_.seed + 1u, static_cast<std::uint32_t>(i));
           reference.texels[k] = glm::vec4(e, 1.0f);
           second.texels[k] = glm::vec4(f, 1.0f);
           mask.texels[k] = glm::vec4(1.0f);

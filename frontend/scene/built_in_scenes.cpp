@@ -47,8 +47,7 @@ scene make_cornell_box() {
   add_cornell_room(box.geometry);
   add_box(box.geometry, {-0.33f, 0.6f, -0.3f}, {0.58f, 1.2f, 0.58f}, 18.0f, white);   // tall block
   add_box(box.geometry, {0.36f, 0.3f, 0.36f}, {0.58f, 0.6f, 0.58f}, -17.0f, white);   // short block
-  box.light.kind = light_kind::spot;
-  box.light.spot = ceiling_spot();
+  box.lights.push_back(scene_light{light_kind::spot, ceiling_spot(), {}, {}});
   return box;
 }
 
@@ -62,9 +61,10 @@ scene make_indirect_shadow_scene() {
   s.view.position = {1.2f, 2.6f, 4.2f};
   s.view.target = {-0.3f, 0.3f, 0.0f};
   s.view.vertical_fov_degrees = 45.0f;
-  s.light.kind = light_kind::directional;
-  s.light.directional.direction = glm::normalize(glm::vec3(-1.0f, -0.45f, 0.0f));
-  s.light.directional.irradiance = glm::vec3(3.0f);
+  scene_light& light = s.lights.emplace_back();
+  light.kind = light_kind::directional;
+  light.directional.direction = glm::normalize(glm::vec3(-1.0f, -0.45f, 0.0f));
+  light.directional.irradiance = glm::vec3(3.0f);
   return s;
 }
 
@@ -77,8 +77,9 @@ scene make_instanced_scene() {
       const glm::vec3 centre(-0.9f + 0.12f * static_cast<float>(i), 0.05f, -0.9f + 0.12f * static_cast<float>(j));
       add_sphere(s.geometry, centre, 0.05f, 16, 32, (i + j) % 2 == 0 ? white : glm::vec3(0.2f, 0.3f, 0.7f));
     }
-  s.light.kind = light_kind::spot;
-  s.light.spot = ceiling_spot();
+  scene_light& light = s.lights.emplace_back();
+  light.kind = light_kind::spot;
+  light.spot = ceiling_spot();
   return s;
 }
 
@@ -91,16 +92,17 @@ scene make_boxes_scene() {
   s.view.position = {0.0f, 1.6f, 3.2f};
   s.view.target = {0.0f, 0.2f, 0.0f};
   s.view.vertical_fov_degrees = 45.0f;
-  s.light.kind = light_kind::spot;
-  s.light.spot.position = {0.6f, 2.2f, 0.8f};
-  s.light.spot.direction = glm::normalize(glm::vec3(-0.6f, -2.2f, -0.8f));
+  scene_light& light = s.lights.emplace_back();
+  light.kind = light_kind::spot;
+  light.spot.position = {0.6f, 2.2f, 0.8f};
+  light.spot.direction = glm::normalize(glm::vec3(-0.6f, -2.2f, -0.8f));
   // The thesis gives no intensity. Light Wave's indirect light does not scale with the light
   // (Eq. 4.5 has no flux), so the intensity sets the share of direct light in the image; 1 puts
   // "direct lighting only" at 85.7 % similar to the default (1280 x 720), near the thesis's
   // 84.4 % (Table 5.9), the one number used to choose it.
-  s.light.spot.intensity = glm::vec3(1.0f);
-  s.light.spot.cos_inner = std::cos(glm::radians(35.0f));
-  s.light.spot.cos_outer = std::cos(glm::radians(50.0f));
+  light.spot.intensity = glm::vec3(1.0f);
+  light.spot.cos_inner = std::cos(glm::radians(35.0f));
+  light.spot.cos_outer = std::cos(glm::radians(50.0f));
   return s;
 }
 
@@ -114,12 +116,13 @@ scene make_occluder_scene(bool dark_panel) {
   s.view.position = {1.7f, 1.6f, 2.7f};
   s.view.target = {-0.7f, 0.3f, 0.0f};
   s.view.vertical_fov_degrees = 45.0f;
-  s.light.kind = light_kind::spot;
-  s.light.spot.position = {1.2f, 1.7f, 0.0f};
-  s.light.spot.direction = glm::normalize(glm::vec3(-1.5f, 0.6f, 0.0f) - s.light.spot.position);
-  s.light.spot.intensity = glm::vec3(9.0f);
-  s.light.spot.cos_inner = std::cos(glm::radians(35.0f));
-  s.light.spot.cos_outer = std::cos(glm::radians(50.0f));
+  scene_light& light = s.lights.emplace_back();
+  light.kind = light_kind::spot;
+  light.spot.position = {1.2f, 1.7f, 0.0f};
+  light.spot.direction = glm::normalize(glm::vec3(-1.5f, 0.6f, 0.0f) - light.spot.position);
+  light.spot.intensity = glm::vec3(9.0f);
+  light.spot.cos_inner = std::cos(glm::radians(35.0f));
+  light.spot.cos_outer = std::cos(glm::radians(50.0f));
   return s;
 }
 
@@ -213,9 +216,10 @@ scene make_atrium_scene(int tessellation) {
   s.view.vertical_fov_degrees = 60.0f;
   s.view.near_plane = 0.05f;
   s.view.far_plane = 40.0f;
-  s.light.kind = light_kind::directional;
-  s.light.directional.direction = glm::normalize(glm::vec3(0.25f, -1.0f, -0.35f));
-  s.light.directional.irradiance = glm::vec3(3.0f);
+  scene_light& light = s.lights.emplace_back();
+  light.kind = light_kind::directional;
+  light.directional.direction = glm::normalize(glm::vec3(0.25f, -1.0f, -0.35f));
+  light.directional.irradiance = glm::vec3(3.0f);
   return s;
 }
 
@@ -249,12 +253,13 @@ scene make_teapot_scene(int copies) {
   s.view.position = {0.0f, 1.4f, copies == 1 ? 2.0f : 3.4f};
   s.view.target = {0.0f, 0.2f, 0.0f};
   s.view.vertical_fov_degrees = 45.0f;
-  s.light.kind = light_kind::spot;
-  s.light.spot.position = {0.7f, 2.4f, 0.9f};
-  s.light.spot.direction = glm::normalize(glm::vec3(-0.7f, -2.4f, -0.9f));
-  s.light.spot.intensity = glm::vec3(8.0f);
-  s.light.spot.cos_inner = std::cos(glm::radians(40.0f));
-  s.light.spot.cos_outer = std::cos(glm::radians(55.0f));
+  scene_light& light = s.lights.emplace_back();
+  light.kind = light_kind::spot;
+  light.spot.position = {0.7f, 2.4f, 0.9f};
+  light.spot.direction = glm::normalize(glm::vec3(-0.7f, -2.4f, -0.9f));
+  light.spot.intensity = glm::vec3(8.0f);
+  light.spot.cos_inner = std::cos(glm::radians(40.0f));
+  light.spot.cos_outer = std::cos(glm::radians(55.0f));
   return s;
 }
 

@@ -284,8 +284,7 @@ scene frame_mesh(std::string name, mesh geometry, framing_needs needs) {
       const float free = free_distance(rays, eye_level, glm::normalize(towards), glm::length(towards) * 2.0f);
       if (free < glm::length(towards)) light_position = eye_level + glm::normalize(towards) * (0.8f * free);
       const float distance = glm::length(target - light_position);
-      s.light.kind = light_kind::spot;
-      s.light.spot = aimed_spot(light_position, target, 1.5f * distance * distance, 50.0f, 70.0f);
+      s.lights = {scene_light{light_kind::spot, aimed_spot(light_position, target, 1.5f * distance * distance, 50.0f, 70.0f), {}, {}}};
     }
     how = "a closed room (" + percent(measured.facing_fraction) + " of the rays from " + format_point(o) +
           " meet a surface facing it): " + std::string(needs.camera ? "the camera" : "") + (needs.camera && needs.light ? " and " : "") +
@@ -324,8 +323,7 @@ scene frame_mesh(std::string name, mesh geometry, framing_needs needs) {
       const glm::vec3 light_position = c + light_from * (2.8f * radius);
       const glm::vec3 aim(c.x, floor_y + 0.25f * (box.maximum.y - floor_y), c.z);
       const float d = glm::length(aim - light_position);
-      s.light.kind = light_kind::spot;
-      s.light.spot = aimed_spot(light_position, aim, 0.9f * d * d, 35.0f, 50.0f);
+      s.lights = {scene_light{light_kind::spot, aimed_spot(light_position, aim, 0.9f * d * d, 35.0f, 50.0f), {}, {}}};
     }
     how = "an object or an open scene (" + percent(at_centre.facing_fraction) + " of the rays from its centre meet a surface facing it): " +
           std::string(needs.camera ? "a raised three-quarter view" : "") + (needs.camera && needs.light ? ", " : "") +
@@ -335,7 +333,7 @@ scene frame_mesh(std::string name, mesh geometry, framing_needs needs) {
   if (needs.camera || needs.light) {
     std::string arguments;
     if (needs.camera) arguments += "--camera " + format_pose(pose_of(s.view));
-    if (needs.light) arguments += std::string(arguments.empty() ? "" : " ") + "--light " + format_pose(pose_of(s.light));
+    if (needs.light) arguments += std::string(arguments.empty() ? "" : " ") + "--light " + format_pose(pose_of(s.lights.front()));
     s.notes.push_back("scene " + s.name + ": no " + (needs.camera && needs.light ? "camera or light" : needs.camera ? "camera" : "light") +
                       " of its own; framed as " + how + ": " + arguments);
   }

@@ -1,5 +1,5 @@
-// The glTF reader: the node tree (depth first, with an explicit stack), the first camera and light
-// met, and a note per feature the file has and vplkit does not read.
+// The glTF reader: the node tree (depth first, with an explicit stack), the first camera met,
+// every light in the order met, and a note per feature the file has and vplkit does not read.
 #include "frontend/scene/gltf_reader.hpp"
 
 #include <algorithm>
@@ -31,9 +31,9 @@ scene reader::read() {
   if (!library_.materials.empty()) geometry_.materials = std::make_shared<const material_library>(std::move(library_));
   framing_needs needs;
   needs.camera = !camera_;
-  needs.light = !light_;
+  needs.light = lights_.empty();
   scene framed = frame_mesh(name_stem(), std::move(geometry_), needs);
-  if (light_) framed.light = *light_;
+  if (!lights_.empty()) framed.lights = std::move(lights_);
   if (camera_) framed.view = *camera_;
   framed.name = name_stem();
   framed.notes.insert(framed.notes.begin(), notes_.begin(), notes_.end());
@@ -56,12 +56,8 @@ void reader::note_model_features() {
       note("extension " + extension, "what it adds is left out");
   if (!model_.animations.empty()) note("animations", "the scene is drawn at rest");
   if (!model_.skins.empty()) note("skins", "skinned meshes are drawn in their bind pose");
-  int spots_and_suns = 0;
-  for (const tinygltf::Light& light : model_.lights) {
-    if (light.type == "point") note("point lights", "vplkit's primary light is one spot light or one sun; a file with only point lights is framed with a spot light");
-    if (light.type == "spot" || light.type == "directional") ++spots_and_suns;
-  }
-  if (spots_and_suns > 1) note("lights after the first", "vplkit renders one primary light: the first spot or directional light met in the node tree");
+  for (const tinygltf::Light& light : model_.lights)
+    if (light.range > 0.0) note("light range", "lights fall off with the inverse square of the distance, without a cut-off");
   for (const tinygltf::Camera& source : model_.cameras)
     if (source.type != "perspective") note("orthographic cameras", "the first perspective camera is used, else a framing camera");
   for (const tinygltf::Material& material : model_.materials) {
@@ -132,8 +128,8 @@ glm::dmat4 reader::local_transform(const tinygltf::Node& node, int index) const 
   return m;
 }
 
-// Depth first, children in their order (the first camera and light met are the same as a
-// recursive walk's), with an explicit stack: a chain of 20,000 nodes is as easy as a flat list.
+// Depth first, children in their order (the first camera met and the lights' order are the same as
+// a recursive walk's), with an explicit stack: a chain of 20,000 nodes is as easy as a flat list.
 void reader::walk(const std::vector<int>& roots) {
   struct pending {
     int index;
@@ -154,10 +150,8 @@ void reader::walk(const std::vector<int>& roots) {
       if (!finite(glm::dvec3(world[k])) || !std::isfinite(world[k][3])) fail("node " + std::to_string(index) + ": its world transform is not finite");
     if (node.mesh >= 0) add_mesh(node.mesh, world);
     if (node.camera >= 0 && !camera_) read_camera(node.camera, world);
-    if (!light_) {
-      const auto found = node.extensions.find("KHR_lights_punctual");
-      if (found != node.extensions.end() && found->second.Has("light")) read_light(found->second.Get("light").GetNumberAsInt(), world);
-    }
+    const auto found = node.extensions.find("KHR_lights_punctual");
+    if (found != node.extensions.end() && found->second.Has("light")) read_light(found->second.Get("light").GetNumberAsInt(), world);
     for (auto child = node.children.rbegin(); child != node.children.rend(); ++child) stack.push_back({*child, world});
   }
 }
@@ -211,10 +205,14 @@ void reader::read_light(int index, const glm::dmat4& world) {
     light.directional.direction = glm::vec3(direction);
     light.directional.irradiance = glm::vec3(power);
     if (const setting_problem problem = validate(light.directional)) fail(where + ": " + problem.message());
+  } else if (source.type == "point") {
+    light.kind = light_kind::point;
+    light.point.position = glm::vec3(glm::dvec3(world[3]));
+    light.point.intensity = glm::vec3(power);
   } else {
-    return;  // point lights: not read
+    fail(where + ": unknown type '" + source.type.substr(0, 40) + "' (spot, directional or point)");
   }
-  light_ = light;
+  lights_.push_back(light);
 }
 
 }  // namespace vplkit::gltf_detail

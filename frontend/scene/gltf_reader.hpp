@@ -90,7 +90,7 @@ class reader {
 
   glm::dmat4 local_transform(const tinygltf::Node& node, int index) const;
 
-  // Depth first, children in their order (the first camera and light met are the same as a
+  // Depth first, children in their order (the first camera met and the lights' order are the same as a
   // recursive walk's), with an explicit stack: a chain of 20,000 nodes is as easy as a flat list.
   void walk(const std::vector<int>& roots);
 
@@ -172,7 +172,7 @@ class reader {
   texture_budget texture_budget_{limits_.textures.max_scene_bytes, "gltf_limits::textures.max_scene_bytes"};
   std::vector<std::string> noted_, notes_;
   std::optional<camera> camera_;
-  std::optional<scene_light> light_;
+  std::vector<scene_light> lights_;  ///< in the order met
 };
 
 }  // namespace vplkit::gltf_detail

@@ -19,19 +19,21 @@
 //   camera    the first perspective camera node met (depth first): it looks down its -Z with
 //             +Y up, yfov is the vertical field of view, znear/zfar the planes (zfar absent:
 //             1000 x znear). Orthographic cameras are not read.
-//   light     the first KHR_lights_punctual spot or directional light node met, shining down
-//             its -Z. glTF states intensity photometrically (cd for a spot, lux for a sun);
-//             vplkit's lights are radiometric and unit-free, so intensity x color is read as the
-//             spot's radiant intensity (W/sr) and the sun's irradiance (W/m^2), one to one
+//   lights    every KHR_lights_punctual light node (spot, directional, point), in the order met
+//             depth first; spots and suns shine down their node's -Z. glTF states intensity
+//             photometrically (cd for a spot or point light, lux for a sun); vplkit's lights are
+//             radiometric and unit-free, so intensity x color is read as the radiant intensity
+//             (W/sr) of a spot or point light and the sun's irradiance (W/m^2), one to one
 //             (write_gltf writes the same numbers back). Cone angles become cos_inner/cos_outer.
-//             Point lights are not read.
+//             `range` is not read (inverse-square falloff without a cut-off). A file with more
+//             than max_scene_lights lights reads; check_scene refuses it until some are chosen.
 // A file without a light or a camera gets them from frame_mesh (a room is lit and seen from
 // inside; an object or open scene gets a three-quarter view, a spot light and a floor, the floor
 // only when the light is placed too); what was placed is a note of the scene.
 // What the file has and vplkit does not read is named once per feature in the scene's notes:
 // other texture slots (normal, occlusion, emissive, metallic-roughness), emissive factors,
-// alphaMode BLEND, vertex colours, morph targets, skins, animations, point lights, lights after
-// the first, orthographic cameras, points and lines, material extensions, and every extension
+// alphaMode BLEND, vertex colours, morph targets, skins, animations, light ranges, orthographic
+// cameras, points and lines, material extensions, and every extension
 // the file uses or requires other than KHR_lights_punctual, KHR_texture_transform and
 // KHR_draco_mesh_compression.
 //

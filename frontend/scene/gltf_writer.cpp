@@ -1,5 +1,5 @@
 // Writing a scene as glTF 2.0 text (export-scene): one mesh with a primitive per albedo, a
-// perspective camera node and a KHR_lights_punctual light node, the buffer embedded.
+// perspective camera node and a KHR_lights_punctual node per light, the buffer embedded.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -137,31 +137,41 @@ std::string gltf_text(const scene& source) {
     light.intensity = peak;
     light.color = peak > 0.0f ? std::vector<double>{power.r / peak, power.g / peak, power.b / peak} : std::vector<double>{1.0, 1.0, 1.0};
   };
-  tinygltf::Light out_light;
-  tinygltf::Node light_node;
-  light_node.name = "light";
-  if (source.light.kind == light_kind::spot) {
-    const spot_light<float>& spot = source.light.spot;
-    out_light.type = "spot";
-    set_power(out_light, spot.intensity);
-    out_light.spot.innerConeAngle = std::acos(static_cast<double>(spot.cos_inner));
-    out_light.spot.outerConeAngle = std::acos(static_cast<double>(spot.cos_outer));
-    pose(light_node, spot.position, spot.direction, glm::vec3(0, 1, 0));
-  } else {
-    const directional_light<float>& sun = source.light.directional;
-    out_light.type = "directional";
-    set_power(out_light, sun.irradiance);
-    pose(light_node, glm::vec3(0.0f), sun.direction, glm::vec3(0, 1, 0));
+  // Every light, in the scene's order, each on its own node after the mesh and camera nodes.
+  std::vector<int> roots = {0, 1};
+  for (std::size_t k = 0; k < source.lights.size(); ++k) {
+    const scene_light& light = source.lights[k];
+    tinygltf::Light out_light;
+    tinygltf::Node light_node;
+    light_node.name = "light " + std::to_string(k);
+    if (light.kind == light_kind::spot) {
+      const spot_light<float>& spot = light.spot;
+      out_light.type = "spot";
+      set_power(out_light, spot.intensity);
+      out_light.spot.innerConeAngle = std::acos(static_cast<double>(spot.cos_inner));
+      out_light.spot.outerConeAngle = std::acos(static_cast<double>(spot.cos_outer));
+      pose(light_node, spot.position, spot.direction, glm::vec3(0, 1, 0));
+    } else if (light.kind == light_kind::point) {
+      out_light.type = "point";
+      set_power(out_light, light.point.intensity);
+      pose(light_node, light.point.position, glm::vec3(0, 0, -1), glm::vec3(0, 1, 0));
+    } else {
+      const directional_light<float>& sun = light.directional;
+      out_light.type = "directional";
+      set_power(out_light, sun.irradiance);
+      pose(light_node, glm::vec3(0.0f), sun.direction, glm::vec3(0, 1, 0));
+    }
+    model.lights.push_back(out_light);
+    tinygltf::Value::Object reference;
+    reference["light"] = tinygltf::Value(static_cast<int>(k));
+    light_node.extensions["KHR_lights_punctual"] = tinygltf::Value(reference);
+    roots.push_back(static_cast<int>(model.nodes.size()));
+    model.nodes.push_back(light_node);
   }
-  model.lights.push_back(out_light);
-  tinygltf::Value::Object reference;
-  reference["light"] = tinygltf::Value(0);
-  light_node.extensions["KHR_lights_punctual"] = tinygltf::Value(reference);
-  model.nodes.push_back(light_node);
 
   tinygltf::Scene out_scene;
   out_scene.name = source.name;
-  out_scene.nodes = {0, 1, 2};
+  out_scene.nodes = roots;
   model.scenes.push_back(out_scene);
   model.defaultScene = 0;
 

@@ -27,6 +27,8 @@ pose pose_of(const camera& view) { return {view.position, view.target}; }
 
 pose pose_of(const scene_light& light) {
   if (light.kind == light_kind::spot) return {light.spot.position, light.spot.position + light.spot.direction};
+  // A point light shines everywhere: its pose's target is one unit below it, for the text only.
+  if (light.kind == light_kind::point) return {light.point.position, light.point.position - glm::vec3(0.0f, 1.0f, 0.0f)};
   return {-light.directional.direction, glm::vec3(0.0f)};
 }
 
@@ -46,6 +48,7 @@ void apply_pose(const pose& where, spot_light<float>& light, const std::string& 
 
 void apply_pose(const pose& where, scene_light& light, const std::string& owner) {
   if (light.kind == light_kind::spot) apply_pose(where, light.spot, owner);
+  else if (light.kind == light_kind::point) light.point.position = (checked_direction(where, owner), where.position);
   else light.directional.direction = checked_direction(where, owner);
 }
 

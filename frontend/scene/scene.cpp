@@ -136,11 +136,34 @@ bool surface_cut_out(const mesh& geometry, std::size_t triangle, glm::vec2 baryc
   return material && material->alpha_mask && surface_albedo_alpha(geometry, triangle, barycentric, lod).a < material->alpha_cutoff;
 }
 
-void set_light_intensity(scene_light& light, float intensity) {
+namespace {
+
+glm::vec3& power_of(scene_light& light) {
+  return light.kind == light_kind::spot ? light.spot.intensity : light.kind == light_kind::point ? light.point.intensity : light.directional.irradiance;
+}
+
+void check_intensity(float intensity) {
   if (!(intensity >= 0.0f && std::isfinite(intensity))) throw error("the light intensity must be finite and >= 0, got " + std::to_string(intensity));
-  glm::vec3& power = light.kind == light_kind::spot ? light.spot.intensity : light.directional.irradiance;
+}
+
+}  // namespace
+
+glm::vec3 light_power(const scene_light& light) {
+  return light.kind == light_kind::spot ? light.spot.intensity : light.kind == light_kind::point ? light.point.intensity : light.directional.irradiance;
+}
+
+void set_light_intensity(scene_light& light, float intensity) {
+  check_intensity(intensity);
+  glm::vec3& power = power_of(light);
   const float peak = std::max({power.r, power.g, power.b});
   power = (peak > 0.0f ? power / peak : glm::vec3(1.0f)) * intensity;
+}
+
+void scale_light_intensities(std::vector<scene_light>& lights, float intensity) {
+  check_intensity(intensity);
+  float peak = 0.0f;
+  for (scene_light& light : lights) peak = std::max({peak, power_of(light).r, power_of(light).g, power_of(light).b});
+  for (scene_light& light : lights) power_of(light) = peak > 0.0f ? power_of(light) / peak * intensity : glm::vec3(intensity);  // as set_light_intensity rounds
 }
 
 void check_camera(const camera& view, const std::string& owner) {
@@ -162,6 +185,12 @@ void check_light(const scene_light& light, const std::string& owner) {
     if (glm::any(glm::greaterThan(glm::abs(spot.intensity), glm::vec3(max_light_power))))
       throw error(owner + ": the spot light's intensity is beyond " + power_limit_text() + " (vplkit's outputs must stay finite)");
     if (const setting_problem problem = validate(spot)) throw error(owner + ": " + problem.message());
+  } else if (light.kind == light_kind::point) {
+    const point_light<float>& bulb = light.point;
+    if (!finite(bulb.position) || !finite(bulb.intensity)) throw error(owner + ": the point light has a non-finite value");
+    if (glm::any(glm::greaterThan(glm::abs(bulb.intensity), glm::vec3(max_light_power))))
+      throw error(owner + ": the point light's intensity is beyond " + power_limit_text() + " (vplkit's outputs must stay finite)");
+    if (const setting_problem problem = validate(bulb)) throw error(owner + ": " + problem.message());
   } else {
     const directional_light<float>& sun = light.directional;
     if (!finite(sun.direction) || !finite(sun.irradiance)) throw error(owner + ": the directional light has a non-finite value");
@@ -171,10 +200,33 @@ void check_light(const scene_light& light, const std::string& owner) {
   }
 }
 
+const char* light_kind_name(light_kind kind) {
+  switch (kind) {
+    case light_kind::spot: return "spot";
+    case light_kind::directional: return "directional";
+    case light_kind::point: return "point";
+  }
+  return "unknown";
+}
+
+const scene_light& single_light(const scene& s, const std::string& what) {
+  if (s.lights.size() != 1)
+    throw error("scene " + s.name + ": " + what + " draws one light, the scene has " + std::to_string(s.lights.size()) +
+                " (choose one with --lights k)");
+  return s.lights.front();
+}
+
+void check_lights(const std::vector<scene_light>& lights, const std::string& owner) {
+  if (lights.size() > max_scene_lights)
+    throw error(owner + ": " + std::to_string(lights.size()) + " lights, at most " + std::to_string(max_scene_lights) +
+                " are rendered (choose some with --lights)");
+  for (std::size_t k = 0; k < lights.size(); ++k) check_light(lights[k], owner + ", light " + std::to_string(k));
+}
+
 void check_scene(const scene& s) {
   check_mesh(s.geometry, "scene " + s.name);
   check_camera(s.view, "scene " + s.name);
-  check_light(s.light, "scene " + s.name);
+  check_lights(s.lights, "scene " + s.name);
 }
 
 }  // namespace vplkit

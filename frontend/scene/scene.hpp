@@ -83,19 +83,30 @@ struct camera {
   float far_plane = 50.0f;
 };
 
-enum class light_kind { spot, directional };
+enum class light_kind { spot, directional, point };
 
+/// One of a scene's lights: a spot, a sun or a point light (KHR_lights_punctual's three kinds).
 struct scene_light {
   light_kind kind = light_kind::spot;
   spot_light<float> spot;                ///< used when kind == spot
   directional_light<float> directional;  ///< used when kind == directional
+  point_light<float> point;              ///< used when kind == point
 };
+
+/// The most lights a scene may have: every technique renders each light's own RSM (six for a
+/// point light) or VPLs and shadow maps, so the cost grows linearly with them.
+inline constexpr std::size_t max_scene_lights = 8;
+
+/// "spot", "directional" or "point".
+const char* light_kind_name(light_kind kind);
 
 struct scene {
   std::string name;
   mesh geometry;
   camera view;
-  scene_light light;
+  /// The lights, at most max_scene_lights (none is allowed: a scene lit by nothing is black). The
+  /// techniques and references sum the light of each; the viewer moves one of them.
+  std::vector<scene_light> lights;
   /// One line each: what a loader met and did not read (a glTF feature, once per feature) and
   /// how frame_mesh placed a camera or light the file did not have. The command line prints them.
   std::vector<std::string> notes;
@@ -114,6 +125,10 @@ void check_materials(const mesh& geometry, const std::string& name);
 /// test; a mesh without cut-outs can be drawn by shaders without it (VPLKIT_MATERIAL_NO_ALPHA_TEST).
 bool has_alpha_cutouts(const mesh& geometry);
 
+/// The scene's light, for code that draws exactly one: throws vplkit::error naming the scene and
+/// `what` ("the RSM pipeline") when it has none or several (choose one with --lights k).
+const scene_light& single_light(const scene& s, const std::string& what);
+
 /// Throws vplkit::error starting with `owner` when the camera has a non-finite value, bad near/far
 /// planes, a field of view outside (0, 180) degrees, its target at its position or its up vector
 /// along its view direction.
@@ -122,6 +137,8 @@ void check_camera(const camera& view, const std::string& owner);
 /// beyond max_light_power, or fails its kernel's validate (a zero direction, cone angles out of
 /// order, ...).
 void check_light(const scene_light& light, const std::string& owner);
+/// check_light for each light (named "light k"), and more than max_scene_lights refused.
+void check_lights(const std::vector<scene_light>& lights, const std::string& owner);
 
 /// Throws vplkit::error naming the scene and the first bad value: check_mesh's, or a non-finite
 /// camera or light value. Loaders check their input as they read it; this is the last gate before
@@ -214,6 +231,12 @@ void add_sphere(mesh& target, glm::vec3 centre, float radius, int stacks, int sl
 /// channel becomes `intensity`, its colour kept (white for a black light). Throws vplkit::error
 /// for a negative or non-finite value.
 void set_light_intensity(scene_light& light, float intensity);
+/// The lights scaled together so that the brightest channel of the brightest light becomes
+/// `intensity`: their colours and ratios kept (one light: set_light_intensity). Lights all black
+/// each become white at `intensity`. Throws vplkit::error for a negative or non-finite value.
+void scale_light_intensities(std::vector<scene_light>& lights, float intensity);
+/// The light's power per channel: a spot's or point light's intensity (W/sr), a sun's irradiance (W/m^2).
+glm::vec3 light_power(const scene_light& light);
 
 /// What frame_mesh places: the file had no camera, no light, or neither.
 struct framing_needs {

@@ -38,12 +38,13 @@ class pipeline {
   virtual void draw_next() { draw(); }
   /// Moves the camera. Throws vplkit::error (and keeps the camera) for one the pipeline refuses.
   virtual void set_camera(const camera& view) = 0;
-  /// Moves the light. Throws vplkit::error (and keeps the light) for one the pipeline refuses:
-  /// an invalid light, or a kind the pipeline was not built for (Light Wave and final gathering
-  /// take spot lights; an RSM pipeline keeps its kind).
-  virtual void set_light(const scene_light& light) = 0;
+  /// Moves light `index` of the scene's lights. Throws vplkit::error (and keeps the light) for an
+  /// index out of range or a light the pipeline refuses: an invalid light, or another kind than
+  /// the one the pipeline was built for at that index.
+  virtual void set_light(std::size_t index, const scene_light& light) = 0;
   virtual camera current_camera() const = 0;
-  virtual scene_light current_light() const = 0;
+  /// The scene's lights as the pipeline draws them now, in the scene's order.
+  virtual std::vector<scene_light> current_lights() const = 0;
   /// Takes `settings` (of the technique it draws) in place when they change only uniforms: no
   /// program is compiled or linked and no buffer is made, and the next draw_changed() redraws
   /// with them the image a new pipeline with them would draw. Returns false, changing nothing,

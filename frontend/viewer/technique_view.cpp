@@ -21,7 +21,7 @@ const char* describe(view_layer layer) {
 }
 
 viewer_family::viewer_family(const viewer_family& other)
-    : settings(other.settings ? other.settings->clone() : nullptr), source(other.source), view(other.view), light(other.light), object(other.object) {}
+    : settings(other.settings ? other.settings->clone() : nullptr), source(other.source), view(other.view), lights(other.lights), object(other.object) {}
 
 viewer_family& viewer_family::operator=(const viewer_family& other) {
   if (this != &other) *this = viewer_family(other);
@@ -42,7 +42,8 @@ namespace {
 std::unique_ptr<pipeline> make_posed(const shader_library& shaders, const viewer_family& family, const technique_settings& settings) {
   std::unique_ptr<pipeline> made = family_of(settings.technique()).make_pipeline(shaders, family.source ? &*family.source : nullptr, settings);
   if (family.view) made->set_camera(*family.view);
-  if (family.light) made->set_light(*family.light);
+  if (family.lights)
+    for (std::size_t k = 0; k < family.lights->size(); ++k) made->set_light(k, (*family.lights)[k]);
   if (family.object) made->set_object_position(*family.object);
   return made;
 }
@@ -122,7 +123,8 @@ layer_display technique_view::display(view_layer layer) {
       without->set_technique(family_of(technique()).visibility_baseline(technique()));
       difference_ = family_of(technique()).make_pipeline(shaders_, source_, *without);
       difference_->set_camera(pipeline_->current_camera());
-      difference_->set_light(pipeline_->current_light());
+      const std::vector<scene_light> lights = pipeline_->current_lights();
+      for (std::size_t k = 0; k < lights.size(); ++k) difference_->set_light(k, lights[k]);
       difference_->draw_changed();
     }
     return {&difference_->indirect_output(), &pipeline_->indirect_output(), 1, true, 8.0f};
@@ -136,7 +138,26 @@ std::vector<pass_time> technique_view::collect_pass_times() {
 }
 
 pose technique_view::camera_pose() const { return pose_of(pipeline_->current_camera()); }
-pose technique_view::light_pose() const { return pose_of(pipeline_->current_light()); }
+std::size_t technique_view::light_count() const { return pipeline_->current_lights().size(); }
+
+void technique_view::select_light(std::size_t index) {
+  const std::size_t count = light_count();
+  if (index >= count) throw error("the scene has no light " + std::to_string(index) + " (it has " + std::to_string(count) + ")");
+  selected_light_ = index;
+}
+
+scene_light technique_view::selected_light() const {
+  const std::vector<scene_light> lights = pipeline_->current_lights();
+  if (selected_light_ >= lights.size()) throw error("the scene has no light to move");
+  return lights[selected_light_];
+}
+
+void technique_view::set_selected_light(const scene_light& light) {
+  pipeline_->set_light(selected_light_, light);
+  if (difference_) difference_->set_light(selected_light_, light);
+}
+
+pose technique_view::light_pose() const { return pose_of(selected_light()); }
 
 void technique_view::set_camera_pose(const pose& where) {
   camera view = pipeline_->current_camera();
@@ -146,29 +167,26 @@ void technique_view::set_camera_pose(const pose& where) {
 }
 
 void technique_view::set_light_pose(const pose& where) {
-  scene_light light = pipeline_->current_light();
-  apply_pose(where, light, "light");
-  pipeline_->set_light(light);
-  if (difference_) difference_->set_light(light);
+  scene_light light = selected_light();
+  apply_pose(where, light, "light " + std::to_string(selected_light_));
+  set_selected_light(light);
 }
 
 float technique_view::light_intensity() const {
-  const scene_light light = pipeline_->current_light();
-  const glm::vec3 power = light.kind == light_kind::spot ? light.spot.intensity : light.directional.irradiance;
+  const glm::vec3 power = light_power(selected_light());
   return std::max({power.r, power.g, power.b});
 }
 
 void technique_view::set_light_intensity(float intensity) {
-  scene_light light = pipeline_->current_light();
+  scene_light light = selected_light();
   vplkit::set_light_intensity(light, intensity);
-  pipeline_->set_light(light);
-  if (difference_) difference_->set_light(light);
+  set_selected_light(light);
 }
 
 void technique_view::store_pose(viewer_scenes& scenes) const {
   viewer_family& family = scenes.of(technique());
   family.view = pipeline_->current_camera();
-  family.light = pipeline_->current_light();
+  family.lights = pipeline_->current_lights();
   if (pipeline_->has_object()) family.object = pipeline_->object_position();
 }
 

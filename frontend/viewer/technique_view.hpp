@@ -47,7 +47,7 @@ struct viewer_family {
   std::unique_ptr<technique_settings> settings;
   std::optional<scene> source;
   std::optional<camera> view;
-  std::optional<scene_light> light;
+  std::optional<std::vector<scene_light>> lights;
   std::optional<glm::vec3> object;
 
   viewer_family() = default;
@@ -80,6 +80,11 @@ class technique_view {
   std::vector<pass_time> collect_pass_times();
   pose camera_pose() const;
   pose light_pose() const;
+  /// The scene's lights: how many, and which one the light controls move (0 at first).
+  std::size_t light_count() const;
+  std::size_t selected_light_index() const { return selected_light_; }
+  /// Throws vplkit::error for an index the scene does not have.
+  void select_light(std::size_t index);
   /// Throw vplkit::error, leaving the view as it was, for a pose the pipeline refuses.
   void set_camera_pose(const pose& where);
   void set_light_pose(const pose& where);
@@ -113,6 +118,9 @@ class technique_view {
   const scene* source_;
   std::unique_ptr<pipeline> pipeline_;
   std::unique_ptr<pipeline> difference_;  ///< the same frame without visibility, built when first shown
+  std::size_t selected_light_ = 0;        ///< the light the light controls move
+  scene_light selected_light() const;
+  void set_selected_light(const scene_light& light);
 };
 
 /// The view of `technique` (any family) over `scenes`.

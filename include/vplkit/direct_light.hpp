@@ -6,12 +6,17 @@
 // cone() a smoothstep from cos_outer (0) to cos_inner (1) of the angle off the axis. The distance
 // clamp is the one of pixel_light_irradiance (irradiance_settings::min_distance).
 // Directional light:  E(x, n) = E_perpendicular * max(0, <n, -direction>).
+// Point light:  E(x, n) = I * max(0, <n, l>) / max(|p - x|, min_distance)^2, the spot without its
+// cone (KHR_lights_punctual's point light: intensity in candela, W/sr here, the same in every
+// direction).
 //
 // RSM flux (Dachsbacher and Stamminger 2005: "the flux of each pixel light is the flux of the
 // light through the pixel, times the reflectance"): a texel of a perspective RSM with half-angle
 // tangent t and W x H texels covers the solid angle (2t/W)(2t/H) cos^3(theta) around its
 // direction (theta off the axis); the spot light sends I * cone * that solid angle through it. A
 // texel of an orthographic RSM covers the area (width/W)(height/H) across the light's direction.
+// A point light's RSM is a cube of six perspective faces (tan_half_fov = 1): a face texel's flux
+// is the spot's without the cone.
 //
 // GLSL twin: shaders/lib/direct_light.glsl.
 #pragma once
@@ -108,6 +113,39 @@ glm::vec<3, T, Q> directional_light_irradiance(const glm::vec<3, T, Q>& n, const
   return light.irradiance * glm::max(T(0), -glm::dot(n, light.direction));
 }
 
+/// A point light: the same radiant intensity in every direction. GLSL twin: struct point_light.
+template <typename T>
+struct point_light {
+  glm::vec<3, T> position = glm::vec<3, T>(0);
+  /// Radiant intensity per colour channel (W/sr), in every direction.
+  glm::vec<3, T> intensity = glm::vec<3, T>(1);
+};
+
+template <typename T>
+struct settings_description<point_light<T>> {
+  using S = point_light<T>;
+  static constexpr const char* name = "point_light";
+  static constexpr bool glsl_twin = true;
+  static constexpr auto fields() {
+    return std::make_tuple(schema::field(&S::position, "position", schema::any_finite(), "scene units", "where the light is"),
+                           schema::field(&S::intensity, "intensity", schema::at_least(0.0), "W/sr", "radiant intensity per colour channel, in every direction"));
+  }
+  static setting_problem rules(const S&) { return {}; }
+};
+
+/// Irradiance at (x, n) from the point light, without visibility.
+template <typename T, glm::qualifier Q, typename S = T>
+glm::vec<3, T, Q> point_light_irradiance(const glm::vec<3, T, Q>& x, const glm::vec<3, T, Q>& n,
+                                         const point_light<T>& light,
+                                         const irradiance_settings<S>& settings = {}) {
+  const glm::vec<3, T, Q> to_light = light.position - x;
+  const T min_distance = T(settings.min_distance);
+  const T distance_squared = glm::max(glm::dot(to_light, to_light), min_distance * min_distance);
+  const glm::vec<3, T, Q> direction_to_light = to_light / std::sqrt(distance_squared);
+  const T cos_receiver = glm::max(T(0), glm::dot(n, direction_to_light));
+  return light.intensity * (cos_receiver / distance_squared);
+}
+
 /// Solid angle of the texel at normalised device coordinate `ndc` of a W x H perspective map
 /// with tangent of the half field of view `tan_half_fov` (square frustum).
 template <typename T>
@@ -129,6 +167,18 @@ glm::vec<3, T, Q> spot_light_texel_flux(const glm::vec<3, T, Q>& albedo, const g
   const T cone = spot_light_cone(light, glm::dot(light.direction, from_light));
   const T facing = glm::dot(normal, from_light) < T(0) ? T(1) : T(0);
   return albedo * light.intensity * (facing * cone * perspective_texel_solid_angle(ndc, tan_half_fov, size));
+}
+
+/// Flux reflected by the surface (position, normal) seen in a texel of one face of a point light's
+/// cube RSM (a square frustum of 90 degrees, tan_half_fov = 1): albedo * I * solid angle, and 0
+/// when the surface faces away from the light.
+template <typename T, glm::qualifier Q>
+glm::vec<3, T, Q> point_light_texel_flux(const glm::vec<3, T, Q>& albedo, const glm::vec<3, T, Q>& position,
+                                         const glm::vec<3, T, Q>& normal, const point_light<T>& light,
+                                         const glm::vec<2, T>& ndc, const glm::ivec2& size) {
+  const glm::vec<3, T, Q> from_light = position - light.position;
+  const T facing = glm::dot(normal, from_light) < T(0) ? T(1) : T(0);
+  return albedo * light.intensity * (facing * perspective_texel_solid_angle(ndc, T(1), size));
 }
 
 /// Flux reflected by the surface seen in a texel of an orthographic RSM whose texels cover

@@ -1,4 +1,4 @@
-// GLSL twin of include/vplkit/direct_light.hpp: spot and directional light irradiance, and the
+// GLSL twin of include/vplkit/direct_light.hpp: spot, directional and point light irradiance, and the
 // flux of an RSM texel.
 #ifndef VPLKIT_DIRECT_LIGHT_GLSL
 #define VPLKIT_DIRECT_LIGHT_GLSL
@@ -37,6 +37,20 @@ vec3 directional_light_irradiance(vec3 n, directional_light light) {
   return light.irradiance * max(0.0, -dot(n, light.direction));
 }
 
+struct point_light {
+  vec3 position;
+  vec3 intensity;
+};
+
+vec3 point_light_irradiance(vec3 x, vec3 n, point_light light, irradiance_settings settings) {
+  vec3 to_light = light.position - x;
+  float min_distance = settings.min_distance;
+  float distance_squared = max(dot(to_light, to_light), min_distance * min_distance);
+  vec3 direction_to_light = to_light / sqrt(distance_squared);
+  float cos_receiver = max(0.0, dot(n, direction_to_light));
+  return light.intensity * (cos_receiver / distance_squared);
+}
+
 float perspective_texel_solid_angle(vec2 ndc, float tan_half_fov, ivec2 size) {
   vec2 on_plane = ndc * tan_half_fov;
   float cos_theta = 1.0 / sqrt(1.0 + dot(on_plane, on_plane));
@@ -50,6 +64,12 @@ vec3 spot_light_texel_flux(vec3 albedo, vec3 position, vec3 normal, spot_light l
   float cone = spot_light_cone(light, dot(light.direction, from_light));
   float facing = dot(normal, from_light) < 0.0 ? 1.0 : 0.0;
   return albedo * light.intensity * (facing * cone * perspective_texel_solid_angle(ndc, tan_half_fov, size));
+}
+
+vec3 point_light_texel_flux(vec3 albedo, vec3 position, vec3 normal, point_light light, vec2 ndc, ivec2 size) {
+  vec3 from_light = position - light.position;
+  float facing = dot(normal, from_light) < 0.0 ? 1.0 : 0.0;
+  return albedo * light.intensity * (facing * perspective_texel_solid_angle(ndc, 1.0, size));
 }
 
 vec3 directional_light_texel_flux(vec3 albedo, vec3 normal, directional_light light, float texel_area) {

@@ -44,3 +44,38 @@ TEST_CASE("RSM flux: the texels of a spot light's RSM cover the frustum's solid 
   CHECK(directional_light_texel_flux(albedo, glm::dvec3(0, -1, 0), sun, 0.01).y == 0.0);
   CHECK(directional_light_irradiance(glm::dvec3(0, 1, 0), sun).z == doctest::Approx(2.0));
 }
+
+TEST_CASE("point light: the inverse-square law and cosine, the spot without its cone, a cube RSM covering the sphere") {
+  point_light<double> bulb;
+  bulb.position = {0.3, 2.0, -0.4};
+  bulb.intensity = {4.0, 2.0, 1.0};
+  // E = I cos / d^2 at a receiver 2 below, tilted by 60 degrees towards it.
+  const glm::dvec3 x(0.3, 0.0, -0.4), tilted(std::sin(glm::radians(60.0)), std::cos(glm::radians(60.0)), 0.0);
+  CHECK(point_light_irradiance(x, glm::dvec3(0, 1, 0), bulb).x == doctest::Approx(4.0 / 4.0));
+  CHECK(point_light_irradiance(x, tilted, bulb).y == doctest::Approx(2.0 * 0.5 / 4.0));
+  CHECK(point_light_irradiance(x, glm::dvec3(0, -1, 0), bulb).z == 0.0);
+  // A spot whose cone is open everywhere (cos_outer below -1) is the point light, for any receiver.
+  spot_light<double> open_spot;
+  open_spot.position = bulb.position;
+  open_spot.intensity = bulb.intensity;
+  open_spot.cos_inner = -1.5;
+  open_spot.cos_outer = -2.0;
+  for (const glm::dvec3& at : {glm::dvec3(1, 5, 2), glm::dvec3(-3, 0, 0.5), glm::dvec3(0.3, 2.005, -0.4)}) {
+    const glm::dvec3 n = glm::normalize(bulb.position - at + glm::dvec3(0.2, -0.1, 0.3));
+    CAPTURE(at.x);
+    CHECK(point_light_irradiance(at, n, bulb).x == doctest::Approx(spot_light_irradiance(at, n, open_spot).x).epsilon(1e-12));
+  }
+  // The six 90-degree faces of a cube RSM cover the sphere: their texel solid angles add up to
+  // 4 pi, and a texel's flux is albedo * I * its solid angle (0 facing away).
+  const int size = 128;
+  double face = 0.0;
+  for (int y = 0; y < size; ++y)
+    for (int x2 = 0; x2 < size; ++x2)
+      face += perspective_texel_solid_angle(glm::dvec2((x2 + 0.5) / size * 2 - 1, (y + 0.5) / size * 2 - 1), 1.0, glm::ivec2(size));
+  CHECK(6.0 * face == doctest::Approx(4.0 * 3.14159265358979).epsilon(1e-4));
+  const glm::dvec2 ndc(0.25, -0.5);
+  const double omega = perspective_texel_solid_angle(ndc, 1.0, glm::ivec2(size));
+  const glm::dvec3 below = bulb.position - glm::dvec3(0, 1, 0);
+  CHECK(point_light_texel_flux(glm::dvec3(0.5), below, glm::dvec3(0, 1, 0), bulb, ndc, glm::ivec2(size)).x == doctest::Approx(0.5 * 4.0 * omega));
+  CHECK(point_light_texel_flux(glm::dvec3(0.5), below, glm::dvec3(0, -1, 0), bulb, ndc, glm::ivec2(size)).x == 0.0);
+}

@@ -23,6 +23,7 @@ constexpr bool equal(const std::array<std::size_t, N>& a, const std::array<std::
 // bytes; an array's stride is 16; a nested struct starts and ends on 16).
 static_assert(std140_size<irradiance_settings<float>> == 16);
 static_assert(equal(std140_offsets<spot_light<float>>, std::array<std::size_t, 5>{0, 16, 32, 44, 48}));  // cos_inner in intensity's last word
+static_assert(equal(std140_offsets<point_light<float>>, std::array<std::size_t, 2>{0, 16}));
 static_assert(std140_size<spot_light<float>> == 64);
 static_assert(equal(std140_offsets<directional_light<float>>, std::array<std::size_t, 2>{0, 16}));
 static_assert(std140_size<directional_light<float>> == 32);

@@ -95,7 +95,8 @@ void final_gather_pipeline::set_camera(const camera& view) {
   view_valid_ = false;
 }
 
-void final_gather_pipeline::set_light(const scene_light& light) {
+void final_gather_pipeline::set_light(std::size_t index, const scene_light& light) {
+  if (index != 0) throw error("final gathering, object " + scene_.name + ": no light " + std::to_string(index) + " (it has 1)");
   if (light.kind != light_kind::spot) throw error("final gathering needs a spot light");
   check_light(light, "final gathering, object " + scene_.name);
   scene_.light = light.spot;
@@ -132,10 +133,10 @@ bool final_gather_pipeline::apply_settings(const technique_settings& settings) {
   return true;
 }
 
-scene_light final_gather_pipeline::current_light() const {
-  scene_light light;
-  light.spot = scene_.light;
-  return light;
+std::vector<scene_light> final_gather_pipeline::current_lights() const {
+  std::vector<scene_light> lights(1);
+  lights[0].spot = scene_.light;
+  return lights;
 }
 
 std::string final_gather_pipeline::draw_counts() const {

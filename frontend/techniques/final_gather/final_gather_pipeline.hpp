@@ -52,9 +52,9 @@ class final_gather_pipeline final : public pipeline {
   void draw_changed() override;
   void set_camera(const camera& view) override;
   /// Throws vplkit::error for a directional or an invalid light.
-  void set_light(const scene_light& light) override;
+  void set_light(std::size_t index, const scene_light& light) override;
   camera current_camera() const override { return scene_.view; }
-  scene_light current_light() const override;
+  std::vector<scene_light> current_lights() const override;
   /// In place when only min-distance changes (final_gather_pipeline.cpp says why the others need a
   /// new pipeline): the next frame redraws the cube map and the view. The object's position is a
   /// pose (set_object_position), as the camera and the light are, and is not compared.

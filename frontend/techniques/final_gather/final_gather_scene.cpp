@@ -54,13 +54,14 @@ final_gather_scene make_final_gather_scene(const std::string& object, glm::vec3 
 
 final_gather_scene make_final_gather_scene(const scene& environment, const std::string& object, glm::vec3 position, float size) {
   const std::string where = "final gathering in scene " + environment.name;
-  if (environment.light.kind != light_kind::spot)
-    throw error(where + ": its light is directional; the cube map's faces and the shading are lit by a spot light (give the scene a spot)");
+  const scene_light& light = single_light(environment, "final gathering");
+  if (light.kind != light_kind::spot)
+    throw error(where + ": its light is " + light_kind_name(light.kind) + "; the cube map's faces and the shading are lit by a spot light (give the scene a spot)");
   if (environment.geometry.indices.empty()) throw error(where + ": the scene has no triangles around the object");
   final_gather_scene s;
   s.room = environment.geometry;
   s.view = environment.view;
-  s.light = environment.light.spot;
+  s.light = light.spot;
   place_object(s, object, position, size);
   return s;
 }

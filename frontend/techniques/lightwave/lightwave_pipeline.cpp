@@ -36,8 +36,10 @@ lightwave_pipeline::lightwave_pipeline(const shader_library& shaders, const scen
                                   has_alpha_cutouts(source.geometry) ? shader_defines{} : shader_defines{{"VPLKIT_MATERIAL_NO_ALPHA_TEST", "1"}})),
       shadow_framebuffer_(generate_framebuffer()),
       target_(settings.width, settings.height, {settings.format, settings.format, settings.format, settings.format}, true) {
-  if (source.light.kind != light_kind::spot) throw error("Light Wave needs a spot light; scene " + source.name + " has a directional one");
-  if (const setting_problem problem = validate(source.light.spot)) throw error("scene " + source.name + ": " + problem.message());
+  const scene_light& primary = single_light(source, "Light Wave");
+  if (primary.kind != light_kind::spot)
+    throw error("Light Wave needs a spot light; scene " + source.name + " has a " + light_kind_name(primary.kind) + " one");
+  check_light(primary, "scene " + source.name);
   const shader_defines defines = shader_defines_of();
   load_main_programs(shaders, defines);
   // Direct light alone and the faked indirect light use no VPLs.
@@ -158,10 +160,12 @@ bool lightwave_pipeline::apply_settings(const technique_settings& settings) {
   return true;
 }
 
-void lightwave_pipeline::set_light(const scene_light& light) {
+void lightwave_pipeline::set_light(std::size_t index, const scene_light& light) {
+  if (index >= scene_.lights.size())
+    throw error("Light Wave scene " + scene_.name + ": no light " + std::to_string(index) + " (it has " + std::to_string(scene_.lights.size()) + ")");
   if (light.kind != light_kind::spot) throw error("Light Wave needs a spot light; make a new pipeline for a scene with a directional one");
   check_light(light, "Light Wave scene " + scene_.name);
-  scene_.light.spot = light.spot;
+  scene_.lights[index].spot = light.spot;
   vpls_dirty_ = shadows_dirty_ = true;
   view_valid_ = false;
 }
@@ -196,7 +200,7 @@ int lightwave_pipeline::summed_vpl_count() const {
 }
 
 void lightwave_pipeline::build_flux_vpls(const glm::mat4& light_view_projection) {
-  const spot_light<float>& light = scene_.light.spot;
+  const spot_light<float>& light = scene_.lights[0].spot;
   // What the light sees: world position (w = 1 where a surface is), normal and albedo per texel.
   surfaces_->bind();
   glEnable(GL_DEPTH_TEST);
@@ -233,7 +237,7 @@ lightwave_vpl_view view_of(const lightwave_settings& settings, const std::vector
 }  // namespace
 
 lightwave_pipeline::frame_geometry lightwave_pipeline::geometry() const {
-  const spot_light<float>& light = scene_.light.spot;
+  const spot_light<float>& light = scene_.lights[0].spot;
   const bounding_box box = bounds(scene_.geometry);
   frame_geometry g;
   g.radius = std::max(box.radius(), 1e-3f);
@@ -244,7 +248,7 @@ lightwave_pipeline::frame_geometry lightwave_pipeline::geometry() const {
 }
 
 void lightwave_pipeline::build_vpls() {
-  const spot_light<float>& light = scene_.light.spot;
+  const spot_light<float>& light = scene_.lights[0].spot;
   const bounding_box box = bounds(scene_.geometry);
   const frame_geometry g = geometry();
   float max_distance = settings_.max_distance;
@@ -300,7 +304,7 @@ void lightwave_pipeline::build_vpls() {
 }
 
 void lightwave_pipeline::build_shadow_maps() {
-  const spot_light<float>& light = scene_.light.spot;
+  const spot_light<float>& light = scene_.lights[0].spot;
   const frame_geometry g = geometry();
   const float aspect = static_cast<float>(shadow_size_.x) / static_cast<float>(shadow_size_.y);
   const lightwave_vpl_view view = view_of(settings_, vpls_, flux_vpls_);
@@ -458,7 +462,7 @@ void lightwave_pipeline::draw_main_pass() {
   glClearBufferfv(GL_COLOR, 1, unshadowed);
   set_vertex_uniforms(main_program_);
   main_program_.set("shadow_maps", 1);
-  set_uniforms(main_program_, "light", scene_.light.spot);
+  set_uniforms(main_program_, "light", scene_.lights[0].spot);
   set_uniforms(main_program_, "irradiance", settings_.irradiance);
   main_program_.set("indirect_maps", static_cast<int>(casters_.size()));
   main_program_.set("integrated_steps", settings_.integrated_steps);

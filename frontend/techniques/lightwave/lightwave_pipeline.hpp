@@ -57,13 +57,13 @@ class lightwave_pipeline final : public pipeline {
   void draw_changed() override;
   /// Moves the spot light: VPLs and shadow maps are rebuilt on the next frame. Throws
   /// vplkit::error for a directional light or an invalid one.
-  void set_light(const scene_light& light) override;
+  void set_light(std::size_t index, const scene_light& light) override;
   /// Moves the camera. The VPLs stay; the shadow maps are rebuilt on the next frame only for the
   /// importance variant of the accurate shadows, whose casters are drawn and aimed for the
   /// visible surface.
   void set_camera(const camera& view) override;
   camera current_camera() const override { return scene_.view; }
-  scene_light current_light() const override { return scene_.light; }
+  std::vector<scene_light> current_lights() const override { return scene_.lights; }
   /// In place when the settings change no define, no target's or shadow map's size and no
   /// receiver mesh (lightwave_pipeline.cpp says which setting is which): the next frame redraws
   /// the main pass, after the VPLs and shadow maps where the change moves them.

@@ -20,8 +20,10 @@ light_frustum make_light_frustum(const scene& source, int rsm_size) { return mak
 light_frustum make_light_frustum(const scene& source, const bounding_box& box, int rsm_size) {
   light_frustum frustum;
   const float radius = std::max(box.radius(), 1e-3f);
-  if (source.light.kind == light_kind::spot) {
-    const spot_light<float>& light = source.light.spot;
+  const scene_light& primary = single_light(source, "the RSM pipeline");
+  if (primary.kind == light_kind::point) throw error("scene " + source.name + ": the RSM pipeline does not draw point lights yet");
+  if (primary.kind == light_kind::spot) {
+    const spot_light<float>& light = primary.spot;
     const glm::vec3 up = std::abs(light.direction.y) > 0.99f ? glm::vec3(0, 0, -1) : glm::vec3(0, 1, 0);
     frustum.view = glm::lookAt(light.position, light.position + light.direction, up);
     const float half_angle = spot_light_frustum_half_angle(light);
@@ -29,7 +31,7 @@ light_frustum make_light_frustum(const scene& source, const bounding_box& box, i
     const float far_plane = glm::length(light.position - box.centre()) + 2.0f * radius;
     frustum.view_projection = glm::perspective(2.0f * half_angle, 1.0f, 0.01f * radius, far_plane) * frustum.view;
   } else {
-    const glm::vec3 direction = source.light.directional.direction;
+    const glm::vec3 direction = primary.directional.direction;
     const glm::vec3 up = std::abs(direction.y) > 0.99f ? glm::vec3(0, 0, -1) : glm::vec3(0, 1, 0);
     frustum.view = glm::lookAt(box.centre() - 2.0f * radius * direction, box.centre(), up);
     frustum.view_projection = glm::ortho(-radius, radius, -radius, radius, 0.5f * radius, 3.5f * radius) * frustum.view;
@@ -46,16 +48,16 @@ rsm_frame_constants make_frame_constants(const scene& source, const rsm_pipeline
 
 rsm_frame_constants make_frame_constants(const scene& source, const bounding_box& box, std::size_t triangles, const rsm_pipeline_settings& settings) {
   if (const std::string problem = validate(settings); !problem.empty()) throw error("RSM pipeline settings: " + problem);
-  const setting_problem light_problem = source.light.kind == light_kind::spot ? validate(source.light.spot) : validate(source.light.directional);
-  if (light_problem) throw error("scene " + source.name + ": " + light_problem.message());
+  const scene_light& primary = single_light(source, "the RSM pipeline");
+  check_light(primary, "scene " + source.name);
   if (triangles == 0) throw error("scene " + source.name + " has no triangles");
   rsm_frame_constants constants;
   constants.technique = find_rsm_technique(settings.technique);
   constants.light = make_light_frustum(source, box, settings.rsm_size);
-  constants.primary = source.light;
+  constants.primary = primary;
   constants.gather = derive(settings).gather;
-  constants.gather.perspective = source.light.kind == light_kind::spot ? 1 : 0;
-  const bool spot = source.light.kind == light_kind::spot;
+  const bool spot = primary.kind == light_kind::spot;
+  constants.gather.perspective = spot ? 1 : 0;
   constants.light_view_inverse = glm::inverse(constants.light.view);
   constants.voxel_march = settings.voxel_march;
   constants.unprojection = make_rsm_unprojection(spot ? constants.light.tan_half_fov : constants.light.half_extent, spot, glm::ivec2(settings.rsm_size));
@@ -76,7 +78,7 @@ namespace {
 
 const char* flag(bool value) { return value ? "1" : "0"; }
 
-bool is_directional(const scene& source) { return source.light.kind == light_kind::directional; }
+bool is_directional(const scene& source) { return single_light(source, "the RSM pipeline").kind == light_kind::directional; }
 
 // Whether the frame reduces the RSM to coarse lights: a gathering technique with coverage.
 bool with_coverage(const rsm_frame_constants& constants) { return constants.technique.indirect && constants.gather.coverage_blocks > 0; }
@@ -107,7 +109,7 @@ void set_light_uniforms(const program& target, const rsm_frame_constants& consta
 }  // namespace
 
 rsm_pipeline::rsm_pipeline(const shader_library& shaders, const scene& source, const rsm_pipeline_settings& settings)
-    : scene_{source.name, mesh{}, source.view, source.light, source.notes},
+    : scene_{source.name, mesh{}, source.view, source.lights, source.notes},
       bounds_(bounds(source.geometry)),
       triangles_(source.geometry.triangle_count()),
       settings_(settings),
@@ -267,16 +269,16 @@ void rsm_pipeline::set_pose_uniforms() {
   set_light_uniforms(post_program_, constants_);
 }
 
-void rsm_pipeline::move_to(const camera& view, const scene_light& light) {
+void rsm_pipeline::move_to(const camera& view, const std::vector<scene_light>& lights) {
   const camera previous_view = scene_.view;
-  const scene_light previous_light = scene_.light;
+  const std::vector<scene_light> previous_lights = scene_.lights;
   scene_.view = view;
-  scene_.light = light;
+  scene_.lights = lights;
   try {
     constants_ = make_frame_constants(scene_, bounds_, triangles_, settings_);
   } catch (...) {
     scene_.view = previous_view;
-    scene_.light = previous_light;
+    scene_.lights = previous_lights;
     throw;
   }
   set_pose_uniforms();
@@ -284,16 +286,21 @@ void rsm_pipeline::move_to(const camera& view, const scene_light& light) {
 
 void rsm_pipeline::set_camera(const camera& view) {
   check_camera(view, "scene " + scene_.name);
-  move_to(view, scene_.light);
+  move_to(view, scene_.lights);
   view_valid_ = false;
 }
 
-void rsm_pipeline::set_light(const scene_light& light) {
-  if (light.kind != scene_.light.kind)
-    throw error("scene " + scene_.name + ": the RSM pipeline was built for a " + (scene_.light.kind == light_kind::spot ? "spot" : "directional") +
-                " light; make a new pipeline for another kind");
+void rsm_pipeline::set_light(std::size_t index, const scene_light& light) {
+  if (index >= scene_.lights.size())
+    throw error("scene " + scene_.name + ": no light " + std::to_string(index) + " (it has " + std::to_string(scene_.lights.size()) + ")");
+  const light_kind built_for = scene_.lights[index].kind;
+  if (light.kind != built_for)
+    throw error("scene " + scene_.name + ": the RSM pipeline was built for a " + light_kind_name(built_for) + " light " + std::to_string(index) +
+                "; make a new pipeline for another kind");
   check_light(light, "scene " + scene_.name);
-  move_to(scene_.view, light);
+  std::vector<scene_light> moved = scene_.lights;
+  moved[index] = light;
+  move_to(scene_.view, moved);
   rsm_valid_ = view_valid_ = false;
 }
 

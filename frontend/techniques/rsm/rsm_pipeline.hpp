@@ -130,13 +130,13 @@ class rsm_pipeline final : public pipeline {
   void set_camera(const camera& view) override;
   /// Moves the light. Throws vplkit::error for an invalid light or one of another kind than the
   /// scene's (the programs are built for a spot or a directional light).
-  void set_light(const scene_light& light) override;
+  void set_light(std::size_t index, const scene_light& light) override;
   /// In place when only uniforms change: the same technique, slots, coverage blocks, filter,
   /// temporal accumulation on or off, sizes and format; the next draw_changed() redraws the
   /// G-buffer to the post filter (the RSM does not depend on what may change in place).
   bool apply_settings(const technique_settings& settings) override;
   camera current_camera() const override { return scene_.view; }
-  scene_light current_light() const override { return scene_.light; }
+  std::vector<scene_light> current_lights() const override { return scene_.lights; }
   /// How many times the RSM has been drawn.
   int rsm_draws() const { return rsm_draws_; }
   /// How many times the camera-dependent passes (G-buffer to post filter) have been drawn.
@@ -171,7 +171,7 @@ class rsm_pipeline final : public pipeline {
   void set_settings_uniforms();
   /// The camera and light of the next frame; leaves both as they were when the frame constants
   /// cannot be made.
-  void move_to(const camera& view, const scene_light& light);
+  void move_to(const camera& view, const std::vector<scene_light>& lights);
   void draw_passes(bool with_rsm, bool accumulate = false);
   // The constructor's and draw_passes' steps.
   void load_programs(const shader_library& shaders, const scene& source);

@@ -57,9 +57,10 @@ TEST_CASE("reference one bounce: a point facing a uniformly lit floor gets albed
   light.kind = light_kind::directional;
   light.directional.direction = {0.0f, -1.0f, 0.0f};
   light.directional.irradiance = glm::vec3(2.0f);
+  const std::vector<scene_light> lights{light};
   const ray_scene rays(floor);
   const int samples = 20000;
-  const glm::vec3 e = one_bounce_irradiance(rays, light, {}, glm::vec3(0, h, 0), glm::vec3(0, -1, 0), samples, 7u, 1u);
+  const glm::vec3 e = one_bounce_irradiance(rays, lights, {}, glm::vec3(0, h, 0), glm::vec3(0, -1, 0), samples, 7u, 1u);
   const double exact = albedo * 2.0 * 4.0 * parallel_rectangle(a, a, h);
   // A Bernoulli estimate of F (hit or miss) times a constant: sigma = sqrt(F (1 - F) / N).
   const double f = exact / (albedo * 2.0);
@@ -68,10 +69,10 @@ TEST_CASE("reference one bounce: a point facing a uniformly lit floor gets albed
   CAPTURE(exact);
   CHECK(std::fabs(e.x - exact) < 4.0 * sigma);
   // Deterministic for a seed, different for another.
-  CHECK(one_bounce_irradiance(rays, light, {}, glm::vec3(0, h, 0), glm::vec3(0, -1, 0), 256, 7u, 1u) ==
-        one_bounce_irradiance(rays, light, {}, glm::vec3(0, h, 0), glm::vec3(0, -1, 0), 256, 7u, 1u));
-  CHECK(one_bounce_irradiance(rays, light, {}, glm::vec3(0, h, 0), glm::vec3(0, -1, 0), 256, 7u, 1u) !=
-        one_bounce_irradiance(rays, light, {}, glm::vec3(0, h, 0), glm::vec3(0, -1, 0), 256, 8u, 1u));
+  CHECK(one_bounce_irradiance(rays, lights, {}, glm::vec3(0, h, 0), glm::vec3(0, -1, 0), 256, 7u, 1u) ==
+        one_bounce_irradiance(rays, lights, {}, glm::vec3(0, h, 0), glm::vec3(0, -1, 0), 256, 7u, 1u));
+  CHECK(one_bounce_irradiance(rays, lights, {}, glm::vec3(0, h, 0), glm::vec3(0, -1, 0), 256, 7u, 1u) !=
+        one_bounce_irradiance(rays, lights, {}, glm::vec3(0, h, 0), glm::vec3(0, -1, 0), 256, 8u, 1u));
 }
 
 TEST_CASE("the brute-force RSM gather with visibility converges to the Monte Carlo one-bounce reference as the RSM grows" * doctest::test_suite("slow")) {
@@ -98,7 +99,7 @@ TEST_CASE("the brute-force RSM gather with visibility converges to the Monte Car
         const glm::vec4 position_depth = buffers.gbuffer[0].at(sample);
         if (!(position_depth.w < 0.0f)) continue;
         const glm::vec3 p(position_depth), n(buffers.gbuffer[2].at(sample));
-        const glm::vec3 mc = one_bounce_irradiance(rays, box.light, {}, p, n, 512, 3u, static_cast<std::uint32_t>(y * 64 + x));
+        const glm::vec3 mc = one_bounce_irradiance(rays, box.lights, {}, p, n, 512, 3u, static_cast<std::uint32_t>(y * 64 + x));
         const glm::vec3 gathered(brute.at(glm::ivec2(x, y)));
         error += std::fabs(gathered.x + gathered.y + gathered.z - (mc.x + mc.y + mc.z));
         level += mc.x + mc.y + mc.z;
@@ -226,11 +227,12 @@ TEST_CASE("the Monte Carlo reference lights the surface the camera sees on its n
     else add_quad(s.geometry, {-2, -2, 0}, {-2, 2, 0}, {2, 2, 0}, {2, -2, 0}, {0, 0, -1}, glm::vec3(0.5f));
     s.view.position = {0.0f, 0.0f, 3.0f};
     s.view.target = {0.0f, 0.0f, 0.0f};
-    s.light.spot.position = {0.0f, 0.0f, light_z};
-    s.light.spot.direction = {0.0f, 0.0f, light_z > 0.0f ? -1.0f : 1.0f};
-    s.light.spot.intensity = glm::vec3(4.0f);
-    s.light.spot.cos_inner = std::cos(glm::radians(70.0f));
-    s.light.spot.cos_outer = std::cos(glm::radians(80.0f));
+    s.lights.emplace_back();
+    s.lights[0].spot.position = {0.0f, 0.0f, light_z};
+    s.lights[0].spot.direction = {0.0f, 0.0f, light_z > 0.0f ? -1.0f : 1.0f};
+    s.lights[0].spot.intensity = glm::vec3(4.0f);
+    s.lights[0].spot.cos_inner = std::cos(glm::radians(70.0f));
+    s.lights[0].spot.cos_outer = std::cos(glm::radians(80.0f));
     return reference_one_bounce(s, 16, 16, 0, 1u, 1);
   };
   const one_bounce_images front = square(1.0f, 2.0f), back_dark = square(-1.0f, 2.0f), back_lit = square(-1.0f, -2.0f);

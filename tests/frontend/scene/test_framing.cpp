@@ -39,10 +39,10 @@ TEST_CASE("framing: a closed room is seen and lit from inside, below the ceiling
   CHECK(framed.geometry.triangle_count() == triangles);
   CHECK(inside(box, framed.view.position));
   CHECK(framed.view.position.y < 3.0f);
-  REQUIRE(framed.light.kind == light_kind::spot);
-  CHECK(inside(box, framed.light.spot.position));
-  CHECK(framed.light.spot.position.y < 3.0f);
-  CHECK(framed.light.spot.position.y > framed.view.position.y);
+  REQUIRE(framed.lights[0].kind == light_kind::spot);
+  CHECK(inside(box, framed.lights[0].spot.position));
+  CHECK(framed.lights[0].spot.position.y < 3.0f);
+  CHECK(framed.lights[0].spot.position.y > framed.view.position.y);
   REQUIRE(framed.notes.size() == 1);
   CHECK(framed.notes[0].find("closed room") != std::string::npos);
   CHECK(framed.notes[0].find("--camera ") != std::string::npos);

@@ -56,16 +56,16 @@ TEST_CASE("a built-in scene written as glTF and read back is the same scene (mes
     check_close(back.view.position, original.view.position, 1e-6f);
     check_close(glm::normalize(back.view.target - back.view.position), glm::normalize(original.view.target - original.view.position), 1e-6f);
     CHECK(back.view.vertical_fov_degrees == doctest::Approx(original.view.vertical_fov_degrees).epsilon(1e-6));
-    REQUIRE(back.light.kind == original.light.kind);
-    if (original.light.kind == light_kind::spot) {
-      check_close(back.light.spot.position, original.light.spot.position, 1e-6f);
-      check_close(back.light.spot.direction, original.light.spot.direction, 1e-6f);
-      check_close(back.light.spot.intensity, original.light.spot.intensity, 1e-6f);
-      CHECK(back.light.spot.cos_inner == doctest::Approx(original.light.spot.cos_inner).epsilon(1e-6));
-      CHECK(back.light.spot.cos_outer == doctest::Approx(original.light.spot.cos_outer).epsilon(1e-6));
+    REQUIRE(back.lights[0].kind == original.lights[0].kind);
+    if (original.lights[0].kind == light_kind::spot) {
+      check_close(back.lights[0].spot.position, original.lights[0].spot.position, 1e-6f);
+      check_close(back.lights[0].spot.direction, original.lights[0].spot.direction, 1e-6f);
+      check_close(back.lights[0].spot.intensity, original.lights[0].spot.intensity, 1e-6f);
+      CHECK(back.lights[0].spot.cos_inner == doctest::Approx(original.lights[0].spot.cos_inner).epsilon(1e-6));
+      CHECK(back.lights[0].spot.cos_outer == doctest::Approx(original.lights[0].spot.cos_outer).epsilon(1e-6));
     } else {
-      check_close(back.light.directional.direction, original.light.directional.direction, 1e-6f);
-      check_close(back.light.directional.irradiance, original.light.directional.irradiance, 1e-6f);
+      check_close(back.lights[0].directional.direction, original.lights[0].directional.direction, 1e-6f);
+      check_close(back.lights[0].directional.irradiance, original.lights[0].directional.irradiance, 1e-6f);
     }
   }
 }

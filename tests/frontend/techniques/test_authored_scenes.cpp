@@ -70,11 +70,12 @@ scene posed(std::string name, mesh geometry, glm::vec3 eye, glm::vec3 target, gl
   s.geometry = std::move(geometry);
   s.view.position = eye;
   s.view.target = target;
-  s.light.spot.position = light_position;
-  s.light.spot.direction = glm::normalize(light_target - light_position);
-  s.light.spot.intensity = glm::vec3(intensity);
-  s.light.spot.cos_inner = std::cos(glm::radians(50.0f));
-  s.light.spot.cos_outer = std::cos(glm::radians(70.0f));
+  s.lights.emplace_back();
+  s.lights[0].spot.position = light_position;
+  s.lights[0].spot.direction = glm::normalize(light_target - light_position);
+  s.lights[0].spot.intensity = glm::vec3(intensity);
+  s.lights[0].spot.cos_inner = std::cos(glm::radians(50.0f));
+  s.lights[0].spot.cos_outer = std::cos(glm::radians(70.0f));
   return s;
 }
 
@@ -153,7 +154,7 @@ TEST_CASE("authored scenes: doubling the light's intensity doubles the indirect 
   rsm_pipeline_settings settings = small();
   settings.format = texel_format::rgba32f;
   const image once = rsm_pipeline(parity::test_shaders(), source, settings).render().indirect;
-  source.light.spot.intensity *= 2.0f;
+  source.lights[0].spot.intensity *= 2.0f;
   const image twice = rsm_pipeline(parity::test_shaders(), source, settings).render().indirect;
   double a = 0.0, b = 0.0;
   for (std::size_t i = 0; i < once.texels.size(); ++i) {

@@ -127,7 +127,7 @@ TEST_CASE("final gathering in a scene: the built-in box written as glTF and read
   const scene box = final_gather_box();
   scene loaded = parse_gltf(gltf_text(box), false, "box.gltf", {});
   CHECK(loaded.geometry.triangle_count() == box.geometry.triangle_count());
-  REQUIRE(loaded.light.kind == light_kind::spot);
+  REQUIRE(loaded.lights[0].kind == light_kind::spot);
   loaded.view = box.view;
   const glm::vec3 position(0.55f, 0.7f, 0.1f);
   const final_gather_scene built_in = make_final_gather_scene("sphere", position, 0.5f);
@@ -150,15 +150,15 @@ TEST_CASE("final gathering in a scene: the built-in box written as glTF and read
 TEST_CASE("final gathering in a scene: its light, camera and geometry are used; a sun or an empty scene is refused by name") {
   scene room = final_gather_box();
   room.name = "my-room";
-  room.light.spot.intensity *= 2.0f;
+  room.lights[0].spot.intensity *= 2.0f;
   room.view.position.z += 0.25f;
   const final_gather_scene s = make_final_gather_scene(room, "sphere", glm::vec3(0.0f, 0.7f, 0.0f), 0.5f);
-  CHECK(s.light.intensity == room.light.spot.intensity);
+  CHECK(s.light.intensity == room.lights[0].spot.intensity);
   CHECK(s.view.position == room.view.position);
   CHECK(s.room.triangle_count() == room.geometry.triangle_count());
   CHECK(s.object.triangle_count() == 2304u);
   scene sun = room;
-  sun.light.kind = light_kind::directional;
+  sun.lights[0].kind = light_kind::directional;
   CHECK_THROWS_WITH_AS(make_final_gather_scene(sun, "sphere", glm::vec3(0.0f, 0.7f, 0.0f), 0.5f),
                        doctest::Contains("final gathering in scene my-room: its light is directional"), vplkit::error);
   scene empty = room;

@@ -124,11 +124,11 @@ TEST_CASE("Light Wave flux energy: the indirect light summed at the receivers eq
     CHECK(different == 0);
     // A light move: each pass starts again from zero (not from the last light's sums), the
     // passes still equal to one pass, and both the CPU sum for the new light.
-    scene_light moved = boxes.light;
+    scene_light moved = boxes.lights[0];
     moved.spot.position.x += 0.4f;
     moved.spot.direction = glm::normalize(moved.spot.direction + glm::vec3(0.1f, 0.0f, 0.0f));
-    pipeline.set_light(moved);
-    in_passes.set_light(moved);
+    pipeline.set_light(0, moved);
+    in_passes.set_light(0, moved);
     const std::vector<glm::vec3> moved_one = pipeline.capture_vertex_indirect(), moved_passes = in_passes.capture_vertex_indirect();
     REQUIRE(moved_one != gpu);
     CHECK(moved_passes == moved_one);
@@ -232,9 +232,9 @@ TEST_CASE("Light Wave redraws what a move invalidated: VPLs and shadow maps afte
   pipeline.draw_changed();
   CHECK(pipeline.rebuilds() == 1);
   CHECK(passes() == std::vector<std::string>{"indirect buffer", "main pass"});
-  scene_light moved = make_boxes_scene().light;
+  scene_light moved = make_boxes_scene().lights.at(0);
   moved.spot.position.x += 0.3f;
-  pipeline.set_light(moved);
+  pipeline.set_light(0, moved);
   pipeline.draw_changed();
   CHECK(pipeline.rebuilds() == 2);
   CHECK(pipeline.layout().light_position.x == doctest::Approx(moved.spot.position.x));
@@ -260,8 +260,8 @@ TEST_CASE("Light Wave redraws what a move invalidated: VPLs and shadow maps afte
   // A directional light is refused, and the light stays.
   scene_light sun;
   sun.kind = light_kind::directional;
-  CHECK_THROWS_WITH_AS(pipeline.set_light(sun), doctest::Contains("needs a spot light"), vplkit::error);
-  CHECK(pipeline.current_light().spot.position.x == doctest::Approx(moved.spot.position.x));
+  CHECK_THROWS_WITH_AS(pipeline.set_light(0, sun), doctest::Contains("needs a spot light"), vplkit::error);
+  CHECK(pipeline.current_lights().at(0).spot.position.x == doctest::Approx(moved.spot.position.x));
 }
 
 TEST_CASE("shadow-map memory: the pipeline reports what it allocated") {
@@ -367,12 +367,12 @@ scene wall_scene(bool with_wall) {
   s.view.position = {0.0f, 7.0f, 0.001f};
   s.view.target = {0.0f, 0.0f, 0.0f};
   s.view.vertical_fov_degrees = 50.0f;
-  s.light.kind = light_kind::spot;
-  s.light.spot.position = {-1.0f, 2.0f, 0.0f};
-  s.light.spot.direction = {0.0f, -1.0f, 0.0f};
-  s.light.spot.intensity = glm::vec3(4.0f);
-  s.light.spot.cos_inner = std::cos(glm::radians(50.0f));
-  s.light.spot.cos_outer = std::cos(glm::radians(65.0f));
+  s.lights.emplace_back().kind = light_kind::spot;
+  s.lights[0].spot.position = {-1.0f, 2.0f, 0.0f};
+  s.lights[0].spot.direction = {0.0f, -1.0f, 0.0f};
+  s.lights[0].spot.intensity = glm::vec3(4.0f);
+  s.lights[0].spot.cos_inner = std::cos(glm::radians(50.0f));
+  s.lights[0].spot.cos_outer = std::cos(glm::radians(65.0f));
   return s;
 }
 
@@ -531,12 +531,12 @@ scene room_scene(bool with_panel, float albedo_scale = 1.0f) {
   s.view.position = {1.8f, 1.4f, 2.8f};
   s.view.target = {-1.5f, 0.6f, 0.0f};
   s.view.vertical_fov_degrees = 60.0f;
-  s.light.kind = light_kind::spot;
-  s.light.spot.position = {1.0f, 2.4f, 0.0f};
-  s.light.spot.direction = {0.0f, -1.0f, 0.0f};
-  s.light.spot.intensity = glm::vec3(6.0f);
-  s.light.spot.cos_inner = std::cos(glm::radians(30.0f));
-  s.light.spot.cos_outer = std::cos(glm::radians(45.0f));
+  s.lights.emplace_back().kind = light_kind::spot;
+  s.lights[0].spot.position = {1.0f, 2.4f, 0.0f};
+  s.lights[0].spot.direction = {0.0f, -1.0f, 0.0f};
+  s.lights[0].spot.intensity = glm::vec3(6.0f);
+  s.lights[0].spot.cos_inner = std::cos(glm::radians(30.0f));
+  s.lights[0].spot.cos_outer = std::cos(glm::radians(45.0f));
   return s;
 }
 
@@ -555,7 +555,7 @@ TEST_CASE("flux energy: the indirect light follows the light's intensity and the
   const double indirect = luminance_sum(reference.render().indirect);
   REQUIRE(indirect > 0.0);
   scene brighter = base;
-  brighter.light.spot.intensity *= 2.0f;
+  brighter.lights[0].spot.intensity *= 2.0f;
   lightwave_pipeline doubled(test_shaders(), brighter, settings);
   CHECK(luminance_sum(doubled.render().indirect) == doctest::Approx(2.0 * indirect).epsilon(1e-3));
   lightwave_pipeline darker(test_shaders(), room_scene(false, 0.5f), settings);
@@ -571,10 +571,10 @@ TEST_CASE("flux energy: a narrow spot aimed at a wall away from the room's centr
   // Every ray of the layout meets the wall; the indirect light the image adds is within 25 % of
   // the Monte Carlo reference's (the thesis's energy is not: its VPLs float outside the room).
   scene s = room_scene(false);
-  s.light.spot.position = {1.5f, 1.5f, 2.0f};
-  s.light.spot.direction = glm::normalize(glm::vec3(-2.0f, 1.0f, -3.0f) - s.light.spot.position);
-  s.light.spot.cos_inner = std::cos(glm::radians(8.0f));
-  s.light.spot.cos_outer = std::cos(glm::radians(12.0f));
+  s.lights[0].spot.position = {1.5f, 1.5f, 2.0f};
+  s.lights[0].spot.direction = glm::normalize(glm::vec3(-2.0f, 1.0f, -3.0f) - s.lights[0].spot.position);
+  s.lights[0].spot.cos_inner = std::cos(glm::radians(8.0f));
+  s.lights[0].spot.cos_outer = std::cos(glm::radians(12.0f));
   const int width = 64, height = 36;
   const one_bounce_images reference = reference_one_bounce(s, width, height, 256, 1u, 2);
   const one_bounce_images reference_direct = reference_one_bounce(s, width, height, 0, 1u, 2);
@@ -653,8 +653,8 @@ TEST_CASE("flux energy, accurate shadows: 1, 5 and 20 maps are never further fro
   for (bool corner : {false, true}) {
     scene s = room_scene(true);
     if (corner) {
-      s.light.spot.position = {1.8f, 2.3f, 2.7f};
-      s.light.spot.direction = glm::normalize(glm::vec3(-1.8f, 0.3f, -2.7f) - s.light.spot.position);
+      s.lights[0].spot.position = {1.8f, 2.3f, 2.7f};
+      s.lights[0].spot.direction = glm::normalize(glm::vec3(-1.8f, 0.3f, -2.7f) - s.lights[0].spot.position);
     }
     const int width = 64, height = 36;
     const one_bounce_images reference = reference_one_bounce(s, width, height, 256, 1u, 2);

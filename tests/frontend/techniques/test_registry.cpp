@@ -237,8 +237,8 @@ TEST_CASE("every technique's pipeline takes cameras and lights the same way and 
       drawn->draw_changed();
       CHECK(drawn->view_draws() == after_draw + 1);
       CHECK(drawn->current_camera().position.x == moved.position.x);
-      scene_light light = drawn->current_light();
-      drawn->set_light(light);
+      scene_light light = drawn->current_lights().at(0);
+      drawn->set_light(0, light);
       drawn->draw_changed();
       CHECK(drawn->view_draws() == after_draw + 2);
       drawn->collect_pass_times();
@@ -250,7 +250,7 @@ TEST_CASE("every technique's pipeline takes cameras and lights the same way and 
       if (family.name != "rsm") {
         scene_light sun;
         sun.kind = light_kind::directional;
-        CHECK_THROWS_WITH_AS(drawn->set_light(sun), doctest::Contains("spot light"), vplkit::error);
+        CHECK_THROWS_WITH_AS(drawn->set_light(0, sun), doctest::Contains("spot light"), vplkit::error);
       }
       CHECK(drawn->has_indirect() == (technique.name != "direct" && technique.name != "lightwave-direct"));
       CHECK(drawn->describe().find(technique.name) != std::string::npos);

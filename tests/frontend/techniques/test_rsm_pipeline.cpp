@@ -207,10 +207,10 @@ TEST_CASE("RSM pipeline sequences: render_next's first frame is render()'s, pass
   // The second frame: the camera and the light moved a little; the history is reprojected.
   camera moved = box.view;
   moved.position += glm::vec3(0.05f, 0.02f, 0.0f);
-  scene_light light = box.light;
+  scene_light light = box.lights[0];
   light.spot.position += glm::vec3(0.03f, 0.0f, 0.0f);
   sequence.set_camera(moved);
-  sequence.set_light(light);
+  sequence.set_light(0, light);
   sequence.render_next();
   const rsm_pass_buffers buffers = sequence.read_buffers();
   REQUIRE(sequence.last_temporal_inputs().history_valid);
@@ -228,7 +228,7 @@ TEST_CASE("RSM pipeline sequences: render_next's first frame is render()'s, pass
   // The pattern turned: the raw gather is not a fresh render's at these poses; render() is again.
   rsm_pipeline fresh(shaders, box, settings);
   fresh.set_camera(moved);
-  fresh.set_light(light);
+  fresh.set_light(0, light);
   const rsm_frame reference = fresh.render();
   fresh.read_buffers();
   CHECK(buffers.indirect.texels != fresh.read_buffers().indirect.texels);
@@ -293,7 +293,7 @@ TEST_CASE("built-in scenes: the instanced scene reaches the thesis's scale, ever
 TEST_CASE("the occlusion scenes: the atrium reaches the thesis's Sponza scale, the occluder variants differ only in the panel" * doctest::test_suite("slow")) {
   const scene atrium = built_in_scene("atrium");
   CHECK(atrium.geometry.triangle_count() >= 250000);
-  CHECK(atrium.light.kind == light_kind::directional);
+  CHECK(atrium.lights[0].kind == light_kind::directional);
   // The tessellation scales the count (columns, arches and curtains) and is range-checked.
   CHECK(make_atrium_scene(8).geometry.triangle_count() < atrium.geometry.triangle_count() / 20);
   CHECK_THROWS_WITH_AS(make_atrium_scene(3), doctest::Contains("tessellation must be in [4, 512]"), vplkit::error);
