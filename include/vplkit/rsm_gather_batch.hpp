@@ -192,7 +192,7 @@ VPLKIT_BATCH_ALWAYS_INLINE inline void gather_rsm_batch_body(const gather_receiv
       alignas(64) int previous_index[W];
       alignas(64) int previous_visibility[W];
       alignas(64) int texel_index[W], lit[W], slot[W], slot_claims[W], claim[W];
-      alignas(64) T turns[W], sample_radius[W], weight[W], dz[W], horizontal[W], seen[W];
+      alignas(64) T turns[W], sample_radius[W], weight[W], dz[W], horizontal[W], seen[W], px[W], py[W], pz[W];
       for (int path = 0; path < paths; ++path) {
         for (int k = 0; k < slot_count; ++k)
           for (int l = 0; l < W; ++l) claims[k][l] = 0;
@@ -221,17 +221,18 @@ VPLKIT_BATCH_ALWAYS_INLINE inline void gather_rsm_batch_body(const gather_receiv
             lit[l] = in_map & active[l];
             texel_index[l] = (ty * width + tx) & -in_map;  // 0 off the map
           }
-          // The fetch's depth: an empty texel is no sample.
+          // The fetch's position, read once (the planes' loads are emulated gathers, the dearest
+          // part of a lane step), and its depth: an empty texel is no sample.
           for (int l = 0; l < W; ++l) {
             const std::size_t i = static_cast<std::size_t>(texel_index[l]);
-            lit[l] &= int(rsm.position[2][i] < T(0));
+            px[l] = rsm.position[0][i], py[l] = rsm.position[1][i], pz[l] = rsm.position[2][i];
+            lit[l] &= int(pz[l] < T(0));
           }
           if constexpr (Visibility == rsm_visibility::alg6) {
             // elevation_bucket, then micro_linear_buffer_alg6 with the slot's count picked by a select per slot.
             for (int l = 0; l < W; ++l) {
-              const std::size_t i = static_cast<std::size_t>(texel_index[l]);
-              const T dx = rsm.position[0][i] - rx[l], dy = rsm.position[1][i] - ry[l];
-              dz[l] = rsm.position[2][i] - rz[l];
+              const T dx = px[l] - rx[l], dy = py[l] - ry[l];
+              dz[l] = pz[l] - rz[l];
               horizontal[l] = std::sqrt(dx * dx + dy * dy);
               slot[l] = 0;
               slot_claims[l] = 0;
@@ -257,7 +258,7 @@ VPLKIT_BATCH_ALWAYS_INLINE inline void gather_rsm_batch_body(const gather_receiv
           // pixel_light_irradiance (Eq. 3.2), operation for operation, weighted and summed.
           for (int l = 0; l < W; ++l) {
             const std::size_t i = static_cast<std::size_t>(texel_index[l]);
-            const T lx = rx[l] - rsm.position[0][i], ly = ry[l] - rsm.position[1][i], lz = rz[l] - rsm.position[2][i];
+            const T lx = rx[l] - px[l], ly = ry[l] - py[l], lz = rz[l] - pz[l];
             const T distance_squared = glm::max(lx * lx + ly * ly + lz * lz, min_distance_squared);
             const T emit = glm::max(T(0), rsm.normal[0][i] * lx + rsm.normal[1][i] * ly + rsm.normal[2][i] * lz);
             const T receive = glm::max(T(0), -(nx[l] * lx + ny[l] * ly + nz[l] * lz));
