@@ -204,20 +204,26 @@ BENCHMARK(point_form_factor_throughput);
 // The polygon form factor to every cell of a 32 x 32 grid (a cube-map face 1 unit away, cells
 // 1/32 wide) from one receiver per iteration, its normal one of form_factor_inputs': per cell,
 // comparable with the two above (form_factor_grid.hpp shares corners and edges between cells).
+// avx2:0 is the portable instantiation, avx2:1 the AVX2 one (batch_isa.hpp).
 void polygon_form_factor_grid_throughput(benchmark::State& state) {
   const form_factor_inputs in;
   vplkit::form_factor_grid_scratch<float> scratch;
   std::vector<float> out(32 * 32);
   std::size_t k = 0;
+  const vplkit::batch_isa isa = state.range(0) != 0 ? vplkit::batch_isa::avx2 : vplkit::batch_isa::portable;
+  if (!vplkit::batch_isa_supported(isa)) {
+    state.SkipWithError("this CPU or build has no AVX2");
+    return;
+  }
   for (auto _ : state) {
     vplkit::polygon_form_factor_grid(glm::vec3(0.0f), in.normals[k++ & 1023u], glm::vec3(-0.5f, -0.5f, 1.0f), glm::vec3(1.0f / 32.0f, 0, 0),
-                                     glm::vec3(0, 1.0f / 32.0f, 0), 32, 32, out.data(), scratch);
+                                     glm::vec3(0, 1.0f / 32.0f, 0), 32, 32, out.data(), scratch, isa);
     benchmark::DoNotOptimize(out.data());
     benchmark::ClobberMemory();
   }
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * 1024);
 }
-BENCHMARK(polygon_form_factor_grid_throughput);
+BENCHMARK(polygon_form_factor_grid_throughput)->ArgName("avx2")->Arg(0)->Arg(1);
 
 template <vplkit::gather_form_factor Kind>
 void final_gather_cost(benchmark::State& state) {
