@@ -115,7 +115,8 @@ BENCHMARK_TEMPLATE(gather_cost, vplkit::rsm_visibility::alg6);
 
 // The batch gather (rsm_gather_batch.hpp) on the same RSM and receivers as gather_cost: a block
 // of 4096 receivers per iteration, each thread its own block (the caller's split over cores), so
-// with ->Threads(2) and real time items_per_second is the rate of both cores together.
+// with ->Threads(2) and real time items_per_second is the rate of both cores together. avx2:0 is
+// the portable instantiation, avx2:1 the AVX2 one (batch_isa.hpp; skipped on a CPU without it).
 template <vplkit::rsm_visibility Visibility>
 void gather_batch_cost(benchmark::State& state) {
   static const synthetic_rsm rsm;
@@ -130,15 +131,20 @@ void gather_batch_cost(benchmark::State& state) {
                            glm::vec2(256.0f + 100.0f * x, 256.0f + 100.0f * z), glm::uvec2(receiver % 64, receiver / 64)};
   }
   std::vector<glm::vec3> irradiance(count);
+  const vplkit::batch_isa isa = state.range(0) != 0 ? vplkit::batch_isa::avx2 : vplkit::batch_isa::portable;
+  if (!vplkit::batch_isa_supported(isa)) {
+    state.SkipWithError("this CPU or build has no AVX2");
+    return;
+  }
   for (auto _ : state) {
-    vplkit::gather_rsm_batch<Visibility>(receivers.data(), receivers.size(), planes.view(), settings, irradiance.data());
+    vplkit::gather_rsm_batch<Visibility>(receivers.data(), receivers.size(), planes.view(), settings, irradiance.data(), isa);
     benchmark::DoNotOptimize(irradiance.data());
     benchmark::ClobberMemory();
   }
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * count * 150);
 }
-BENCHMARK_TEMPLATE(gather_batch_cost, vplkit::rsm_visibility::none)->Threads(1)->Threads(2)->UseRealTime();
-BENCHMARK_TEMPLATE(gather_batch_cost, vplkit::rsm_visibility::alg6)->Threads(1)->Threads(2)->UseRealTime();
+BENCHMARK_TEMPLATE(gather_batch_cost, vplkit::rsm_visibility::none)->ArgName("avx2")->Arg(0)->Arg(1)->Threads(1)->Threads(2)->UseRealTime();
+BENCHMARK_TEMPLATE(gather_batch_cost, vplkit::rsm_visibility::alg6)->ArgName("avx2")->Arg(0)->Arg(1)->Threads(1)->Threads(2)->UseRealTime();
 
 // Form factors ([FG]): the clipped polygon-to-point against the point-to-point kernel, one
 // quad each, and the whole gather over a 6 x 4 x 4 distance cube map.
@@ -198,20 +204,26 @@ BENCHMARK(point_form_factor_throughput);
 // The polygon form factor to every cell of a 32 x 32 grid (a cube-map face 1 unit away, cells
 // 1/32 wide) from one receiver per iteration, its normal one of form_factor_inputs': per cell,
 // comparable with the two above (form_factor_grid.hpp shares corners and edges between cells).
+// avx2:0 is the portable instantiation, avx2:1 the AVX2 one (batch_isa.hpp).
 void polygon_form_factor_grid_throughput(benchmark::State& state) {
   const form_factor_inputs in;
   vplkit::form_factor_grid_scratch<float> scratch;
   std::vector<float> out(32 * 32);
   std::size_t k = 0;
+  const vplkit::batch_isa isa = state.range(0) != 0 ? vplkit::batch_isa::avx2 : vplkit::batch_isa::portable;
+  if (!vplkit::batch_isa_supported(isa)) {
+    state.SkipWithError("this CPU or build has no AVX2");
+    return;
+  }
   for (auto _ : state) {
     vplkit::polygon_form_factor_grid(glm::vec3(0.0f), in.normals[k++ & 1023u], glm::vec3(-0.5f, -0.5f, 1.0f), glm::vec3(1.0f / 32.0f, 0, 0),
-                                     glm::vec3(0, 1.0f / 32.0f, 0), 32, 32, out.data(), scratch);
+                                     glm::vec3(0, 1.0f / 32.0f, 0), 32, 32, out.data(), scratch, isa);
     benchmark::DoNotOptimize(out.data());
     benchmark::ClobberMemory();
   }
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * 1024);
 }
-BENCHMARK(polygon_form_factor_grid_throughput);
+BENCHMARK(polygon_form_factor_grid_throughput)->ArgName("avx2")->Arg(0)->Arg(1);
 
 template <vplkit::gather_form_factor Kind>
 void final_gather_cost(benchmark::State& state) {

@@ -4,6 +4,13 @@
 // then direct light from the G-buffer (albedo, shadow density) plus indirect:
 //   radiance = albedo / pi * (E_direct * shadow_density + E_indirect).
 // Writes [radiance | 1] and [filtered indirect irradiance | 1].
+// VPLKIT_PACKED_BLUR: the y pass reads pass 4a's packed taps (blur_x.frag), one fetch per tap.
+#ifndef VPLKIT_PACKED_BLUR
+#define VPLKIT_PACKED_BLUR 0  // the pipeline defines it; 0 for a program loaded without it
+#endif
+#if VPLKIT_PACKED_BLUR
+#extension GL_ARB_shading_language_packing : require
+#endif
 #include "lib/bilateral.glsl"
 #include "lib/direct_light.glsl"
 #include "lib/shading.glsl"
@@ -13,7 +20,11 @@ uniform irradiance_settings irradiance;
 uniform int indirect_divisor;
 uniform ivec2 indirect_size;
 uniform ivec2 gbuffer_size;
+#if VPLKIT_PACKED_BLUR
+uniform usampler2D indirect_buffer;
+#else
 uniform sampler2D indirect_buffer;
+#endif
 uniform sampler2D gbuffer_position_depth;
 uniform sampler2D gbuffer_albedo_density;
 uniform sampler2D gbuffer_normal;
@@ -27,8 +38,14 @@ layout(location = 0) out vec4 radiance;
 layout(location = 1) out vec4 indirect_out;
 
 bilateral_tap bilateral_fetch(ivec2 texel) {
+#if VPLKIT_PACKED_BLUR
+  uvec4 words = texelFetch(indirect_buffer, texel, 0);
+  vec2 blue_depth = unpackHalf2x16(words.y);
+  return bilateral_tap(vec3(unpackHalf2x16(words.x), blue_depth.x), blue_depth.y, vec3(unpackHalf2x16(words.z), unpackHalf2x16(words.w).x));
+#else
   vec4 value = texelFetch(indirect_buffer, texel, 0);
   return bilateral_tap(value.xyz, value.w, texelFetch(gbuffer_normal, min(texel * indirect_divisor, gbuffer_size - 1), 0).xyz);
+#endif
 }
 
 void main() {

@@ -22,8 +22,10 @@ namespace vplkit {
 /// Callers pass turns rather than radians where they can: a shader compiler may fold a chain
 /// of constant multiplies (2 pi * x * 1 / (2 pi)) that C++ rounds step by step (GLSL allows it),
 /// and then the two sides differ by an ulp of the angle.
+/// (Declared inline: GCC's size limit for inlining an undeclared template kept it out of
+/// rsm_gather_batch.hpp's lane loop, which then did not vectorise.)
 template <typename T>
-glm::vec<2, T> direction_from_turns(T turns) {
+inline glm::vec<2, T> direction_from_turns(T turns) {
   const T reduced_turns = turns - std::floor(turns + T(0.5));
   const T half_angle = reduced_turns * T(3.14159265358979323846);  // (2 pi * reduced) / 2
   const T h2 = half_angle * half_angle;

@@ -22,6 +22,12 @@
 // - hash_uint32's data-dependent shift has no SSE instruction (only AVX2 has per-lane shifts): the
 //   lanes use hash_uint32_lanes, the same function with the shift split into four constant shifts
 //   under a select (test_rsm_gather_batch.cpp checks it equals hash_uint32).
+// - The body is compiled twice (batch_isa.hpp): for the build's x86-64-v2 and with AVX2, chosen at
+//   run time. AVX2 gives 8 lanes per instruction and per-lane shifts; not its gathers: GCC 12's
+//   generic tuning emulates them, and tuning for Skylake (vgatherdps) made the gather 3x slower on
+//   the CPU measured (docs/performance.md). Both paths give the same bits (no FMA either way).
+// - direction_from_turns is inlined into its lane loop (it is declared inline: GCC would not inline
+//   the template otherwise, and the loop calling it stayed scalar, a third of the time).
 // Compile with -fno-math-errno and -fno-trapping-math (vplkit_bench does): with errno, std::sqrt
 // keeps a call to libm on a branch, and with trapping math GCC does not if-convert selects after
 // float compares; the loops holding them then stay scalar (21 against 31 ns per sample, Alg. 6).
@@ -42,6 +48,7 @@
 
 #include <glm/glm.hpp>
 
+#include <vplkit/batch_isa.hpp>
 #include <vplkit/hash.hpp>
 #include <vplkit/polynomial_math.hpp>
 #include <vplkit/rsm_gather.hpp>
@@ -120,12 +127,13 @@ inline std::uint32_t hash_combine_lanes(std::uint32_t seed, std::uint32_t value)
   return hash_uint32_lanes(seed ^ (value + 0x9e3779b9u + (seed << 6u) + (seed >> 2u)));
 }
 
-/// The gather of gather_rsm<rsm_pattern::radial, Visibility>(receivers[i], fetch, settings) for i
-/// in [0, count), written to irradiance[i]: the pattern alone (settings.coverage_blocks is not
-/// read), Visibility none or alg6. `rsm.size` must be settings.rsm_size.
+namespace detail {
+
+/// gather_rsm_batch's work, inlined into one function per instruction set (below): the same
+/// source, so the same operations in the same order on every path.
 template <rsm_visibility Visibility, typename T>
-void gather_rsm_batch(const gather_receiver<T>* receivers, std::size_t count, const rsm_planes<T>& rsm, const rsm_gather_settings<T>& settings,
-                      glm::vec<3, T>* irradiance) {
+VPLKIT_BATCH_ALWAYS_INLINE inline void gather_rsm_batch_body(const gather_receiver<T>* receivers, std::size_t count, const rsm_planes<T>& rsm,
+                                                            const rsm_gather_settings<T>& settings, glm::vec<3, T>* irradiance) {
   static_assert(Visibility == rsm_visibility::none || Visibility == rsm_visibility::alg6,
                 "gather_rsm_batch: visibility none or alg6 (the others keep per-sample state a lane loop cannot hold)");
   constexpr int W = rsm_gather_batch_lanes;
@@ -184,7 +192,7 @@ void gather_rsm_batch(const gather_receiver<T>* receivers, std::size_t count, co
       alignas(64) int previous_index[W];
       alignas(64) int previous_visibility[W];
       alignas(64) int texel_index[W], lit[W], slot[W], slot_claims[W], claim[W];
-      alignas(64) T turns[W], sample_radius[W], weight[W], dz[W], horizontal[W], seen[W];
+      alignas(64) T turns[W], sample_radius[W], weight[W], dz[W], horizontal[W], seen[W], px[W], py[W], pz[W];
       for (int path = 0; path < paths; ++path) {
         for (int k = 0; k < slot_count; ++k)
           for (int l = 0; l < W; ++l) claims[k][l] = 0;
@@ -213,17 +221,18 @@ void gather_rsm_batch(const gather_receiver<T>* receivers, std::size_t count, co
             lit[l] = in_map & active[l];
             texel_index[l] = (ty * width + tx) & -in_map;  // 0 off the map
           }
-          // The fetch's depth: an empty texel is no sample.
+          // The fetch's position, read once (the planes' loads are emulated gathers, the dearest
+          // part of a lane step), and its depth: an empty texel is no sample.
           for (int l = 0; l < W; ++l) {
             const std::size_t i = static_cast<std::size_t>(texel_index[l]);
-            lit[l] &= int(rsm.position[2][i] < T(0));
+            px[l] = rsm.position[0][i], py[l] = rsm.position[1][i], pz[l] = rsm.position[2][i];
+            lit[l] &= int(pz[l] < T(0));
           }
           if constexpr (Visibility == rsm_visibility::alg6) {
             // elevation_bucket, then micro_linear_buffer_alg6 with the slot's count picked by a select per slot.
             for (int l = 0; l < W; ++l) {
-              const std::size_t i = static_cast<std::size_t>(texel_index[l]);
-              const T dx = rsm.position[0][i] - rx[l], dy = rsm.position[1][i] - ry[l];
-              dz[l] = rsm.position[2][i] - rz[l];
+              const T dx = px[l] - rx[l], dy = py[l] - ry[l];
+              dz[l] = pz[l] - rz[l];
               horizontal[l] = std::sqrt(dx * dx + dy * dy);
               slot[l] = 0;
               slot_claims[l] = 0;
@@ -249,7 +258,7 @@ void gather_rsm_batch(const gather_receiver<T>* receivers, std::size_t count, co
           // pixel_light_irradiance (Eq. 3.2), operation for operation, weighted and summed.
           for (int l = 0; l < W; ++l) {
             const std::size_t i = static_cast<std::size_t>(texel_index[l]);
-            const T lx = rx[l] - rsm.position[0][i], ly = ry[l] - rsm.position[1][i], lz = rz[l] - rsm.position[2][i];
+            const T lx = rx[l] - px[l], ly = ry[l] - py[l], lz = rz[l] - pz[l];
             const T distance_squared = glm::max(lx * lx + ly * ly + lz * lz, min_distance_squared);
             const T emit = glm::max(T(0), rsm.normal[0][i] * lx + rsm.normal[1][i] * ly + rsm.normal[2][i] * lz);
             const T receive = glm::max(T(0), -(nx[l] * lx + ny[l] * ly + nz[l] * lz));
@@ -271,6 +280,40 @@ void gather_rsm_batch(const gather_receiver<T>* receivers, std::size_t count, co
       irradiance[first + l] = glm::vec<3, T>(sum_r[l], sum_g[l], sum_b[l]) * one_over_pi;
     }
   }
+}
+
+template <rsm_visibility Visibility, typename T>
+void gather_rsm_batch_portable(const gather_receiver<T>* receivers, std::size_t count, const rsm_planes<T>& rsm, const rsm_gather_settings<T>& settings,
+                               glm::vec<3, T>* irradiance) {
+  gather_rsm_batch_body<Visibility>(receivers, count, rsm, settings, irradiance);
+}
+
+#if VPLKIT_BATCH_HAS_AVX2
+template <rsm_visibility Visibility, typename T>
+VPLKIT_BATCH_TARGET_AVX2 void gather_rsm_batch_avx2(const gather_receiver<T>* receivers, std::size_t count, const rsm_planes<T>& rsm,
+                                                    const rsm_gather_settings<T>& settings, glm::vec<3, T>* irradiance) {
+  gather_rsm_batch_body<Visibility>(receivers, count, rsm, settings, irradiance);
+}
+#endif
+
+}  // namespace detail
+
+/// The gather of gather_rsm<rsm_pattern::radial, Visibility>(receivers[i], fetch, settings) for i
+/// in [0, count), written to irradiance[i]: the pattern alone (settings.coverage_blocks is not
+/// read), Visibility none or alg6. `rsm.size` must be settings.rsm_size. `isa` picks the
+/// instantiation (batch_isa.hpp); one the CPU does not run falls back to the portable one.
+template <rsm_visibility Visibility, typename T>
+void gather_rsm_batch(const gather_receiver<T>* receivers, std::size_t count, const rsm_planes<T>& rsm, const rsm_gather_settings<T>& settings,
+                      glm::vec<3, T>* irradiance, batch_isa isa = best_batch_isa()) {
+#if VPLKIT_BATCH_HAS_AVX2
+  if (isa == batch_isa::avx2 && batch_isa_supported(batch_isa::avx2)) {
+    detail::gather_rsm_batch_avx2<Visibility>(receivers, count, rsm, settings, irradiance);
+    return;
+  }
+#else
+  (void)isa;
+#endif
+  detail::gather_rsm_batch_portable<Visibility>(receivers, count, rsm, settings, irradiance);
 }
 
 }  // namespace vplkit

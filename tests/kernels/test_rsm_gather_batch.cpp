@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include <vplkit/rsm_gather_batch.hpp>
@@ -50,33 +51,50 @@ std::vector<gather_receiver<T>> batch_receivers() {
   return receivers;
 }
 
-template <typename T, rsm_visibility V>
-void check_batch_equals_scalar() {
+// The synthetic RSM with an occluding block, the settings and the receivers every comparison below uses.
+template <typename T>
+struct batch_fixture {
   synthetic_rsm block;
-  block.block_x0 = 0.3, block.block_x1 = 0.8, block.block_height = 0.6;
-  const auto fetch = [&](glm::ivec2 t) {
+  rsm_gather_settings<T> settings;
+  std::vector<gather_receiver<T>> receivers = batch_receivers<T>();
+  rsm_plane_storage<T> planes;
+  batch_fixture() {
+    block.block_x0 = 0.3, block.block_x1 = 0.8, block.block_height = 0.6;
+    radial_pattern_settings<T> radial;
+    radial.paths = 20;
+    radial.samples_per_path = 15;
+    radial.max_radius = T(120);
+    settings.radial = make_radial_pattern_constants(radial);
+    settings.slots = make_elevation_slots<T>(8);
+    settings.rsm_size = glm::ivec2(rsm_size);
+    planes = make_rsm_planes<T>(settings.rsm_size, [this](glm::ivec2 t) { return fetch(t); });
+  }
+  rsm_texel<T> fetch(glm::ivec2 t) const {
     const rsm_texel<double> d = block(t);
     // Empty texels where x > 2 (the off-map receiver within reach sees the edge of the lit area).
     const double empty = d.position.x > 2.0 ? 1.0 : 0.0;
     return rsm_texel<T>{glm::vec<3, T>(d.position.x, d.position.y, empty > 0.0 ? 1.0 : d.position.z), glm::vec<3, T>(d.normal), glm::vec<3, T>(d.flux)};
-  };
-  rsm_gather_settings<T> settings;
-  radial_pattern_settings<T> radial;
-  radial.paths = 20;
-  radial.samples_per_path = 15;
-  radial.max_radius = T(120);
-  settings.radial = make_radial_pattern_constants(radial);
-  settings.slots = make_elevation_slots<T>(8);
-  settings.rsm_size = glm::ivec2(rsm_size);
-  const std::vector<gather_receiver<T>> receivers = batch_receivers<T>();
-  const rsm_plane_storage<T> planes = make_rsm_planes<T>(settings.rsm_size, fetch);
-  std::vector<glm::vec<3, T>> batch(receivers.size(), glm::vec<3, T>(T(-1)));
-  gather_rsm_batch<V>(receivers.data(), receivers.size(), planes.view(), settings, batch.data());
+  }
+  template <rsm_visibility V>
+  std::vector<glm::vec<3, T>> batch(batch_isa isa) const {
+    std::vector<glm::vec<3, T>> out(receivers.size(), glm::vec<3, T>(T(-1)));
+    gather_rsm_batch<V>(receivers.data(), receivers.size(), planes.view(), settings, out.data(), isa);
+    return out;
+  }
+};
+
+template <typename T, rsm_visibility V>
+void check_batch_equals_scalar(batch_isa isa) {
+  const batch_fixture<T> f;
+  const auto fetch = [&](glm::ivec2 t) { return f.fetch(t); };
+  const rsm_gather_settings<T>& settings = f.settings;
+  const std::vector<gather_receiver<T>>& receivers = f.receivers;
+  const std::vector<glm::vec<3, T>> batch = f.template batch<V>(isa);
   // gather_rsm_batch repeats gather_rsm's operations in its order (with -ffp-contract=off, no
   // fusing on either side), so the sums are the same floats; the bound allowed is the parity
   // tests' for a gather of N terms, 2 N 2^-24 + 2e-6 relative (test_parity_rsm_gather.cpp), so a
   // compiler that reassociates stays within what the GLSL twin is held to.
-  const double relative = 2.0 * radial.paths * radial.samples_per_path * 0x1p-24 + 2e-6;
+  const double relative = 2.0 * settings.radial.paths * settings.radial.samples_per_path * 0x1p-24 + 2e-6;
   int lit = 0, occluded_somewhere = 0;
   double worst = 0.0;
   for (std::size_t i = 0; i < receivers.size(); ++i) {
@@ -104,8 +122,58 @@ void check_batch_equals_scalar() {
 
 }  // namespace
 
+namespace {
+
+// check_batch_equals_scalar for both instantiations (batch_isa.hpp) where the CPU runs AVX2, the
+// portable one alone elsewhere.
+template <typename T, rsm_visibility V>
+void check_every_isa_equals_scalar() {
+  for (const batch_isa isa : {batch_isa::portable, batch_isa::avx2}) {
+    if (!batch_isa_supported(isa)) {
+      MESSAGE("this CPU or build has no AVX2: only the portable batch gather is compared");
+      continue;
+    }
+    CAPTURE(static_cast<int>(isa));
+    check_batch_equals_scalar<T, V>(isa);
+  }
+}
+
+}  // namespace
+
 TEST_CASE("gather_rsm_batch equals gather_rsm for every receiver of a batch") {
-  SUBCASE("float, Alg. 6") { check_batch_equals_scalar<float, rsm_visibility::alg6>(); }
-  SUBCASE("float, no visibility") { check_batch_equals_scalar<float, rsm_visibility::none>(); }
-  SUBCASE("double, Alg. 6") { check_batch_equals_scalar<double, rsm_visibility::alg6>(); }
+  SUBCASE("float, Alg. 6") { check_every_isa_equals_scalar<float, rsm_visibility::alg6>(); }
+  SUBCASE("float, no visibility") { check_every_isa_equals_scalar<float, rsm_visibility::none>(); }
+  SUBCASE("double, Alg. 6") { check_every_isa_equals_scalar<double, rsm_visibility::alg6>(); }
+}
+
+namespace {
+
+template <typename T, rsm_visibility V>
+void check_avx2_equals_portable() {
+  const batch_fixture<T> f;
+  const std::vector<glm::vec<3, T>> portable = f.template batch<V>(batch_isa::portable);
+  const std::vector<glm::vec<3, T>> avx2 = f.template batch<V>(batch_isa::avx2);
+  int nonzero = 0;
+  for (std::size_t i = 0; i < portable.size(); ++i) {
+    CAPTURE(i);
+    // Bit for bit: the same source and operations (AVX2 has no FMA, -ffp-contract=off), only
+    // more lanes per instruction; a difference means one path computes something else.
+    for (int c = 0; c < 3; ++c) CHECK(std::memcmp(&portable[i][c], &avx2[i][c], sizeof(T)) == 0);
+    nonzero += portable[i].x > T(0) ? 1 : 0;
+  }
+  CHECK(nonzero > 30);  // the receivers are lit: the comparison is of gathered light, not zeros
+}
+
+}  // namespace
+
+TEST_CASE("gather_rsm_batch's AVX2 path equals its portable path bit for bit") {
+  if (!batch_isa_supported(batch_isa::avx2)) {
+    MESSAGE("this CPU or build has no AVX2: nothing to compare (the portable path is compared with gather_rsm above)");
+    return;
+  }
+  CHECK(best_batch_isa() == batch_isa::avx2);
+  SUBCASE("float, Alg. 6") { check_avx2_equals_portable<float, rsm_visibility::alg6>(); }
+  SUBCASE("float, no visibility") { check_avx2_equals_portable<float, rsm_visibility::none>(); }
+  SUBCASE("double, Alg. 6") { check_avx2_equals_portable<double, rsm_visibility::alg6>(); }
+  SUBCASE("double, no visibility") { check_avx2_equals_portable<double, rsm_visibility::none>(); }
 }

@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/packing.hpp>
 
 #include <vplkit/hash.hpp>
 #include <vplkit/gl/settings_uniforms.hpp>
@@ -101,6 +102,25 @@ voxel_grid build_voxel_grid(const mesh& geometry, const bounding_box& box, const
 // Whether sequences accumulate: a gathering technique with a blend below 1.
 bool with_temporal(const rsm_frame_constants& constants) { return constants.technique.indirect && constants.temporal.blend < 1.0f; }
 
+// Whether this context's GLSL 3.30 has packHalf2x16 (GL_ARB_shading_language_packing, core in 4.2).
+bool has_half_packing() {
+  GLint count = 0;
+  glGetIntegerv(GL_NUM_EXTENSIONS, &count);
+  for (GLint i = 0; i < count; ++i) {
+    const char* name = reinterpret_cast<const char*>(glGetStringi(GL_EXTENSIONS, static_cast<GLuint>(i)));
+    if (name && std::strcmp(name, "GL_ARB_shading_language_packing") == 0) return true;
+  }
+  return false;
+}
+
+// The separable filter's x pass writes the y pass's taps packed as halves into an RGBA32UI target
+// (blur_x.frag): one fetch per tap in the y pass instead of two. Exact only where the buffers are
+// rgba16f; with rgba32f, or without half packing, the x pass writes floats as the indirect buffer.
+// (Chosen when the target is made; the programs and the read-back follow the target's format.)
+bool packed_blur(const rsm_pipeline_settings& settings) {
+  return settings.filter == post_filter::separable && settings.format == texel_format::rgba16f && has_half_packing();
+}
+
 void set_light_uniforms(const program& target, const rsm_frame_constants& constants) {
   if (constants.primary.kind == light_kind::spot) set_uniforms(target, "spot", constants.primary.spot);
   else set_uniforms(target, "directional", constants.primary.directional);
@@ -127,7 +147,8 @@ rsm_pipeline::rsm_pipeline(const shader_library& shaders, const scene& source, c
                        framebuffer(with_temporal(constants_) ? constants_.indirect_size.x : 1, with_temporal(constants_) ? constants_.indirect_size.y : 1,
                                    {settings.format}, false)},
       blur_x_target_(settings.filter == post_filter::separable ? constants_.indirect_size.x : 1,
-                     settings.filter == post_filter::separable ? constants_.indirect_size.y : 1, {settings.format}, false),
+                     settings.filter == post_filter::separable ? constants_.indirect_size.y : 1,
+                     {packed_blur(settings) ? texel_format::rgba32ui : settings.format}, false),
       post_target_(settings.width, settings.height, {settings.format, settings.format}, false),
       empty_vertex_array_(generate_vertex_array()) {
   if (with_voxels(constants_)) {
@@ -147,6 +168,7 @@ rsm_pipeline::rsm_pipeline(const shader_library& shaders, const scene& source, c
 void rsm_pipeline::load_programs(const shader_library& shaders, const scene& source) {
   const rsm_technique& technique = constants_.technique;
   const bool separable = settings_.filter == post_filter::separable;
+  const bool packed = separable && blur_x_target_.colour(0).format() == texel_format::rgba32ui;
   if (technique.indirect) {
     gather_program_ = load_program(shaders, "fullscreen.vert", "gather.frag",
                                    {{"VPLKIT_RSM_PATTERN", std::to_string(static_cast<int>(technique.pattern))},
@@ -155,11 +177,12 @@ void rsm_pipeline::load_programs(const shader_library& shaders, const scene& sou
                                     {"VPLKIT_RSM_COVERAGE", flag(with_coverage(constants_))}});
     if (with_coverage(constants_)) coarse_program_ = load_program(shaders, "fullscreen.vert", "rsm_coarse.frag");
     if (with_temporal(constants_)) temporal_program_ = load_program(shaders, "fullscreen.vert", "temporal.frag");
-    if (separable) blur_x_program_ = load_program(shaders, "fullscreen.vert", "blur_x.frag");
+    if (separable) blur_x_program_ = load_program(shaders, "fullscreen.vert", "blur_x.frag", {{"VPLKIT_PACKED_BLUR", flag(packed)}});
   }
   post_program_ = load_program(shaders, "fullscreen.vert", "post.frag",
                                {{"VPLKIT_INDIRECT", flag(technique.indirect)},
                                 {"VPLKIT_SEPARABLE", flag(separable)},
+                                {"VPLKIT_PACKED_BLUR", flag(technique.indirect && packed)},
                                 {"VPLKIT_LIGHT_DIRECTIONAL", flag(is_directional(source))}});
 
 }
@@ -510,7 +533,19 @@ rsm_pass_buffers rsm_pipeline::read_buffers() const {
       buffers.accumulated = history_targets_[history_index_].read_image(0);
       buffers.history = history_targets_[1 - history_index_].read_image(0);
     }
-    if (settings_.filter == post_filter::separable) buffers.blurred_x = blur_x_target_.read_image(0);
+    if (settings_.filter == post_filter::separable && blur_x_target_.colour(0).format() == texel_format::rgba32ui) {
+      // The packed taps as the image the x pass wrote before they were packed: [irradiance | depth].
+      const std::vector<std::uint32_t> packed_words = blur_x_target_.read_uint(0);
+      buffers.blurred_x.width = blur_x_target_.width();
+      buffers.blurred_x.height = blur_x_target_.height();
+      buffers.blurred_x.texels.resize(packed_words.size() / 4);
+      for (std::size_t i = 0; i < buffers.blurred_x.texels.size(); ++i) {
+        const glm::vec2 red_green = glm::unpackHalf2x16(packed_words[4 * i]), blue_depth = glm::unpackHalf2x16(packed_words[4 * i + 1]);
+        buffers.blurred_x.texels[i] = glm::vec4(red_green, blue_depth);
+      }
+    } else if (settings_.filter == post_filter::separable) {
+      buffers.blurred_x = blur_x_target_.read_image(0);
+    }
   }
   return buffers;
 }

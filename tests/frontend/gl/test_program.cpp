@@ -366,6 +366,8 @@ TEST_CASE("every shipped pass program compiles and links") {
     CAPTURE(fragment);
     CHECK_NOTHROW(load_program(library, vertex, fragment));
   }
+  // The separable filter's x pass packing the y pass's taps (rgba16f buffers).
+  CHECK_NOTHROW(load_program(library, "fullscreen.vert", "blur_x.frag", {{"VPLKIT_PACKED_BLUR", "1"}}));
   // The variant programs, every define combination the pipeline uses.
   for (const char* light : {"0", "1"}) {
     CHECK_NOTHROW(load_program(library, "scene.vert", "rsm.frag", {{"VPLKIT_LIGHT_DIRECTIONAL", light}}));
@@ -373,6 +375,8 @@ TEST_CASE("every shipped pass program compiles and links") {
       for (const char* separable : {"0", "1"})
         CHECK_NOTHROW(load_program(library, "fullscreen.vert", "post.frag",
                                    {{"VPLKIT_INDIRECT", indirect}, {"VPLKIT_SEPARABLE", separable}, {"VPLKIT_LIGHT_DIRECTIONAL", light}}));
+    CHECK_NOTHROW(load_program(library, "fullscreen.vert", "post.frag",
+                               {{"VPLKIT_INDIRECT", "1"}, {"VPLKIT_SEPARABLE", "1"}, {"VPLKIT_PACKED_BLUR", "1"}, {"VPLKIT_LIGHT_DIRECTIONAL", light}}));
   }
   for (const char* coverage : {"0", "1"}) {
     for (const char* visibility : {"0", "2", "3", "6", "7"})
