@@ -1,11 +1,15 @@
 // One description per setting of a technique family: its name (the command-line option's,
-// without the dashes), type, range, unit, one line of help, which techniques read it and the
-// GLSL uniform it feeds; its default is the settings struct's own. A family's settings struct has
-// one table of these, next to the struct (rsm_settings_table() in rsm_pipeline.hpp, ...), and
-// from that table come
+// without the dashes), the field it reads and writes (a member path: path_of(&S::radial,
+// &radial_pattern_settings<float>::paths); its default is the struct's initialiser), type, range,
+// unit, one line of help, which techniques read it, the GLSL uniforms and defines it feeds, and
+// whether a change needs a new pipeline (defines, builds). A family's settings struct has one
+// table of these, next to the struct (rsm_settings_table() in rsm_settings.hpp, ...), and from
+// that table come
 // - the command-line options and their scoping (frontend/cli/technique_options),
 // - validation and its messages (check_settings, each family's validate()),
 // - the viewer's controls, with the same ranges and refusals (frontend/viewer),
+// - which change a pipeline applies in place and which needs a new one (rebuilding_changes,
+//   each family's pipeline::apply_settings),
 // - the sweep's axes (frontend/sweep),
 // - the JSON dump of the settings in effect (settings_json).
 // A setting that is a kernel struct's field takes its range, unit and help from the kernel's
@@ -14,14 +18,18 @@
 #pragma once
 
 #include <algorithm>
+#include <cstddef>
 #include <functional>
 #include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <tuple>
 #include <type_traits>
 #include <utility>
 #include <vector>
+
+#include <glm/glm.hpp>
 
 #include <vplkit/settings.hpp>
 
@@ -51,6 +59,14 @@ struct setting_info {
   bool in_effect = true;             ///< among the settings in effect (false for another unit of one)
   bool applies_first = false;        ///< a preset: applied before the other settings, which override it
   std::string excludes;              ///< a setting that cannot be given together with this one
+  /// Why a change of it needs a new pipeline, "" for a setting that feeds only uniforms (applied
+  /// in place: pipeline::apply_settings): the defines it sets (setting::defines) and what a
+  /// pipeline builds from it (setting::builds: a target's size, a grid, a mesh), "; "-separated.
+  std::string rebuilds;
+  /// The pipeline's own state once made, moved by the pipeline's interface rather than its
+  /// settings (final gathering's object position: pipeline::set_object_position), so that
+  /// apply_settings keeps the pipeline's: neither applied nor a reason to rebuild.
+  bool pose = false;
 
   /// "" when `text` is a value of this setting, else why not, e.g. "must be a whole number in
   /// [1, 256], got '0'".
@@ -90,14 +106,26 @@ std::string member_path_name(Value Owner::*member, Next next, Rest... rest) {
 }
 
 /// The member at the end of a path, each step checked by the compiler (`value.*member` of the
-/// previous step's type).
+/// previous step's type); const or not, as `value` is.
 template <typename Value>
-const Value& member_at(const Value& value) {
+Value& member_at(Value& value) {
   return value;
 }
 template <typename Value, typename Member, typename... Rest>
-decltype(auto) member_at(const Value& value, Member member, Rest... rest) {
+decltype(auto) member_at(Value& value, Member member, Rest... rest) {
   return member_at(value.*member, rest...);
+}
+
+/// A value as a setting's text, and back (text that setting_info::check accepted).
+template <typename Value>
+std::string value_text(const Value& value) {
+  if constexpr (std::is_integral_v<Value>) return std::to_string(value);
+  else return format_real(value);
+}
+template <typename Value>
+Value text_value(const std::string& text) {
+  if constexpr (std::is_integral_v<Value>) return static_cast<Value>(*parse_integer(text));
+  else return static_cast<Value>(*parse_real(text));
 }
 
 /// A fed member as a number: itself, or a GLM vector's first component.
@@ -109,12 +137,37 @@ double as_number(const Value& value) {
 
 }  // namespace detail
 
+/// A field of a settings struct as a chain of member pointers, each a member of the previous
+/// one's type: path_of(&rsm_pipeline_settings::radial, &radial_pattern_settings<float>::paths).
+/// A table entry reads and writes its field through it (the compiler checks every step), its
+/// default is the struct's initialiser, and a kernel struct's field gives its description.
+template <typename... Members>
+struct member_path {
+  static_assert(sizeof...(Members) > 0 && (std::is_member_object_pointer_v<Members> && ...), "a member path is member object pointers");
+  std::tuple<Members...> members;
+
+  template <typename Value>
+  decltype(auto) operator()(Value& value) const {
+    return std::apply([&value](auto... member) -> decltype(auto) { return detail::member_at(value, member...); }, members);
+  }
+  /// The last member's description, from its struct's settings_description (vplkit/settings.hpp).
+  field_description description() const { return describe_field(std::get<sizeof...(Members) - 1>(members)); }
+};
+template <typename... Members>
+member_path<Members...> path_of(Members... members) {
+  return {{members...}};
+}
+/// The type of the field at the end of `Path` from a `Settings`.
+template <typename Settings, typename Path>
+using path_value_t = std::decay_t<decltype(std::declval<const Path&>()(std::declval<Settings&>()))>;
+
 /// A setting of `Settings` for the techniques `Technique` names (the family's technique table).
 template <typename Settings, typename Technique>
 struct setting : setting_info {
   std::function<bool(const Technique&)> reads;            ///< null: every technique of the family
   std::function<std::string(const Settings&)> get;        ///< the value, in a form check() accepts
   std::function<void(Settings&, const std::string&)> set;  ///< a value check() accepted
+  std::function<std::string(const Settings&)> build_key;  ///< what a build reads of it (builds); null: get()
 
   setting& read_by(std::function<bool(const Technique&)> predicate, std::string who) {
     reads = std::move(predicate);
@@ -142,7 +195,10 @@ struct setting : setting_info {
   setting& feeds(const char* file, const char* root, Derive derive, Members... path) {
     static_assert(sizeof...(Members) > 0, "feeds: a member path of at least one member");
     feeds(std::string(file) + ": " + root + "." + detail::member_path_name(path...));
-    fed_members.push_back([derive, path...](const Settings& settings) { return detail::as_number(detail::member_at(derive(settings), path...)); });
+    fed_members.push_back([derive, path...](const Settings& settings) {
+      const auto derived = derive(settings);
+      return detail::as_number(detail::member_at(derived, path...));
+    });
     return *this;
   }
   setting& allowing(std::vector<int> values) {
@@ -158,11 +214,45 @@ struct setting : setting_info {
     return *this;
   }
 
-  /// A number field: `access` is a generic lambda returning the field, `[](auto& s) -> auto& {
-  /// return s.radial.paths; }`; integral fields are integers, floating ones reals.
-  template <typename Access>
-  static setting number(std::string name, Access access, setting_range range, std::string unit, std::string help) {
-    using value_type = std::decay_t<decltype(access(std::declval<Settings&>()))>;
+  /// A define of a shader the setting sets, "file: NAME" (post.frag: VPLKIT_SEPARABLE): checked
+  /// against the shader like a uniform, and a change needs a new pipeline (another program).
+  setting& defines(const std::string& define) {
+    feeds(define);
+    rebuilds += (rebuilds.empty() ? "" : "; ") + ("the define " + define);
+    return *this;
+  }
+  /// Something a pipeline builds from the setting when it is made ("the RSM's target", "the
+  /// voxel grid"): a change needs a new pipeline. `key`, when given, is what of the settings the
+  /// build reads (a size rounded from the setting, or the setting only where the technique reads
+  /// it): a change that keeps the key is applied in place.
+  setting& builds(const std::string& what, std::function<std::string(const Settings&)> key = nullptr) {
+    rebuilds += (rebuilds.empty() ? "" : "; ") + what;
+    if (key) build_key = std::move(key);
+    return *this;
+  }
+  setting& kept_by_pipeline() {
+    pose = true;
+    return *this;
+  }
+  /// Whether going from `from` to `to` changes what a pipeline builds from this setting.
+  bool needs_rebuild(const Settings& from, const Settings& to) const {
+    if (rebuilds.empty()) return false;
+    return build_key ? build_key(from) != build_key(to) : get(from) != get(to);
+  }
+  /// Also writes its value to `path` (a value two kernel structs share: the patterns' seed).
+  template <typename... Members>
+  setting& sets_also(member_path<Members...> path) {
+    set = [first = std::move(set), path](Settings& s, const std::string& text) {
+      first(s, text);
+      path(s) = detail::text_value<path_value_t<Settings, member_path<Members...>>>(text);
+    };
+    return *this;
+  }
+
+  /// A number field; integral fields are integers, floating ones reals.
+  template <typename... Members>
+  static setting number(std::string name, member_path<Members...> path, setting_range range, std::string unit, std::string help) {
+    using value_type = path_value_t<Settings, member_path<Members...>>;
     static_assert(std::is_arithmetic_v<value_type>, "setting::number needs a number field");
     setting entry;
     entry.name = std::move(name);
@@ -170,48 +260,97 @@ struct setting : setting_info {
     entry.range = range;
     entry.unit = std::move(unit);
     entry.help = std::move(help);
-    entry.get = [access](const Settings& s) {
-      if constexpr (std::is_integral_v<value_type>) return std::to_string(access(s));
-      else return format_real(access(s));
-    };
-    entry.set = [access](Settings& s, const std::string& text) {
-      if constexpr (std::is_integral_v<value_type>) access(s) = static_cast<value_type>(*parse_integer(text));
-      else access(s) = static_cast<value_type>(*parse_real(text));
-    };
+    entry.get = [path](const Settings& s) { return detail::value_text(path(s)); };
+    entry.set = [path](Settings& s, const std::string& text) { path(s) = detail::text_value<value_type>(text); };
     return entry;
   }
-
-  /// A number field that is a kernel struct's field: range, unit and help from its description.
-  template <typename Access>
-  static setting number(std::string name, Access access, const field_description& kernel_field) {
-    return number(std::move(name), access, kernel_field.range, kernel_field.unit, kernel_field.help);
+  /// A number field with a kernel struct's description (range, unit and help).
+  template <typename... Members>
+  static setting number(std::string name, member_path<Members...> path, const field_description& kernel_field) {
+    return number(std::move(name), path, kernel_field.range, kernel_field.unit, kernel_field.help);
+  }
+  /// A number field that is a kernel struct's field: its description is the field's own.
+  template <typename... Members>
+  static setting number(std::string name, member_path<Members...> path) {
+    return number(std::move(name), path, path.description());
   }
 
-  /// The type of the field an accessor returns.
-  template <typename Access>
-  using field_type = std::decay_t<decltype(std::declval<Access&>()(std::declval<Settings&>()))>;
-
   /// A field of one of `options` (an enum or a string), shown by their names.
-  template <typename Access>
-  static setting choice(std::string name, Access access, std::vector<std::pair<std::string, field_type<Access>>> options, std::string help) {
+  template <typename... Members>
+  static setting choice(std::string name, member_path<Members...> path,
+                        std::vector<std::pair<std::string, path_value_t<Settings, member_path<Members...>>>> options, std::string help) {
     setting entry;
     entry.name = std::move(name);
     entry.type = setting_type::choice;
     for (const auto& option : options) entry.choices.push_back(option.first);
     entry.help = std::move(help);
-    entry.get = [access, options](const Settings& s) {
+    entry.get = [path, options](const Settings& s) {
       for (const auto& option : options)
-        if (option.second == access(s)) return option.first;
+        if (option.second == path(s)) return option.first;
       return std::string("?");
     };
-    entry.set = [access, options](Settings& s, const std::string& text) {
+    entry.set = [path, options](Settings& s, const std::string& text) {
       for (const auto& option : options)
-        if (option.first == text) access(s) = option.second;
+        if (option.first == text) path(s) = option.second;
     };
     return entry;
   }
 
-  /// Anything else: its own get and set.
+  /// Two whole-number fields given as N (both) or WxH: an image's size.
+  template <typename Width, typename Height>
+  static setting extent(std::string name, Width width, Height height, setting_range range, std::string unit, std::string help) {
+    setting entry;
+    entry.name = std::move(name);
+    entry.type = setting_type::size;
+    entry.range = range;
+    entry.unit = std::move(unit);
+    entry.help = std::move(help);
+    entry.get = [width, height](const Settings& s) {
+      return width(s) == height(s) ? std::to_string(width(s)) : std::to_string(width(s)) + "x" + std::to_string(height(s));
+    };
+    entry.set = [width, height](Settings& s, const std::string& text) { std::tie(width(s), height(s)) = *parse_extent(text); };
+    return entry;
+  }
+
+  /// A GLM vector field given as x,y,z.
+  template <typename... Members>
+  static setting point(std::string name, member_path<Members...> path, setting_range range, std::string unit, std::string help) {
+    using value_type = path_value_t<Settings, member_path<Members...>>;
+    setting entry;
+    entry.name = std::move(name);
+    entry.type = setting_type::point;
+    entry.range = range;
+    entry.unit = std::move(unit);
+    entry.help = std::move(help);
+    entry.get = [path](const Settings& s) {
+      std::string text;
+      for (glm::length_t i = 0; i < value_type::length(); ++i) {
+        if (i > 0) text += ',';
+        text += format_real(path(s)[i]);
+      }
+      return text;
+    };
+    entry.set = [path](Settings& s, const std::string& text) {
+      const std::vector<double> point = *parse_point(text);
+      for (glm::length_t i = 0; i < value_type::length(); ++i) path(s)[i] = static_cast<typename value_type::value_type>(point[static_cast<std::size_t>(i)]);
+    };
+    return entry;
+  }
+
+  /// A text field (a name or a file).
+  template <typename... Members>
+  static setting text(std::string name, member_path<Members...> path, std::string help) {
+    setting entry;
+    entry.name = std::move(name);
+    entry.type = setting_type::text;
+    entry.help = std::move(help);
+    entry.get = [path](const Settings& s) { return std::string(path(s)); };
+    entry.set = [path](Settings& s, const std::string& text) { path(s) = text; };
+    return entry;
+  }
+
+  /// A value derived from fields that other settings hold (a preset, a radius in other units):
+  /// its own get and set.
   static setting custom(std::string name, setting_type type, std::string unit, std::string help, std::function<std::string(const Settings&)> get,
                         std::function<void(Settings&, const std::string&)> set) {
     setting entry;
@@ -233,6 +372,17 @@ std::string check_settings(const std::vector<setting<Settings, Technique>>& tabl
     if (entry.in_effect)
       if (const std::string why = entry.check(entry.get(settings)); !why.empty()) return entry.name + " " + why;
   return {};
+}
+
+/// The settings of `table` whose change from `from` to `to` needs a new pipeline (a define or
+/// something built from them; setting::defines, setting::builds), in the table's order: what
+/// each family's apply_settings refuses to apply in place.
+template <typename Settings, typename Technique>
+std::vector<std::string> rebuilding_changes(const std::vector<setting<Settings, Technique>>& table, const Settings& from, const Settings& to) {
+  std::vector<std::string> names;
+  for (const setting<Settings, Technique>& entry : table)
+    if (entry.needs_rebuild(from, to)) names.push_back(entry.name);
+  return names;
 }
 
 /// Any family's settings, by name and text: what the command line, the viewer and the sweep hold
@@ -263,6 +413,9 @@ class technique_settings {
   /// The kernel-struct members the setting feeds, as the frame would upload them (setting::feeds
   /// with a member path); empty for a setting that feeds none.
   virtual std::vector<double> fed_values(const std::string& name) const = 0;
+  /// The settings whose change from `from` to these needs a new pipeline (rebuilding_changes),
+  /// with "technique" first for another technique; {"family"} for another family's settings.
+  virtual std::vector<std::string> rebuilding_changes(const technique_settings& from) const = 0;
 };
 
 /// The name and value of every setting in effect that the current technique reads.
@@ -335,6 +488,14 @@ class described_settings final : public technique_settings {
     if (const auto* found = entry(name))
       for (const auto& fed : found->fed_members) values.push_back(fed(value_));
     return values;
+  }
+  std::vector<std::string> rebuilding_changes(const technique_settings& from) const override {
+    const auto* same_family = dynamic_cast<const described_settings*>(&from);
+    if (!same_family) return {"family"};
+    std::vector<std::string> names;
+    if (same_family->technique() != technique()) names.push_back("technique");
+    for (std::string& name : vplkit::rebuilding_changes(*family_->table, same_family->value(), value_)) names.push_back(std::move(name));
+    return names;
   }
 
  private:

@@ -104,27 +104,27 @@ void final_gather_pipeline::set_light(std::size_t index, const scene_light& ligh
   cube_valid_ = view_valid_ = false;
 }
 
-// Which setting applies in place (the viewer's live controls) and why:
-// - in place: min-distance, the irradiance clamp the cube map's faces and the shading read as
-//   uniforms (the cube map is redrawn, as after a light move); environment-resolution where the
-//   technique does not read it (the polygon and point techniques allocate a 1 x 1 map they never
-//   sample, so no target depends on it);
-// - rebuild (a new pipeline): size and format (the G-buffer and output targets), face-size (the
-//   faces' target), cube-resolution (the small cube map's target), environment-resolution for
-//   envmap (its map's target), the technique (the shading's VPLKIT_FINAL_GATHER define), and the
-//   object and its size (a new scene: the object's mesh and radius).
+// Which setting applies in place (the viewer's live controls) and why: a new pipeline for
+// another technique (the shading's VPLKIT_FINAL_GATHER define) and for the settings the table
+// says size what the constructor builds (setting::builds: the G-buffer, output, faces' and small
+// cube map's targets, envmap's environment map, the object's mesh); in place the rest, the
+// irradiance clamp the cube map's faces and the shading read as uniforms (the cube map is
+// redrawn, as after a light move). The object's position is the pipeline's own
+// (set_object_position), not applied from the settings.
 bool final_gather_pipeline::apply_settings(const technique_settings& settings) {
   const auto* typed = dynamic_cast<const described_settings<final_gather_setup, final_gather_technique>*>(&settings);
   if (!typed) return false;
   const final_gather_setup& setup = typed->value();
-  if (!validate(setup).empty()) return false;
   const final_gather_settings& next = setup.pipeline;
-  const bool environment_map = technique_.variant == final_gather_variant::environment_map;
-  const bool same_build = next.technique == settings_.technique && next.width == settings_.width && next.height == settings_.height &&
-                          next.format == settings_.format && next.face_size == settings_.face_size && next.resolution == settings_.resolution &&
-                          (!environment_map || next.environment_resolution == settings_.environment_resolution) &&
-                          !scene_.object_source.empty() && setup.object == scene_.object_source && setup.object_size == scene_.object_size;
-  if (!same_build) return false;
+  // What this pipeline was made with; a pipeline made from a scene rather than a setup has no
+  // object's source, and takes no settings in place.
+  final_gather_setup current = setup;
+  current.pipeline = settings_;
+  current.object = scene_.object_source;
+  current.object_size = scene_.object_size;
+  if (!validate(setup).empty() || scene_.object_source.empty() || next.technique != settings_.technique ||
+      !rebuilding_changes(final_gather_settings_table(), current, setup).empty())
+    return false;
   settings_ = next;
   for (const program* target : {&cube_program_, &shade_program_}) set_uniforms(*target, "irradiance", settings_.irradiance);
   shade_program_.set("environment_resolution", settings_.environment_resolution);

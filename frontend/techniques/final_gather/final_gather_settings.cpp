@@ -1,6 +1,5 @@
 #include "frontend/techniques/final_gather/final_gather_settings.hpp"
 
-#include <tuple>
 
 #include "frontend/core/error.hpp"
 #include "frontend/core/named_table.hpp"
@@ -20,50 +19,52 @@ const std::vector<final_gather_technique>& final_gather_techniques() {
 const final_gather_technique& find_final_gather_technique(const std::string& name) { return find_by_name(final_gather_techniques(), name, "final gathering technique"); }
 
 const std::vector<setting<final_gather_setup, final_gather_technique>>& final_gather_settings_table() {
+  // An entry is its field's member path: the default is the struct's initialiser, and get and
+  // set come from the path.
   using entry = setting<final_gather_setup, final_gather_technique>;
+  using S = final_gather_setup;
+  using P = final_gather_settings;
+  using I = irradiance_settings<float>;
   // The kernel struct the frame uploads (the member paths of .feeds() read it).
-  const auto irradiance = [](const final_gather_setup& s) { return s.pipeline.irradiance; };
+  const auto irradiance = [](const S& s) { return s.pipeline.irradiance; };
+  const auto environment_map = [](const final_gather_technique& t) { return t.variant == final_gather_variant::environment_map; };
   static const std::vector<entry> table = {
-      entry::custom("size", setting_type::size, "pixels", "final image size, N or WxH (the paper: 700)",
-                    [](const final_gather_setup& s) {
-                      const final_gather_settings& p = s.pipeline;
-                      return p.width == p.height ? std::to_string(p.width) : std::to_string(p.width) + "x" + std::to_string(p.height);
-                    },
-                    [](final_gather_setup& s, const std::string& text) { std::tie(s.pipeline.width, s.pipeline.height) = *parse_extent(text); })
-          .within(schema::closed_range(1, max_image_side))
+      entry::extent("size", path_of(&S::pipeline, &P::width), path_of(&S::pipeline, &P::height), schema::closed_range(1, max_image_side), "pixels",
+                    "final image size, N or WxH (the paper: 700)")
+          .builds("the G-buffer and output targets")
           .not_live(),
-      entry::choice("format", [](auto& s) -> auto& { return s.pipeline.format; }, {{"rgba16f", texel_format::rgba16f}, {"rgba32f", texel_format::rgba32f}},
-                    "float format of the output targets (the cube map and G-buffer are rgba32f)"),
-      entry::number("min-distance", [](auto& s) -> auto& { return s.pipeline.irradiance.min_distance; },
-                    describe_field(&irradiance_settings<float>::min_distance))
-          .feeds("cube_face.frag", "irradiance", irradiance, &irradiance_settings<float>::min_distance)
-          .feeds("final_gather_shade.frag", "irradiance", irradiance, &irradiance_settings<float>::min_distance),
-      entry::number("cube-resolution", [](auto& s) -> auto& { return s.pipeline.resolution; }, schema::closed_range(1, 64), "texels",
+      entry::choice("format", path_of(&S::pipeline, &P::format), {{"rgba16f", texel_format::rgba16f}, {"rgba32f", texel_format::rgba32f}},
+                    "float format of the output targets (the cube map and G-buffer are rgba32f)")
+          .builds("the output targets"),
+      entry::number("min-distance", path_of(&S::pipeline, &P::irradiance, &I::min_distance))
+          .feeds("cube_face.frag", "irradiance", irradiance, &I::min_distance)
+          .feeds("final_gather_shade.frag", "irradiance", irradiance, &I::min_distance),
+      entry::number("cube-resolution", path_of(&S::pipeline, &P::resolution), schema::closed_range(1, 64), "texels",
                     "M, the small cube map's face resolution (the paper: 4 or 2)")
-          .feeds("cube_downsample.frag: resolution; final_gather_shade.frag: resolution"),
-      entry::number("face-size", [](auto& s) -> auto& { return s.pipeline.face_size; }, schema::closed_range(1, max_cube_face_size), "texels",
+          .feeds("cube_downsample.frag: resolution; final_gather_shade.frag: resolution")
+          .builds("the small cube map's target"),
+      entry::number("face-size", path_of(&S::pipeline, &P::face_size), schema::closed_range(1, max_cube_face_size), "texels",
                     "the cube map's face size before averaging (the paper: 256; its six faces lie side by side in one texture)")
-          .feeds("cube_downsample.frag: face_size"),
-      entry::number("environment-resolution", [](auto& s) -> auto& { return s.pipeline.environment_resolution; }, schema::closed_range(1, 256), "texels",
+          .feeds("cube_downsample.frag: face_size")
+          .builds("the cube map faces' target"),
+      // Only envmap samples its map: the other techniques make a 1 x 1 one whatever the setting.
+      entry::number("environment-resolution", path_of(&S::pipeline, &P::environment_resolution), schema::closed_range(1, 256), "texels",
                     "K, the face resolution of the baseline's irradiance environment map")
-          .read_by([](const final_gather_technique& t) { return t.variant == final_gather_variant::environment_map; }, "the environment map")
-          .feeds("environment_convolution.frag: environment_resolution; final_gather_shade.frag: environment_resolution"),
-      entry::custom("object", setting_type::text, "", "the dynamic object: sphere or an .obj file (meshes/bunny.obj)",
-                    [](const final_gather_setup& s) { return s.object; }, [](final_gather_setup& s, const std::string& text) { s.object = text; })
-          .not_live(),
-      entry::custom("object-position", setting_type::point, "scene units", "the object's centre x,y,z (the room is [-1,1]x[0,2]x[-1,1])",
-                    [](const final_gather_setup& s) {
-                      return format_real(s.object_position.x) + "," + format_real(s.object_position.y) + "," + format_real(s.object_position.z);
-                    },
-                    [](final_gather_setup& s, const std::string& text) {
-                      const std::vector<double> point = *parse_point(text);
-                      s.object_position = glm::vec3(static_cast<float>(point[0]), static_cast<float>(point[1]), static_cast<float>(point[2]));
-                    })
-          .within(schema::closed_range(-max_object_coordinate, max_object_coordinate))
+          .read_by(environment_map, "the environment map")
+          .feeds("environment_convolution.frag: environment_resolution; final_gather_shade.frag: environment_resolution")
+          .builds("the environment map's target",
+                  [](const S& s) {
+                    const bool sampled = find_final_gather_technique(s.pipeline.technique).variant == final_gather_variant::environment_map;
+                    return sampled ? std::to_string(s.pipeline.environment_resolution) : std::string("1");
+                  }),
+      entry::text("object", path_of(&S::object), "the dynamic object: sphere or an .obj file (meshes/bunny.obj)").builds("the object's mesh").not_live(),
+      entry::point("object-position", path_of(&S::object_position), schema::closed_range(-max_object_coordinate, max_object_coordinate), "scene units",
+                   "the object's centre x,y,z (the room is [-1,1]x[0,2]x[-1,1])")
           .feeds("cube_face.frag: reference_point; final_gather_shade.frag: reference_point")
+          .kept_by_pipeline()
           .not_live(),
-      entry::number("object-size", [](auto& s) -> auto& { return s.object_size; }, schema::open_closed_range(0, 10), "scene units",
-                    "the object's size across (the room is 2 wide)")
+      entry::number("object-size", path_of(&S::object_size), schema::open_closed_range(0, 10), "scene units", "the object's size across (the room is 2 wide)")
+          .builds("the object's mesh")
           .not_live(),
   };
   return table;

@@ -118,12 +118,12 @@ void lightwave_pipeline::allocate_shadow_maps() {
 std::uint64_t lightwave_pipeline::shadow_map_bytes() const { return lightwave_shadow_map_bytes(shadow_size_.x, shadow_size_.y, shadow_layers_); }
 
 // Which setting applies in place (the viewer's live controls) and why:
-// - rebuild (a new pipeline): size and format (the targets), vpl-energy and shadow-variant (the
-//   main programs' defines, VPLKIT_LIGHTWAVE_ENERGY and _SHADOW_VARIANT, whichever mode), the
-//   technique (the mode's define), shadow-map-scale where the rounded map size changes, and
-//   shadow-maps / integrated-maps where the technique reads them (the shadow maps' layer count);
-//   receiver spacing and triangles (the receivers' mesh, textures and sum targets) and VPLs per
-//   pass (lightwave_capture.frag's VPLKIT_LIGHTWAVE_PASS_VPLS, the VPL blocks' stride);
+// - rebuild (a new pipeline): the technique (the mode's define), and the settings the table says
+//   set a define or size what the constructor builds (setting::defines, setting::builds: the
+//   targets, the main programs' defines, the shadow maps' array); besides the table, receiver
+//   spacing and triangles (the receivers' mesh, textures and sum targets) and VPLs per pass
+//   (lightwave_capture.frag's VPLKIT_LIGHTWAVE_PASS_VPLS, the VPL blocks' stride), which code
+//   sets and no option;
 // - in place, the VPLs re-planned and the shadow maps redrawn, as after a light move (no program,
 //   no target: the VPL texture and blocks are re-uploaded at their new size at every light move
 //   anyway): ray-angle, vpls-per-ray, vpl-max-distance;
@@ -131,23 +131,16 @@ std::uint64_t lightwave_pipeline::shadow_map_bytes() const { return lightwave_sh
 //   receivers: min-distance (the sums' clamp and the importance casters' weights read it, the
 //   VPLs' placement does not; the thesis energy's vertex stage reads it as a uniform);
 // - in place, the shadow maps redrawn: seed (the thesis variant's draw), vpl-field-of-view (the
-//   maps' projection);
-// - in place, the main pass only (uniforms it sets at every draw): integrated-steps,
-//   faked-multiplier, specular-strength, specular-exponent.
+//   maps' projection), a map count the technique does not read;
+// - in place, the main pass only (uniforms it sets at every draw): the rest.
 bool lightwave_pipeline::apply_settings(const technique_settings& settings) {
   const auto* typed = dynamic_cast<const described_settings<lightwave_settings, lightwave_technique>*>(&settings);
   if (!typed) return false;
   const lightwave_settings& next = typed->value();
-  if (!validate(next).empty()) return false;
-  const lightwave_derived_settings derived = derive(next), current = derive(settings_);
-  // What the programs' defines, the targets, the shadow maps' array and the receivers come from
-  // (the constructor).
-  const bool same_build = next.technique == settings_.technique && next.width == settings_.width && next.height == settings_.height &&
-                          next.format == settings_.format && next.energy == settings_.energy && next.shadow_variant == settings_.shadow_variant &&
-                          derived.shadow_map_size == current.shadow_map_size && derived.indirect_maps == current.indirect_maps &&
-                          next.receiver_spacing == settings_.receiver_spacing && next.receiver_triangles == settings_.receiver_triangles &&
-                          next.vpls_per_pass == settings_.vpls_per_pass;
-  if (!same_build) return false;
+  if (!validate(next).empty() || next.technique != settings_.technique || !rebuilding_changes(lightwave_settings_table(), settings_, next).empty())
+    return false;
+  if (next.receiver_spacing != settings_.receiver_spacing || next.receiver_triangles != settings_.receiver_triangles || next.vpls_per_pass != settings_.vpls_per_pass)
+    return false;
   const bool vpls_move = next.angle_deg != settings_.angle_deg || next.per_ray != settings_.per_ray || next.max_distance != settings_.max_distance;
   const bool clamp_moves = next.irradiance.min_distance != settings_.irradiance.min_distance;
   const bool shadows_move = vpls_move || clamp_moves || next.seed != settings_.seed || next.vpl_field_of_view != settings_.vpl_field_of_view ||

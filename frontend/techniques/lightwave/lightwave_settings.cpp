@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
-#include <tuple>
+#include <functional>
 
 #include "frontend/core/error.hpp"
 #include "frontend/core/named_table.hpp"
@@ -25,87 +25,128 @@ const std::vector<lightwave_technique>& lightwave_techniques() {
 const lightwave_technique& find_lightwave_technique(const std::string& name) { return find_by_name(lightwave_techniques(), name, "Light Wave technique"); }
 
 
-const std::vector<setting<lightwave_settings, lightwave_technique>>& lightwave_settings_table() {
-  using entry = setting<lightwave_settings, lightwave_technique>;
-  const auto modes = [](std::vector<lightwave_mode> any) {
-    return [any](const lightwave_technique& t) { return std::find(any.begin(), any.end(), t.mode) != any.end(); };
+// The table in groups, each a function, in the table's order: the targets, the VPLs, the
+// indirect shadows, the shading. An entry is its field's member path: the default is the struct's
+// initialiser, and get and set come from the path.
+namespace {
+
+using entry = setting<lightwave_settings, lightwave_technique>;
+using S = lightwave_settings;
+using I = irradiance_settings<float>;
+using H = lightwave_shading_settings<float>;
+
+// The techniques of any of `modes`.
+std::function<bool(const lightwave_technique&)> modes(std::vector<lightwave_mode> any) {
+  return [any](const lightwave_technique& t) { return std::find(any.begin(), any.end(), t.mode) != any.end(); };
+}
+bool vpl_light(const lightwave_technique& t) { return t.mode != lightwave_mode::direct && t.mode != lightwave_mode::faked; }
+bool accurate(const lightwave_technique& t) { return t.mode == lightwave_mode::accurate; }
+
+// The kernel structs the frame uploads (the member paths of .feeds() read them).
+I irradiance(const S& s) { return s.irradiance; }
+H shading(const S& s) { return s.shading; }
+
+std::vector<entry> target_settings() {
+  return {
+      entry::extent("size", path_of(&S::width), path_of(&S::height), schema::closed_range(1, max_image_side), "pixels",
+                    "final image size, N or WxH (the thesis: 1280x720)")
+          .builds("the targets")
+          .not_live(),
+      entry::choice("format", path_of(&S::format), {{"rgba16f", texel_format::rgba16f}, {"rgba32f", texel_format::rgba32f}}, "float format of the render targets")
+          .builds("the targets"),
+      entry::number("min-distance", path_of(&S::irradiance, &I::min_distance))
+          .feeds("lightwave.frag", "irradiance", irradiance, &I::min_distance)
+          .feeds("lightwave_capture.frag", "irradiance", irradiance, &I::min_distance),
+      entry::number("seed", path_of(&S::seed), schema::closed_range(0, 4294967295.0), "",
+                    "seed of the VPL draw of the accurate shadows' thesis variant (the importance variant has none)")
+          .read_by(accurate, "the accurate shadows"),
   };
-  const auto vpl_light = modes({lightwave_mode::unshadowed, lightwave_mode::accurate, lightwave_mode::integrated});
-  const auto shadow_maps = modes({lightwave_mode::accurate, lightwave_mode::integrated});
+}
+
+std::vector<entry> vpl_settings() {
   std::vector<int> ray_angles;
   for (int angle = 1; angle <= 90; ++angle)
     if (lightwave_ray_angle_divides(angle)) ray_angles.push_back(angle);
-  // The kernel structs the frame uploads (the member paths of .feeds() read them).
-  const auto irradiance = [](const lightwave_settings& s) { return s.irradiance; };
-  const auto shading = [](const lightwave_settings& s) { return s.shading; };
-  static const std::vector<entry> table = {
-      entry::custom("size", setting_type::size, "pixels", "final image size, N or WxH (the thesis: 1280x720)",
-                    [](const lightwave_settings& s) { return s.width == s.height ? std::to_string(s.width) : std::to_string(s.width) + "x" + std::to_string(s.height); },
-                    [](lightwave_settings& s, const std::string& text) { std::tie(s.width, s.height) = *parse_extent(text); })
-          .within(schema::closed_range(1, max_image_side))
-          .not_live(),
-      entry::choice("format", [](auto& s) -> auto& { return s.format; }, {{"rgba16f", texel_format::rgba16f}, {"rgba32f", texel_format::rgba32f}},
-                    "float format of the render targets"),
-      entry::number("min-distance", [](auto& s) -> auto& { return s.irradiance.min_distance; }, describe_field(&irradiance_settings<float>::min_distance))
-          .feeds("lightwave.frag", "irradiance", irradiance, &irradiance_settings<float>::min_distance)
-          .feeds("lightwave_capture.frag", "irradiance", irradiance, &irradiance_settings<float>::min_distance),
-      entry::number("seed", [](auto& s) -> auto& { return s.seed; }, schema::closed_range(0, 4294967295.0), "",
-                    "seed of the VPL draw of the accurate shadows' thesis variant (the importance variant has none)")
-          .read_by(modes({lightwave_mode::accurate}), "the accurate shadows"),
-      entry::choice("vpl-energy", [](auto& s) -> auto& { return s.energy; }, {{"flux", lightwave_energy::flux}, {"thesis", lightwave_energy::thesis}},
+  return {
+      entry::choice("vpl-energy", path_of(&S::energy), {{"flux", lightwave_energy::flux}, {"thesis", lightwave_energy::thesis}},
                     "flux (each VPL reflects the flux its patch of the spot's cone brings, with a diffuse bounce's falloff) or thesis "
                     "(Eq. 4.5's VPLs on hemispheres, without flux: the Tables 5.x)")
           .read_by(vpl_light, "the VPL light")
-          .feeds("lightwave.frag: VPLKIT_LIGHTWAVE_ENERGY; lightwave.vert: VPLKIT_LIGHTWAVE_ENERGY"),
-      entry::number("ray-angle", [](auto& s) -> auto& { return s.angle_deg; }, describe_field(&lightwave_layout_settings<float>::angle_deg))
+          .defines("lightwave.frag: VPLKIT_LIGHTWAVE_ENERGY")
+          .defines("lightwave.vert: VPLKIT_LIGHTWAVE_ENERGY"),
+      entry::number("ray-angle", path_of(&S::angle_deg), describe_field(&lightwave_layout_settings<float>::angle_deg))
           .allowing(ray_angles)
           .read_by(vpl_light, "the VPL light")
           .feeds("lightwave.vert: vpl_texture; lightwave.vert: vpl_count; lightwave_capture.frag: pass_vpl_count"),
-      entry::number("vpls-per-ray", [](auto& s) -> auto& { return s.per_ray; }, describe_field(&lightwave_layout_settings<float>::per_ray))
+      entry::number("vpls-per-ray", path_of(&S::per_ray), describe_field(&lightwave_layout_settings<float>::per_ray))
           .read_by(vpl_light, "the VPL light")
           .feeds("lightwave.vert: vpl_texture; lightwave.vert: vpl_count; lightwave_capture.frag: pass_vpl_count"),
-      entry::number("vpl-max-distance", [](auto& s) -> auto& { return s.max_distance; }, schema::closed_range(0, max_scene_coordinate), "scene units",
+      entry::number("vpl-max-distance", path_of(&S::max_distance), schema::closed_range(0, max_scene_coordinate), "scene units",
                     "thesis energy: the distance the hemispheres approach (0: from the scene's size)")
           .read_by(vpl_light, "the VPL light")
           .feeds("lightwave.vert: vpl_texture"),
-      entry::number("shadow-maps", [](auto& s) -> auto& { return s.accurate_maps; }, schema::closed_range(0, lightwave_max_shadow_maps), "",
-                    "VPL shadow maps of the accurate shadows (0: none)")
-          .read_by(modes({lightwave_mode::accurate}), "the accurate shadows")
-          .feeds("lightwave.frag: indirect_maps; lightwave.frag: shadow_matrix"),
-      entry::choice("shadow-variant", [](auto& s) -> auto& { return s.shadow_variant; },
-                    {{"importance", lightwave_shadow_variant::importance}, {"thesis", lightwave_shadow_variant::thesis}},
+  };
+}
+
+// The shadow maps' array has a layer per map of the technique (derive: indirect_maps) and the
+// rounded size of shadow-map-scale screens: what the array is made with.
+std::string shadow_layers(const S& s) { return std::to_string(derive(s).indirect_maps); }
+
+std::vector<entry> shadow_settings() {
+  return {
+      entry::number("shadow-maps", path_of(&S::accurate_maps), schema::closed_range(0, lightwave_max_shadow_maps), "", "VPL shadow maps of the accurate shadows (0: none)")
+          .read_by(accurate, "the accurate shadows")
+          .feeds("lightwave.frag: indirect_maps; lightwave.frag: shadow_matrix")
+          .builds("the shadow maps' layers", shadow_layers),
+      entry::choice("shadow-variant", path_of(&S::shadow_variant), {{"importance", lightwave_shadow_variant::importance}, {"thesis", lightwave_shadow_variant::thesis}},
                     "importance (the VPLs split into groups of equal light on the visible scene, one map per group from its medoid aimed at "
                     "what it lights, each map shadowing its group's share; no seed) or thesis (uniform VPLs, maps along their normals, the plain mean)")
-          .read_by(modes({lightwave_mode::accurate}), "the accurate shadows")
-          .feeds("lightwave.frag: VPLKIT_LIGHTWAVE_SHADOW_VARIANT"),
-      entry::number("integrated-maps", [](auto& s) -> auto& { return s.integrated_maps; }, schema::closed_range(2, lightwave_max_shadow_maps), "",
+          .read_by(accurate, "the accurate shadows")
+          .defines("lightwave.frag: VPLKIT_LIGHTWAVE_SHADOW_VARIANT"),
+      entry::number("integrated-maps", path_of(&S::integrated_maps), schema::closed_range(2, lightwave_max_shadow_maps), "",
                     "shadow maps of the integrated shadows: the axis VPL and a ring of the innermost hemisphere")
           .read_by(modes({lightwave_mode::integrated}), "the integrated shadows")
-          .feeds("lightwave.frag: indirect_maps; lightwave.frag: shadow_matrix"),
-      entry::number("integrated-steps", [](auto& s) -> auto& { return s.integrated_steps; }, schema::closed_range(0, 64), "",
-                    "in-between lookups per pair of maps (the thesis: 2, 4, 6, 10)")
+          .feeds("lightwave.frag: indirect_maps; lightwave.frag: shadow_matrix")
+          .builds("the shadow maps' layers", shadow_layers),
+      entry::number("integrated-steps", path_of(&S::integrated_steps), schema::closed_range(0, 64), "", "in-between lookups per pair of maps (the thesis: 2, 4, 6, 10)")
           .read_by(modes({lightwave_mode::integrated}), "the integrated shadows")
           .feeds("lightwave.frag: integrated_steps"),
-      entry::number("shadow-map-scale", [](auto& s) -> auto& { return s.shadow_map_scale; }, schema::open_closed_range(0, 16), "screens",
-                    "shadow map size in screens (the thesis: 3)")
-          .feeds("lightwave.frag: shadow_maps"),
-      entry::number("vpl-field-of-view", [](auto& s) -> auto& { return s.vpl_field_of_view; }, {1, 179, true, true}, "degrees",
+      entry::number("shadow-map-scale", path_of(&S::shadow_map_scale), schema::open_closed_range(0, 16), "screens", "shadow map size in screens (the thesis: 3)")
+          .feeds("lightwave.frag: shadow_maps")
+          .builds("the shadow maps' size", [](const S& s) {
+            const glm::ivec2 size = derive(s).shadow_map_size;
+            return std::to_string(size.x) + "x" + std::to_string(size.y);
+          }),
+      entry::number("vpl-field-of-view", path_of(&S::vpl_field_of_view), {1, 179, true, true}, "degrees",
                     "field of view of a VPL's shadow map where it looks along the VPL's normal (thesis variant, integrated shadows)")
-          .read_by(shadow_maps, "the indirect shadows")
+          .read_by(modes({lightwave_mode::accurate, lightwave_mode::integrated}), "the indirect shadows")
           .feeds("lightwave.frag: shadow_matrix"),
-      entry::number("faked-multiplier", [](auto& s) -> auto& { return s.faked_multiplier; }, schema::closed_range(0.5, 4), "Eq. 5.2",
-                    "m of Eq. 5.2 (the thesis uses 1.1 to 1.5)")
+  };
+}
+
+std::vector<entry> shading_settings() {
+  return {
+      entry::number("faked-multiplier", path_of(&S::faked_multiplier), schema::closed_range(0.5, 4), "Eq. 5.2", "m of Eq. 5.2 (the thesis uses 1.1 to 1.5)")
           .read_by(modes({lightwave_mode::faked}), "the faked indirect light")
           .feeds("lightwave.frag: faked_multiplier"),
-      entry::number("specular-strength", [](auto& s) -> auto& { return s.shading.specular_strength; },
-                    describe_field(&lightwave_shading_settings<float>::specular_strength))
+      entry::number("specular-strength", path_of(&S::shading, &H::specular_strength))
           .read_by(vpl_light, "the VPL light")
-          .feeds("lightwave.vert", "shading", shading, &lightwave_shading_settings<float>::specular_strength),
-      entry::number("specular-exponent", [](auto& s) -> auto& { return s.shading.specular_exponent; },
-                    describe_field(&lightwave_shading_settings<float>::specular_exponent))
+          .feeds("lightwave.vert", "shading", shading, &H::specular_strength),
+      entry::number("specular-exponent", path_of(&S::shading, &H::specular_exponent))
           .read_by(vpl_light, "the VPL light")
-          .feeds("lightwave.vert", "shading", shading, &lightwave_shading_settings<float>::specular_exponent),
+          .feeds("lightwave.vert", "shading", shading, &H::specular_exponent),
   };
+}
+
+}  // namespace
+
+const std::vector<setting<lightwave_settings, lightwave_technique>>& lightwave_settings_table() {
+  static const std::vector<entry> table = [] {
+    std::vector<entry> all;
+    for (std::vector<entry> group : {target_settings(), vpl_settings(), shadow_settings(), shading_settings()})
+      for (entry& one : group) all.push_back(std::move(one));
+    return all;
+  }();
   return table;
 }
 

@@ -245,17 +245,10 @@ bool rsm_pipeline::apply_settings(const technique_settings& settings) {
   const auto* typed = dynamic_cast<const described_settings<rsm_pipeline_settings, rsm_technique>*>(&settings);
   if (!typed) return false;
   const rsm_pipeline_settings& next = typed->value();
-  if (!validate(next).empty()) return false;
+  // Another technique, or a setting that sets a define or sizes what the constructor builds (the
+  // table says which: setting::defines, setting::builds), needs a new pipeline.
+  if (!validate(next).empty() || next.technique != settings_.technique || !rebuilding_changes(rsm_settings_table(), settings_, next).empty()) return false;
   const rsm_frame_constants constants = make_frame_constants(scene_, bounds_, triangles_, next);
-  // What the programs' defines and the targets' sizes and formats come from (the constructor).
-  const bool same_build = next.technique == settings_.technique && next.width == settings_.width && next.height == settings_.height &&
-                          next.rsm_size == settings_.rsm_size && next.format == settings_.format && next.filter == settings_.filter &&
-                          constants.indirect_size == constants_.indirect_size && constants.gather.slots.count == constants_.gather.slots.count &&
-                          constants.gather.coverage_blocks == constants_.gather.coverage_blocks &&
-                          with_coverage(constants) == with_coverage(constants_) && with_temporal(constants) == with_temporal(constants_) &&
-                          next.voxel_grid.resolution == settings_.voxel_grid.resolution &&
-                          next.voxel_grid.max_megabytes == settings_.voxel_grid.max_megabytes;  // the grid is built with the pipeline
-  if (!same_build) return false;
   settings_ = next;
   constants_ = constants;
   set_settings_uniforms();

@@ -1,6 +1,6 @@
 #include "frontend/techniques/rsm/rsm_settings.hpp"
 
-#include <tuple>
+#include <utility>
 
 #include "frontend/core/error.hpp"
 #include "frontend/core/named_table.hpp"
@@ -26,195 +26,238 @@ const std::vector<rsm_technique>& rsm_techniques() {
 
 const rsm_technique& find_rsm_technique(const std::string& name) { return find_by_name(rsm_techniques(), name, "technique"); }
 
-const std::vector<setting<rsm_pipeline_settings, rsm_technique>>& rsm_settings_table() {
-  using entry = setting<rsm_pipeline_settings, rsm_technique>;
-  const auto gathers = [](const rsm_technique& t) { return t.indirect; };
-  const auto radial = [](const rsm_technique& t) { return t.indirect && t.pattern == rsm_pattern::radial; };
-  const auto disk = [](const rsm_technique& t) { return t.indirect && t.pattern == rsm_pattern::disk; };
-  const auto with_visibility = [](const rsm_technique& t) {
-    return t.indirect && t.visibility != rsm_visibility::none && t.visibility != rsm_visibility::voxel;
+// The table in groups, each a function, in the table's order (the order of the options, the
+// controls and the JSON): the targets, the gather's preset and pattern sizes, the patterns'
+// details, the coverage, voxels and history, and the filters. An entry is its field's member
+// path: the default is the struct's initialiser, and get and set come from the path.
+namespace {
+
+using entry = setting<rsm_pipeline_settings, rsm_technique>;
+using S = rsm_pipeline_settings;
+// The kernel structs the frame uploads, as it derives them (rsm_pipeline's make_frame_constants):
+// the member paths of .feeds() read them.
+using G = rsm_gather_settings<float>;
+using R = radial_pattern_constants<float>;
+using D = disk_pattern_settings<float>;
+using E = elevation_slots<float>;
+using I = irradiance_settings<float>;
+using B = bilateral_settings<float>;
+using V = voxel_march_settings<float>;
+using RP = radial_pattern_settings<float>;
+
+// Who reads what, by the technique's description.
+bool gathers(const rsm_technique& t) { return t.indirect; }
+bool radial(const rsm_technique& t) { return t.indirect && t.pattern == rsm_pattern::radial; }
+bool disk(const rsm_technique& t) { return t.indirect && t.pattern == rsm_pattern::disk; }
+bool with_visibility(const rsm_technique& t) { return t.indirect && t.visibility != rsm_visibility::none && t.visibility != rsm_visibility::voxel; }
+bool voxel(const rsm_technique& t) { return t.indirect && t.visibility == rsm_visibility::voxel; }
+const char* const gathering = "the techniques that gather indirect light";
+
+G gather(const S& s) { return derive(s).gather; }
+I irradiance(const S& s) { return derive(s).gather.irradiance; }
+B bilateral(const S& s) { return s.bilateral; }
+shadow_density_settings<float> shadow(const S& s) { return s.shadow; }
+temporal_settings<float> temporal(const S& s) { return s.temporal; }
+V voxel_march(const S& s) { return s.voxel_march; }
+
+std::vector<entry> target_settings() {
+  return {
+      entry::extent("size", path_of(&S::width), path_of(&S::height), schema::closed_range(1, max_image_side), "pixels", "final image size, N or WxH")
+          .builds("the targets")
+          .not_live(),
+      entry::choice("format", path_of(&S::format), {{"rgba16f", texel_format::rgba16f}, {"rgba32f", texel_format::rgba32f}},
+                    "float format of the render targets (the RSM is packed: RGBA32UI)")
+          .builds("the targets"),
+      entry::number("min-distance", path_of(&S::irradiance, &I::min_distance))
+          .feeds("post.frag", "irradiance", irradiance, &I::min_distance)
+          .feeds("gather.frag", "settings", gather, &G::irradiance, &I::min_distance),
+      entry::number("rsm-size", path_of(&S::rsm_size), schema::closed_range(1, max_image_side), "texels", "square RSM resolution")
+          .feeds("rsm.frag: rsm_size; gbuffer.frag: rsm_size")
+          .feeds("gather.frag", "settings", gather, &G::rsm_size)
+          .builds("the RSM's target"),
+      entry::number("indirect-divisor", path_of(&S::indirect_divisor), schema::closed_range(1, 8), "", "indirect buffer = image / this per axis (2: half, 1: full)")
+          .allowing({1, 2, 4, 8})
+          .read_by(gathers, gathering)
+          .feeds("gather.frag: indirect_divisor; blur_x.frag: indirect_divisor; post.frag: indirect_divisor")
+          .builds("the indirect buffers"),
   };
-  const auto voxel = [](const rsm_technique& t) { return t.indirect && t.visibility == rsm_visibility::voxel; };
-  const std::string gathering = "the techniques that gather indirect light";
-  const rsm_gather_preset<float> defaults = default_rsm_gather_preset<float>(), thesis = thesis_rsm_gather_preset<float>();
-  const auto preset_text = [](const rsm_gather_preset<float>& p) {
+}
+
+// The settings a gather preset sets, as their entries' text: the preset is these values.
+std::vector<std::pair<std::string, std::string>> preset_values(const rsm_gather_preset<float>& p) {
+  return {{"radius", format_real(p.radius_fraction)},
+          {"paths", std::to_string(p.paths)},
+          {"samples-per-path", std::to_string(p.samples_per_path)},
+          {"slots", std::to_string(p.slots)}};
+}
+
+const rsm_gather_preset<float>* find_preset(const std::string& name) {
+  static const rsm_gather_preset<float> defaults = default_rsm_gather_preset<float>(), thesis = thesis_rsm_gather_preset<float>();
+  return name == "thesis" ? &thesis : name == "default" ? &defaults : nullptr;
+}
+
+entry preset_setting() {
+  const auto describe = [](const rsm_gather_preset<float>& p) {
     return "radius " + format_real(p.radius_fraction) + ", " + std::to_string(p.paths) + " x " + std::to_string(p.samples_per_path) + ", " +
            std::to_string(p.slots) + " slots";
   };
-  // The kernel structs the frame uploads, as it derives them (rsm_pipeline's make_frame_constants):
-  // the member paths of .feeds() read them.
-  using G = rsm_gather_settings<float>;
-  using R = radial_pattern_constants<float>;
-  using D = disk_pattern_settings<float>;
-  using E = elevation_slots<float>;
-  using I = irradiance_settings<float>;
-  using B = bilateral_settings<float>;
-  const auto gather = [](const rsm_pipeline_settings& s) { return derive(s).gather; };
-  const auto irradiance = [](const rsm_pipeline_settings& s) { return derive(s).gather.irradiance; };
-  const auto bilateral = [](const rsm_pipeline_settings& s) { return s.bilateral; };
-  const auto shadow = [](const rsm_pipeline_settings& s) { return s.shadow; };
-  const auto temporal = [](const rsm_pipeline_settings& s) { return s.temporal; };
-  const auto voxel_march = [](const rsm_pipeline_settings& s) { return s.voxel_march; };
-  using V = voxel_march_settings<float>;
-  static const std::vector<entry> table = {
-      entry::custom("size", setting_type::size, "pixels", "final image size, N or WxH",
-                    [](const rsm_pipeline_settings& s) { return s.width == s.height ? std::to_string(s.width) : std::to_string(s.width) + "x" + std::to_string(s.height); },
-                    [](rsm_pipeline_settings& s, const std::string& text) { std::tie(s.width, s.height) = *parse_extent(text); })
-          .within(schema::closed_range(1, max_image_side))
-          .not_live(),
-      entry::choice("format", [](auto& s) -> auto& { return s.format; }, {{"rgba16f", texel_format::rgba16f}, {"rgba32f", texel_format::rgba32f}},
-                    "float format of the render targets (the RSM is packed: RGBA32UI)"),
-      entry::number("min-distance", [](auto& s) -> auto& { return s.irradiance.min_distance; }, describe_field(&irradiance_settings<float>::min_distance))
-          .feeds("post.frag", "irradiance", irradiance, &I::min_distance)
-          .feeds("gather.frag", "settings", gather, &G::irradiance, &I::min_distance),
-      entry::number("rsm-size", [](auto& s) -> auto& { return s.rsm_size; }, schema::closed_range(1, max_image_side), "texels", "square RSM resolution")
-          .feeds("rsm.frag: rsm_size; gbuffer.frag: rsm_size")
-          .feeds("gather.frag", "settings", gather, &G::rsm_size),
-      entry::number("indirect-divisor", [](auto& s) -> auto& { return s.indirect_divisor; }, schema::closed_range(1, 8), "",
-                    "indirect buffer = image / this per axis (2: half, 1: full)")
-          .allowing({1, 2, 4, 8})
-          .read_by(gathers, gathering)
-          .feeds("gather.frag: indirect_divisor; blur_x.frag: indirect_divisor; post.frag: indirect_divisor"),
-      [&] {
-        entry preset = entry::custom(
-            "preset", setting_type::choice, "",
-            "the gather's radius, paths, samples and slots: default (" + preset_text(defaults) + "; docs/rsm-study.md) or thesis (" + preset_text(thesis) +
-                "); --radius, --paths, --samples-per-path and --slots override it",
-            [](const rsm_pipeline_settings& s) {
-              // A preset is in effect when applying it changes no setting in effect: apply() is
-              // the one place that says which fields a preset sets.
-              const auto is = [&s](const rsm_gather_preset<float>& p) {
-                rsm_pipeline_settings applied = s;
-                applied.apply(p);
-                for (const setting<rsm_pipeline_settings, rsm_technique>& other : rsm_settings_table())
-                  if (other.in_effect && other.get(applied) != other.get(s)) return false;
-                return true;
-              };
-              return std::string(is(thesis_rsm_gather_preset<float>()) ? "thesis" : is(default_rsm_gather_preset<float>()) ? "default" : "custom");
-            },
-            [](rsm_pipeline_settings& s, const std::string& text) {
-              s.apply(text == "thesis" ? thesis_rsm_gather_preset<float>() : default_rsm_gather_preset<float>());
-            });
-        preset.choices = {"default", "thesis"};
-        preset.applies_first = true;
-        preset.in_effect = false;  // radius, paths, samples and slots are
-        preset.live = false;
-        preset.read_by(gathers, gathering);
-        return preset;
-      }(),
-      entry::number("radius", [](auto& s) -> auto& { return s.radius; }, describe_field(&rsm_gather_preset<float>::radius_fraction))
+  entry preset = entry::custom(
+      "preset", setting_type::choice, "",
+      "the gather's radius, paths, samples and slots: default (" + describe(*find_preset("default")) + "; docs/rsm-study.md) or thesis (" +
+          describe(*find_preset("thesis")) + "); --radius, --paths, --samples-per-path and --slots override it",
+      [](const S& s) {
+        // A preset is in effect when each of its settings has its value.
+        const auto is = [&s](const char* name) {
+          for (const auto& [setting, value] : preset_values(*find_preset(name)))
+            if (find_by_name(rsm_settings_table(), setting, "setting").get(s) != value) return false;
+          return true;
+        };
+        return std::string(is("thesis") ? "thesis" : is("default") ? "default" : "custom");
+      },
+      [](S& s, const std::string& text) {
+        for (const auto& [setting, value] : preset_values(*find_preset(text))) find_by_name(rsm_settings_table(), setting, "setting").set(s, value);
+      });
+  preset.choices = {"default", "thesis"};
+  preset.applies_first = true;
+  preset.in_effect = false;  // radius, paths, samples and slots are
+  preset.live = false;
+  preset.read_by(gathers, gathering);
+  return preset;
+}
+
+std::vector<entry> gather_settings() {
+  entry texels = entry::custom(
+      "max-radius", setting_type::real, "RSM texels", "the sampling radius in RSM texels (instead of --radius)",
+      [](const S& s) { return format_real(rsm_radius_in_texels(s.radius, glm::ivec2(s.rsm_size))); },
+      [](S& s, const std::string& text) { s.radius = static_cast<float>(*parse_real(text)) / static_cast<float>(s.rsm_size); });
+  texels.range = schema::above(0.0);
+  texels.in_effect = false;  // radius is
+  texels.excludes = "radius";
+  texels.read_by(gathers, gathering);
+  return {
+      preset_setting(),
+      entry::number("radius", path_of(&S::radius), describe_field(&rsm_gather_preset<float>::radius_fraction))
           .read_by(gathers, gathering)
           .feeds("gather.frag", "settings", gather, &G::radial, &R::ring_ratio)
           .feeds("gather.frag", "settings", gather, &G::disk, &D::max_radius),
-      [&] {
-        entry texels = entry::custom(
-            "max-radius", setting_type::real, "RSM texels", "the sampling radius in RSM texels (instead of --radius)",
-            [](const rsm_pipeline_settings& s) { return format_real(rsm_radius_in_texels(s.radius, glm::ivec2(s.rsm_size))); },
-            [](rsm_pipeline_settings& s, const std::string& text) { s.radius = static_cast<float>(*parse_real(text)) / static_cast<float>(s.rsm_size); });
-        texels.range = schema::above(0.0);
-        texels.in_effect = false;  // radius is
-        texels.excludes = "radius";
-        texels.read_by(gathers, gathering);
-        return texels;
-      }(),
-      entry::number("paths", [](auto& s) -> auto& { return s.radial.paths; }, describe_field(&radial_pattern_settings<float>::paths))
-          .read_by(radial, "the radial pattern")
-          .feeds("gather.frag", "settings", gather, &G::radial, &R::paths),
-      entry::number("samples-per-path", [](auto& s) -> auto& { return s.radial.samples_per_path; },
-                    describe_field(&radial_pattern_settings<float>::samples_per_path))
+      texels,
+      entry::number("paths", path_of(&S::radial, &RP::paths)).read_by(radial, "the radial pattern").feeds("gather.frag", "settings", gather, &G::radial, &R::paths),
+      entry::number("samples-per-path", path_of(&S::radial, &RP::samples_per_path))
           .read_by(radial, "the radial pattern")
           .feeds("gather.frag", "settings", gather, &G::radial, &R::samples_per_path),
-      entry::number("slots", [](auto& s) -> auto& { return s.slots; }, describe_field(&elevation_slots<float>::count))
+      entry::number("slots", path_of(&S::slots), describe_field(&E::count))
           .read_by(with_visibility, "the micro linear buffer")
           .feeds("gather.frag", "settings", gather, &G::slots, &E::count)
-          .feeds("gather.frag: VPLKIT_SLOT_COUNT"),
-      entry::number("min-radius", [](auto& s) -> auto& { return s.radial.min_radius; }, describe_field(&radial_pattern_settings<float>::min_radius))
+          .defines("gather.frag: VPLKIT_SLOT_COUNT"),
+  };
+}
+
+std::vector<entry> pattern_settings() {
+  return {
+      entry::number("min-radius", path_of(&S::radial, &RP::min_radius))
           .read_by(radial, "the radial pattern")
           .feeds("gather.frag", "settings", gather, &G::radial, &R::min_radius),
-      entry::number("rotation-jitter", [](auto& s) -> auto& { return s.radial.rotation_jitter; },
-                    describe_field(&radial_pattern_settings<float>::rotation_jitter))
+      entry::number("rotation-jitter", path_of(&S::radial, &RP::rotation_jitter))
           .read_by(radial, "the radial pattern")
           .feeds("gather.frag", "settings", gather, &G::radial, &R::rotation_jitter),
-      entry::number("angle-jitter", [](auto& s) -> auto& { return s.radial.angle_jitter; }, describe_field(&radial_pattern_settings<float>::angle_jitter))
+      entry::number("angle-jitter", path_of(&S::radial, &RP::angle_jitter))
           .read_by(radial, "the radial pattern")
           .feeds("gather.frag", "settings", gather, &G::radial, &R::angle_jitter),
-      entry::number("scale-jitter", [](auto& s) -> auto& { return s.radial.scale_jitter; }, describe_field(&radial_pattern_settings<float>::scale_jitter))
+      entry::number("scale-jitter", path_of(&S::radial, &RP::scale_jitter))
           .read_by(radial, "the radial pattern")
           .feeds("gather.frag", "settings", gather, &G::radial, &R::scale_jitter),
-      entry::number("disk-samples", [](auto& s) -> auto& { return s.disk.samples; }, describe_field(&disk_pattern_settings<float>::samples))
-          .read_by(disk, "the original RSM's disk")
-          .feeds("gather.frag", "settings", gather, &G::disk, &D::samples),
-      entry::choice("disk-weights", [](auto& s) -> auto& { return s.disk.printed_weights; }, {{"unbiased", false}, {"printed", true}},
+      entry::number("disk-samples", path_of(&S::disk, &D::samples)).read_by(disk, "the original RSM's disk").feeds("gather.frag", "settings", gather, &G::disk, &D::samples),
+      entry::choice("disk-weights", path_of(&S::disk, &D::printed_weights), {{"unbiased", false}, {"printed", true}},
                     "original RSM: unbiased (xi, the inverse of the samples' density) or printed (the original's xi^2, biased low; "
                     "docs/errata.md RSMV-9)")
           .read_by(disk, "the original RSM's disk")
           .feeds("gather.frag", "settings", gather, &G::disk, &D::printed_weights),
-      entry::choice("disk-pattern", [](auto& s) -> auto& { return s.disk.per_pixel_shift; }, {{"per-pixel", true}, {"fixed", false}},
+      entry::choice("disk-pattern", path_of(&S::disk, &D::per_pixel_shift), {{"per-pixel", true}, {"fixed", false}},
                     "original RSM: per-pixel (each pixel shifts the samples, so the receivers' errors are independent and average out) "
                     "or fixed (the original's: the same samples for every pixel of a frame, one error across the image; docs/errata.md RSMV-9)")
           .read_by(disk, "the original RSM's disk")
           .feeds("gather.frag", "settings", gather, &G::disk, &D::per_pixel_shift),
-      entry::number("coverage-blocks", [](auto& s) -> auto& { return s.coverage_blocks; },
-                    describe_field(&rsm_gather_settings<float>::coverage_blocks))
+  };
+}
+
+std::vector<entry> coverage_voxel_history_settings() {
+  return {
+      entry::number("coverage-blocks", path_of(&S::coverage_blocks), describe_field(&G::coverage_blocks))
           .read_by(gathers, gathering)
           .feeds("gather.frag", "settings", gather, &G::coverage_blocks)
-          .feeds("rsm_coarse.frag: coverage_blocks"),
-      entry::number("coverage-interleave", [](auto& s) -> auto& { return s.coverage_interleave; },
-                    describe_field(&rsm_gather_settings<float>::coverage_interleave))
+          .feeds("rsm_coarse.frag: coverage_blocks")
+          .defines("gather.frag: VPLKIT_RSM_COVERAGE")
+          .builds("the coarse lights' targets"),
+      entry::number("coverage-interleave", path_of(&S::coverage_interleave), describe_field(&G::coverage_interleave))
           .read_by(gathers, gathering)
           .feeds("gather.frag", "settings", gather, &G::coverage_interleave),
-      entry::number("voxel-resolution", [](auto& s) -> auto& { return s.voxel_grid.resolution; }, describe_field(&voxel_grid_settings<float>::resolution))
+      entry::number("voxel-resolution", path_of(&S::voxel_grid, &voxel_grid_settings<float>::resolution))
           .read_by(voxel, "rsm-voxel")
           .not_live()
-          .feeds("gather.frag: voxel_shape; gather.frag: voxel_packed"),
-      entry::number("voxel-memory", [](auto& s) -> auto& { return s.voxel_grid.max_megabytes; }, describe_field(&voxel_grid_settings<float>::max_megabytes))
+          .feeds("gather.frag: voxel_shape; gather.frag: voxel_packed")
+          .builds("the voxel grid"),
+      entry::number("voxel-memory", path_of(&S::voxel_grid, &voxel_grid_settings<float>::max_megabytes))
           .read_by(voxel, "rsm-voxel")
           .not_live()
-          .feeds("gather.frag: voxel_shape; gather.frag: voxel_packed"),
-      entry::number("voxel-start-offset", [](auto& s) -> auto& { return s.voxel_march.start_offset; }, describe_field(&V::start_offset))
+          .feeds("gather.frag: voxel_shape; gather.frag: voxel_packed")
+          .builds("the voxel grid"),
+      entry::number("voxel-start-offset", path_of(&S::voxel_march, &V::start_offset))
           .read_by(voxel, "rsm-voxel")
           .feeds("gather.frag", "voxel_march", voxel_march, &V::start_offset),
-      entry::number("voxel-end-offset", [](auto& s) -> auto& { return s.voxel_march.end_offset; }, describe_field(&V::end_offset))
+      entry::number("voxel-end-offset", path_of(&S::voxel_march, &V::end_offset))
           .read_by(voxel, "rsm-voxel")
           .feeds("gather.frag", "voxel_march", voxel_march, &V::end_offset),
-      entry::number("temporal-blend", [](auto& s) -> auto& { return s.temporal.blend; }, describe_field(&temporal_settings<float>::blend))
+      // Below 1 the frames blend with a history: the temporal program and the history targets.
+      entry::number("temporal-blend", path_of(&S::temporal, &temporal_settings<float>::blend))
           .read_by(gathers, gathering)
           .not_live()
-          .feeds("temporal.frag", "temporal", temporal, &temporal_settings<float>::blend),
-      entry::custom("seed", setting_type::integer, "", "seed of the sampling patterns",
-                    [](const rsm_pipeline_settings& s) { return std::to_string(s.radial.seed); },
-                    [](rsm_pipeline_settings& s, const std::string& text) { s.radial.seed = s.disk.seed = static_cast<std::uint32_t>(*parse_integer(text)); })
-          .within(describe_field(&radial_pattern_settings<float>::seed).range)
+          .feeds("temporal.frag", "temporal", temporal, &temporal_settings<float>::blend)
+          .builds("the temporal pass and its history", [](const S& s) { return std::string(s.temporal.blend < 1.0f ? "history" : "none"); }),
+      entry::number("seed", path_of(&S::radial, &RP::seed), describe_field(&RP::seed).range, "", "seed of the sampling patterns")
+          .sets_also(path_of(&S::disk, &D::seed))
           .read_by(gathers, gathering)
           .feeds("gather.frag", "settings", gather, &G::radial, &R::seed)
           .feeds("gather.frag", "settings", gather, &G::disk, &D::seed),
-      entry::choice("post-filter", [](auto& s) -> auto& { return s.filter; }, {{"separable", post_filter::separable}, {"full", post_filter::full}},
+  };
+}
+
+std::vector<entry> filter_settings() {
+  using K = shadow_density_settings<float>;
+  return {
+      entry::choice("post-filter", path_of(&S::filter), {{"separable", post_filter::separable}, {"full", post_filter::full}},
                     "bilateral post filter of the indirect light: separable (2 x 17 taps) or the full 2D kernel")
           .read_by(gathers, gathering)
-          .feeds("post.frag: VPLKIT_SEPARABLE"),
-      entry::number("filter-kernel-size", [](auto& s) -> auto& { return s.bilateral.kernel_size; }, describe_field(&bilateral_settings<float>::kernel_size))
+          .defines("post.frag: VPLKIT_SEPARABLE"),
+      entry::number("filter-kernel-size", path_of(&S::bilateral, &B::kernel_size))
           .read_by(gathers, gathering)
           .feeds("blur_x.frag", "bilateral", bilateral, &B::kernel_size)
           .feeds("post.frag", "bilateral", bilateral, &B::kernel_size),
-      entry::number("filter-spatial-sigma", [](auto& s) -> auto& { return s.bilateral.spatial_sigma; },
-                    describe_field(&bilateral_settings<float>::spatial_sigma))
+      entry::number("filter-spatial-sigma", path_of(&S::bilateral, &B::spatial_sigma))
           .read_by(gathers, gathering)
           .feeds("blur_x.frag", "bilateral", bilateral, &B::spatial_sigma)
           .feeds("post.frag", "bilateral", bilateral, &B::spatial_sigma),
-      entry::number("filter-depth-sigma", [](auto& s) -> auto& { return s.bilateral.depth_sigma; }, describe_field(&bilateral_settings<float>::depth_sigma))
+      entry::number("filter-depth-sigma", path_of(&S::bilateral, &B::depth_sigma))
           .read_by(gathers, gathering)
           .feeds("blur_x.frag", "bilateral", bilateral, &B::depth_sigma)
           .feeds("post.frag", "bilateral", bilateral, &B::depth_sigma),
-      entry::number("filter-normal-power", [](auto& s) -> auto& { return s.bilateral.normal_power; },
-                    describe_field(&bilateral_settings<float>::normal_power))
+      entry::number("filter-normal-power", path_of(&S::bilateral, &B::normal_power))
           .read_by(gathers, gathering)
           .feeds("blur_x.frag", "bilateral", bilateral, &B::normal_power)
           .feeds("post.frag", "bilateral", bilateral, &B::normal_power),
-      entry::number("shadow-kernel-size", [](auto& s) -> auto& { return s.shadow.kernel_size; }, describe_field(&shadow_density_settings<float>::kernel_size))
-          .feeds("gbuffer.frag", "shadow", shadow, &shadow_density_settings<float>::kernel_size),
-      entry::number("shadow-depth-bias", [](auto& s) -> auto& { return s.shadow.depth_bias; }, describe_field(&shadow_density_settings<float>::depth_bias))
-          .feeds("gbuffer.frag", "shadow", shadow, &shadow_density_settings<float>::depth_bias),
+      entry::number("shadow-kernel-size", path_of(&S::shadow, &K::kernel_size)).feeds("gbuffer.frag", "shadow", shadow, &K::kernel_size),
+      entry::number("shadow-depth-bias", path_of(&S::shadow, &K::depth_bias)).feeds("gbuffer.frag", "shadow", shadow, &K::depth_bias),
   };
+}
+
+}  // namespace
+
+const std::vector<setting<rsm_pipeline_settings, rsm_technique>>& rsm_settings_table() {
+  static const std::vector<entry> table = [] {
+    std::vector<entry> all;
+    for (std::vector<entry> group : {target_settings(), gather_settings(), pattern_settings(), coverage_voxel_history_settings(), filter_settings()})
+      for (entry& one : group) all.push_back(std::move(one));
+    return all;
+  }();
   return table;
 }
 

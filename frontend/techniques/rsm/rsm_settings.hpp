@@ -76,14 +76,8 @@ struct rsm_pipeline_settings {
     radial.samples_per_path = default_rsm_gather_preset<float>().samples_per_path;
     return radial;
   }
-  /// Radius, paths, samples and slots from a preset (default_rsm_gather_preset,
-  /// thesis_rsm_gather_preset); the rest stays.
-  void apply(const rsm_gather_preset<float>& preset) {
-    radius = preset.radius_fraction;
-    radial.paths = preset.paths;
-    radial.samples_per_path = preset.samples_per_path;
-    slots = preset.slots;
-  }
+  // A preset (default_rsm_gather_preset, thesis_rsm_gather_preset) sets radius, paths, samples
+  // and slots through the table's entries (rsm_settings_table's "preset").
 };
 
 /// The description of every setting a user sets (frontend/core/setting.hpp): the options of
