@@ -11,6 +11,8 @@
 
 #include "frontend/core/error.hpp"
 #include "frontend/reference/final_gather_reference.hpp"
+#include "frontend/reference/monte_carlo.hpp"
+#include "frontend/reference/ray_scene.hpp"
 #include "frontend/scene/gltf_scene.hpp"
 #include "frontend/techniques/final_gather/final_gather_cpu_mirror.hpp"
 #include "tests/frontend/techniques/pass_parity.hpp"
@@ -165,4 +167,70 @@ TEST_CASE("final gathering in a scene: its light, camera and geometry are used; 
   empty.geometry = mesh();
   CHECK_THROWS_WITH_AS(make_final_gather_scene(empty, "sphere", glm::vec3(0.0f, 0.7f, 0.0f), 0.5f),
                        doctest::Contains("scene my-room: the scene has no triangles around the object"), vplkit::error);
+}
+
+namespace {
+
+// The box room with a table top (a 1 x 0.04 x 1 slab) between the ceiling spot and the floor: the
+// floor under it is in the room's shadow. The object sits under the table.
+scene box_with_table() {
+  scene room = final_gather_box();
+  room.name = "box-with-table";
+  add_box(room.geometry, {0.0f, 0.8f, 0.0f}, {1.0f, 0.04f, 1.0f}, 0.0f, glm::vec3(0.6f));
+  return room;
+}
+
+}  // namespace
+
+TEST_CASE("final gathering in a scene: the room's shadows are in the view's direct light and the cube map, as the ray-traced reference has them") {
+  const scene room = box_with_table();
+  const final_gather_scene s = make_final_gather_scene(room, "sphere", glm::vec3(0.0f, 0.3f, 0.0f), 0.3f);
+  final_gather_settings settings = small("finalgather-polygon", 4);
+  settings.width = settings.height = 64;
+  settings.face_size = 64;
+  final_gather_pipeline pipeline(test_shaders(), s, settings);
+  const final_gather_frame frame = pipeline.render();
+  const final_gather_buffers buffers = pipeline.read_buffers();
+  const ray_scene rays(s.room);
+  scene_light light;
+  light.spot = s.light;
+
+  // The G-buffer's visibility (what the view's direct light and the cube faces read, through
+  // final_gather_shadow.glsl) against a shadow ray to the spot, for the room's lit pixels.
+  std::size_t lit = 0, shadowed = 0, disagreeing = 0;
+  for (std::size_t i = 0; i < buffers.gbuffer[0].texels.size(); ++i) {
+    const glm::vec4 position_kind = buffers.gbuffer[0].texels[i];
+    if (position_kind.w < 0.5f || position_kind.w > 1.5f) continue;
+    const glm::vec3 p(position_kind), n(buffers.gbuffer[1].texels[i]);
+    if (spot_light_irradiance(p, n, s.light, settings.irradiance) == glm::vec3(0.0f)) continue;
+    const bool occluded = rays.occluded(p + n * 1e-4f, s.light.position);
+    (occluded ? shadowed : lit) += 1;
+    disagreeing += (buffers.gbuffer[1].texels[i].w > 0.5f) == occluded;
+  }
+  MESSAGE("room pixels lit " << lit << ", in the table's shadow " << shadowed << ", visibility disagreeing with the shadow ray " << disagreeing);
+  REQUIRE(shadowed > 100);
+  REQUIRE(lit > 100);
+  // Disagreement only along the shadow's edge (a texel of the 1024^2 map, the bias).
+  CHECK(static_cast<double>(disagreeing) < 0.03 * static_cast<double>(lit + shadowed));
+
+  // The object's indirect irradiance against the one-bounce Monte Carlo reference of the same
+  // room (shadow rays; the room alone blocks the bounce rays): the lit floor around the table and
+  // the walls, not the shadowed floor under it. An unshadowed cube map sees that floor lit and
+  // overestimates by far more than the bound.
+  double gathered = 0.0, reference = 0.0;
+  std::size_t object_pixels = 0;
+  for (std::size_t i = 0; i < buffers.gbuffer[0].texels.size(); ++i) {
+    const glm::vec4 position_kind = buffers.gbuffer[0].texels[i];
+    if (position_kind.w < 1.5f) continue;
+    const glm::vec3 p(position_kind), n(buffers.gbuffer[1].texels[i]);
+    const glm::vec3 e = one_bounce_irradiance(rays, light, settings.irradiance, p + n * 1e-3f, n, 512, 1u, static_cast<std::uint32_t>(i));
+    reference += static_cast<double>(e.r) + e.g + e.b;
+    const glm::vec4& g = frame.indirect.texels[i];
+    gathered += static_cast<double>(g.r) + g.g + g.b;
+    ++object_pixels;
+  }
+  REQUIRE(object_pixels > 30);
+  const double bias = gathered / reference - 1.0;
+  MESSAGE("object pixels " << object_pixels << ", polygon's mean against the Monte Carlo reference: " << bias);
+  CHECK(std::abs(bias) < 0.12);
 }
