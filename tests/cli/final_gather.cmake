@@ -46,7 +46,21 @@ expect_failure("final gathering in a scene lit by a sun" "final gathering in sce
 expect_failure("final gathering in a scene file that does not exist" "no-room\\.gltf" "${WORK}/none-fail*.png"
                "${VPLKIT}" render --technique finalgather-polygon --scene "${WORK}/no-room.gltf" --size 32 --out "${WORK}/none-fail.png")
 
-expect_failure("the viewer does not draw final gathering in a scene" "--scene: the viewer draws technique finalgather-point in its own room" ""
-               "${VPLKIT}" view --technique finalgather-point --scene "${room}")
+# The sweep draws final gathering in the scene too: one row per configuration, named by the scene.
+expect_success("sweep final gathering in room-a.gltf" "wrote .*fg-sweep"
+               "${VPLKIT}" sweep --technique finalgather-point --scene "${room}" --object-position 0.5,1.3,1 --object-size 0.4 --size 32
+               --face-size 32 --vary cube-resolution=2,4 --out "${WORK}/fg-sweep")
+file(GLOB sweep_tables "${WORK}/fg-sweep/*.csv")
+set(sweep_text "")
+foreach(table ${sweep_tables})
+  file(READ "${table}" text)
+  string(APPEND sweep_text "${text}")
+endforeach()
+string(REGEX MATCHALL "room-a[^\n]*finalgather-point" sweep_rows "${sweep_text}")
+list(LENGTH sweep_rows sweep_row_count)
+if(NOT sweep_row_count EQUAL 2)
+  message(SEND_ERROR "FAILED the final gathering sweep in room-a.gltf: ${sweep_row_count} rows naming the scene, not 2:\n${sweep_text}")
+  math(EXPR failures "${failures} + 1")
+endif()
 
 cli_report()
