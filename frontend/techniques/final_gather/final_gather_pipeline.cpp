@@ -149,7 +149,7 @@ bool final_gather_pipeline::apply_settings(const technique_settings& settings) {
   const bool same_build = next.technique == settings_.technique && next.width == settings_.width && next.height == settings_.height &&
                           next.format == settings_.format && next.face_size == settings_.face_size && next.resolution == settings_.resolution &&
                           (!environment_map || next.environment_resolution == settings_.environment_resolution) &&
-                          !scene_.object_source.empty() && setup.object == scene_.object_source && setup.object_size == scene_.object_size;
+                          !scene_.object_source.empty() && object_key(setup) == scene_.object_source;
   if (!same_build) return false;
   settings_ = next;
   for (const program* target : {&cube_program_, &shade_program_}) set_uniforms(*target, "irradiance", settings_.irradiance);
