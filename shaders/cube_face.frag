@@ -1,8 +1,10 @@
 #version 330 core
 // Final gathering, pass 1 ([FG], section 4): one face of the cube map around the reference
 // point o: [radiance | distance from o] of the environment (the object is left out). The
-// environment's radiance is its direct light: albedo / pi * E_spot.
+// environment's radiance is its direct light with the room's shadows (final_gather_shadow.glsl):
+// albedo / pi * E_spot * V.
 #include "lib/direct_light.glsl"
+#include "final_gather_shadow.glsl"
 #include "surface_material.glsl"
 
 uniform spot_light light;
@@ -15,6 +17,8 @@ in vec3 surface_albedo;
 layout(location = 0) out vec4 radiance_distance;
 
 void main() {
-  vec3 radiance = material_albedo(surface_albedo) * 0.318309886183790671538 * spot_light_irradiance(world_position, normalize(world_normal), light, irradiance);
+  vec3 n = normalize(world_normal);
+  vec3 radiance = material_albedo(surface_albedo) * 0.318309886183790671538 * spot_light_irradiance(world_position, n, light, irradiance) *
+                  final_gather_light_visibility(world_position, n);
   radiance_distance = vec4(radiance, length(world_position - reference_point));
 }

@@ -1,5 +1,6 @@
 #version 330 core
-// Final gathering, shading ([FG]): the environment with its direct light; the object with
+// Final gathering, shading ([FG]): the environment with its direct light (shadowed by the room:
+// the G-buffer's light visibility, final_gather_gbuffer.frag); the object with
 // direct light plus the indirect irradiance of the variant: VPLKIT_FINAL_GATHER 0 polygon-to-point,
 // 1 point-to-point (lib/final_gather.glsl), 2 the classic environment-map lookup.
 // Writes [radiance | 1] and [indirect irradiance | 1].
@@ -36,7 +37,8 @@ void main() {
     return;
   }
   vec3 x = position_kind.xyz;
-  vec3 n = texelFetch(gbuffer_normal, pixel, 0).xyz;
+  vec4 normal_visibility = texelFetch(gbuffer_normal, pixel, 0);
+  vec3 n = normal_visibility.xyz;
   vec3 albedo = texelFetch(gbuffer_albedo, pixel, 0).xyz;
   vec3 indirect = vec3(0.0);
   if (position_kind.w > 1.5) {
@@ -47,7 +49,7 @@ void main() {
     indirect = final_gather_irradiance(x, n, reference_point, resolution);
 #endif
   }
-  vec3 direct = spot_light_irradiance(x, n, light, irradiance);
+  vec3 direct = spot_light_irradiance(x, n, light, irradiance) * normal_visibility.w;
   radiance = vec4(diffuse_radiance(albedo, direct, 1.0, indirect), 1.0);
   indirect_out = vec4(indirect, 1.0);
 }

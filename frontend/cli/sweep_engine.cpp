@@ -136,9 +136,10 @@ sweep_plan plan_sweep(const sweep_request& request) {
     if (const std::string refusal = reference_refusal(request.reference.kind, technique); !refusal.empty())
       throw usage_error("--reference " + std::string(reference_name(request.reference.kind)) + ": " + refusal);
   // Scenes.
-  if (!family.reads_scene() && !request.scenes.empty())
-    throw usage_error("--scene is read by the techniques that draw a scene, not by technique " + request.technique + " (it draws its --object in a room)");
-  plan.scenes = family.reads_scene() ? (request.scenes.empty() ? std::vector<std::string>{family.default_scene} : request.scenes) : std::vector<std::string>{""};
+  // An empty name: the family's own room (final gathering without --scene).
+  if (!family.takes_scene() && !request.scenes.empty())
+    throw usage_error("--scene is read by the techniques that draw a scene, not by technique " + request.technique);
+  plan.scenes = !request.scenes.empty() ? request.scenes : std::vector<std::string>{family.reads_scene() ? family.default_scene : std::string()};
   {
     std::shared_ptr<technique_settings> defaults = family.make_settings(request.technique);
     if (const std::string why = apply_values(*defaults, request.given.values); !why.empty()) throw usage_error(why);
@@ -407,11 +408,11 @@ void run_sweep(const session& io, const sweep_request& request, const sweep_plan
       if (unit.scene_index == scene_index) pending.push_back(&unit);
     if (pending.empty()) continue;
     std::unique_ptr<scene> source;
-    if (family.reads_scene()) source = std::make_unique<scene>(load_scene(request.common, plan.scenes[scene_index]));
+    if (!plan.scenes[scene_index].empty()) source = std::make_unique<scene>(load_scene(request.common, plan.scenes[scene_index]));
     scene_references references(gl.shaders, run.reference, source.get());
     const pipeline_builder build = [&](const technique_settings& settings) {
       std::unique_ptr<scene> none;
-      return family.reads_scene() ? family.make_pipeline(gl.shaders, source.get(), settings) : make_posed_pipeline(gl.shaders, request.common, settings, none);
+      return source ? family.make_pipeline(gl.shaders, source.get(), settings) : make_posed_pipeline(gl.shaders, request.common, settings, none);
     };
     if (plan.base) draw_base(run.keys, references, build);
     for (std::size_t first = 0; first < pending.size(); first += static_cast<std::size_t>(request.group)) {

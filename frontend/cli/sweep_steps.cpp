@@ -66,7 +66,7 @@ statistics of(const std::vector<double>& values) {
 int sweep_keys::seeds_of(const technique_settings& settings) const { return settings.reads("seed") ? request.seeds : 1; }
 
 std::string sweep_keys::scene_of(const sweep_configuration& configuration, std::size_t scene_index) const {
-  return plan.family->reads_scene() ? plan.scenes[scene_index] : drawn_scene_name(request.common, *configuration.settings);
+  return !plan.scenes[scene_index].empty() ? plan.scenes[scene_index] : drawn_scene_name(request.common, *configuration.settings);
 }
 
 std::string sweep_keys::shown_scene(const std::string& scene) { return fs::path(scene).stem().string(); }

@@ -153,14 +153,14 @@ void add_reference_options(CLI::App& command, reference_options& options, option
 
 std::string drawn_scene_name(const common_options& common, const technique_settings& settings) {
   const technique_family& family = family_of(settings.technique());
-  if (!family.reads_scene() && !(family.scene_optional && common.scene_given)) return settings.get("object");
+  if (!family.draws_scene(common.scene_given)) return settings.get("object");
   return common.scene_given ? common.scene : family.default_scene;
 }
 
 std::unique_ptr<pipeline> make_posed_pipeline(const shader_library& shaders, const common_options& common, const technique_settings& settings,
                                               std::unique_ptr<scene>& source) {
   const technique_family& family = family_of(settings.technique());
-  if (!family.reads_scene() && !(family.scene_optional && common.scene_given)) {
+  if (!family.draws_scene(common.scene_given)) {
     std::unique_ptr<pipeline> drawn = family.make_pipeline(shaders, nullptr, settings);
     apply_poses(common, *drawn);
     return drawn;

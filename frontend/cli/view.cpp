@@ -25,10 +25,6 @@ struct view_state {
 int run_view(const session& io, const view_state& s) {
   const technique_options& o = s.options;
   o.scope.require_read_by(o.technique, "technique");
-  // The viewer draws final gathering in its own room: a --scene it would not draw is refused.
-  if (o.common.scene_given && !family_of(o.technique).reads_scene())
-    throw usage_error("--scene: the viewer draws technique " + o.technique + " in its own room; `vplkit render --technique " + o.technique +
-                      " --scene FILE` draws it in the scene");
   // The chosen technique's settings (a usage error, exit 2, when refused), then every other
   // family's from the options it reads, so that the panel can switch to any technique.
   const std::unique_ptr<technique_settings> chosen = make_technique_settings(o.given, o.technique);
@@ -60,7 +56,7 @@ int run_view(const session& io, const view_state& s) {
   const auto [width, height] = *parse_extent(size);
   std::map<std::string, scene> loaded;  // a scene named for both families is read once
   for (const technique_family& family : technique_families()) {
-    if (!family.reads_scene()) continue;
+    if (!family.draws_scene(o.common.scene_given)) continue;  // final gathering without --scene: its own room
     const std::string name = o.common.scene_given ? o.common.scene : family.default_scene;
     if (!loaded.count(name)) loaded.emplace(name, load_scene(o.common, name));
     options.scenes.families[family.name].source = loaded.at(name);
@@ -69,7 +65,7 @@ int run_view(const session& io, const view_state& s) {
   const shader_library shaders(o.common.shaders());
   // The poses of a family without a scene: from a pipeline built once at the start.
   for (const technique_family& family : technique_families())
-    if (!family.reads_scene() && (o.common.camera_pose || o.common.light_pose || o.common.light_intensity)) {
+    if (!family.draws_scene(o.common.scene_given) && (o.common.camera_pose || o.common.light_pose || o.common.light_intensity)) {
       viewer_family& state = options.scenes.families[family.name];
       std::unique_ptr<scene> none;
       const std::unique_ptr<pipeline> posed = make_posed_pipeline(shaders, o.common, *state.settings, none);

@@ -29,6 +29,7 @@ scene reader::read() {
   if (geometry_.indices.empty())
     fail("no triangles in its scene (TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN primitives are read; points and lines are not drawn)");
   if (!library_.materials.empty()) geometry_.materials = std::make_shared<const material_library>(std::move(library_));
+  std::vector<scene_node> nodes = named_nodes();  // before frame_mesh, which may add a floor after every node's triangles
   framing_needs needs;
   needs.camera = !camera_;
   needs.light = lights_.empty();
@@ -36,6 +37,7 @@ scene reader::read() {
   if (!lights_.empty()) framed.lights = std::move(lights_);
   if (camera_) framed.view = *camera_;
   framed.name = name_stem();
+  framed.nodes = std::move(nodes);
   framed.notes.insert(framed.notes.begin(), notes_.begin(), notes_.end());
   return framed;
 }
@@ -134,9 +136,10 @@ void reader::walk(const std::vector<int>& roots) {
   struct pending {
     int index;
     glm::dmat4 parent;
+    int depth;
   };
   std::vector<pending> stack;
-  for (auto root = roots.rbegin(); root != roots.rend(); ++root) stack.push_back({*root, glm::dmat4(1.0)});
+  for (auto root = roots.rbegin(); root != roots.rend(); ++root) stack.push_back({*root, glm::dmat4(1.0), 0});
   while (!stack.empty()) {
     const pending next = stack.back();
     stack.pop_back();
@@ -148,12 +151,34 @@ void reader::walk(const std::vector<int>& roots) {
     const glm::dmat4 world = next.parent * local_transform(node, index);
     for (int k = 0; k < 4; ++k)
       if (!finite(glm::dvec3(world[k])) || !std::isfinite(world[k][3])) fail("node " + std::to_string(index) + ": its world transform is not finite");
+    walked_.push_back({index, next.depth, geometry_.indices.size()});
     if (node.mesh >= 0) add_mesh(node.mesh, world);
     if (node.camera >= 0 && !camera_) read_camera(node.camera, world);
     const auto found = node.extensions.find("KHR_lights_punctual");
     if (found != node.extensions.end() && found->second.Has("light")) read_light(found->second.Get("light").GetNumberAsInt(), world);
-    for (auto child = node.children.rbegin(); child != node.children.rend(); ++child) stack.push_back({*child, world});
+    for (auto child = node.children.rbegin(); child != node.children.rend(); ++child) stack.push_back({*child, world, next.depth + 1});
   }
+}
+
+std::vector<scene_node> reader::named_nodes() const {
+  // One pass with a stack of the open subtrees (a chain of 20,000 nodes stays linear): a node
+  // closes every open one at its depth or deeper.
+  std::vector<std::size_t> end(walked_.size(), geometry_.indices.size());
+  std::vector<std::size_t> open;
+  for (std::size_t j = 0; j < walked_.size(); ++j) {
+    while (!open.empty() && walked_[open.back()].depth >= walked_[j].depth) {
+      end[open.back()] = walked_[j].first_index;
+      open.pop_back();
+    }
+    open.push_back(j);
+  }
+  std::vector<scene_node> named;
+  for (std::size_t i = 0; i < walked_.size(); ++i) {
+    const std::string& name = model_.nodes[static_cast<std::size_t>(walked_[i].index)].name;
+    if (!name.empty())
+      named.push_back({name, static_cast<std::uint32_t>(walked_[i].first_index), static_cast<std::uint32_t>(end[i] - walked_[i].first_index)});
+  }
+  return named;
 }
 
 void reader::read_camera(int index, const glm::dmat4& world) {

@@ -173,6 +173,15 @@ class reader {
   std::vector<std::string> noted_, notes_;
   std::optional<camera> camera_;
   std::vector<scene_light> lights_;  ///< in the order met
+  // The nodes in the walk's order with their depth and where their triangles begin: each named
+  // one's subtree ends where the next node no deeper than it begins (scene_node).
+  struct walked_node {
+    int index;
+    int depth;
+    std::size_t first_index;
+  };
+  std::vector<walked_node> walked_;
+  std::vector<scene_node> named_nodes() const;
 };
 
 }  // namespace vplkit::gltf_detail

@@ -100,6 +100,16 @@ inline constexpr std::size_t max_scene_lights = 8;
 /// "spot", "directional" or "point".
 const char* light_kind_name(light_kind kind);
 
+/// A named node of the file a scene came from (glTF) and the triangles it and its descendants
+/// added: indices [first_index, first_index + index_count) of the scene's geometry (the reader
+/// walks the tree depth first, so a subtree's triangles are one run). --object-node takes one
+/// out of the environment as final gathering's object.
+struct scene_node {
+  std::string name;
+  std::uint32_t first_index = 0;
+  std::uint32_t index_count = 0;
+};
+
 struct scene {
   std::string name;
   mesh geometry;
@@ -110,6 +120,7 @@ struct scene {
   /// One line each: what a loader met and did not read (a glTF feature, once per feature) and
   /// how frame_mesh placed a camera or light the file did not have. The command line prints them.
   std::vector<std::string> notes;
+  std::vector<scene_node> nodes;  ///< glTF's named nodes, in the walk's order; empty for other scenes
 };
 
 /// Throws vplkit::error starting with `name` at the first bad value: a position that is not

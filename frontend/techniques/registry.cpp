@@ -90,10 +90,7 @@ technique_family final_gather_family() {
   family.scene_optional = true;
   family.make_pipeline = [](const shader_library& shaders, const scene* source, const technique_settings& settings) -> std::unique_ptr<pipeline> {
     const final_gather_setup& setup = settings_struct<final_gather_setup, final_gather_technique>(settings);
-    return std::make_unique<final_gather_pipeline>(shaders,
-                                                   source ? make_final_gather_scene(*source, setup.object, setup.object_position, setup.object_size)
-                                                          : make_final_gather_scene(setup.object, setup.object_position, setup.object_size),
-                                                   setup.pipeline);
+    return std::make_unique<final_gather_pipeline>(shaders, make_final_gather_scene(source, setup), setup.pipeline);
   };
   family.visibility_baseline = [](const std::string&) { return std::string(); };
   return family;

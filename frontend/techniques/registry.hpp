@@ -52,6 +52,8 @@ struct technique_family {
   bool reads_scene() const { return !default_scene.empty(); }
   /// Whether --scene may be given: a family that reads a scene, or draws its own unless given one.
   bool takes_scene() const { return reads_scene() || scene_optional; }
+  /// Whether it draws a scene (make_pipeline gets one) when --scene is given or not.
+  bool draws_scene(bool scene_given) const { return reads_scene() || (scene_optional && scene_given); }
   bool has(const std::string& technique) const;
   std::vector<std::string> technique_names() const;
 };

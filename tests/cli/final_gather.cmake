@@ -46,7 +46,65 @@ expect_failure("final gathering in a scene lit by a sun" "final gathering in sce
 expect_failure("final gathering in a scene file that does not exist" "no-room\\.gltf" "${WORK}/none-fail*.png"
                "${VPLKIT}" render --technique finalgather-polygon --scene "${WORK}/no-room.gltf" --size 32 --out "${WORK}/none-fail.png")
 
-expect_failure("the viewer does not draw final gathering in a scene" "--scene: the viewer draws technique finalgather-point in its own room" ""
-               "${VPLKIT}" view --technique finalgather-point --scene "${room}")
+# The object as a node of the scene (--object-node) and placed by --object-at: fg-studio.gltf's
+# vase (a 0.16 x 0.26 x 0.16 box, 12 triangles) stands on the desk; moved to the middle of the
+# room, the bottom centre of its box at 0,1.1,0.6, its centre is 0.13 higher.
+set(studio "${FUZZ_INPUTS}/../../../bench/scenes/fg-studio.gltf")
+expect_success("final gathering with a node of the scene as the object, moved by --object-at"
+               "object vase \\(12 triangles\\) at \\(0, 1.23, 0.6\\).*wrote .*/studio-vase\\.png"
+               "${VPLKIT}" render --technique finalgather-polygon --scene "${studio}" --object-node vase --object-at 0,1.1,0.6 --size 48
+               --face-size 32 --out "${WORK}/studio-vase.png")
+expect_success("--object-at scales: the vase twice as large" "object vase \\(12 triangles\\) at \\(0, 1.36, 0.6\\)"
+               "${VPLKIT}" render --technique envmap --scene "${studio}" --object-node vase --object-at 0,1.1,0.6,2 --size 32
+               --face-size 32 --out "${WORK}/studio-vase2.png")
+expect_success("--object FILE placed by --object-at (its own units, scaled)" "object tetra .*at \\(0, 1.25, 0\\)"
+               "${VPLKIT}" render --technique finalgather-point --scene "${studio}" --object "${WORK}/tetra.obj" --object-at 0,1,0,0.5 --size 32
+               --face-size 32 --out "${WORK}/studio-tetra.png")
+expect_failure("a node resting on the desk touches it: the cube-map check" "reference point \\(-1.3.*within the object's radius" "${WORK}/studio-fail*.png"
+               "${VPLKIT}" render --technique finalgather-polygon --scene "${studio}" --object-node vase --size 32 --face-size 32
+               --out "${WORK}/studio-fail.png")
+expect_failure("an unknown node is refused with the scene's node names"
+               "no node named 'urn' \\(--object-node\\); its named nodes: 'floor', 'ceiling', 'back wall'.*'vase', 'camera', 'spot'"
+               "${WORK}/studio-fail*.png"
+               "${VPLKIT}" render --technique finalgather-polygon --scene "${studio}" --object-node urn --size 32 --out "${WORK}/studio-fail.png")
+expect_failure("--object-node without --scene" "--object-node 'vase' names a node of the scene: give the glTF scene with --scene"
+               "${WORK}/studio-fail*.png" "${VPLKIT}" render --technique finalgather-polygon --object-node vase --size 32 --out "${WORK}/studio-fail.png")
+expect_failure("--object-node and --object" "give it or --object, not both" "${WORK}/studio-fail*.png"
+               "${VPLKIT}" render --technique finalgather-polygon --scene "${studio}" --object-node vase --object "${WORK}/tetra.obj" --size 32
+               --out "${WORK}/studio-fail.png")
+expect_failure("--object-node with --object-position" "the node --object-node names stays where the scene has it, or give --object-at"
+               "${WORK}/studio-fail*.png" "${VPLKIT}" render --technique finalgather-polygon --scene "${studio}" --object-node vase
+               --object-position 0,1,0 --size 32 --out "${WORK}/studio-fail.png")
+foreach(case "1,2|expected x,y,z or x,y,z,scale, not '1,2'" "0,1,nan|x, y and z must be finite" "0,1,0,0|the scale must be > 0"
+             "0,1,0,-2|the scale must be > 0" "0,1,x|expected x,y,z or x,y,z,scale" "0,1,0,1,5|expected x,y,z or x,y,z,scale")
+  string(REPLACE "|" ";" parts "${case}")
+  list(GET parts 0 value)
+  list(GET parts 1 message)
+  expect_failure("--object-at ${value} is refused" "--object-at.*${message}" "${WORK}/studio-fail*.png"
+                 "${VPLKIT}" render --technique finalgather-polygon --scene "${studio}" --object-at "${value}" --size 32 --out "${WORK}/studio-fail.png")
+endforeach()
+expect_failure("--object-at outside the scene's bounds" "--object-at 0,1,40 puts the object's box .* outside the scene's bounds"
+               "${WORK}/studio-fail*.png"
+               "${VPLKIT}" render --technique finalgather-polygon --scene "${studio}" --object-at 0,1,40 --size 32 --out "${WORK}/studio-fail.png")
+expect_failure("--object-at and --object-position" "give it or --object-position and --object-size, not both" "${WORK}/studio-fail*.png"
+               "${VPLKIT}" render --technique finalgather-polygon --scene "${studio}" --object-at 0,1,0 --object-size 0.3 --size 32
+               --out "${WORK}/studio-fail.png")
+
+# The sweep draws final gathering in the scene too: one row per configuration, named by the scene.
+expect_success("sweep final gathering in room-a.gltf" "wrote .*fg-sweep"
+               "${VPLKIT}" sweep --technique finalgather-point --scene "${room}" --object-position 0.5,1.3,1 --object-size 0.4 --size 32
+               --face-size 32 --vary cube-resolution=2,4 --out "${WORK}/fg-sweep")
+file(GLOB sweep_tables "${WORK}/fg-sweep/*.csv")
+set(sweep_text "")
+foreach(table ${sweep_tables})
+  file(READ "${table}" text)
+  string(APPEND sweep_text "${text}")
+endforeach()
+string(REGEX MATCHALL "room-a[^\n]*finalgather-point" sweep_rows "${sweep_text}")
+list(LENGTH sweep_rows sweep_row_count)
+if(NOT sweep_row_count EQUAL 2)
+  message(SEND_ERROR "FAILED the final gathering sweep in room-a.gltf: ${sweep_row_count} rows naming the scene, not 2:\n${sweep_text}")
+  math(EXPR failures "${failures} + 1")
+endif()
 
 cli_report()

@@ -65,8 +65,6 @@ expect_usage_error("--seeds for a technique without a seed" "--seeds 3: techniqu
                    "${VPLKIT}" sweep --technique direct --vary rsm-size=16,32 --seeds 3 --out "${WORK}/u7")
 expect_usage_error("a configuration the family refuses" "configuration cube-resolution=3: M = 3 does not divide the face size 32" "${WORK}/u8"
                    "${VPLKIT}" sweep --technique finalgather-point --face-size 32 --vary cube-resolution=2,3 --out "${WORK}/u8")
-expect_usage_error("final gathering reads no --scene" "--scene is read by the techniques that draw a scene" "${WORK}/u9"
-                   "${VPLKIT}" sweep --technique finalgather-point --scene cornell-box --vary cube-resolution=2,4 --out "${WORK}/u9")
 expect_usage_error("--out is required" "--out is required" "${WORK}/u10" "${VPLKIT}" sweep --vary radius=0.1,0.2)
 expect_usage_error("a technique of another family on the technique axis" "--vary technique=lightwave-direct: not a technique of the rsm family" "${WORK}/u11"
                    "${VPLKIT}" sweep --technique rsm-alg6 --vary technique=rsm-radial,lightwave-direct --out "${WORK}/u11")

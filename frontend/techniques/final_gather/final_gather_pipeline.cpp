@@ -14,6 +14,7 @@
 #include "frontend/gl/debug_output.hpp"
 #include "frontend/core/error.hpp"
 #include "frontend/core/parallel.hpp"
+#include "frontend/techniques/rsm/rsm_pipeline.hpp"
 
 namespace vplkit {
 
@@ -45,11 +46,13 @@ final_gather_pipeline::final_gather_pipeline(const shader_library& shaders, cons
       technique_(find_final_gather_technique(settings.technique)),
       room_(source.room),
       object_(source.object),
+      light_depth_program_(load_program(shaders, "scene.vert", "final_gather_light_depth.frag")),
       cube_program_(load_program(shaders, "scene.vert", "cube_face.frag")),
       downsample_program_(load_program(shaders, "fullscreen.vert", "cube_downsample.frag")),
       gbuffer_program_(load_program(shaders, "scene.vert", "final_gather_gbuffer.frag")),
       shade_program_(load_program(shaders, "fullscreen.vert", "final_gather_shade.frag",
                                   {{"VPLKIT_FINAL_GATHER", std::to_string(static_cast<int>(technique_.variant))}})),
+      light_depth_(final_gather_light_depth_size, final_gather_light_depth_size, {texel_format::rgba32f}, true),
       faces_(6 * settings.face_size, settings.face_size, {texel_format::rgba32f}, true),
       small_cube_(6 * settings.resolution, settings.resolution, {texel_format::rgba32f}, false),
       environment_(technique_.variant == final_gather_variant::environment_map ? 6 * settings.environment_resolution : 1,
@@ -61,6 +64,16 @@ final_gather_pipeline::final_gather_pipeline(const shader_library& shaders, cons
   if (technique_.variant == final_gather_variant::environment_map)
     environment_program_ = load_program(shaders, "fullscreen.vert", "environment_convolution.frag");
   for (const program* target : {&cube_program_, &shade_program_}) set_uniforms(*target, "irradiance", settings_.irradiance);
+  // One texel of the light's depth map per lookup: the reference's shadow rays are hard, and the
+  // wider window of Alg. 4 would soften the room's shadows it compares against.
+  shadow_density_settings<float> shadow;
+  shadow.kernel_size = 1;
+  for (const program* target : {&cube_program_, &gbuffer_program_}) {
+    set_uniforms(*target, "shadow", shadow);
+    target->set("light_depth_size", final_gather_light_depth_size);
+  }
+  cube_program_.set("light_depth", 1);  // the material's texture has a unit of its own (material_texture_unit)
+  gbuffer_program_.set("light_depth", 1);
   downsample_program_.set("faces", 0);
   downsample_program_.set("face_size", settings_.face_size);
   downsample_program_.set("resolution", settings_.resolution);
@@ -81,6 +94,19 @@ void final_gather_pipeline::set_pose_uniforms() {
   for (const program* target : {&cube_program_, &shade_program_}) {
     set_uniforms(*target, "light", scene_.light);
     target->set("reference_point", scene_.reference_point);
+  }
+  // The spot's frustum as the RSM techniques draw it (a square frustum around the outer cone,
+  // its far plane past the room).
+  scene lit;
+  lit.lights = {scene_light{light_kind::spot, scene_.light, {}, {}}};
+  const light_frustum frustum = make_light_frustum(lit, bounds(scene_.room), final_gather_light_depth_size);
+  const glm::mat4 projection = frustum.view_projection * glm::inverse(frustum.view);
+  light_depth_program_.set("view_projection", frustum.view_projection);
+  light_depth_program_.set("light_view", frustum.view);
+  for (const program* target : {&cube_program_, &gbuffer_program_}) {
+    target->set("light_view", frustum.view);
+    target->set("light_projection", projection);
+    target->set("light_view_projection", frustum.view_projection);
   }
   if (technique_.variant == final_gather_variant::environment_map) environment_program_.set("reference_point", scene_.reference_point);
   const glm::mat4 camera = camera_projection_matrix(scene_.view, static_cast<float>(settings_.width) / static_cast<float>(settings_.height)) *
@@ -116,14 +142,13 @@ bool final_gather_pipeline::apply_settings(const technique_settings& settings) {
   if (!typed) return false;
   const final_gather_setup& setup = typed->value();
   const final_gather_settings& next = setup.pipeline;
-  // What this pipeline was made with; a pipeline made from a scene rather than a setup has no
-  // object's source, and takes no settings in place.
+  // What this pipeline was made with: its settings, and the object's source and placement
+  // (object_key, which the object's settings change). A pipeline made from a scene rather than a
+  // setup has no object's source, and takes no settings in place.
   final_gather_setup current = setup;
   current.pipeline = settings_;
-  current.object = scene_.object_source;
-  current.object_size = scene_.object_size;
-  if (!validate(setup).empty() || scene_.object_source.empty() || next.technique != settings_.technique ||
-      !rebuilding_changes(final_gather_settings_table(), current, setup).empty())
+  if (!validate(setup).empty() || scene_.object_source.empty() || object_key(setup) != scene_.object_source ||
+      next.technique != settings_.technique || !rebuilding_changes(final_gather_settings_table(), current, setup).empty())
     return false;
   settings_ = next;
   for (const program* target : {&cube_program_, &shade_program_}) set_uniforms(*target, "irradiance", settings_.irradiance);
@@ -189,6 +214,7 @@ void final_gather_pipeline::draw_passes(bool with_cube) {
   glEnable(GL_DEPTH_TEST);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   gbuffer_program_.set("surface_kind", 1.0f);
+  light_depth_.colour(0).bind(1);
   glEnable(GL_CULL_FACE);  // the room's quads face inwards, counter-clockwise
   glCullFace(GL_BACK);
   room_.draw(gbuffer_program_);
@@ -216,11 +242,19 @@ void final_gather_pipeline::draw_passes(bool with_cube) {
 // Passes 1 to 3: the cube map around the reference point, averaged down (checked: the object
 // must not reach into the room), and the baseline's environment map.
 void final_gather_pipeline::draw_cube_map(float room_size) {
+  timer_.begin("light depth");
+  light_depth_.bind();
+  glEnable(GL_DEPTH_TEST);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);  // eye depth 0: nothing there, hides nothing
+  room_.draw(light_depth_program_);  // both sides: a wall seen from behind still casts its shadow
+  timer_.end();
+
   timer_.begin("cube map");
   faces_.bind();
   glEnable(GL_DEPTH_TEST);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   const glm::mat4 projection = glm::perspective(glm::radians(90.0f), 1.0f, 0.001f * room_size, 4.0f * room_size);
+  light_depth_.colour(0).bind(1);
   for (int face = 0; face < 6; ++face) {
     glViewport(face * settings_.face_size, 0, settings_.face_size, settings_.face_size);
     cube_program_.set("view_projection", projection * face_view(face, scene_.reference_point));

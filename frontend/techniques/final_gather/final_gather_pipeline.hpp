@@ -1,5 +1,5 @@
 // The final-gathering pipeline of [FG] for one dynamic object in a coloured box room:
-// 1. the cube map around the object's centre o (6 faces, radiance and distance, the object left
+// 0. the room's light eye depths from the spot (its shadows in the cube map and the view), 1. the cube map around the object's centre o (6 faces, radiance and distance, the object left
 // out), 2. each face averaged down to M x M, 3. (baseline only) the irradiance environment map,
 // 4. a G-buffer of the camera view, 5. shading: the room with its direct light, the object with
 // direct light plus the indirect irradiance of the variant. Its CPU mirror shades from the
@@ -36,8 +36,13 @@ struct final_gather_frame {
 struct final_gather_buffers {
   image small_cube;       ///< 6 M x M: [radiance | distance]
   image environment_map;  ///< 6 K x K: [irradiance | 1] (baseline only, else empty)
-  image gbuffer[3];       ///< [position | kind], [normal | -], [albedo | -]
+  image gbuffer[3];       ///< [position | kind], [normal | the spot's visibility past the room], [albedo | -]
 };
+
+/// The side of the spot's depth map of the room (final_gather_shadow.glsl): texels of about
+/// 1/1000 of the room at the distances a room's spot lights it from, which the slope-scaled bias
+/// of a few footprints keeps free of acne without losing the contact shadows of furniture.
+inline constexpr int final_gather_light_depth_size = 1024;
 
 class final_gather_pipeline final : public pipeline {
  public:
@@ -87,11 +92,13 @@ class final_gather_pipeline final : public pipeline {
   final_gather_technique technique_;
   mesh_buffers room_;
   mesh_buffers object_;
+  program light_depth_program_;
   program cube_program_;
   program downsample_program_;
   program environment_program_;
   program gbuffer_program_;
   program shade_program_;
+  framebuffer light_depth_;
   framebuffer faces_;
   framebuffer small_cube_;
   framebuffer environment_;

@@ -10,15 +10,15 @@
 
 #include "frontend/scene/camera.hpp"
 #include "frontend/scene/scene.hpp"
+#include "frontend/techniques/final_gather/final_gather_settings.hpp"
 
 namespace vplkit {
 
 /// The room (the environment) and the dynamic object, kept apart: the cube map leaves the object out.
 struct final_gather_scene {
   std::string name;
-  /// What make_final_gather_scene was given ("sphere" or the .obj file) and the object's size:
-  /// the setup a new scene comes from (final_gather_pipeline::apply_settings keeps the scene
-  /// only while they are the same). Empty for a scene made otherwise.
+  /// object_key of the setup make_final_gather_scene was given: the object's source and placement
+  /// (final_gather_pipeline::apply_settings keeps the scene only while it is the same).
   std::string object_source;
   float object_size = 0.0f;
   mesh room;
@@ -48,5 +48,14 @@ scene final_gather_box();
 /// light or a scene without triangles. A position inside geometry or outside the scene is found
 /// by the pipeline's cube-map check.
 final_gather_scene make_final_gather_scene(const scene& environment, const std::string& object, glm::vec3 position, float size);
+
+/// The scene of a setup: the environment (`environment`, or the built-in room when null) and the
+/// object: the node setup.object_node names, taken out of the environment with its materials
+/// (its subtree's triangles; an unknown name is refused with the scene's node names), or
+/// setup.object; placed by setup.object_at (the bottom centre of its bounding box at x,y,z,
+/// scaled; refused when the box leaves the scene's bounds), else a node where the scene has it,
+/// else a file's object setup.object_size across, centred at setup.object_position. Throws
+/// vplkit::error naming the scene and what is wrong.
+final_gather_scene make_final_gather_scene(const scene* environment, const final_gather_setup& setup);
 
 }  // namespace vplkit

@@ -53,7 +53,28 @@ struct final_gather_setup {
   std::string object = "sphere";                 ///< sphere, or an .obj file (meshes/bunny.obj)
   glm::vec3 object_position{0.0f, 0.7f, 0.0f};  ///< its centre
   float object_size = 0.5f;                      ///< across (the room is 2 wide)
+  /// --object-node: a named node of --scene's glTF (with its subtree) as the object, taken out of
+  /// the environment with its materials; empty (the option's "none"): `object`.
+  std::string object_node;
+  /// --object-at "x,y,z[,scale]": the bottom centre of the object's bounding box at x,y,z, the
+  /// object scale times its own size (the node's as the scene has it, the file's in its units);
+  /// instead of object_position and object_size. Empty (the option's "none"): those.
+  std::string object_at;
 };
+
+/// --object-at parsed: where the bottom centre of the object's bounding box goes, and its scale.
+struct object_placement {
+  glm::vec3 bottom_centre{0.0f};
+  float scale = 1.0f;
+};
+
+/// --object-at's text as a placement, or the problem ("expected x,y,z or x,y,z,scale, not ...",
+/// a value that is not finite or beyond max_object_coordinate, a scale <= 0).
+std::string parse_object_at(const std::string& text, object_placement& placement);
+
+/// What makes a final_gather_scene from a setup: the object's source and placement (a pipeline
+/// applies settings in place only while it is the same).
+std::string object_key(const final_gather_setup& setup);
 
 /// The description of every setting a user sets (frontend/core/setting.hpp).
 const std::vector<setting<final_gather_setup, final_gather_technique>>& final_gather_settings_table();

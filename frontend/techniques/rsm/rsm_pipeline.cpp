@@ -129,7 +129,7 @@ void set_light_uniforms(const program& target, const rsm_frame_constants& consta
 }  // namespace
 
 rsm_pipeline::rsm_pipeline(const shader_library& shaders, const scene& source, const rsm_pipeline_settings& settings)
-    : scene_{source.name, mesh{}, source.view, source.lights, source.notes},
+    : scene_{source.name, mesh{}, source.view, source.lights, source.notes, {}},
       bounds_(bounds(source.geometry)),
       triangles_(source.geometry.triangle_count()),
       settings_(settings),

@@ -567,3 +567,37 @@ TEST_CASE("textures: one image file named by four images is decoded once; all of
             .find("image 0 (claim.png): its 8192x8192 texels with mipmaps (357913940 bytes) would bring the scene's decoded textures to 357913940 bytes, more than "
                   "the 256 MiB budget") != std::string::npos);
 }
+
+TEST_CASE("named nodes: each names the run of triangles it and its children added, in the walk's order") {
+  const fs::path scenes = fs::path(VPLKIT_TEST_SOURCE_DIR) / ".." / "bench" / "scenes";
+  // room-a: "table" is a parent of its top and four legs (five boxes of 12 triangles), rotated.
+  const scene room = load_gltf(scenes / "room-a.gltf");
+  const auto find = [&](const scene& s, const std::string& name) {
+    const auto found = std::find_if(s.nodes.begin(), s.nodes.end(), [&](const scene_node& n) { return n.name == name; });
+    REQUIRE(found != s.nodes.end());
+    return *found;
+  };
+  const scene_node table = find(room, "table"), top = find(room, "table top"), leg = find(room, "table leg 3"), sofa = find(room, "sofa seat");
+  CHECK(table.index_count == 5u * 36u);
+  CHECK(top.index_count == 36u);
+  CHECK(top.first_index >= table.first_index);
+  CHECK(leg.first_index + leg.index_count <= table.first_index + table.index_count);
+  CHECK((sofa.first_index + sofa.index_count <= table.first_index || sofa.first_index >= table.first_index + table.index_count));
+  CHECK(find(room, "camera").index_count == 0u);
+  // Every vertex of the top's run lies in the table top's box (1.2 x 0.04 x 0.7 at height 0.73).
+  for (std::uint32_t i = top.first_index; i < top.first_index + top.index_count; ++i)
+    CHECK(std::abs(room.geometry.vertices[room.geometry.indices[i]].position.y - 0.73f) <= 0.0201f);
+
+  // fg-studio: the vase's run is its box, in its ceramic colour.
+  const scene studio = load_gltf(scenes / "fg-studio.gltf");
+  const scene_node vase = find(studio, "vase");
+  CHECK(vase.index_count == 36u);
+  for (std::uint32_t i = vase.first_index; i < vase.first_index + vase.index_count; ++i) {
+    const vertex& v = studio.geometry.vertices[studio.geometry.indices[i]];
+    CHECK(v.albedo == glm::vec3(0.75f, 0.3f, 0.55f));
+    CHECK(std::abs(v.position.x + 1.3f) <= 0.0801f);
+    CHECK(std::abs(v.position.y - 0.9f) <= 0.1301f);
+  }
+  // A built-in scene and an OBJ have no nodes.
+  CHECK(built_in_scene("cornell-box").nodes.empty());
+}

@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <random>
 
 #include <vplkit/direct_light.hpp>
@@ -11,6 +12,8 @@
 
 #include "frontend/core/error.hpp"
 #include "frontend/reference/final_gather_reference.hpp"
+#include "frontend/reference/monte_carlo.hpp"
+#include "frontend/reference/ray_scene.hpp"
 #include "frontend/scene/gltf_scene.hpp"
 #include "frontend/techniques/final_gather/final_gather_cpu_mirror.hpp"
 #include "tests/frontend/techniques/pass_parity.hpp"
@@ -165,4 +168,124 @@ TEST_CASE("final gathering in a scene: its light, camera and geometry are used; 
   empty.geometry = mesh();
   CHECK_THROWS_WITH_AS(make_final_gather_scene(empty, "sphere", glm::vec3(0.0f, 0.7f, 0.0f), 0.5f),
                        doctest::Contains("scene my-room: the scene has no triangles around the object"), vplkit::error);
+}
+
+namespace {
+
+// The box room with a table top (a 1 x 0.04 x 1 slab) between the ceiling spot and the floor: the
+// floor under it is in the room's shadow. The object sits under the table.
+scene box_with_table() {
+  scene room = final_gather_box();
+  room.name = "box-with-table";
+  add_box(room.geometry, {0.0f, 0.8f, 0.0f}, {1.0f, 0.04f, 1.0f}, 0.0f, glm::vec3(0.6f));
+  return room;
+}
+
+}  // namespace
+
+TEST_CASE("final gathering in a scene: the room's shadows are in the view's direct light and the cube map, as the ray-traced reference has them") {
+  const scene room = box_with_table();
+  const final_gather_scene s = make_final_gather_scene(room, "sphere", glm::vec3(0.0f, 0.3f, 0.0f), 0.3f);
+  final_gather_settings settings = small("finalgather-polygon", 4);
+  settings.width = settings.height = 64;
+  settings.face_size = 64;
+  final_gather_pipeline pipeline(test_shaders(), s, settings);
+  const final_gather_frame frame = pipeline.render();
+  const final_gather_buffers buffers = pipeline.read_buffers();
+  const ray_scene rays(s.room);
+  std::vector<scene_light> lights(1);
+  lights[0].spot = s.light;
+
+  // The G-buffer's visibility (what the view's direct light and the cube faces read, through
+  // final_gather_shadow.glsl) against a shadow ray to the spot, for the room's lit pixels.
+  std::size_t lit = 0, shadowed = 0, disagreeing = 0;
+  for (std::size_t i = 0; i < buffers.gbuffer[0].texels.size(); ++i) {
+    const glm::vec4 position_kind = buffers.gbuffer[0].texels[i];
+    if (position_kind.w < 0.5f || position_kind.w > 1.5f) continue;
+    const glm::vec3 p(position_kind), n(buffers.gbuffer[1].texels[i]);
+    if (spot_light_irradiance(p, n, s.light, settings.irradiance) == glm::vec3(0.0f)) continue;
+    const bool occluded = rays.occluded(p + n * 1e-4f, s.light.position);
+    (occluded ? shadowed : lit) += 1;
+    disagreeing += (buffers.gbuffer[1].texels[i].w > 0.5f) == occluded;
+  }
+  MESSAGE("room pixels lit " << lit << ", in the table's shadow " << shadowed << ", visibility disagreeing with the shadow ray " << disagreeing);
+  REQUIRE(shadowed > 100);
+  REQUIRE(lit > 100);
+  // Disagreement only along the shadow's edge (a texel of the 1024^2 map, the bias).
+  CHECK(static_cast<double>(disagreeing) < 0.03 * static_cast<double>(lit + shadowed));
+
+  // The object's indirect irradiance against the one-bounce Monte Carlo reference of the same
+  // room (shadow rays; the room alone blocks the bounce rays): the lit floor around the table and
+  // the walls, not the shadowed floor under it. An unshadowed cube map sees that floor lit and
+  // overestimates by far more than the bound.
+  double gathered = 0.0, reference = 0.0;
+  std::size_t object_pixels = 0;
+  for (std::size_t i = 0; i < buffers.gbuffer[0].texels.size(); ++i) {
+    const glm::vec4 position_kind = buffers.gbuffer[0].texels[i];
+    if (position_kind.w < 1.5f) continue;
+    const glm::vec3 p(position_kind), n(buffers.gbuffer[1].texels[i]);
+    const glm::vec3 e = one_bounce_irradiance(rays, lights, settings.irradiance, p + n * 1e-3f, n, 512, 1u, static_cast<std::uint32_t>(i));
+    reference += static_cast<double>(e.r) + e.g + e.b;
+    const glm::vec4& g = frame.indirect.texels[i];
+    gathered += static_cast<double>(g.r) + g.g + g.b;
+    ++object_pixels;
+  }
+  REQUIRE(object_pixels > 30);
+  const double bias = gathered / reference - 1.0;
+  MESSAGE("object pixels " << object_pixels << ", polygon's mean against the Monte Carlo reference: " << bias);
+  CHECK(std::abs(bias) < 0.12);
+}
+
+TEST_CASE("--object-node and --object-at: a node of the scene becomes the object, out of the environment, placed by its box's bottom centre") {
+  const scene studio = load_gltf(std::filesystem::path(VPLKIT_TEST_SOURCE_DIR) / ".." / "bench" / "scenes" / "fg-studio.gltf");
+  final_gather_setup setup;
+  setup.object_node = "vase";
+  setup.object_at = "0,1.1,0.6,2";
+  const final_gather_scene s = make_final_gather_scene(&studio, setup);
+  CHECK(s.name == "vase");
+  CHECK(s.object.triangle_count() == 12u);
+  CHECK(s.room.triangle_count() + 12u == studio.geometry.triangle_count());
+  // Its own colour, twice its size (0.16 x 0.26 x 0.16), its box's bottom centre at 0,1.1,0.6.
+  const bounding_box box = bounds(s.object);
+  CHECK(box.minimum.y == doctest::Approx(1.1f).epsilon(1e-5));
+  CHECK(box.maximum.y - box.minimum.y == doctest::Approx(0.52f).epsilon(1e-5));
+  CHECK(box.maximum.x - box.minimum.x == doctest::Approx(0.32f).epsilon(1e-5));
+  CHECK(box.centre().x == doctest::Approx(0.0f).scale(1.0).epsilon(1e-5));
+  CHECK(s.reference_point.y == doctest::Approx(1.36f).epsilon(1e-5));
+  for (const vertex& v : s.object.vertices) CHECK(v.albedo == glm::vec3(0.75f, 0.3f, 0.55f));
+  // The environment no longer has the vase: no room vertex within its old box on the desk.
+  for (const vertex& v : s.room.vertices)
+    CHECK_FALSE((std::abs(v.position.x + 1.3f) < 0.079f && std::abs(v.position.z - 0.4f) < 0.079f && v.position.y > 0.78f && v.position.y < 1.02f));
+  // Drawn: the object is seen and gathers light from the studio.
+  final_gather_pipeline pipeline(test_shaders(), s, small("finalgather-polygon", 4));
+  const final_gather_frame frame = pipeline.render();
+  std::size_t lit = 0;
+  for (const glm::vec4& texel : frame.indirect.texels) lit += texel.r > 0.0f;
+  CHECK(lit > 10);
+
+  // Without --object-at the node stays where the scene has it.
+  final_gather_setup in_place;
+  in_place.object_node = "vase";
+  CHECK(make_final_gather_scene(&studio, in_place).reference_point.y == doctest::Approx(0.9f).epsilon(1e-5));
+  // Refusals, each naming what is wrong.
+  final_gather_setup unknown;
+  unknown.object_node = "urn";
+  CHECK_THROWS_WITH_AS(make_final_gather_scene(&studio, unknown), doctest::Contains("no node named 'urn' (--object-node); its named nodes: 'floor'"),
+                       vplkit::error);
+  CHECK_THROWS_WITH_AS(make_final_gather_scene(nullptr, in_place), doctest::Contains("give the glTF scene with --scene"), vplkit::error);
+  final_gather_setup camera_node;
+  camera_node.object_node = "camera";
+  CHECK_THROWS_WITH_AS(make_final_gather_scene(&studio, camera_node), doctest::Contains("node 'camera' (--object-node) has no triangles"), vplkit::error);
+  final_gather_setup outside = setup;
+  outside.object_at = "0,2.4,0";  // the vase's top 0.26 above: through the ceiling (2.5 + its 0.1)
+  CHECK_THROWS_WITH_AS(make_final_gather_scene(&studio, outside), doctest::Contains("outside the scene's bounds"), vplkit::error);
+  for (const char* bad : {"1,2", "0,1,inf", "0,1,0,0", "a,b,c", "1,2,3,4,5", ""}) {
+    object_placement placement;
+    INFO(bad);
+    CHECK_FALSE(parse_object_at(bad, placement).empty());
+  }
+  object_placement placement;
+  CHECK(parse_object_at("1,-2,3.5", placement).empty());
+  CHECK(placement.bottom_centre == glm::vec3(1.0f, -2.0f, 3.5f));
+  CHECK(placement.scale == 1.0f);
 }
