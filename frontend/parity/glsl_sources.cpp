@@ -19,22 +19,25 @@ std::string include_lines(const kernel_source& source) {
 
 // The declarations of a run's tables and uniform blocks, after the includes (a block's struct
 // comes from a lib file) and before the kernel's own declarations (which read them). Textures in a
-// fragment or vertex run, storage buffers from binding `first_buffer` in a compute run; the
-// blocks' bindings follow the buffers on Vulkan (one set), and GL binds them by name.
+// fragment or vertex run, storage buffers from binding `first_buffer` in a compute run (the vec4
+// tables, then the uvec4 tables); the blocks' bindings follow the buffers on Vulkan (one set), and
+// GL binds them by name.
 std::string resource_declarations(const kernel_resources& resources, shader_stage stage, target where, int first_buffer) {
   std::ostringstream out;
   int binding = first_buffer;
   const std::string set = where == target::vulkan ? "set = 0, " : "";
-  for (const kernel_table& table : resources.tables) {
+  // vec4 tables, then uvec4 tables: the same declaration with its own types.
+  const auto declare_table = [&](const std::string& name, int width, const char* type, const char* sampler) {
     if (stage == shader_stage::compute) {
-      out << "layout(std430, " << set << "binding = " << binding++ << ") readonly buffer " << table.name << "_table { vec4 " << table.name
-          << "_texels[]; };\nvec4 " << table.name << "(ivec2 texel) { return " << table.name << "_texels[texel.y * " << table.width
-          << " + texel.x]; }\n";
+      out << "layout(std430, " << set << "binding = " << binding++ << ") readonly buffer " << name << "_table { " << type << " " << name
+          << "_texels[]; };\n" << type << " " << name << "(ivec2 texel) { return " << name << "_texels[texel.y * " << width << " + texel.x]; }\n";
     } else {
-      out << "uniform sampler2D " << table.name << "_table;\nvec4 " << table.name << "(ivec2 texel) { return texelFetch(" << table.name
+      out << "uniform " << sampler << " " << name << "_table;\n" << type << " " << name << "(ivec2 texel) { return texelFetch(" << name
           << "_table, texel, 0); }\n";
     }
-  }
+  };
+  for (const kernel_table& table : resources.tables) declare_table(table.name, table.width, "vec4", "sampler2D");
+  for (const kernel_uint_table& table : resources.uint_tables) declare_table(table.name, table.width, "uvec4", "usampler2D");
   for (const kernel_block& block : resources.blocks) {
     out << "layout(std140";
     if (where == target::vulkan) out << ", " << set << "binding = " << binding++;

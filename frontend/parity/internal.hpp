@@ -37,8 +37,8 @@ void check_grid(const std::string& what, const kernel_inputs& inputs);
 std::string fragment_source(const kernel_source& source, const kernel_inputs& inputs, target where, const kernel_resources& resources);
 std::string vertex_source(const kernel_source& source, const kernel_inputs& inputs, target where, const kernel_resources& resources);
 // One invocation per texel in work groups of 64; storage buffers in binding order: the float
-// inputs, the uint inputs, the float outputs, the uint outputs, then the tables (and on Vulkan
-// the uniform blocks).
+// inputs, the uint inputs, the float outputs, the uint outputs, the vec4 tables, the uvec4
+// tables (and on Vulkan the uniform blocks).
 std::string compute_source(const kernel_source& source, const kernel_inputs& inputs, target where, const kernel_resources& resources);
 
 }  // namespace vplkit::parity::detail

@@ -62,14 +62,21 @@ void check_target(const std::string& what, shader_stage stage, target where, con
   if (where == target::vulkan && resources.uniforms)
     throw error(what + "a uniform setter sets GL default-block uniforms, which Vulkan has not: pass the values in a kernel_block "
                        "(settings_block) instead");
-  for (std::size_t i = 0; i < resources.tables.size(); ++i) {
-    const kernel_table& table = resources.tables[i];
+  // A short table would be uploaded past its end; two tables of one name declare one GLSL name
+  // twice, a compile error that would not say which tables.
+  std::vector<std::string> names;
+  const auto check_table = [&](const std::string& kind, std::size_t i, const auto& table) {
     if (table.name.empty() || table.width < 1 || table.height < 1 ||
         table.texels.size() != static_cast<std::size_t>(table.width) * static_cast<std::size_t>(table.height))
-      throw error(what + "table " + std::to_string(i) + " '" + table.name + "' is " + std::to_string(table.width) + "x" +
+      throw error(what + kind + std::to_string(i) + " '" + table.name + "' is " + std::to_string(table.width) + "x" +
                   std::to_string(table.height) + " with " + std::to_string(table.texels.size()) +
                   " texels: it needs a name and width * height texels, at least 1x1");
-  }
+    if (std::find(names.begin(), names.end(), table.name) != names.end())
+      throw error(what + kind + std::to_string(i) + " is named '" + table.name + "' like a table before it: each table needs a name of its own");
+    names.push_back(table.name);
+  };
+  for (std::size_t i = 0; i < resources.tables.size(); ++i) check_table("table ", i, resources.tables[i]);
+  for (std::size_t i = 0; i < resources.uint_tables.size(); ++i) check_table("uint table ", i, resources.uint_tables[i]);
   for (std::size_t i = 0; i < resources.blocks.size(); ++i) {
     const kernel_block& block = resources.blocks[i];
     if (block.type.empty() || block.member.empty() || block.bytes.empty())
@@ -101,7 +108,7 @@ void check_run(const std::string& what, const kernel_source& source, const kerne
   const std::string inputs_text = "inputs (" + std::to_string(inputs.floats.size()) + " float, " + std::to_string(inputs.uints.size()) + " uint)";
   const std::size_t output_count = static_cast<std::size_t>(source.float_outputs) + static_cast<std::size_t>(source.uint_outputs);
   const std::string outputs_text = "outputs (" + std::to_string(source.float_outputs) + " float, " + std::to_string(source.uint_outputs) + " uint)";
-  const std::size_t tables = resources.tables.size();
+  const std::size_t tables = resources.tables.size() + resources.uint_tables.size();
   const std::string tables_text = tables ? " and " + std::to_string(tables) + " tables" : "";
   if (stage == shader_stage::fragment) {
     check_limit(input_count + tables, inputs_text + tables_text + ", each a texture", gl_count(GL_MAX_TEXTURE_IMAGE_UNITS), "GL_MAX_TEXTURE_IMAGE_UNITS");
@@ -136,18 +143,21 @@ void check_run(const std::string& what, const kernel_source& source, const kerne
   }
 }
 
-// The GL side of tables and blocks: each table a texture on the units after the inputs', each
-// block a buffer the program fills (program::set_uniform_block); then the user's setter.
+// The GL side of tables and blocks: each table a texture on the units after the inputs' (the
+// vec4 tables RGBA32F, then the uvec4 tables RGBA32UI), each block a buffer the program fills
+// (program::set_uniform_block); then the user's setter.
 std::vector<texture_2d> bind_gl_resources(const program& kernel, const kernel_resources& resources, int first_unit, bool textures) {
   std::vector<texture_2d> made;
   if (textures) {
-    made.reserve(resources.tables.size());
-    for (std::size_t i = 0; i < resources.tables.size(); ++i) {
-      const kernel_table& table = resources.tables[i];
-      made.emplace_back(table.width, table.height, texel_format::rgba32f, table.texels.data());
-      made.back().bind(first_unit + static_cast<int>(i));
-      kernel.set(table.name + "_table", first_unit + static_cast<int>(i));
-    }
+    made.reserve(resources.tables.size() + resources.uint_tables.size());
+    const auto bind = [&](const auto& table, texel_format format) {
+      const int unit = first_unit + static_cast<int>(made.size());
+      made.emplace_back(table.width, table.height, format, table.texels.data());
+      made.back().bind(unit);
+      kernel.set(table.name + "_table", unit);
+    };
+    for (const kernel_table& table : resources.tables) bind(table, texel_format::rgba32f);
+    for (const kernel_uint_table& table : resources.uint_tables) bind(table, texel_format::rgba32ui);
   }
   for (const kernel_block& block : resources.blocks) kernel.set_uniform_block(block.member + "_block", block.bytes.data(), block.bytes.size());
   if (resources.uniforms) resources.uniforms(kernel);
@@ -323,6 +333,7 @@ kernel_outputs run_gl_compute(const std::string& what, const kernel_source& sour
   const std::size_t first_output = buffers.size();
   for (int i = 0; i < source.float_outputs + source.uint_outputs; ++i) storage(nullptr, inputs.size() * 16);
   for (const kernel_table& table : resources.tables) storage(table.texels.data(), table.texels.size() * sizeof(glm::vec4));
+  for (const kernel_uint_table& table : resources.uint_tables) storage(table.texels.data(), table.texels.size() * sizeof(glm::uvec4));
   kernel.use();
   glDispatchCompute(static_cast<GLuint>((inputs.size() + 63) / 64), 1, 1);
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
@@ -350,6 +361,7 @@ kernel_outputs run_vulkan_compute(const std::string& what, const kernel_source& 
   for (int i = 0; i < source.float_outputs + source.uint_outputs; ++i)
     bindings.push_back({false, std::vector<std::byte>(inputs.size() * 16), true});
   for (const kernel_table& table : resources.tables) bindings.push_back({false, bytes_of(table.texels), false});
+  for (const kernel_uint_table& table : resources.uint_tables) bindings.push_back({false, bytes_of(table.texels), false});
   for (const kernel_block& block : resources.blocks) bindings.push_back({true, block.bytes, false});
   const std::vector<std::vector<std::byte>> read =
       detail::run_vulkan_compute(source.name, spirv, bindings, static_cast<std::uint32_t>((inputs.size() + 63) / 64));

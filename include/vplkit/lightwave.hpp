@@ -182,6 +182,27 @@ struct lightwave_cone_settings {
   T half_angle_deg = T(50);  ///< the cone's half-angle the rings reach, in (0, 90]
 };
 
+// Described like the layout it shares angle_deg and per_ray with, so that it has a std140 layout
+// (vplkit/std140.hpp) and reaches a shader in a uniform block on every target, Vulkan included.
+template <typename T>
+struct settings_description<lightwave_cone_settings<T>> {
+  using S = lightwave_cone_settings<T>;
+  static constexpr const char* name = "lightwave_cone_settings";
+  static constexpr bool glsl_twin = true;
+  static constexpr auto fields() {
+    return std::make_tuple(schema::field(&S::light_direction, "light_direction", schema::closed_range(-1, 1), "", "the spot light's axis, unit"),
+                           schema::field(&S::angle_deg, "angle_deg", schema::closed_range(1, 90), "degrees", "between rays, around and away from the axis (divides 90 and 360)"),
+                           schema::field(&S::per_ray, "per_ray", schema::closed_range(1, 32), "", "samples of each ray's patch"),
+                           schema::field(&S::half_angle_deg, "half_angle_deg", schema::open_closed_range(0, 90), "degrees", "the cone's half-angle the rings reach"));
+  }
+  static setting_problem rules(const S& settings) {
+    if (!lightwave_ray_angle_divides(settings.angle_deg))
+      return setting_problem("Light Wave ray angle must divide 90 and 360 (1, 2, 3, 5, 6, 9, 10, 15, 18, 30, 45 or 90 degrees)");
+    if (!(std::abs(glm::length(settings.light_direction) - T(1)) < T(1e-3))) return setting_problem("lightwave_cone_settings::light_direction must be a unit vector");
+    return {};
+  }
+};
+
 /// Sample `index` (0 .. lightwave_vpl_count - 1; index = sample_index * rays + ray, ray 0 the axis) of
 /// the flux layout: (unit direction, solid angle). The axis ray's patch is the cap of polar
 /// angles [0, d/2], ring e's (e = 1 .. 90 / angle) the band [(e - 1/2) d, (e + 1/2) d] cut into

@@ -91,7 +91,8 @@ struct settings_list {
 using glsl_twin_settings =
     settings_list<irradiance_settings<float>, radial_pattern_constants<float>, disk_pattern_settings<float>, elevation_slots<float>,
                   rsm_gather_settings<float>, rsm_unprojection<float>, shadow_density_settings<float>, bilateral_settings<float>,
-                  spot_light<float>, directional_light<float>, point_light<float>, lightwave_layout_settings<float>, lightwave_shading_settings<float>,
+                  spot_light<float>, directional_light<float>, point_light<float>, lightwave_layout_settings<float>,
+                  lightwave_cone_settings<float>, lightwave_shading_settings<float>,
                   temporal_settings<float>, voxel_march_settings<float>, voxel_grid_shape<float>>;
 
 namespace detail {

@@ -142,6 +142,7 @@ TEST_CASE("every described struct is usable at its defaults and refuses each fie
   check_ranges_refused(spot_light<float>{});
   check_ranges_refused(directional_light<float>{});
   check_ranges_refused(lightwave_layout_settings<float>{});
+  check_ranges_refused(lightwave_cone_settings<float>{});
   check_ranges_refused(lightwave_shading_settings<float>{});
   check_ranges_refused(make_rsm_unprojection(0.5f, true, glm::ivec2(64)));
   check_ranges_refused(default_rsm_gather_preset<float>());
@@ -163,6 +164,7 @@ TEST_CASE("each field is described once, with a name and a line of help") {
   check_names_unique<spot_light<float>>();
   check_names_unique<directional_light<float>>();
   check_names_unique<lightwave_layout_settings<float>>();
+  check_names_unique<lightwave_cone_settings<float>>();
   check_names_unique<lightwave_shading_settings<float>>();
   check_names_unique<rsm_unprojection<float>>();
 }

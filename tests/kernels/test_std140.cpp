@@ -29,6 +29,9 @@ static_assert(equal(std140_offsets<directional_light<float>>, std::array<std::si
 static_assert(std140_size<directional_light<float>> == 32);
 static_assert(equal(std140_offsets<lightwave_layout_settings<float>>, std::array<std::size_t, 5>{0, 16, 28, 32, 36}));
 static_assert(std140_size<lightwave_layout_settings<float>> == 48);
+// An int in the last 4 bytes of the vec3, then an int and a float: 24 bytes, rounded up to 32.
+static_assert(equal(std140_offsets<lightwave_cone_settings<float>>, std::array<std::size_t, 4>{0, 12, 16, 20}));
+static_assert(std140_size<lightwave_cone_settings<float>> == 32);
 static_assert(equal(std140_offsets<rsm_unprojection<float>>, std::array<std::size_t, 3>{0, 8, 16}));
 static_assert(std140_size<rsm_unprojection<float>> == 32);
 static_assert(equal(std140_offsets<disk_pattern_settings<float>>, std::array<std::size_t, 5>{0, 4, 8, 12, 16}));  // bools are 4-byte words

@@ -1,6 +1,8 @@
 // The targets vplkit's own parity tests run a kernel on, and how: gl33 and gles3 in a fragment
 // shader, gl45 in a compute shader (its fragment path is gl33's with another #version line) and
-// vulkan in a compute shader on lavapipe. scripts/setup.sh installs every driver these need, so a
+// vulkan in a compute shader on lavapipe (every_target). A kernel that vplkit evaluates per
+// vertex runs in the vertex stage on the three GL targets and, as the same GLSL function, in a
+// compute shader on gl45 and vulkan (every_vertex_target). scripts/setup.sh installs every driver these need, so a
 // target this machine cannot run fails the test with target_unavailable's reason instead of
 // being skipped: on vplkit's own machines a skip would hide a lost driver. (The consumer test,
 // tests/consumer/parity, which proves an installed package on whatever machine it lands on,
@@ -19,7 +21,7 @@ namespace vplkit::testing {
 
 struct target_run {
   parity::target where;
-  const char* stage;  // "fragment" or "compute"
+  const char* stage;  // "fragment", "vertex" or "compute"
   parity::kernel_outputs (*run)(const parity::kernel_source&, const parity::kernel_inputs&, parity::target, const parity::kernel_resources&);
   std::string name() const { return std::string(parity::target_name(where)) + " " + stage; }
 };
@@ -27,6 +29,11 @@ struct target_run {
 inline parity::kernel_outputs fragment_run(const parity::kernel_source& source, const parity::kernel_inputs& inputs, parity::target where,
                                            const parity::kernel_resources& resources) {
   return parity::run_fragment(source, inputs, where, resources);
+}
+
+inline parity::kernel_outputs vertex_run(const parity::kernel_source& source, const parity::kernel_inputs& inputs, parity::target where,
+                                         const parity::kernel_resources& resources) {
+  return parity::run_vertex(source, inputs, where, resources);
 }
 
 inline parity::kernel_outputs compute_run(const parity::kernel_source& source, const parity::kernel_inputs& inputs, parity::target where,
@@ -38,6 +45,18 @@ inline const std::vector<target_run>& every_target() {
   static const std::vector<target_run> runs = {{parity::target::gl33, "fragment", fragment_run},
                                                 {parity::target::gl45, "compute", compute_run},
                                                 {parity::target::gles3, "fragment", fragment_run},
+                                                {parity::target::vulkan, "compute", compute_run}};
+  return runs;
+}
+
+// Transform feedback on every GL target (its capture, the vertex attributes and the tables as
+// vertex-stage textures are the vertex path's own), then compute where there is one: Vulkan has no
+// vertex path in vplkit::parity.
+inline const std::vector<target_run>& every_vertex_target() {
+  static const std::vector<target_run> runs = {{parity::target::gl33, "vertex", vertex_run},
+                                                {parity::target::gl45, "vertex", vertex_run},
+                                                {parity::target::gles3, "vertex", vertex_run},
+                                                {parity::target::gl45, "compute", compute_run},
                                                 {parity::target::vulkan, "compute", compute_run}};
   return runs;
 }

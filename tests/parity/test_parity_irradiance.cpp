@@ -1,5 +1,5 @@
-// CPU/GPU parity of include/vplkit/irradiance.hpp against shaders/lib/irradiance.glsl: pixel_light_irradiance (Eq. 3.2) in the fragment and the vertex stage, texel by
-// texel (vplkit/parity/parity.hpp).
+// CPU/GPU parity of include/vplkit/irradiance.hpp against shaders/lib/irradiance.glsl: pixel_light_irradiance (Eq. 3.2) in the fragment, vertex and compute stages,
+// on every target, texel by texel (vplkit/parity/parity.hpp).
 #include <doctest/doctest.h>
 
 #include <array>
@@ -10,7 +10,6 @@
 
 #include <vplkit/irradiance.hpp>
 
-#include <vplkit/gl/settings_uniforms.hpp>
 #include <vplkit/parity/doctest.hpp>
 
 #include "tests/parity/targets.hpp"
@@ -20,14 +19,22 @@ using namespace vplkit::parity;
 
 namespace {
 
+// Vulkan has no default-block uniforms: the settings go in a std140 block and the flux in a
+// one-texel table (read exactly), on every target alike.
 kernel_source irradiance_kernel() {
   kernel_source source;
   source.name = "pixel_light_irradiance";
   source.includes = {"lib/irradiance.glsl"};
-  source.declarations = "uniform irradiance_settings settings;\nuniform vec3 flux;\n";
-  source.body = "fout0 = vec4(pixel_light_irradiance(fin0.xyz, fin1.xyz, fin2.xyz, fin3.xyz, flux, settings), 0.0);";
+  source.body = "fout0 = vec4(pixel_light_irradiance(fin0.xyz, fin1.xyz, fin2.xyz, fin3.xyz, flux_table(ivec2(0)).xyz, settings), 0.0);";
   source.float_outputs = 1;
   return source;
+}
+
+kernel_resources irradiance_resources(const glm::vec3& flux, const irradiance_settings<float>& settings) {
+  kernel_resources resources;
+  resources.tables = {{"flux_table", 1, 1, {glm::vec4(flux, 0.0f)}}};
+  resources.blocks = {settings_block("settings", settings)};
+  return resources;
 }
 
 std::vector<glm::vec4> irradiance_on_cpu(const kernel_inputs& inputs, const glm::vec3& flux, const irradiance_settings<float>& settings) {
@@ -49,22 +56,14 @@ tolerance irradiance_tolerance() {
   return {1e-6f, 1e-5f, 16, 0.0, "about 8 roundings, FMA contraction on llvmpipe, cancellation near tangency"};
 }
 
-}  // namespace
-
-TEST_CASE("parity: pixel_light_irradiance (Eq. 3.2) in the fragment or compute stage, on every target") {
-  const kernel_inputs inputs = geometry_inputs(8);
-  const glm::vec3 flux(1.0f, 0.25f, 3.0f);
-  const irradiance_settings<float> settings{0.01f};
-  // Vulkan has no default-block uniforms: the settings go in a std140 block and the flux in a
-  // one-texel table (read exactly), on every target alike.
-  kernel_source source = irradiance_kernel();
-  source.declarations = "";
-  source.body = "fout0 = vec4(pixel_light_irradiance(fin0.xyz, fin1.xyz, fin2.xyz, fin3.xyz, flux_table(ivec2(0)).xyz, settings), 0.0);";
-  kernel_resources resources;
-  resources.tables = {{"flux_table", 1, 1, {glm::vec4(flux, 0.0f)}}};
-  resources.blocks = {settings_block("settings", settings)};
+// Runs Eq. 3.2 as each of `runs` says and compares every run with the C++ twin, naming the target
+// and stage in each comparison.
+void irradiance_on(const std::vector<testing::target_run>& runs, const kernel_inputs& inputs, const glm::vec3& flux,
+                   const irradiance_settings<float>& settings) {
+  const kernel_resources resources = irradiance_resources(flux, settings);
   const std::vector<glm::vec4> cpu = irradiance_on_cpu(inputs, flux, settings);
-  for (const testing::target_run& run : testing::every_target()) {
+  kernel_source source = irradiance_kernel();
+  for (const testing::target_run& run : runs) {
     const std::string target = run.name();
     CAPTURE(target);
     if (!testing::target_runs(run.where)) continue;
@@ -74,14 +73,12 @@ TEST_CASE("parity: pixel_light_irradiance (Eq. 3.2) in the fragment or compute s
   }
 }
 
-TEST_CASE("parity: pixel_light_irradiance (Eq. 3.2) in the vertex stage, through transform feedback") {
-  const kernel_inputs inputs = geometry_inputs(9);
-  const glm::vec3 flux(2.0f, 1.0f, 0.5f);
-  const irradiance_settings<float> settings{0.05f};
-  const kernel_outputs gpu = run_vertex(irradiance_kernel(), inputs, [&](const program& p) {
-    set_uniforms(p, "settings", settings);
-    p.set("flux", flux);
-  });
-  require_parity(compare("pixel_light_irradiance (vertex)", gpu.floats[0], irradiance_on_cpu(inputs, flux, settings), inputs,
-                         irradiance_tolerance(), 3));
+}  // namespace
+
+TEST_CASE("parity: pixel_light_irradiance (Eq. 3.2) in the fragment or compute stage, on every target") {
+  irradiance_on(testing::every_target(), geometry_inputs(8), glm::vec3(1.0f, 0.25f, 3.0f), irradiance_settings<float>{0.01f});
+}
+
+TEST_CASE("parity: pixel_light_irradiance (Eq. 3.2) in the vertex stage through transform feedback on every GL target, and in compute on gl45 and vulkan") {
+  irradiance_on(testing::every_vertex_target(), geometry_inputs(9), glm::vec3(2.0f, 1.0f, 0.5f), irradiance_settings<float>{0.05f});
 }

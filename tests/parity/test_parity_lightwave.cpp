@@ -1,6 +1,7 @@
 // CPU/GPU parity of the Light Wave kernels ([LW]): the layout, the lobe and attenuation, the
-// integrated-shadow stepping, Eq. 5.2, and Eq. 4.5 summed over a VPL texture in the vertex stage
-// (transform feedback), as the thesis evaluates it per vertex.
+// integrated-shadow stepping, Eq. 5.2, and Eq. 4.5 summed over a VPL table in the vertex stage
+// (transform feedback), as the thesis evaluates it per vertex; every kernel on every target
+// (tests/parity/targets.hpp), the per-vertex sums also as compute shaders on gl45 and vulkan.
 #include <doctest/doctest.h>
 
 #include <array>
@@ -9,10 +10,8 @@
 
 #include <vplkit/lightwave.hpp>
 
-#include <vplkit/gl/settings_uniforms.hpp>
 #include <vplkit/parity/doctest.hpp>
 
-#include "frontend/gl/render_target.hpp"
 #include "tests/parity/targets.hpp"
 
 using namespace vplkit;
@@ -160,20 +159,18 @@ TEST_CASE("parity: lightwave_vpl_weight, lightwave_map_coordinate (behind, outsi
   }
 }
 
-TEST_CASE("parity: Eq. 4.5 summed over 1625 VPLs per vertex, in the vertex stage through transform feedback") {
-  test_shaders();
+TEST_CASE("parity: Eq. 4.5 summed over 1625 VPLs per vertex, in the vertex stage (transform feedback) on every GL target and in compute on gl45 and vulkan") {
   lightwave_layout_settings<float> layout = test_layout();
   layout.angle_deg = 10;  // 1625 VPLs: the thesis's loop, smaller
   const int count = lightwave_vpl_count(layout.angle_deg, layout.per_ray);
   std::vector<lightwave_vpl<float>> vpls;
   lightwave_layout(layout, std::back_inserter(vpls));
-  // VPLs in a 2-texel-wide float texture: [position | attenuation], [normal | -].
+  // VPLs in a 2-texel-wide table: [position | attenuation], [normal | -].
   std::vector<glm::vec4> texels(static_cast<std::size_t>(count) * 2);
   for (int i = 0; i < count; ++i) {
     texels[static_cast<std::size_t>(i) * 2] = glm::vec4(vpls[static_cast<std::size_t>(i)].position, vpls[static_cast<std::size_t>(i)].attenuation);
     texels[static_cast<std::size_t>(i) * 2 + 1] = glm::vec4(vpls[static_cast<std::size_t>(i)].normal, 0.0f);
   }
-  const texture_2d vpl_texture(2, count, texel_format::rgba32f, texels.data());
   const lightwave_shading_settings<float> shading;
   const glm::vec3 eye(0.0f, 1.0f, 3.8f);
   kernel_inputs inputs;
@@ -190,24 +187,21 @@ TEST_CASE("parity: Eq. 4.5 summed over 1625 VPLs per vertex, in the vertex stage
   kernel_source source;
   source.name = "lightwave_vertex_indirect";
   // The lib's lightwave_vertex_indirect, the function lightwave.vert calls, with the VPLs from a
-  // float texture as there (the pipeline test runs lightwave.vert itself on a scene).
+  // table as there from a float texture (the pipeline test runs lightwave.vert itself on a scene).
+  // The count is a constant of the source; the eye a one-texel table (read exactly) and the shading a std140
+  // block, which every target has (Vulkan has no default-block uniforms).
   source.defines = {{"VPLKIT_LIGHTWAVE_FETCH", "1"}};
   source.includes = {"lib/lightwave.glsl"};
-  source.declarations = "uniform sampler2D vpl_texture;\nuniform int vpl_count;\nuniform vec3 eye;\n"
-                        "uniform lightwave_shading_settings shading;\n"
+  source.declarations = "const int vpl_count = " + std::to_string(count) + ";\n"
                         "lightwave_vpl lightwave_fetch_vpl(int index) {\n"
-                        "  vec4 position_attenuation = texelFetch(vpl_texture, ivec2(0, index), 0);\n"
-                        "  return lightwave_vpl(position_attenuation.xyz, texelFetch(vpl_texture, ivec2(1, index), 0).xyz, position_attenuation.w);\n"
+                        "  vec4 position_attenuation = vpls(ivec2(0, index));\n"
+                        "  return lightwave_vpl(position_attenuation.xyz, vpls(ivec2(1, index)).xyz, position_attenuation.w);\n"
                         "}\n";
-  source.body = "fout0 = vec4(lightwave_vertex_indirect(fin0.xyz, fin1.xyz, fin2.xyz, eye, vpl_count, shading), 0.0);";
+  source.body = "fout0 = vec4(lightwave_vertex_indirect(fin0.xyz, fin1.xyz, fin2.xyz, eye_position(ivec2(0)).xyz, vpl_count, shading), 0.0);";
   source.float_outputs = 1;
-  const kernel_outputs gpu = run_vertex(source, inputs, [&](const program& p) {
-    p.set("vpl_texture", 0);
-    vpl_texture.bind(0);
-    p.set("vpl_count", count);
-    p.set("eye", eye);
-    set_uniforms(p, "shading", shading);
-  });
+  kernel_resources resources;
+  resources.tables = {{"vpls", 2, count, texels}, {"eye_position", 1, 1, {glm::vec4(eye, 0.0f)}}};
+  resources.blocks = {settings_block("shading", shading)};
   std::vector<glm::vec4> cpu(inputs.size());
   for (std::size_t i = 0; i < inputs.size(); ++i)
     cpu[i] = glm::vec4(lightwave_vertex_indirect(glm::vec3(inputs.floats[0][i]), glm::vec3(inputs.floats[1][i]), glm::vec3(inputs.floats[2][i]),
@@ -215,11 +209,17 @@ TEST_CASE("parity: Eq. 4.5 summed over 1625 VPLs per vertex, in the vertex stage
                        0.0f);
   // 1625 terms, each with two normalisations (sqrt, divide) and the lobe's divide, summed in the
   // same order and divided by the count: 1e-5 relative, or 1e-7 absolute near 0.
-  require_parity(compare("lightwave_vertex_indirect (vertex stage)", gpu.floats[0], cpu, inputs,
-                         {1e-7f, 1e-5f, 64, 0.0, "1625 terms of a few-ulp Eq. 4.5"}, 3));
+  for (const testing::target_run& run : testing::every_vertex_target()) {
+    const std::string target = run.name();
+    CAPTURE(target);
+    if (!testing::target_runs(run.where)) continue;
+    source.name = "lightwave_vertex_indirect (" + target + ")";
+    const kernel_outputs gpu = run.run(source, inputs, run.where, resources);
+    require_parity(compare(source.name, gpu.floats[0], cpu, inputs, {1e-7f, 1e-5f, 64, 0.0, "1625 terms of a few-ulp Eq. 4.5"}, 3));
+  }
 }
 
-TEST_CASE("parity: lightwave_cone_sample for all 6485 samples of the flux layout, three cones") {
+TEST_CASE("parity: lightwave_cone_sample for all 6485 samples of the flux layout, three cones, on every target") {
   for (float half_angle : {12.0f, 50.0f, 83.0f}) {
     lightwave_cone_settings<float> cone;
     cone.light_direction = glm::normalize(glm::vec3(0.1f, -1.0f, 0.2f));
@@ -234,21 +234,24 @@ TEST_CASE("parity: lightwave_cone_sample for all 6485 samples of the flux layout
     kernel_source source;
     source.name = "lightwave_cone_sample";
     source.includes = {"lib/lightwave.glsl"};
-    source.declarations = "uniform lightwave_cone_settings cone;\n";
     source.body = "fout0 = lightwave_cone_sample(int(uin0.x), cone);";
     source.float_outputs = 1;
-    const kernel_outputs gpu = run_fragment(source, inputs, [&](const program& p) {
-      p.set("cone.light_direction", cone.light_direction);
-      p.set("cone.angle_deg", cone.angle_deg);
-      p.set("cone.per_ray", cone.per_ray);
-      p.set("cone.half_angle_deg", cone.half_angle_deg);
-    });
+    // The cone as a std140 block, which every target has.
+    kernel_resources resources;
+    resources.blocks = {settings_block("cone", cone)};
     std::vector<glm::vec4> cpu(inputs.size());
     for (std::size_t i = 0; i < inputs.size(); ++i) cpu[i] = lightwave_cone_sample(static_cast<int>(inputs.uints[0][i].x), cone);
     // The polynomial cosine, a divide, a square root, a normalise and a cross product: a few ulp;
     // the solid angle is a difference of cosines (cancellation near the axis): 1e-6 relative.
     CAPTURE(half_angle);
-    require_parity(compare("lightwave_cone_sample", gpu.floats[0], cpu, inputs, {1e-6f, 1e-6f, 16, 0.0, "polynomial cos, sqrt, normalize, cross"}));
+    for (const testing::target_run& run : testing::every_target()) {
+      const std::string target = run.name();
+      CAPTURE(target);
+      if (!testing::target_runs(run.where)) continue;
+      source.name = "lightwave_cone_sample, half-angle " + std::to_string(static_cast<int>(half_angle)) + " (" + target + ")";
+      const kernel_outputs gpu = run.run(source, inputs, run.where, resources);
+      require_parity(compare(source.name, gpu.floats[0], cpu, inputs, {1e-6f, 1e-6f, 16, 0.0, "polynomial cos, sqrt, normalize, cross"}));
+    }
   }
 }
 
@@ -322,8 +325,7 @@ TEST_CASE("parity: lightwave_ray_flux, lightwave_patch_radius, lightwave_bounce_
   }
 }
 
-TEST_CASE("parity: the flux VPLs' light summed per vertex (lightwave_vertex_bounce), in the vertex stage through transform feedback") {
-  test_shaders();
+TEST_CASE("parity: the flux VPLs' light summed per vertex (lightwave_vertex_bounce), in the vertex stage (transform feedback) on every GL target and in compute on gl45 and vulkan") {
   // 2000 flux VPLs scattered over a floor and a wall, as the pipeline makes them.
   std::mt19937 random(35);
   std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
@@ -339,7 +341,6 @@ TEST_CASE("parity: the flux VPLs' light summed per vertex (lightwave_vertex_boun
     texels.push_back(glm::vec4(vpls.back().normal, 0.0f));
     texels.push_back(glm::vec4(vpls.back().flux, 0.0f));
   }
-  const texture_2d vpl_texture(3, count, texel_format::rgba32f, texels.data());
   irradiance_settings<float> irradiance;
   kernel_inputs inputs;
   inputs.width = 32;
@@ -353,27 +354,24 @@ TEST_CASE("parity: the flux VPLs' light summed per vertex (lightwave_vertex_boun
   kernel_source source;
   source.name = "lightwave_vertex_bounce";
   // The lib's lightwave_vertex_bounce, the function lightwave.vert's capture calls, with the VPLs
-  // from a float texture as there (the pipeline test runs lightwave.vert itself on a scene).
+  // from a table as there from a float texture (the pipeline test runs lightwave.vert itself on a
+  // scene). The count is a constant of the source, the settings a std140 block: every target has
+  // both (Vulkan has no default-block uniforms).
   source.defines = {{"VPLKIT_LIGHTWAVE_FETCH_FLUX", "1"}};
   source.includes = {"lib/lightwave.glsl"};
-  source.declarations = "uniform sampler2D vpl_texture;\nuniform int vpl_count;\nuniform irradiance_settings irradiance;\n"
+  source.declarations = "const int vpl_count = " + std::to_string(count) + ";\n"
                         "lightwave_flux_vpl lightwave_fetch_flux_vpl(int index) {\n"
-                        "  vec4 position_radius = texelFetch(vpl_texture, ivec2(0, index), 0);\n"
-                        "  return lightwave_flux_vpl(position_radius.xyz, texelFetch(vpl_texture, ivec2(1, index), 0).xyz,\n"
-                        "                            texelFetch(vpl_texture, ivec2(2, index), 0).xyz, position_radius.w);\n"
+                        "  vec4 position_radius = vpls(ivec2(0, index));\n"
+                        "  return lightwave_flux_vpl(position_radius.xyz, vpls(ivec2(1, index)).xyz, vpls(ivec2(2, index)).xyz, position_radius.w);\n"
                         "}\n";
   // Second output: the sum continued from a partial sum (fin2 as one), as each pass of
   // lightwave_capture.frag continues the last one's.
   source.body = "fout0 = vec4(lightwave_vertex_bounce(fin0.xyz, fin1.xyz, fin2.xyz, vpl_count, irradiance), 0.0);\n"
                 "fout1 = vec4(lightwave_bounce_sum(fin0.xyz, fin1.xyz, vpl_count, fin2.xyz, irradiance.min_distance), 0.0);";
   source.float_outputs = 2;
-  const auto uniforms = [&](const program& p) {
-    p.set("vpl_texture", 0);
-    vpl_texture.bind(0);
-    p.set("vpl_count", count);
-    set_uniforms(p, "irradiance", irradiance);
-  };
-  const kernel_outputs gpu = run_vertex(source, inputs, uniforms);
+  kernel_resources resources;
+  resources.tables = {{"vpls", 3, count, texels}};
+  resources.blocks = {settings_block("irradiance", irradiance)};
   // lightwave_bounce_sums (lightwave_capture.frag's), four receivers made from the element's:
   // moved along the axes and turned by swizzles, from swizzled partial sums; in a run of its own
   // (transform feedback captures at most 4 outputs on GL 3.3).
@@ -386,7 +384,6 @@ TEST_CASE("parity: the flux VPLs' light summed per vertex (lightwave_vertex_boun
                      "lightwave_bounce_sums(xs, ns, vpl_count, sums, irradiance.min_distance);\n"
                      "fout0 = vec4(sums[0], sums[3].x); fout1 = vec4(sums[1], sums[3].y); fout2 = vec4(sums[2], sums[3].z);";
   sums_source.float_outputs = 3;
-  const kernel_outputs gpu_sums = run_vertex(sums_source, inputs, uniforms);
   std::vector<glm::vec4> cpu(inputs.size()), continued(inputs.size());
   std::array<std::vector<glm::vec4>, 3> packed_sums;
   for (std::vector<glm::vec4>& packed : packed_sums) packed.resize(inputs.size());
@@ -402,9 +399,19 @@ TEST_CASE("parity: the flux VPLs' light summed per vertex (lightwave_vertex_boun
     for (std::size_t k = 0; k < 3; ++k) packed_sums[k][i] = glm::vec4(sums[k], sums[3][static_cast<glm::length_t>(k)]);
   }
   // 2000 terms of two divides each, summed in the same order: 1e-5 relative, 1e-7 absolute near 0.
-  require_parity(compare("lightwave_vertex_bounce (vertex stage)", gpu.floats[0], cpu, inputs, {1e-7f, 1e-5f, 64, 0.0, "2000 terms of Eq. 3.2"}, 3));
-  require_parity(compare("lightwave_bounce_sum from a partial sum (vertex stage)", gpu.floats[1], continued, inputs, {1e-7f, 1e-5f, 64, 0.0, "2000 terms of Eq. 3.2"}, 3));
-  for (std::size_t k = 0; k < 3; ++k)
-    require_parity(compare("lightwave_bounce_sums, receiver " + std::to_string(k) + " and receiver 3's channel " + std::to_string(k) + " (vertex stage)",
-                           gpu_sums.floats[k], packed_sums[k], inputs, {1e-7f, 1e-5f, 64, 0.0, "2000 terms of Eq. 3.2"}, 4));
+  const tolerance bounds{1e-7f, 1e-5f, 64, 0.0, "2000 terms of Eq. 3.2"};
+  for (const testing::target_run& run : testing::every_vertex_target()) {
+    const std::string target = run.name();
+    CAPTURE(target);
+    if (!testing::target_runs(run.where)) continue;
+    source.name = "lightwave_vertex_bounce (" + target + ")";
+    sums_source.name = "lightwave_bounce_sums (" + target + ")";
+    const kernel_outputs gpu = run.run(source, inputs, run.where, resources);
+    const kernel_outputs gpu_sums = run.run(sums_source, inputs, run.where, resources);
+    require_parity(compare(source.name, gpu.floats[0], cpu, inputs, bounds, 3));
+    require_parity(compare("lightwave_bounce_sum from a partial sum (" + target + ")", gpu.floats[1], continued, inputs, bounds, 3));
+    for (std::size_t k = 0; k < 3; ++k)
+      require_parity(compare("lightwave_bounce_sums, receiver " + std::to_string(k) + " and receiver 3's channel " + std::to_string(k) + " (" + target + ")",
+                             gpu_sums.floats[k], packed_sums[k], inputs, bounds, 4));
+  }
 }

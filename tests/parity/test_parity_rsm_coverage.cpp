@@ -1,6 +1,7 @@
 // CPU/GPU parity of include/vplkit/rsm_coverage.hpp against shaders/lib/rsm_coverage.glsl: a
 // coarse light's irradiance on random geometry, and the reduction of RSM blocks read from a packed
-// RSM texture (vplkit/parity/parity.hpp). The gather's use of the coarse lights is compared
+// RSM (a uint table: a usampler2D, or a uvec4 storage buffer), on every target
+// (vplkit/parity/parity.hpp). The gather's use of the coarse lights is compared
 // pass by pass in tests/frontend/techniques/test_rsm_pipeline.cpp.
 #include <doctest/doctest.h>
 
@@ -9,12 +10,10 @@
 #include <vplkit/rsm_coverage.hpp>
 #include <vplkit/rsm_packing.hpp>
 
-#include <vplkit/gl/settings_uniforms.hpp>
 #include <vplkit/parity/doctest.hpp>
 
 #include "tests/parity/targets.hpp"
 
-#include "frontend/gl/render_target.hpp"
 
 using namespace vplkit;
 using namespace vplkit::parity;
@@ -55,7 +54,7 @@ TEST_CASE("parity: coarse_light_irradiance on random geometry, extents and unnor
   }
 }
 
-TEST_CASE("parity: reduce_rsm_block over a packed RSM, 8 x 8 blocks of 64^2 texels, empty texels among them") {
+TEST_CASE("parity: reduce_rsm_block over a packed RSM, 8 x 8 blocks of 64^2 texels, empty texels among them, on every target") {
   // A random packed RSM as the gather reads it: depths, unit normals, flux; a fifth of the texels
   // empty. Each fragment of an 8 x 8 grid reduces its block of 8 x 8 texels.
   constexpr int size = 64, blocks = 8;
@@ -68,7 +67,6 @@ TEST_CASE("parity: reduce_rsm_block over a packed RSM, 8 x 8 blocks of 64^2 texe
     const glm::vec3 n = glm::normalize(glm::vec3(normal(random), normal(random), normal(random)));
     texel = pack_rsm_texel(-0.5f - 4.0f * unit(random), n, glm::vec3(unit(random), unit(random), 0.3f * unit(random)));
   }
-  const texture_2d rsm(size, size, texel_format::rgba32ui, packed.data());
   const rsm_unprojection<float> light = make_rsm_unprojection(1.2f, true, glm::ivec2(size));
   kernel_inputs inputs;
   inputs.width = inputs.height = blocks;
@@ -76,18 +74,15 @@ TEST_CASE("parity: reduce_rsm_block over a packed RSM, 8 x 8 blocks of 64^2 texe
   source.name = "reduce_rsm_block";
   source.defines = {{"VPLKIT_RSM_COVERAGE_REDUCE", "1"}};
   source.includes = {"lib/rsm_coverage.glsl", "lib/rsm_packing.glsl"};
-  source.declarations =
-      "uniform usampler2D rsm_packed;\nuniform rsm_unprojection light;\n"
-      "rsm_texel rsm_fetch(ivec2 t) { return unpack_rsm_texel(texelFetch(rsm_packed, t, 0), t, light); }\n";
+  // The packed words as a uint table, the unprojection as a std140 block: every target has both.
+  source.declarations = "rsm_texel rsm_fetch(ivec2 t) { return unpack_rsm_texel(rsm_packed(t), t, light); }\n";
   source.body =
       "coarse_light c = reduce_rsm_block(texel, 8, ivec2(64));\n"
       "fout0 = vec4(c.position, c.extent);\nfout1 = vec4(c.normal, 0.0);\nfout2 = vec4(c.flux, 0.0);";
   source.float_outputs = 3;
-  const kernel_outputs gpu = run_fragment(source, inputs, [&](const program& p) {
-    rsm.bind(7);
-    p.set("rsm_packed", 7);
-    set_uniforms(p, "light", light);
-  });
+  kernel_resources resources;
+  resources.uint_tables = {{"rsm_packed", size, size, packed}};
+  resources.blocks = {settings_block("light", light)};
   std::vector<glm::vec4> position_extent(inputs.size()), normals(inputs.size()), flux(inputs.size());
   const auto fetch = [&](glm::ivec2 t) { return unpack_rsm_texel(packed[static_cast<std::size_t>(t.y * size + t.x)], t, light); };
   for (int y = 0; y < blocks; ++y)
@@ -102,8 +97,15 @@ TEST_CASE("parity: reduce_rsm_block over a packed RSM, 8 x 8 blocks of 64^2 texe
   // (one rounding fewer per term). The extent is a difference of two such sums (a mean square less
   // a squared mean, relative to the block's first light), so its error is relative to the mean
   // square of the block's offsets.
-  require_parity(compare("reduce_rsm_block flux", gpu.floats[2], flux, inputs, {0.0f, 1e-6f, 8, 0.0, "~50-term sums"}, 3));
-  require_parity(compare("reduce_rsm_block normal", gpu.floats[1], normals, inputs, {1e-6f, 1e-5f, 16, 0.0, "~50-term weighted sums"}, 3));
-  require_parity(compare("reduce_rsm_block position and extent", gpu.floats[0], position_extent, inputs,
-                         {1e-5f, 1e-5f, 16, 0.0, "~50-term weighted sums; the extent a difference of two"}, 4));
+  for (const testing::target_run& run : testing::every_target()) {
+    const std::string target = run.name();
+    CAPTURE(target);
+    if (!testing::target_runs(run.where)) continue;
+    source.name = "reduce_rsm_block (" + target + ")";
+    const kernel_outputs gpu = run.run(source, inputs, run.where, resources);
+    require_parity(compare("reduce_rsm_block flux (" + target + ")", gpu.floats[2], flux, inputs, {0.0f, 1e-6f, 8, 0.0, "~50-term sums"}, 3));
+    require_parity(compare("reduce_rsm_block normal (" + target + ")", gpu.floats[1], normals, inputs, {1e-6f, 1e-5f, 16, 0.0, "~50-term weighted sums"}, 3));
+    require_parity(compare("reduce_rsm_block position and extent (" + target + ")", gpu.floats[0], position_extent, inputs,
+                           {1e-5f, 1e-5f, 16, 0.0, "~50-term weighted sums; the extent a difference of two"}, 4));
+  }
 }

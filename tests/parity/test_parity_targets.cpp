@@ -1,6 +1,6 @@
 // vplkit::parity's targets (gl33, gl45, gles3, vulkan): every stage a target has runs the same
-// kernel, with a table, a std140 uniform block and float and uint inputs and outputs, to the same
-// exact results; a stage a target lacks is refused by name; a wrong result on Vulkan is reported
+// kernel, with a vec4 and a uvec4 table, a std140 uniform block and float and uint inputs and
+// outputs, to the same exact results; a stage a target lacks is refused by name; a wrong result on Vulkan is reported
 // at its texel like on GL; a compile error on Vulkan names the line; and the default context is
 // current again after a run on another target.
 #include <doctest/doctest.h>
@@ -22,15 +22,16 @@ using namespace vplkit::parity;
 namespace {
 
 // fout0 = 2 fin0 + the table's texel + the block's min_distance; uout0 = uin0 xor the texel's
-// coordinates: every value a small multiple of 1/8, exact on every target, so the runs must agree
-// bit for bit, and every part (input, table, block, uint path, texel numbering) shows when wrong.
+// coordinates xor the uint table's texel: every value a small multiple of 1/8, exact on every
+// target, so the runs must agree bit for bit, and every part (input, table, uint table, block,
+// uint path, texel numbering) shows when wrong.
 kernel_source plumbing_kernel(const std::string& name) {
   kernel_source source;
   source.name = name;
   source.includes = {"lib/irradiance.glsl"};
   source.body =
       "fout0 = 2.0 * fin0 + offsets(texel) + vec4(settings.min_distance);\n"
-      "uout0 = uin0 ^ uvec4(uint(texel.x), uint(texel.y), 7u, 0u);";
+      "uout0 = uin0 ^ uvec4(uint(texel.x), uint(texel.y), 7u, 0u) ^ words(texel);";
   source.float_outputs = 1;
   source.uint_outputs = 1;
   return source;
@@ -54,6 +55,11 @@ kernel_resources plumbing_resources(float min_distance) {
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) offsets.push_back(glm::vec4(static_cast<float>(x), static_cast<float>(100 * y), 0.125f, -1.0f));
   resources.tables = {{"offsets", width, height, offsets}};
+  // Words a float path would not carry: the top bit, a signalling NaN's pattern (a float texture
+  // or conversion may quieten it), all ones, and one per texel.
+  std::vector<glm::uvec4> words;
+  for (unsigned i = 0; i < static_cast<unsigned>(width * height); ++i) words.push_back(glm::uvec4(0x80000000u | i, 0x7f800001u, 0xffffffffu - i, i << 20));
+  resources.uint_tables = {{"words", width, height, words}};
   resources.blocks = {settings_block("settings", irradiance_settings<float>{min_distance})};
   return resources;
 }
@@ -68,7 +74,7 @@ TEST_CASE("parity targets: every stage of every target runs the same kernel with
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     const glm::vec4 offset = resources.tables[0].texels[i];
     floats[i] = 2.0f * inputs.floats[0][i] + offset + glm::vec4(0.375f);
-    uints[i] = inputs.uints[0][i] ^ glm::uvec4(static_cast<unsigned>(i % width), static_cast<unsigned>(i / width), 7u, 0u);
+    uints[i] = inputs.uints[0][i] ^ glm::uvec4(static_cast<unsigned>(i % width), static_cast<unsigned>(i / width), 7u, 0u) ^ resources.uint_tables[0].texels[i];
   }
   struct stage_run {
     target where;
@@ -131,6 +137,14 @@ TEST_CASE("parity targets: a stage a target lacks is refused, naming the targets
   short_table.tables[0].texels.pop_back();
   CHECK_THROWS_WITH(run_compute(source, inputs, target::gl45, short_table),
                     doctest::Contains("table 0 'offsets' is 13x7 with 90 texels: it needs a name and width * height texels"));
+  kernel_resources short_words = resources;
+  short_words.uint_tables[0].texels.pop_back();
+  CHECK_THROWS_WITH(run_fragment(source, inputs, target::gl33, short_words),
+                    doctest::Contains("uint table 0 'words' is 13x7 with 90 texels: it needs a name and width * height texels"));
+  kernel_resources same_name = resources;
+  same_name.uint_tables[0].name = "offsets";
+  CHECK_THROWS_WITH(run_vertex(source, inputs, target::gl33, same_name),
+                    doctest::Contains("uint table 0 is named 'offsets' like a table before it: each table needs a name of its own"));
 }
 
 TEST_CASE("parity targets: a wrong result on vulkan fails with the texel and its inputs, like on GL") {

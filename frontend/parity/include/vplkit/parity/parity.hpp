@@ -111,16 +111,21 @@ std::string target_unavailable(target where);
 /// is wrapped for a target; docs/glsl-twins.md shows the same lines for one's own shaders.
 std::string glsl_preamble(target where);
 
-/// A read-only 2D table of vec4 a kernel reads (an RSM, a cube map laid out flat), the same on
-/// every target: its declarations call `vec4 <name>(ivec2 texel)`. In a fragment or vertex run it
-/// is an RGBA32F texture read with texelFetch; in a compute run a std430 storage buffer read at
-/// texel.y * width + texel.x. A texel outside the table is undefined, as texelFetch's is.
-struct kernel_table {
+/// A read-only 2D table a kernel reads (an RSM, a cube map laid out flat, a packed RSM's words),
+/// the same on every target: of vec4 (kernel_table), its declarations call `vec4 <name>(ivec2
+/// texel)`; of uvec4 (kernel_uint_table), `uvec4 <name>(ivec2 texel)`, every bit as given. In a
+/// fragment or vertex run it is a texture read with texelFetch: RGBA32F through a sampler2D, or
+/// RGBA32UI through a usampler2D; in a compute run a std430 storage buffer of vec4 or uvec4 read
+/// at texel.y * width + texel.x. A texel outside the table is undefined, as texelFetch's is.
+template <typename Texel>
+struct basic_kernel_table {
   std::string name;
   int width = 0;
   int height = 0;
-  std::vector<glm::vec4> texels;  ///< width * height, texel (x, y) at y * width + x
+  std::vector<Texel> texels;  ///< width * height, texel (x, y) at y * width + x
 };
+using kernel_table = basic_kernel_table<glm::vec4>;
+using kernel_uint_table = basic_kernel_table<glm::uvec4>;
 
 /// A std140 uniform block holding one value of a GLSL struct: declared by the run as
 ///   layout(std140[, set = 0, binding = N]) uniform <member>_block { <type> <member>; };
@@ -139,13 +144,15 @@ kernel_block settings_block(const std::string& member, const Settings& settings)
   return {settings_description<Settings>::name, member, std::vector<std::byte>(bytes.begin(), bytes.end())};
 }
 
-/// What a run binds besides its inputs: tables, uniform blocks, and, on the GL targets only,
-/// a setter for default-block uniforms (Vulkan has no default block: a run on vulkan with a
-/// setter throws).
+/// What a run binds besides its inputs: tables of vec4 and of uvec4, uniform blocks, and, on the
+/// GL targets only, a setter for default-block uniforms (Vulkan has no default block: a run on
+/// vulkan with a setter throws). The uint tables come last so that {tables, blocks, setter} still
+/// reads as it did before they existed. Every table and block needs a name of its own.
 struct kernel_resources {
   std::vector<kernel_table> tables;
   std::vector<kernel_block> blocks;
   uniform_setter uniforms = {};
+  std::vector<kernel_uint_table> uint_tables = {};
 };
 
 /// Evaluates the kernel in a fragment shader (#version 330 core), one fragment per grid texel,
