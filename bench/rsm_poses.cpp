@@ -14,6 +14,8 @@
 // of the receivers; the filtered indirect irradiance of the whole image within +-15 % of the Monte
 // Carlo reference's; rsm-original's |bias| against the unoccluded brute force <= 10 %.
 // Writes poses.md (a row per frame, the targets with the worst frame and the spread) and poses.csv.
+// --voxel: rsm-voxel's targets against rsm-radial frame by frame, its cost against rsm-radial and
+// rsm-alg6, and where its time goes (marches per receiver, fetches per march); writes voxel.md.
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -200,6 +202,62 @@ double mean_change(const image& a, const image& b) {
   return sum / (3.0 * static_cast<double>(a.texels.size()));
 }
 
+// Where rsm-voxel's time goes: the C++ twin of the gather over every receiver of the frame the
+// pipeline drew last, its grid read through a fetch that counts. A march is a visibility call
+// that read the grid (the tangent planes let it through); every fetch is one step of the march.
+struct march_counts {
+  double receivers = 0.0, marches = 0.0, fetches = 0.0, hidden = 0.0;
+};
+
+march_counts count_voxel_marches(const rsm_pipeline& pipeline) {
+  const rsm_pass_buffers buffers = pipeline.read_buffers();
+  const rsm_frame_constants constants = pipeline.constants();
+  const voxel_grid& grid = *buffers.voxels;
+  const std::vector<rsm_texel<float>> rsm = unpack_rsm(buffers, constants);
+  const std::vector<coarse_light<float>> coarse = coarse_lights_of(buffers);
+  const int blocks = buffers.coarse[0].width;
+  const auto fetch = [&](glm::ivec2 texel) { return rsm[static_cast<std::size_t>(texel.y) * static_cast<std::size_t>(buffers.rsm.width) + static_cast<std::size_t>(texel.x)]; };
+  const auto coarse_fetch = [&](glm::ivec2 block) { return coarse[static_cast<std::size_t>(block.y) * static_cast<std::size_t>(blocks) + static_cast<std::size_t>(block.x)]; };
+  march_counts counts;
+  std::size_t fetches = 0;
+  const auto counting_fetch = [&](glm::ivec2 texel) {
+    ++fetches;
+    return voxel_grid_fetch{&grid}(texel);
+  };
+  struct counting_visibility {
+    voxel_rsm_visibility<float, decltype(counting_fetch)> march;
+    std::size_t& fetches;
+    march_counts& counts;
+    void begin_path() {}
+    float count(std::size_t before, float seen) {  // before: the fetches before the call (read first: argument order is unspecified)
+      if (fetches > before) {
+        counts.marches += 1.0;
+        counts.hidden += seen == 0.0f ? 1.0 : 0.0;
+      }
+      return seen;
+    }
+    float operator()(const gather_receiver<float>& receiver, const rsm_texel<float>& light) {
+      const std::size_t before = fetches;
+      return count(before, march(receiver, light));
+    }
+    float coarse(const gather_receiver<float>& receiver, const coarse_light<float>& light) {
+      const std::size_t before = fetches;
+      return count(before, march.coarse(receiver, light));
+    }
+  };
+  counting_visibility visibility{{counting_fetch, grid.shape, constants.voxel_march, voxel_cells_from(grid.shape, constants.light_view_inverse)}, fetches, counts};
+  for (int y = 0; y < constants.indirect_size.y; ++y)
+    for (int x = 0; x < constants.indirect_size.x; ++x) {
+      const std::optional<gather_receiver<float>> receiver = gather_receiver_at(glm::ivec2(x, y), buffers, constants);
+      if (!receiver) continue;
+      counts.receivers += 1.0;
+      if (coarse.empty()) (void)gather_rsm_with<rsm_pattern::radial>(*receiver, fetch, constants.gather, visibility);
+      else (void)gather_rsm_with<rsm_pattern::radial>(*receiver, fetch, coarse_fetch, constants.gather, visibility);
+    }
+  counts.fetches = static_cast<double>(fetches);
+  return counts;
+}
+
 struct spread {
   std::vector<double> values;
   void add(double value) { values.push_back(value); }
@@ -254,7 +312,8 @@ int main(int argc, char** argv) {
   bool voxel = false;
   app.add_flag("--voxel", voxel, "voxel mode (docs/rsm-study.md, \"Beyond one RSM\"): rsm-voxel against rsm-radial on every frame: the filtered "
                                  "indirect / Monte Carlo, the leak-region bias and the raw RMSE against the brute force relative to rsm-radial's, "
-                                 "and the frame's cost (--timing frames, default 5; the grid's build apart)");
+                                 "the frame's cost against rsm-radial's and rsm-alg6's (--timing frames, default 5; the grid's build apart) and "
+                                 "the C++ twin's marches per receiver and grid fetches per march");
   voxel_grid_settings<float> grid_settings;
   voxel_march_settings<float> voxel_march;
   app.add_option("--voxel-resolution", grid_settings.resolution, "voxel mode: rsm-voxel's grid cells along the scene's longest side")
@@ -312,8 +371,8 @@ int main(int argc, char** argv) {
       // exact visibility below the radial gather's, the frame at most 2x the radial gather's.
       const int repeat = timing > 0 ? timing : 5;
       std::ostringstream md, rows;
-      int image_met = 0, leak_met = 0, leak_counted = 0, rmse_met = 0, cost_met = 0, counted = 0;
-      spread image_ratios, leak_ratios, rmse_ratios, cost_ratios, build_ms;
+      int image_met = 0, leak_met = 0, leak_counted = 0, rmse_met = 0, cost_met = 0, cost_alg6_met = 0, counted = 0;
+      spread image_ratios, leak_ratios, rmse_ratios, cost_ratios, cost_alg6_ratios, build_ms, marched, steps;
       for (const pose_frame& frame : frames) {
         const posed_frame posed = load_frame(frame, poses);
         const scene& source = posed.source;
@@ -329,7 +388,7 @@ int main(int argc, char** argv) {
         const image& monte_carlo = references.monte_carlo;
         const double mc_mean = image_mean(monte_carlo);
         if (!(mc_mean > 0.0) || !(image_mean(reference.exact) > 0.0)) {
-          rows << "| " << label << " | no indirect light in view (left out) |||||||\n";
+          rows << "| " << label << " | no indirect light in view (left out) ||||||||\n";
           continue;
         }
         ++counted;
@@ -340,7 +399,10 @@ int main(int argc, char** argv) {
         voxel_settings.voxel_march.start_offset = voxel_settings.voxel_march.end_offset = voxel_march.start_offset;
         const technique_errors radial = measure_technique(shaders, source, radial_settings, reference, seeds);
         const technique_errors voxels = measure_technique(shaders, source, voxel_settings, reference, seeds);
-        const std::vector<double> ms = interleaved_frame_ms(shaders, source, {radial_settings, voxel_settings}, repeat);
+        // rsm-alg6 (the thesis's visibility) timed beside them: the cost is also stated against it.
+        rsm_pipeline_settings alg6_settings = settings;
+        alg6_settings.technique = "rsm-alg6";
+        const std::vector<double> ms = interleaved_frame_ms(shaders, source, {radial_settings, voxel_settings, alg6_settings}, repeat);
         const rsm_pipeline built(shaders, source, voxel_settings);
         const voxel_grid& grid = *built.voxels();
         const double image_voxel = image_mean(voxels.filtered_image) / mc_mean, image_radial = image_mean(radial.filtered_image) / mc_mean;
@@ -348,7 +410,7 @@ int main(int argc, char** argv) {
         const bool leak_counts = leak_share >= 0.02;
         const double leak = radial.raw_leak.bias != 0.0 ? std::fabs(voxels.raw_leak.bias) / std::fabs(radial.raw_leak.bias) : 0.0;
         const double rmse = voxels.raw_vs_exact.rmse / radial.raw_vs_exact.rmse;
-        const double cost = ms[1] / ms[0];
+        const double cost = ms[1] / ms[0], cost_alg6 = ms[1] / ms[2];
         image_met += std::fabs(image_voxel - 1.0) <= 0.15;
         if (leak_counts) {
           ++leak_counted;
@@ -357,31 +419,44 @@ int main(int argc, char** argv) {
         }
         rmse_met += rmse < 1.0;
         cost_met += cost <= 2.0;
+        cost_alg6_met += cost_alg6 <= 2.0;
+        cost_alg6_ratios.add(cost_alg6);
         image_ratios.add(image_voxel);
         rmse_ratios.add(rmse);
         cost_ratios.add(cost);
         build_ms.add(built.voxel_build_ms());
+        rsm_pipeline counted_pipeline(shaders, source, voxel_settings);
+        (void)counted_pipeline.render();
+        const march_counts marches = count_voxel_marches(counted_pipeline);
+        const double marches_per_receiver = marches.marches / std::max(marches.receivers, 1.0);
+        const double fetches_per_march = marches.fetches / std::max(marches.marches, 1.0);
+        marched.add(marches_per_receiver);
+        steps.add(fetches_per_march);
         rows << "| " << label << " | " << percent(leak_share) << " % | " << fixed(image_voxel, 2) << " (" << fixed(image_radial, 2) << ") | "
              << (leak_counts ? fixed(leak, 2) : std::string("-")) << " (" << percent(voxels.raw_leak.bias) << " % / " << percent(radial.raw_leak.bias)
              << " %) | " << fixed(rmse, 2) << " (" << percent(voxels.raw_vs_exact.rmse) << " % / " << percent(radial.raw_vs_exact.rmse) << " %) | "
-             << fixed(ms[0], 1) << " / " << fixed(ms[1], 1) << " (" << fixed(cost, 2) << ") | " << grid.shape.cells.x << "x" << grid.shape.cells.y << "x"
-             << grid.shape.cells.z << ", " << grid.bytes() / 1024 << " KiB, " << fixed(built.voxel_build_ms(), 1) << " ms |\n";
+             << fixed(ms[0], 1) << " / " << fixed(ms[2], 1) << " / " << fixed(ms[1], 1) << " (" << fixed(cost, 2) << ", " << fixed(cost_alg6, 2) << ") | " << grid.shape.cells.x << "x" << grid.shape.cells.y << "x"
+             << grid.shape.cells.z << ", " << grid.bytes() / 1024 << " KiB, " << fixed(built.voxel_build_ms(), 1) << " ms | " << fixed(marches_per_receiver, 1)
+             << ", " << fixed(fetches_per_march, 1) << ", " << percent(marches.hidden / std::max(marches.marches, 1.0)) << " % |\n";
         std::cerr << "  image " << fixed(image_voxel, 2) << " (radial " << fixed(image_radial, 2) << "), leak " << fixed(leak, 2)
-                  << (leak_counts ? "" : " (region < 2 %)") << ", rmse " << fixed(rmse, 2) << ", cost " << fixed(cost, 2) << "\n";
+                  << (leak_counts ? "" : " (region < 2 %)") << ", rmse " << fixed(rmse, 2) << ", cost " << fixed(cost, 2) << " (rsm-alg6's " << fixed(cost_alg6, 2) << ")\n";
       }
       md << "# rsm-voxel on " << poses << "\n\n" << counted << " frames, " << size << "^2 image, RSM " << rsm_size << "^2, brute force at every "
          << stride << "th receiver per axis, seeds 1-" << seeds << ", Monte Carlo " << mc_samples << " bounce rays per pixel, "
          << describe_coverage(coverage_blocks, coverage_interleave) << ", the grid " << grid_settings.resolution << " cells along the scene's longest side, "
          << "offsets " << fixed(voxel_march.start_offset, 2) << " cells; frame cost: wall clock around glFinish, median of "
-         << repeat << ", rsm-radial and rsm-voxel interleaved; the grid's build (CPU, once per scene) apart; on:\n\n```\n" << describe_current_context()
+         << repeat << ", rsm-radial, rsm-voxel and rsm-alg6 interleaved; the grid's build (CPU, once per scene) apart; on:\n\n```\n" << describe_current_context()
          << "\n```\n\n| target | frames met | min / median / max |\n|---|---:|---:|\n"
          << "| filtered indirect / Monte Carlo in [0.85, 1.15] | " << image_met << " / " << counted << " | " << image_ratios.describe(2) << " |\n"
          << "| leak-region bias / radial's <= 0.25 (region >= 2 %) | " << leak_met << " / " << leak_counted << " | " << leak_ratios.describe(2) << " |\n"
          << "| raw rel. RMSE vs exact / radial's < 1 | " << rmse_met << " / " << counted << " | " << rmse_ratios.describe(2) << " |\n"
          << "| frame ms / radial's <= 2 | " << cost_met << " / " << counted << " | " << cost_ratios.describe(2) << " |\n"
-         << "\nGrid build (ms, min / median / max): " << build_ms.describe(1) << ".\n\n## Frame by frame\n\n"
+         << "| frame ms / rsm-alg6's <= 2 | " << cost_alg6_met << " / " << counted << " | " << cost_alg6_ratios.describe(2) << " |\n"
+         << "\nGrid build (ms, min / median / max): " << build_ms.describe(1) << ". Marches per receiver (the C++ twin on seed 1's frame, "
+            "every receiver of the indirect buffer): " << marched.describe(1) << "; grid fetches per march: " << steps.describe(1) << ".\n\n## Frame by frame\n\n"
          << "| frame | leak region | filtered / MC: voxel (radial) | leak bias / radial's (voxel / radial) | raw rel. RMSE / radial's (voxel / radial) "
-            "| frame ms: radial / voxel (ratio) | grid: cells, memory, build |\n|---|---:|---:|---:|---:|---:|---|\n"
+            "| frame ms: radial / alg6 / voxel (voxel / radial, voxel / alg6) | grid: cells, memory, build | marches per receiver, fetches per march, hidden |\n"
+            "|---|---:|---:|---:|---:|---:|---|---:|\n"
          << rows.str();
       write_all_or_nothing({{fs::path(out) / "voxel.md", [text = md.str()] { return std::vector<std::uint8_t>(text.begin(), text.end()); }}});
       std::cout << md.str() << "\nwrote " << fs::absolute(fs::path(out) / "voxel.md").string() << "\n";

@@ -32,7 +32,7 @@ uniform sampler2D coarse_flux;
 uniform usampler2D voxel_packed;
 uniform voxel_grid_shape voxel_shape;
 uniform voxel_march_settings voxel_march;
-uniform mat4 light_view_inverse;
+uniform mat4 voxel_from_light;  // the light's eye space to the grid's cells (voxel_cells_from)
 #endif
 
 layout(location = 0) out vec4 indirect;
@@ -46,11 +46,13 @@ coarse_light rsm_coarse_fetch(ivec2 block) {
 #endif
 #if VPLKIT_VISIBILITY == 8
 uvec4 voxel_fetch(ivec2 texel) { return texelFetch(voxel_packed, texel, 0); }
-// The C++ twin is voxel_rsm_visibility's operator(): back from the light's eye space to the world.
-float rsm_voxel_visibility(vec3 x, vec3 n, vec3 xp, vec3 np) {
-  return voxel_light_visible(voxel_shape, voxel_march, transform_point(light_view_inverse, x), transform_direction(light_view_inverse, n),
-                             transform_point(light_view_inverse, xp), transform_direction(light_view_inverse, np));
+// The C++ twins are voxel_rsm_visibility's operator() and coarse(): from the light's eye space to the grid's cells.
+float rsm_voxel_visibility(vec3 x, vec3 n, vec3 xp, vec3 np) { return voxel_light_visible(voxel_shape, voxel_march, voxel_from_light, x, n, xp, np); }
+#if VPLKIT_RSM_COVERAGE
+float rsm_voxel_coarse_visibility(vec3 x, vec3 n, vec3 xc, vec3 nc) {
+  return voxel_coarse_light_visible(voxel_shape, voxel_march, voxel_from_light, x, n, xc, nc);
 }
+#endif
 #endif
 
 void main() {

@@ -37,6 +37,7 @@
 #include <glm/glm.hpp>
 
 #include <type_traits>
+#include <utility>
 
 #include <vplkit/irradiance.hpp>
 #include <vplkit/micro_linear_buffer.hpp>
@@ -275,6 +276,15 @@ struct micro_linear_buffer_visibility {
   }
 };
 
+/// Whether a gather_rsm_with Visibility also judges the coverage's coarse lights: a member
+/// `T coarse(const gather_receiver<T>&, const coarse_light<T>&)` (voxel_rsm_visibility's).
+template <typename Visibility, typename T, typename = void>
+struct judges_coarse_lights : std::false_type {};
+template <typename Visibility, typename T>
+struct judges_coarse_lights<Visibility, T,
+                            std::void_t<decltype(std::declval<Visibility&>().coarse(std::declval<const gather_receiver<T>&>(), std::declval<const coarse_light<T>&>()))>>
+    : std::true_type {};
+
 }  // namespace detail
 
 /// The gather with the visibility of each sample supplied by `visibility`, an object with
@@ -285,6 +295,8 @@ struct micro_linear_buffer_visibility {
 /// (gather_with_ray_cast_visibility in frontend/reference/reference.hpp) passes a ray cast to measure the
 /// same samples with exact visibility. `coarse_fetch(glm::ivec2 block) -> coarse_light<T>` reads the
 /// coarse lights (rsm_coverage.hpp) when settings.coverage_blocks > 0; no_coarse_lights{}: none.
+/// A visibility with a member `coarse(receiver, coarse_light)` judges the coarse lights too
+/// (voxel_rsm_visibility); the others leave them unoccluded, as the thesis's coverage does.
 /// C++ only: the GLSL twin selects its visibility by define.
 template <rsm_pattern Pattern, typename T, typename Fetch, typename CoarseFetch, typename Visibility>
 glm::vec<3, T> gather_rsm_with(const gather_receiver<T>& receiver, Fetch&& fetch, CoarseFetch&& coarse_fetch, const rsm_gather_settings<T>& settings,
@@ -348,7 +360,11 @@ glm::vec<3, T> gather_rsm_with(const gather_receiver<T>& receiver, Fetch&& fetch
           const glm::vec<2, T> offset = coverage_block_centre<T>(glm::ivec2(x, y), side) - receiver.rsm_coordinate;
           if (!(glm::dot(offset, offset) > reach * reach)) continue;
         }
-        coverage += coarse_light_irradiance(receiver.position, receiver.normal, coarse_fetch(glm::ivec2(x, y)), settings.irradiance);
+        const coarse_light<T> light = coarse_fetch(glm::ivec2(x, y));
+        if constexpr (detail::judges_coarse_lights<std::decay_t<Visibility>, T>::value)
+          coverage += visibility.coarse(receiver, light) * coarse_light_irradiance(receiver.position, receiver.normal, light, settings.irradiance);
+        else
+          coverage += coarse_light_irradiance(receiver.position, receiver.normal, light, settings.irradiance);
       }
     irradiance += coverage * T(stride * stride);
   } else {

@@ -20,18 +20,25 @@
 // so the texture is cells.x wide and cells.y * ceil(cells.z / 128) high: 16 bytes per 128 cells.
 // GL 3.3 and ES 3.0 read it with texelFetch on a usampler2D.
 //
-// The march (voxel_segment_visible): from the receiver x moved start_offset cell sides along its
+// The march (voxel_march_cells): from the receiver x moved start_offset cell sides along its
 // normal to the sample x_p moved end_offset cell sides along its normal, every cell the segment
 // passes through is visited (6-connected); one occupied cell hides the sample. A point farther
 // than sqrt(3) cell sides from a plane lies in a cell the plane cannot touch, so with offsets of
 // 2 (the defaults; sqrt(3) plus the growth and a margin) neither the receiver's nor the sample's
 // own (locally flat) surface occludes them. Larger offsets step over walls thinner than the
 // offset near the receiver; smaller ones darken every receiver by its own surface.
+// A coarse level (one bit per 4 x 4 x 4 cells, stepped brick by brick through empty space) cut
+// the fetches per march by a quarter on beyond.txt but made llvmpipe's frame slower: its SIMD
+// lanes run every branch of the loop's body, so each step cost both levels' work
+// (docs/rsm-study.md, "Beyond one RSM": "Where the time goes").
 //
-// In the gather (voxel_rsm_visibility, the Visibility of gather_rsm_with): the receiver and the
-// pixel lights are in the light's eye space, the grid in world space, so both are moved back by
-// the inverse light view. A sample the receiver's or its own tangent plane faces away from lights
-// nothing (Eq. 3.2's positive parts) and is not marched.
+// In the gather (voxel_rsm_visibility, the Visibility of gather_rsm_with): the receiver, the pixel
+// lights and the coverage's coarse lights are in the light's eye space; one affine matrix
+// (voxel_cells_from) takes them to the grid's cells, so a sample costs two point transforms. A
+// sample the receiver's or its own tangent plane faces away from lights nothing (Eq. 3.2's
+// positive parts) and is not marched. A coarse light (rsm_coverage.hpp) is marched like a pixel
+// light from its mean position along its mean normal, normalised (voxel_coarse_light_visible): the
+// coverage's receivers, off the map or behind the light, shone through walls without it.
 //
 // GLSL twin: shaders/lib/voxel_visibility.glsl.
 #pragma once
@@ -239,17 +246,16 @@ inline void voxel_grid_add_triangle(voxel_grid& grid, const glm::vec3& a, const 
         if (triangle_box_overlap(glm::dvec3(x, y, z) + 0.5, half, p[0], p[1], p[2])) grid.mark(glm::ivec3(x, y, z));
 }
 
-/// Whether nothing occupied lies on the segment from `from` to `to` (world space): a 3D DDA over
-/// every cell the segment passes through, clipped to the grid (outside it is empty). 1 visible, 0
-/// hidden. `fetch(glm::ivec2 texel) -> glm::uvec4` reads the packed grid. GLSL twin:
-/// voxel_segment_visible. The steps are written in the order the twin computes them, without a
-/// division by a zero direction (infinite steps are a large number instead).
+/// Whether nothing occupied lies on the segment from `u0` to `u1`, both in the grid's cells (cell
+/// (i, j, k) spans [i, i + 1) x [j, j + 1) x [k, k + 1)): a 3D DDA over every cell the segment
+/// passes through, clipped to the grid (outside it is empty). 1 visible, 0 hidden.
+/// `fetch(glm::ivec2 texel) -> glm::uvec4` reads the packed grid. GLSL twin: voxel_march_cells.
+/// The steps are written in the order the twin computes them, without a division by a zero
+/// direction (infinite steps are a large number instead).
 template <typename T, typename Fetch>
-T voxel_segment_visible(Fetch&& fetch, const voxel_grid_shape<T>& shape, const glm::vec<3, T>& from, const glm::vec<3, T>& to) {
-  const T inverse_cell = T(1) / shape.cell_size;
-  const glm::vec<3, T> u0 = (from - shape.origin) * inverse_cell;
-  const glm::vec<3, T> d = (to - from) * inverse_cell;  // cells per unit of t, t in [0, 1]
-  const glm::vec<3, T> size(shape.cells);
+T voxel_march_cells(Fetch&& fetch, glm::ivec3 cells, const glm::vec<3, T>& u0, const glm::vec<3, T>& u1) {
+  const glm::vec<3, T> d = u1 - u0;  // cells per unit of t, t in [0, 1]
+  const glm::vec<3, T> size(cells);
   constexpr T far = T(1e30);
   // Clip t to the grid's box (slabs).
   T t_enter = T(0), t_exit = T(1);
@@ -265,8 +271,7 @@ T voxel_segment_visible(Fetch&& fetch, const voxel_grid_shape<T>& shape, const g
     }
   }
   if (t_enter > t_exit) return T(1);
-  const glm::vec<3, T> start = u0 + d * t_enter;
-  glm::ivec3 cell = glm::clamp(glm::ivec3(glm::floor(start)), glm::ivec3(0), shape.cells - 1);
+  glm::ivec3 cell = glm::clamp(glm::ivec3(glm::floor(u0 + d * t_enter)), glm::ivec3(0), cells - 1);
   glm::ivec3 step(0);
   glm::vec<3, T> t_max(far), t_delta(far);
   for (int i = 0; i < 3; ++i) {
@@ -277,31 +282,68 @@ T voxel_segment_visible(Fetch&& fetch, const voxel_grid_shape<T>& shape, const g
       t_delta[i] = std::abs(inverse_d[i]);
     }
   }
-  const int steps = shape.cells.x + shape.cells.y + shape.cells.z;
+  const int steps = cells.x + cells.y + cells.z;
   for (int n = 0; n <= steps; ++n) {
-    if (voxel_bit(fetch(voxel_texel(cell, shape.cells)), cell.z)) return T(0);
+    if (voxel_bit(fetch(voxel_texel(cell, cells)), cell.z)) return T(0);
     // The axis whose boundary comes first; ties to the lower axis.
     int axis = 0;
     if (t_max.y < t_max[axis]) axis = 1;
     if (t_max.z < t_max[axis]) axis = 2;
     if (t_max[axis] > t_exit) break;
     cell[axis] += step[axis];
-    if (cell[axis] < 0 || cell[axis] >= shape.cells[axis]) break;
+    if (cell[axis] < 0 || cell[axis] >= cells[axis]) break;
     t_max[axis] += t_delta[axis];
   }
   return T(1);
 }
 
+/// The affine map from a space (e.g. the light's eye space) to the grid's cells, given the map
+/// from that space to the world (rigid or the identity): p -> (to_world p - origin) / cell_size.
+/// The gather's single matrix. GLSL: gather.frag's uniform voxel_from_light.
+template <typename T>
+glm::mat<4, 4, T> voxel_cells_from(const voxel_grid_shape<T>& shape, const glm::mat<4, 4, T>& to_world) {
+  glm::mat<4, 4, T> to_cells(T(1) / shape.cell_size);
+  to_cells[3] = glm::vec<4, T>(-shape.origin / shape.cell_size, T(1));
+  return to_cells * to_world;
+}
+
+/// voxel_march_cells between two world points.
+template <typename T, typename Fetch>
+T voxel_segment_visible(Fetch&& fetch, const voxel_grid_shape<T>& shape, const glm::vec<3, T>& from, const glm::vec<3, T>& to) {
+  const T inverse_cell = T(1) / shape.cell_size;
+  return voxel_march_cells(fetch, shape.cells, (from - shape.origin) * inverse_cell, (to - shape.origin) * inverse_cell);
+}
+
 /// The visibility of a pixel light (position x_p, unit normal n_p) from a receiver (x, n), all in
-/// world space: the segment between the points moved along their normals by the settings' offsets
-/// (cell sides). 1 (no claim) when either tangent plane faces away: such a light lights nothing.
-/// GLSL twin: voxel_light_visible.
+/// a space that `to_cells` (voxel_cells_from) takes to the grid's cells: the segment between the
+/// points moved along their normals by the settings' offsets (cell sides). 1 (no claim) when
+/// either tangent plane faces away: such a light lights nothing. GLSL twin: voxel_light_visible.
+template <typename T, typename Fetch>
+T voxel_light_visible(Fetch&& fetch, const voxel_grid_shape<T>& shape, const voxel_march_settings<T>& settings, const glm::mat<4, 4, T>& to_cells,
+                      const glm::vec<3, T>& x, const glm::vec<3, T>& n, const glm::vec<3, T>& xp, const glm::vec<3, T>& np) {
+  const glm::vec<3, T> to_light = xp - x;
+  if (!(glm::dot(n, to_light) > T(0)) || !(glm::dot(np, to_light) < T(0))) return T(1);
+  return voxel_march_cells(fetch, shape.cells, transform_point(to_cells, x + n * (settings.start_offset * shape.cell_size)),
+                           transform_point(to_cells, xp + np * (settings.end_offset * shape.cell_size)));
+}
+
+/// The same with every point in the world.
 template <typename T, typename Fetch>
 T voxel_light_visible(Fetch&& fetch, const voxel_grid_shape<T>& shape, const voxel_march_settings<T>& settings, const glm::vec<3, T>& x,
                       const glm::vec<3, T>& n, const glm::vec<3, T>& xp, const glm::vec<3, T>& np) {
-  const glm::vec<3, T> to_light = xp - x;
-  if (!(glm::dot(n, to_light) > T(0)) || !(glm::dot(np, to_light) < T(0))) return T(1);
-  return voxel_segment_visible(fetch, shape, x + n * (settings.start_offset * shape.cell_size), xp + np * (settings.end_offset * shape.cell_size));
+  return voxel_light_visible(fetch, shape, settings, voxel_cells_from(shape, glm::mat<4, 4, T>(T(1))), x, n, xp, np);
+}
+
+/// The visibility of a coverage's coarse light (mean position x_c, mean normal n_c of length <= 1)
+/// from a receiver: voxel_light_visible with the normal made unit, so that the end offset is the
+/// settings' in any block; 1 where the normal is 0 (such a light emits nothing). GLSL twin:
+/// voxel_coarse_light_visible.
+template <typename T, typename Fetch>
+T voxel_coarse_light_visible(Fetch&& fetch, const voxel_grid_shape<T>& shape, const voxel_march_settings<T>& settings, const glm::mat<4, 4, T>& to_cells,
+                             const glm::vec<3, T>& x, const glm::vec<3, T>& n, const glm::vec<3, T>& xc, const glm::vec<3, T>& nc) {
+  const T length = std::sqrt(glm::dot(nc, nc));
+  if (!(length > T(0))) return T(1);
+  return voxel_light_visible(fetch, shape, settings, to_cells, x, n, xc, nc / length);
 }
 
 /// The packed grid's fetch for the C++ gather.
@@ -312,21 +354,22 @@ struct voxel_grid_fetch {
   }
 };
 
-/// The Visibility of gather_rsm_with (rsm_gather.hpp) by the grid: the receiver and the pixel
-/// light moved from the light's eye space back to the world by `light_view_inverse` (rigid).
-/// GLSL: VPLKIT_VISIBILITY 8 in lib/rsm_gather.glsl, which calls the including shader's
-/// rsm_voxel_visibility.
+/// The Visibility of gather_rsm_with (rsm_gather.hpp) by the grid: the receiver, the pixel lights
+/// and the coarse lights moved from the light's eye space to the grid's cells by `light_to_cells`
+/// (voxel_cells_from(shape, inverse light view)). GLSL: VPLKIT_VISIBILITY 8 in lib/rsm_gather.glsl,
+/// which calls the including shader's rsm_voxel_visibility and rsm_voxel_coarse_visibility.
 template <typename T, typename Fetch>
 struct voxel_rsm_visibility {
   Fetch fetch;
   voxel_grid_shape<T> shape;
   voxel_march_settings<T> settings;
-  glm::mat<4, 4, T> light_view_inverse;
+  glm::mat<4, 4, T> light_to_cells;
   void begin_path() {}
   T operator()(const gather_receiver<T>& receiver, const rsm_texel<T>& light) {
-    return voxel_light_visible(fetch, shape, settings, transform_point(light_view_inverse, receiver.position),
-                               transform_direction(light_view_inverse, receiver.normal), transform_point(light_view_inverse, light.position),
-                               transform_direction(light_view_inverse, light.normal));
+    return voxel_light_visible(fetch, shape, settings, light_to_cells, receiver.position, receiver.normal, light.position, light.normal);
+  }
+  T coarse(const gather_receiver<T>& receiver, const coarse_light<T>& light) {
+    return voxel_coarse_light_visible(fetch, shape, settings, light_to_cells, receiver.position, receiver.normal, light.position, light.normal);
   }
 };
 

@@ -4,8 +4,10 @@
 //   VPLKIT_RSM_PATTERN  0 radial, 1 disk
 //   VPLKIT_VISIBILITY   0 none, 2 Alg. 2, 3 Alg. 3, 6 Alg. 6, 7 Alg. 6 about the receiver's light ray
 //                       (rsm_visibility::alg6_ray), 8 the voxel grid of lib/voxel_visibility.glsl through
-//                       `float rsm_voxel_visibility(vec3 x, vec3 n, vec3 xp, vec3 np)` (light eye
-//                       space; the C++ gather given vplkit/voxel_visibility.hpp's voxel_rsm_visibility)
+//                       `float rsm_voxel_visibility(vec3 x, vec3 n, vec3 xp, vec3 np)` and, with
+//                       coverage, `float rsm_voxel_coarse_visibility(vec3 x, vec3 n, vec3 xc, vec3 nc)`
+//                       for the coarse lights (light eye space; the C++ gather given
+//                       vplkit/voxel_visibility.hpp's voxel_rsm_visibility)
 //   VPLKIT_SLOT_COUNT   (optional) settings.slots.count, as a constant: see lib/micro_linear_buffer.glsl
 //   VPLKIT_RSM_COVERAGE (optional) 1: the coverage of vplkit/rsm_coverage.hpp, reading the coarse
 //                       lights through `coarse_light rsm_coarse_fetch(ivec2 block)` (the C++
@@ -42,6 +44,9 @@ float rsm_voxel_visibility(vec3 x, vec3 n, vec3 xp, vec3 np);
 #endif
 #if VPLKIT_RSM_COVERAGE
 coarse_light rsm_coarse_fetch(ivec2 block);
+#if VPLKIT_VISIBILITY == 8
+float rsm_voxel_coarse_visibility(vec3 x, vec3 n, vec3 xc, vec3 nc);
+#endif
 #endif
 
 struct rsm_gather_settings {
@@ -158,7 +163,13 @@ vec3 gather_rsm(gather_receiver receiver, rsm_gather_settings settings) {
         vec2 offset = coverage_block_centre(ivec2(x, y), side) - receiver.rsm_coordinate;
         if (!(dot(offset, offset) > reach * reach)) continue;
       }
-      coverage += coarse_light_irradiance(receiver.position, receiver.normal, rsm_coarse_fetch(ivec2(x, y)), settings.irradiance);
+      coarse_light light = rsm_coarse_fetch(ivec2(x, y));
+#if VPLKIT_VISIBILITY == 8
+      coverage += rsm_voxel_coarse_visibility(receiver.position, receiver.normal, light.position, light.normal) *
+                  coarse_light_irradiance(receiver.position, receiver.normal, light, settings.irradiance);
+#else
+      coverage += coarse_light_irradiance(receiver.position, receiver.normal, light, settings.irradiance);
+#endif
     }
   irradiance += coverage * float(stride * stride);
 #endif

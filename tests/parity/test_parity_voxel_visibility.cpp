@@ -1,5 +1,6 @@
 // CPU/GPU parity of include/vplkit/voxel_visibility.hpp against shaders/lib/voxel_visibility.glsl:
-// the march (voxel_light_visible, offsets and DDA) over a grid built on the CPU and read by the
+// the march (voxel_light_visible, offsets and DDA; voxel_coarse_light_visible, the coverage's coarse
+// lights with normals shorter than 1, through voxel_cells_from's matrix) over a grid built on the CPU and read by the
 // shader from its packed RGBA32UI texture, for random receivers and pixel lights in a closed room
 // cluttered with random triangles, and from outside the grid, on every target
 // (tests/parity/targets.hpp). The harness's tables are float (RGBA32F textures or std430 buffers),
@@ -57,7 +58,8 @@ TEST_CASE("parity: voxel_light_visible over a packed grid of a cluttered closed 
     inputs.floats[0][i] = glm::vec4(x, 0.0f);
     inputs.floats[1][i] = glm::vec4(n, 0.0f);
     inputs.floats[2][i] = glm::vec4(xp, 0.0f);
-    inputs.floats[3][i] = glm::vec4(np, 0.0f);
+    // A coarse light's normal is a mean of unit normals: 0.2-1 long (and, once, 0: no direction).
+    inputs.floats[3][i] = glm::vec4(np, i == 5 ? 0.0f : 0.2f + 0.8f * unit(random));
   }
   const voxel_march_settings<float> march;
   const glm::ivec2 texture_size = voxel_texture_size(grid.shape.cells);
@@ -69,17 +71,22 @@ TEST_CASE("parity: voxel_light_visible over a packed grid of a cluttered closed 
   kernel_resources resources;
   resources.tables = {{"voxels_low", texture_size.x, texture_size.y, low_halves}, {"voxels_high", texture_size.x, texture_size.y, high_halves}};
   resources.blocks = {settings_block("shape", grid.shape), settings_block("march", march)};
-  std::vector<glm::vec4> cpu(inputs.size());
-  int hidden = 0;
+  std::vector<glm::vec4> cpu(inputs.size()), cpu_coarse(inputs.size());
+  int hidden = 0, coarse_hidden = 0;
+  const glm::mat4 to_cells = voxel_cells_from(grid.shape, glm::mat4(1.0f));
   for (std::size_t i = 0; i < inputs.size(); ++i) {
-    cpu[i] = glm::vec4(voxel_light_visible(voxel_grid_fetch{&grid}, grid.shape, march, glm::vec3(inputs.floats[0][i]), glm::vec3(inputs.floats[1][i]),
-                                           glm::vec3(inputs.floats[2][i]), glm::vec3(inputs.floats[3][i])),
-                       0.0f, 0.0f, 0.0f);
+    const glm::vec3 x(inputs.floats[0][i]), n(inputs.floats[1][i]), xp(inputs.floats[2][i]), np(inputs.floats[3][i]);
+    cpu[i] = glm::vec4(voxel_light_visible(voxel_grid_fetch{&grid}, grid.shape, march, x, n, xp, np), 0.0f, 0.0f, 0.0f);
+    cpu_coarse[i] = glm::vec4(voxel_coarse_light_visible(voxel_grid_fetch{&grid}, grid.shape, march, to_cells, x, n, xp, np * inputs.floats[3][i].w), 0.0f,
+                              0.0f, 0.0f);
     hidden += cpu[i].x == 0.0f ? 1 : 0;
+    coarse_hidden += cpu_coarse[i].x == 0.0f ? 1 : 0;
   }
   // Both answers are exercised (the clutter hides some pairs, the walls every outside light).
   CHECK(hidden > 400);
   CHECK(hidden < 3600);
+  CHECK(coarse_hidden > 400);
+  CHECK(coarse_hidden < 3600);
   // A yes/no per pair: the same arithmetic in the same order, but a driver may fuse a multiply-add
   // in the DDA's boundary distances, which flips the cell order where a segment passes within a
   // rounding of a cell's edge, and then the answer where one of the two cells is occupied.
@@ -90,9 +97,14 @@ TEST_CASE("parity: voxel_light_visible over a packed grid of a cluttered closed 
     if (!testing::target_runs(run.where)) continue;
     source.includes = {"lib/voxel_visibility.glsl"};
     source.declarations = "uvec4 voxel_fetch(ivec2 t) { return uvec4(voxels_low(t)) | (uvec4(voxels_high(t)) << 16u); }\n";
-    source.body = "fout0 = vec4(voxel_light_visible(shape, march, fin0.xyz, fin1.xyz, fin2.xyz, fin3.xyz), 0.0, 0.0, 0.0);";
-    source.float_outputs = 1;
+    source.body =
+        "fout0 = vec4(voxel_light_visible(shape, march, fin0.xyz, fin1.xyz, fin2.xyz, fin3.xyz), 0.0, 0.0, 0.0);\n"
+        "fout1 = vec4(voxel_coarse_light_visible(shape, march, voxel_cells_from(shape, mat4(1.0)), fin0.xyz, fin1.xyz, fin2.xyz, fin3.xyz * fin3.w), "
+        "0.0, 0.0, 0.0);";
+    source.float_outputs = 2;
     const kernel_outputs gpu = run.run(source, inputs, run.where, resources);
     require_parity(compare(source.name, gpu.floats[0], cpu, inputs, {0.0f, 0.0f, 0, 0.002, "a discrete answer; near-ties at cell edges"}, 1));
+    require_parity(compare(source.name + ", coarse light", gpu.floats[1], cpu_coarse, inputs,
+                           {0.0f, 0.0f, 0, 0.002, "a discrete answer; near-ties at cell edges"}, 1));
   }
 }

@@ -31,9 +31,9 @@ glm::vec3 gather_variant(const gather_receiver<float>& receiver, const gather_in
     return in.coarse[static_cast<std::size_t>(block.y) * static_cast<std::size_t>(in.blocks) + static_cast<std::size_t>(block.x)];
   };
   if constexpr (Visibility == rsm_visibility::voxel) {
-    // gather.frag's rsm_voxel_visibility: the grid's march, back in the world by the same matrix.
+    // gather.frag's rsm_voxel_visibility and rsm_voxel_coarse_visibility: the grid's march, by the same matrix.
     voxel_rsm_visibility<float, voxel_grid_fetch> visibility{voxel_grid_fetch{in.voxels}, in.voxels->shape, constants.voxel_march,
-                                                             constants.light_view_inverse};
+                                                             voxel_cells_from(in.voxels->shape, constants.light_view_inverse)};
     if (in.coarse.empty()) return gather_rsm_with<Pattern>(receiver, fetch, constants.gather, visibility);
     return gather_rsm_with<Pattern>(receiver, fetch, coarse_fetch, constants.gather, visibility);
   } else {

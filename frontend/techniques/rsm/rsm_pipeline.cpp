@@ -280,7 +280,7 @@ void rsm_pipeline::set_pose_uniforms() {
     set_uniforms(gather_program_, "unprojection", constants_.unprojection);
     gather_program_.set("light_view", light.view);
     gather_program_.set("light_view_projection", light.view_projection);
-    if (with_voxels(constants_)) gather_program_.set("light_view_inverse", constants_.light_view_inverse);
+    if (with_voxels(constants_)) gather_program_.set("voxel_from_light", voxel_cells_from(voxels_->shape, constants_.light_view_inverse));
   }
   set_light_uniforms(post_program_, constants_);
 }

@@ -379,7 +379,7 @@ TEST_CASE("every shipped pass program compiles and links") {
                                {{"VPLKIT_INDIRECT", "1"}, {"VPLKIT_SEPARABLE", "1"}, {"VPLKIT_PACKED_BLUR", "1"}, {"VPLKIT_LIGHT_DIRECTIONAL", light}}));
   }
   for (const char* coverage : {"0", "1"}) {
-    for (const char* visibility : {"0", "2", "3", "6", "7"})
+    for (const char* visibility : {"0", "2", "3", "6", "7", "8"})
       CHECK_NOTHROW(load_program(library, "fullscreen.vert", "gather.frag",
                                  {{"VPLKIT_RSM_PATTERN", "0"}, {"VPLKIT_VISIBILITY", visibility}, {"VPLKIT_RSM_COVERAGE", coverage}}));
     CHECK_NOTHROW(load_program(library, "fullscreen.vert", "gather.frag",
