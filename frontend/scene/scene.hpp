@@ -1,6 +1,6 @@
 // Scenes the frontend renders: triangle geometry with a diffuse albedo per vertex (times a
 // base-colour texture on the triangles a material range names, frontend/scene/material.hpp), a
-// camera and one primary light (spot or directional). Built-in scenes are made in code, so the
+// camera and up to max_scene_lights lights (spot, directional or point). Built-in scenes are made in code, so the
 // default job needs no files; OBJ files load through frontend/scene/obj_loader.hpp, glTF files
 // through frontend/scene/gltf_scene.hpp.
 #pragma once
