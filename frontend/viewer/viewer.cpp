@@ -300,7 +300,9 @@ void viewer::build_panel() {
       if (entry.name == technique_) ImGui::TextDisabled("%s", entry.description.c_str());
   for (view_layer layer : view_->layers())
     if (ImGui::RadioButton(describe(layer), layer_ == layer)) select_layer(layer);
-  ImGui::Text("mouse, WASD and Q/E move the %s (Tab: next)", describe(target_));
+  // Which light, where the mouse moves one: the selected light's index.
+  const std::string moved_name = target_ == move_target::light ? "light " + std::to_string(selected_light_) : describe(target_);
+  ImGui::Text("mouse, WASD and Q/E move the %s (Tab: next)", moved_name.c_str());
 
   if (ImGui::CollapsingHeader("settings", ImGuiTreeNodeFlags_DefaultOpen)) {
     std::string problem;
