@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "frontend/core/files.hpp"
+#include "frontend/gl/pass_timer.hpp"
 #include "frontend/image/image.hpp"
 
 namespace vplkit::cli {
@@ -43,5 +44,27 @@ class output_set {
   std::filesystem::path main_;
   std::vector<output_file> files_;
 };
+
+/// A frame's time per light (render --stats): the pipelines name a pass drawn for one light
+/// "... light K ..." ("RSM light 1 face 3"), K its index in the scene's lights. Passes naming no
+/// light (the G-buffer, the post filter) are shared by all lights.
+struct light_time {
+  std::size_t light = 0;
+  std::size_t passes = 0;
+  double milliseconds = 0.0;
+};
+struct light_times {
+  std::vector<light_time> lights;  ///< by light index, only the lights some pass names
+  std::size_t shared_passes = 0;
+  double shared_milliseconds = 0.0;
+};
+/// The passes grouped by the light their name names: the word "light" followed by a number, as
+/// whole words ("spotlight 2" and "light 2b" name none).
+light_times group_by_light(const std::vector<pass_time>& passes);
+/// "| light | passes | ms | % |" rows per light and one for the shared passes, the % of the
+/// frame's total; "" when no pass names a light (a one-light pipeline's table says it all).
+std::string format_light_table(const light_times& times);
+/// The same as JSON: [{"light": K, "passes": n, "ms": t}, ...], "shared_ms": t.
+std::string light_times_json(const light_times& times);
 
 }  // namespace vplkit::cli

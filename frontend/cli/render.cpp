@@ -189,7 +189,9 @@ int run_render(const session& io, const render_state& s) {
   drawn->draw_changed();
   const std::vector<pass_time> camera_moved = drawn->collect_pass_times();
 
-  io.out << drawn->describe() << "\nevery pass (the frame the papers time):\n" << format_pass_table(every_pass)
+  // Per light where the passes name their light (several lights): what each light costs.
+  const light_times every_light = group_by_light(every_pass);
+  io.out << drawn->describe() << "\nevery pass (the frame the papers time):\n" << format_pass_table(every_pass) << format_light_table(every_light)
          << "a frame after the camera moved (what the viewer redraws):\n" << format_pass_table(camera_moved);
 
   std::string quality_json;
@@ -224,7 +226,7 @@ int run_render(const session& io, const render_state& s) {
     std::ostringstream json;
     json << "{\n  \"vplkit\": " << json_string(version_string) << ",\n  \"scene\": " << json_string(drawn->scene_name()) << ",\n  \"settings\": "
          << settings_json(*settings, 2) << ",\n  \"timing\": {\"method\": " << json_string(describe(timing_method_for_current_context()))
-         << ",\n    \"every_pass\": {\"passes\": " << pass_json(every_pass) << "},\n    \"camera_moved\": {\"passes\": " << pass_json(camera_moved)
+         << ",\n    \"every_pass\": {\"passes\": " << pass_json(every_pass) << ", \"per_light\": " << light_times_json(every_light) << "},\n    \"camera_moved\": {\"passes\": " << pass_json(camera_moved)
          << "}}" << quality_json << "\n}\n";
     files.add_text(s.stats, json.str());
   }

@@ -60,6 +60,8 @@ int run_view(const session& io, const view_state& s) {
     const std::string name = o.common.scene_given ? o.common.scene : family.default_scene;
     if (!loaded.count(name)) loaded.emplace(name, load_scene(o.common, name));
     options.scenes.families[family.name].source = loaded.at(name);
+    // The file's index of each light drawn, for the pose text (viewer::pose_arguments).
+    options.scenes.families[family.name].file_lights = o.common.light_choice;
   }
   window_context window(width + options.docked_panel_width, height, "vplkit view - " + shown_scene);
   const shader_library shaders(o.common.shaders());

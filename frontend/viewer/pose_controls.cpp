@@ -53,4 +53,22 @@ pose look(const pose& where, float yaw, float pitch) {
   return {where.position, where.position + distance * turned(offset / distance, yaw, pitch)};
 }
 
+std::string light_arguments(const std::optional<std::vector<std::size_t>>& file_lights, std::size_t count, std::size_t selected, const pose& selected_pose) {
+  if (count == 0) return "--lights none";
+  const auto file_index = [&](std::size_t k) { return file_lights && k < file_lights->size() ? (*file_lights)[k] : k; };
+  // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on "," + std::to_string(...).
+  std::string placed = "--light ";
+  placed += format_pose(selected_pose);
+  if (!file_lights && selected == 0) return placed;
+  std::string text = "--lights ";
+  text += std::to_string(file_index(selected));
+  for (std::size_t k = 0; k < count; ++k)
+    if (k != selected) {
+      text += ',';
+      text += std::to_string(file_index(k));
+    }
+  text += ' ';
+  return text + placed;
+}
+
 }  // namespace vplkit

@@ -4,6 +4,11 @@
 // World up is +Y, as the scenes' cameras have it.
 #pragma once
 
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
 #include <glm/glm.hpp>
 
 #include "frontend/scene/pose.hpp"
@@ -28,5 +33,15 @@ pose fly(const pose& where, glm::vec3 step);
 /// radians about world +Y, `pitch` radians of elevation (positive: looks up), 1 degree short of
 /// the poles.
 pose look(const pose& where, float yaw, float pitch);
+
+/// The light part of the viewer's "vplkit render" arguments, so that the command draws the view's
+/// lights with the selected one where it is: `file_lights` is the file's index of each of the
+/// view's `count` lights (absent: every light of the file, in order), `selected` the one the
+/// controls move and `selected_pose` its pose. The selected light goes first in --lights (--light
+/// places the first chosen light), the others after it in their order:
+///   no light: "--lights none"; every light of the file with the first selected: "--light P";
+///   otherwise "--lights s,a,b --light P" (file indices). Only the selected light's pose is in the
+///   text: another light moved before is drawn where the file has it.
+std::string light_arguments(const std::optional<std::vector<std::size_t>>& file_lights, std::size_t count, std::size_t selected, const pose& selected_pose);
 
 }  // namespace vplkit

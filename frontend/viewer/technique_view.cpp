@@ -21,7 +21,8 @@ const char* describe(view_layer layer) {
 }
 
 viewer_family::viewer_family(const viewer_family& other)
-    : settings(other.settings ? other.settings->clone() : nullptr), source(other.source), view(other.view), lights(other.lights), object(other.object) {}
+    : settings(other.settings ? other.settings->clone() : nullptr), source(other.source), view(other.view), lights(other.lights), file_lights(other.file_lights),
+      object(other.object) {}
 
 viewer_family& viewer_family::operator=(const viewer_family& other) {
   if (this != &other) *this = viewer_family(other);
@@ -139,6 +140,12 @@ std::vector<pass_time> technique_view::collect_pass_times() {
 
 pose technique_view::camera_pose() const { return pose_of(pipeline_->current_camera()); }
 std::size_t technique_view::light_count() const { return pipeline_->current_lights().size(); }
+
+light_kind technique_view::light_kind_of(std::size_t index) const {
+  const std::vector<scene_light> lights = pipeline_->current_lights();
+  if (index >= lights.size()) throw error("the scene has no light " + std::to_string(index) + " (it has " + std::to_string(lights.size()) + ")");
+  return lights[index].kind;
+}
 
 void technique_view::select_light(std::size_t index) {
   const std::size_t count = light_count();

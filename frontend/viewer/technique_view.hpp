@@ -48,6 +48,9 @@ struct viewer_family {
   std::optional<scene> source;
   std::optional<camera> view;
   std::optional<std::vector<scene_light>> lights;
+  /// The file's index of each of the scene's lights (vplkit view --lights 0,2), for the command
+  /// text (light_arguments); absent: every light of the file, in order.
+  std::optional<std::vector<std::size_t>> file_lights;
   std::optional<glm::vec3> object;
 
   viewer_family() = default;
@@ -79,9 +82,11 @@ class technique_view {
   image read_indirect() const { return pipeline_->indirect_output().read_image(); }
   std::vector<pass_time> collect_pass_times();
   pose camera_pose() const;
+  /// The selected light's pose; throws vplkit::error when the scene has no light (light_count() 0).
   pose light_pose() const;
-  /// The scene's lights: how many, and which one the light controls move (0 at first).
+  /// The scene's lights: how many, which kind each, and which one the light controls move (0 at first).
   std::size_t light_count() const;
+  light_kind light_kind_of(std::size_t index) const;
   std::size_t selected_light_index() const { return selected_light_; }
   /// Throws vplkit::error for an index the scene does not have.
   void select_light(std::size_t index);

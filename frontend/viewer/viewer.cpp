@@ -44,7 +44,7 @@ viewer::viewer(window_context& window, const shader_library& shaders, viewer_opt
       scenes_(std::move(options.scenes)),
       technique_(options.technique),
       view_(make_technique_view(shaders, scenes_, technique_)),
-      last_good_{view_->camera_pose(), view_->light_pose(), view_->object_position()},
+      last_good_{current_poses()},
       present_program_(load_program(shaders, "fullscreen.vert", "present.frag")),
       empty_vertex_array_(generate_vertex_array()),
       panel_(options.panel),
@@ -102,12 +102,27 @@ void viewer::select_technique(const std::string& technique) {
     std::unique_ptr<technique_view> next = make_technique_view(shaders_, scenes_, technique);
     view_ = std::move(next);
     technique_ = technique;
-    last_good_ = {view_->camera_pose(), view_->light_pose(), view_->object_position()};
+    // The selected light kept where the next scene has it.
+    if (selected_light_ < view_->light_count()) view_->select_light(selected_light_);
+    else selected_light_ = 0;
+    last_good_ = current_poses();
     const std::vector<view_layer> layers = view_->layers();
     if (std::find(layers.begin(), layers.end(), layer_) == layers.end()) layer_ = view_layer::image;
     if (target_ == move_target::object && !view_->has_object()) target_ = move_target::camera;
+    if (target_ == move_target::light && view_->light_count() == 0) target_ = move_target::camera;
     exposure_stale_ = true;
   });
+}
+
+viewer::poses viewer::current_poses() const {
+  return {view_->camera_pose(), view_->light_count() > 0 ? std::optional<pose>(view_->light_pose()) : std::nullopt, view_->object_position()};
+}
+
+void viewer::select_light(std::size_t index) {
+  if (try_action([&] { view_->select_light(index); })) {
+    selected_light_ = index;
+    last_good_.light = view_->light_pose();
+  }
 }
 
 void viewer::take_stored_settings() {
@@ -147,7 +162,7 @@ void viewer::select_layer(view_layer layer) {
 
 void viewer::move_camera(const pose& where) { try_action([&] { view_->set_camera_pose(where); }); }
 
-float viewer::light_intensity() const { return view_->light_intensity(); }
+float viewer::light_intensity() const { return view_->light_count() > 0 ? view_->light_intensity() : 0.0f; }
 
 void viewer::set_light_intensity(float intensity) {
   try_action([&] {
@@ -165,7 +180,9 @@ void viewer::move_light(const pose& where) { try_action([&] { view_->set_light_p
 void viewer::move_object(glm::vec3 centre) { try_action([&] { view_->set_object_position(centre); }); }
 
 std::string viewer::pose_arguments() const {
-  std::string arguments = "--technique " + technique_ + " --camera " + format_pose(view_->camera_pose()) + " --light " + format_pose(view_->light_pose());
+  const std::size_t count = view_->light_count();
+  std::string arguments = "--technique " + technique_ + " --camera " + format_pose(view_->camera_pose()) + " " +
+                          light_arguments(scenes_.of(technique_).file_lights, count, selected_light_, count > 0 ? view_->light_pose() : pose{});
   if (view_->has_object()) arguments += " --object-position " + format_point(view_->object_position());
   return arguments;
 }
@@ -179,10 +196,13 @@ void viewer::handle_input() {
       if (key == GLFW_KEY_H) panel_ = !panel_;
       if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(window_.window(), GLFW_TRUE);
       if (key == GLFW_KEY_TAB) {
-        target_ = target_ == move_target::camera ? move_target::light
-                  : target_ == move_target::light && view_->has_object() ? move_target::object
-                                                                          : move_target::camera;
+        // Camera, light (when the scene has one), object (when the technique has one), camera.
+        const bool lit = view_->light_count() > 0;
+        target_ = target_ == move_target::camera && lit                                    ? move_target::light
+                  : (target_ == move_target::camera || target_ == move_target::light) && view_->has_object() ? move_target::object
+                                                                                                             : move_target::camera;
       }
+      if (key == GLFW_KEY_N && view_->light_count() > 0) select_light((selected_light_ + 1) % view_->light_count());
       if (key == GLFW_KEY_L) {
         const std::vector<view_layer> layers = view_->layers();
         const auto current = std::find(layers.begin(), layers.end(), layer_);
@@ -199,6 +219,7 @@ void viewer::handle_input() {
 
   // The mouse and keys move the chosen target: orbit/look/dolly/fly for a pose, WASD/QE for the object.
   const bool is_pose = target_ != move_target::object;
+  if (target_ == move_target::light && view_->light_count() == 0) target_ = move_target::camera;
   const pose current = target_ == move_target::light ? view_->light_pose() : view_->camera_pose();
   pose moved = current;
   if (!io.WantCaptureMouse) {
@@ -279,7 +300,9 @@ void viewer::build_panel() {
       if (entry.name == technique_) ImGui::TextDisabled("%s", entry.description.c_str());
   for (view_layer layer : view_->layers())
     if (ImGui::RadioButton(describe(layer), layer_ == layer)) select_layer(layer);
-  ImGui::Text("mouse, WASD and Q/E move the %s (Tab: next)", describe(target_));
+  // Which light, where the mouse moves one: the selected light's index.
+  const std::string moved_name = target_ == move_target::light ? "light " + std::to_string(selected_light_) : describe(target_);
+  ImGui::Text("mouse, WASD and Q/E move the %s (Tab: next)", moved_name.c_str());
 
   if (ImGui::CollapsingHeader("settings", ImGuiTreeNodeFlags_DefaultOpen)) {
     std::string problem;
@@ -287,11 +310,25 @@ void viewer::build_panel() {
     if (!problem.empty()) message_ = problem;
   }
 
+  const std::size_t light_count = view_->light_count();
   if (ImGui::CollapsingHeader("light and exposure", ImGuiTreeNodeFlags_DefaultOpen)) {
-    // The light of the technique shown; a light move for the pipeline (what it invalidates redrawn).
-    float intensity = light_intensity();
-    if (ImGui::DragFloat("light intensity", &intensity, 0.01f * std::max(intensity, 1e-3f), 0.0f, 1e6f, "%.4g W/sr or W/m^2", ImGuiSliderFlags_Logarithmic))
-      set_light_intensity(intensity);
+    if (light_count == 0) {
+      // Nothing to move: the image is shown, the light controls are not.
+      ImGui::TextDisabled("no light in this scene (--lights none, or a file without lights)");
+    } else {
+      // Which light the intensity, the pose and the mouse move (N: the next one).
+      const auto light_label = [&](std::size_t k) { return "light " + std::to_string(k) + " (" + light_kind_name(view_->light_kind_of(k)) + ")"; };
+      ImGui::Text("%s of %zu (N: next)", light_label(selected_light_).c_str(), light_count);
+      if (light_count > 1 && ImGui::BeginCombo("moved light", light_label(selected_light_).c_str())) {
+        for (std::size_t k = 0; k < light_count; ++k)
+          if (ImGui::Selectable(light_label(k).c_str(), k == selected_light_) && k != selected_light_) select_light(k);
+        ImGui::EndCombo();
+      }
+      // The selected light of the technique shown; a light move for the pipeline (what it invalidates redrawn).
+      float intensity = light_intensity();
+      if (ImGui::DragFloat("light intensity", &intensity, 0.01f * std::max(intensity, 1e-3f), 0.0f, 1e6f, "%.4g W/sr or W/m^2", ImGuiSliderFlags_Logarithmic))
+        set_light_intensity(intensity);
+    }
     float ev = image_exposure_ev_;
     bool automatic = image_auto_exposure_;
     const bool moved = ImGui::SliderFloat("exposure (EV)", &ev, -10.0f, 10.0f, "%.2f");
@@ -309,8 +346,10 @@ void viewer::build_panel() {
     };
     ImGui::TextUnformatted("camera");
     edit_pose("camera", view_->camera_pose(), false);
-    ImGui::TextUnformatted("light");
-    edit_pose("light", view_->light_pose(), true);
+    if (light_count > 0) {
+      ImGui::Text("light %zu", selected_light_);
+      edit_pose("light", view_->light_pose(), true);
+    }
     if (view_->has_object()) {
       glm::vec3 centre = view_->object_position();
       if (ImGui::DragFloat3("object", &centre.x, 0.01f)) move_object(centre);
@@ -330,7 +369,7 @@ void viewer::build_panel() {
     ImGui::TextWrapped("drawn so far: %s", view_->draw_counts().c_str());
   }
   if (!message_.empty()) ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.3f, 1.0f), "%s", message_.c_str());
-  ImGui::TextDisabled("H panel, L layer, P screenshot, Esc close");
+  ImGui::TextDisabled("H panel, L layer, N next light, P screenshot, Esc close");
   if (ImGui::CollapsingHeader("panel")) {
     bool docked = docked_panel_width_ > 0;
     if (ImGui::Checkbox("dock beside the image", &docked)) dock_panel(docked);
@@ -395,14 +434,14 @@ void viewer::frame() {
 
   bool drawn = false;
   if (try_action([&] { drawn = view_->draw(); })) {
-    last_good_ = {view_->camera_pose(), view_->light_pose(), view_->object_position()};
+    last_good_ = current_poses();
   } else {
     // A move the pipeline refused while drawing (the object into a wall): back to the last pose
     // that drew.
     const std::string reason = message_;
     try_action([&] {
       view_->set_camera_pose(last_good_.camera);
-      view_->set_light_pose(last_good_.light);
+      if (last_good_.light) view_->set_light_pose(*last_good_.light);
       if (view_->has_object()) view_->set_object_position(last_good_.object);
       drawn = view_->draw();
     });

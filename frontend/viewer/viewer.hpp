@@ -1,9 +1,11 @@
 // vplkit view: any technique in a GLFW window with a Dear ImGui panel. The camera orbits (left
 // drag), looks around (right drag), dollies (wheel) and flies (WASD, Q/E down/up); Tab makes the
-// mouse and keys move the light instead, or the object (final gathering). The panel switches the
+// mouse and keys move the selected light instead, or the object (final gathering); N selects the
+// next of the scene's lights (the panel's "light and exposure" section too, which shows the
+// selection; a scene without lights shows its image and no light controls). The panel switches the
 // technique and the layer shown, edits the technique's settings live, shows the per-pass times of
 // the last frame that drew anything (the pass_timer's method), the frame time, what each stage
-// has been drawn so far, and the pose as --camera/--light arguments. Floating over the image it
+// has been drawn so far, and the pose as --camera/--lights/--light arguments. Floating over the image it
 // covers at most a quarter of it (half its width and half its height, scrolling beyond); docked,
 // it takes a column beside the image, which the window is widened by. H hides the panel, P saves
 // a screenshot PNG and the indirect PFM, L cycles the layers, Esc closes. A move redraws only
@@ -14,6 +16,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -87,12 +90,19 @@ class viewer {
   bool panel_shown() const { return panel_; }
   /// Moves as the controls make them; a move the view refuses changes nothing and sets message().
   void move_camera(const pose& where);
+  /// Moves the selected light (a refusal, or a scene without lights, sets message()).
   void move_light(const pose& where);
   void move_object(glm::vec3 centre);
-  /// The shown technique's light intensity (W/sr, or W/m^2 for a sun), its colour kept: a light
+  /// Chooses the light that move_light, the light intensity and the mouse move; kept across
+  /// technique switches where the next technique's scene has it. An index the scene does not have
+  /// changes nothing and sets message().
+  void select_light(std::size_t index);
+  /// The selected light's index (0 in a scene without lights).
+  std::size_t selected_light() const { return selected_light_; }
+  /// The selected light's intensity (W/sr, or W/m^2 for a sun), its colour kept: a light
   /// move (what it invalidates is redrawn). A refusal changes nothing and sets message().
   void set_light_intensity(float intensity);
-  /// The brightest channel of the current view's light.
+  /// The brightest channel of the selected light (0 in a scene without lights).
   float light_intensity() const;
   /// The final image's exposure: 2^ev, or automatic.
   void set_exposure(float ev, bool automatic);
@@ -104,7 +114,9 @@ class viewer {
   glm::vec4 image_rectangle() const;
   /// Whether the last panel showed the technique list wide enough for the longest name.
   bool technique_names_fit() const { return technique_names_fit_; }
-  /// "--technique T --camera ... --light ..." (and --object-position): the pose as `vplkit render` takes it.
+  /// "--technique T --camera ... --light ..." (and --object-position): the pose as `vplkit render`
+  /// takes it; with several lights "--lights s,a,b --light ...", the selected light first
+  /// (light_arguments of pose_controls.hpp), without lights "--lights none".
   std::string pose_arguments() const;
   /// Whether the last frame drew nothing and no key or button is held (run_viewer then waits for
   /// input instead of spinning).
@@ -131,9 +143,12 @@ class viewer {
   std::unique_ptr<technique_view> view_;
   /// The poses of the last frame that drew, restored when a move fails while drawing.
   struct poses {
-    pose camera, light;
+    pose camera;
+    std::optional<pose> light;  ///< the selected light's; none without lights
     glm::vec3 object;
   } last_good_;
+  poses current_poses() const;
+  std::size_t selected_light_ = 0;
   program present_program_;
   gl_vertex_array empty_vertex_array_;
   view_layer layer_ = view_layer::image;

@@ -61,4 +61,50 @@ if(EXISTS "${box}")
   expect_success("BoxTextured renders with its texture" "framed as an object.*scene BoxTextured" "${VPLKIT}" render --scene "${box}" ${small} --out "${WORK}/box.png")
 endif()
 
+# --lights (issue 38): bad texts and indices the scene does not have are usage errors, exit code 2
+# exactly, the option and the reason named, nothing written.
+function(expect_usage_error name pattern must_not_exist)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  file(GLOB left "${must_not_exist}")
+  if(NOT code EQUAL 2 OR NOT "${err}" MATCHES "${pattern}" OR left)
+    message(SEND_ERROR "FAILED ${name}: exit ${code} (expected 2), stderr must match '${pattern}', left: '${left}'\n  command: ${ARGN}\n  stdout: ${out}\n  stderr: ${err}")
+    math(EXPR count "${failures} + 1")
+    set(failures ${count} PARENT_SCOPE)
+  else()
+    message(STATUS "ok ${name}: exit 2, message: ${err}")
+  endif()
+endfunction()
+expect_usage_error("--lights: a light chosen twice" "--lights.*light 1 is chosen twice, got '1,1'" "${WORK}/bad-l*"
+                   "${VPLKIT}" render ${small} --lights 1,1 --out "${WORK}/bad-l.png")
+expect_usage_error("--lights: not indices" "--lights.*expected all, none or light indices separated by commas.*'0,,1'" "${WORK}/bad-l*"
+                   "${VPLKIT}" render ${small} --lights 0,,1 --out "${WORK}/bad-l.png")
+expect_usage_error("--lights: the Cornell box has no light 3" "--lights: the scene has no light 3 \\(it has 1, 0 to 0\\)" "${WORK}/bad-l*"
+                   "${VPLKIT}" render ${small} --lights 3 --out "${WORK}/bad-l.png")
+expect_usage_error("--light without a light" "--light: the scene has no light to place" "${WORK}/bad-l*"
+                   "${VPLKIT}" render ${small} --lights none --light 0,1,0,0,0,0 --out "${WORK}/bad-l.png")
+# A glTF with 9 point lights in front of a triangle: refused naming --lights, accepted with two chosen.
+set(nine_lights "")
+set(nine_nodes "{\"mesh\":0}")
+set(nine_scene "0")
+foreach(k RANGE 8)
+  if(k GREATER 0)
+    string(APPEND nine_lights ",")
+  endif()
+  string(APPEND nine_lights "{\"type\":\"point\",\"intensity\":${k}.5}")
+  math(EXPR node "${k} + 1")
+  string(APPEND nine_nodes ",{\"extensions\":{\"KHR_lights_punctual\":{\"light\":${k}}},\"translation\":[0.${k},0.3,1]}")
+  string(APPEND nine_scene ",${node}")
+endforeach()
+file(WRITE "${WORK}/nine.gltf" "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[${nine_scene}]}],\"nodes\":[${nine_nodes}],"
+     "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0}}]}],\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,"
+     "\"type\":\"VEC3\",\"min\":[0,0,0],\"max\":[1,1,0]}],\"bufferViews\":[{\"buffer\":0,\"byteLength\":36}],\"buffers\":[{\"byteLength\":36,"
+     "\"uri\":\"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA\"}],\"extensionsUsed\":[\"KHR_lights_punctual\"],"
+     "\"extensions\":{\"KHR_lights_punctual\":{\"lights\":[${nine_lights}]}}}")
+expect_failure("9 lights: refused naming --lights" "9 lights, at most 8 are rendered \\(choose some with --lights\\)" "${WORK}/nine*.pfm"
+               "${VPLKIT}" reference --scene "${WORK}/nine.gltf" --size 8 --samples 1 --out "${WORK}/nine.pfm")
+expect_usage_error("9 lights: no light 9" "--lights: the scene has no light 9 \\(it has 9, 0 to 8\\)" "${WORK}/nine*.pfm"
+                   "${VPLKIT}" reference --scene "${WORK}/nine.gltf" --lights 0,9 --size 8 --samples 1 --out "${WORK}/nine.pfm")
+expect_success("9 lights: --lights 0,2 renders" "wrote .*nine\\.pfm"
+               "${VPLKIT}" reference --scene "${WORK}/nine.gltf" --lights 0,2 --size 8 --samples 1 --out "${WORK}/nine.pfm")
+
 cli_report()

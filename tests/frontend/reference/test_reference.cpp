@@ -5,10 +5,12 @@
 // samples with ray-cast visibility.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <vplkit/direct_light.hpp>
 #include <vplkit/parity/parity.hpp>
 
 #include "frontend/core/error.hpp"
@@ -249,4 +251,70 @@ TEST_CASE("the Monte Carlo reference lights the surface the camera sees on its n
   CHECK(dark_max == 0.0f);
   // The spot 2 in front of the square's lit side either way: the same light, mirrored.
   CHECK(lit_sum == doctest::Approx(front_sum).epsilon(1e-4));
+}
+
+TEST_CASE("reference direct light of a point light: point_light_irradiance where unoccluded, 0 behind a wall") {
+  mesh floor;
+  add_quad(floor, {-5, 0, 5}, {5, 0, 5}, {5, 0, -5}, {-5, 0, -5}, {0, 1, 0}, glm::vec3(0.5f));
+  scene_light bulb;
+  bulb.kind = light_kind::point;
+  bulb.point.position = {0.5f, 2.0f, -0.5f};
+  bulb.point.intensity = {3.0f, 2.0f, 1.0f};
+  const ray_scene rays(floor);
+  for (const glm::vec3 x : {glm::vec3(0.0f), glm::vec3(1.5f, 0.0f, 0.5f), glm::vec3(-3.0f, 0.0f, 4.0f)}) {
+    CAPTURE(x);
+    const glm::vec3 expected = point_light_irradiance(x, glm::vec3(0, 1, 0), bulb.point);
+    const glm::vec3 e = direct_irradiance(rays, bulb, {}, x, glm::vec3(0, 1, 0));
+    REQUIRE(expected.x > 0.0f);
+    for (int c = 0; c < 3; ++c) CHECK(e[c] == doctest::Approx(expected[c]).epsilon(1e-6));
+  }
+  // A wall at x = 1 between the bulb and the floor beyond it: no direct light there, light on the bulb's side.
+  mesh walled = floor;
+  add_quad(walled, {1, 0, -5}, {1, 0, 5}, {1, 4, 5}, {1, 4, -5}, {-1, 0, 0}, glm::vec3(0.5f));
+  const ray_scene walled_rays(walled);
+  CHECK(direct_irradiance(walled_rays, bulb, {}, glm::vec3(2.0f, 0.0f, -0.5f), glm::vec3(0, 1, 0)) == glm::vec3(0.0f));
+  CHECK(direct_irradiance(walled_rays, bulb, {}, glm::vec3(0.0f, 0.0f, -0.5f), glm::vec3(0, 1, 0)).x > 0.0f);
+  // Below the bulb's horizon (a receiver facing away from it): 0, as the kernel says.
+  CHECK(direct_irradiance(rays, bulb, {}, glm::vec3(0.0f), glm::vec3(0, -1, 0)) == glm::vec3(0.0f));
+}
+
+TEST_CASE("the Monte Carlo reference is linear in the lights: two lights' images are the sum of each alone within float rounding") {
+  // A floor and a back wall seen by the camera, a spot and a point light: the direct light and the
+  // bounce both add up, with the same sample directions (they depend on the seed and the pixel only).
+  scene s;
+  s.name = "two lights";
+  add_quad(s.geometry, {-2, 0, 2}, {2, 0, 2}, {2, 0, -2}, {-2, 0, -2}, {0, 1, 0}, glm::vec3(0.7f));
+  add_quad(s.geometry, {-2, 0, -2}, {2, 0, -2}, {2, 3, -2}, {-2, 3, -2}, {0, 0, 1}, glm::vec3(0.6f, 0.2f, 0.2f));
+  s.view.position = {0.0f, 1.5f, 3.0f};
+  s.view.target = {0.0f, 0.8f, -2.0f};
+  scene_light spot;
+  spot.spot.position = {-1.0f, 2.5f, 0.0f};
+  spot.spot.direction = glm::normalize(glm::vec3(0.3f, -1.0f, -0.4f));
+  spot.spot.intensity = glm::vec3(4.0f);
+  spot.spot.cos_inner = std::cos(glm::radians(30.0f));
+  spot.spot.cos_outer = std::cos(glm::radians(50.0f));
+  scene_light bulb;
+  bulb.kind = light_kind::point;
+  bulb.point.position = {1.0f, 1.0f, -1.0f};
+  bulb.point.intensity = {1.0f, 2.0f, 3.0f};
+  const auto render = [&](std::vector<scene_light> lights) {
+    scene lit = s;
+    lit.lights = std::move(lights);
+    return reference_one_bounce(lit, 12, 10, 8, 3u, 1);
+  };
+  const one_bounce_images a = render({spot}), b = render({bulb}), both = render({spot, bulb});
+  float largest = 0.0f;
+  for (const glm::vec4& texel : both.radiance.texels) largest = std::max({largest, texel.x, texel.y, texel.z});
+  REQUIRE(largest > 0.0f);
+  double indirect_sum = 0.0;
+  for (std::size_t i = 0; i < both.radiance.texels.size(); ++i) {
+    for (int c = 0; c < 3; ++c) {
+      const float sum = a.radiance.texels[i][c] + b.radiance.texels[i][c];
+      CHECK(std::fabs(both.radiance.texels[i][c] - sum) <= 1e-5f * std::max(sum, 1e-3f * largest));
+      const float indirect_sum_here = a.indirect.texels[i][c] + b.indirect.texels[i][c];
+      CHECK(std::fabs(both.indirect.texels[i][c] - indirect_sum_here) <= 1e-5f * std::max(indirect_sum_here, 1e-3f * largest));
+      indirect_sum += both.indirect.texels[i][c];
+    }
+  }
+  CHECK(indirect_sum > 0.0);  // the bounce is there to be summed
 }

@@ -601,3 +601,87 @@ TEST_CASE("named nodes: each names the run of triangles it and its children adde
   // A built-in scene and an OBJ have no nodes.
   CHECK(built_in_scene("cornell-box").nodes.empty());
 }
+
+namespace {
+
+// A triangle with order.size() KHR_lights_punctual lights: array entry j is a point light, a spot
+// or a sun as j % 3 is 0, 1 or 2, of intensity 2 + j, at (j, 3, -j). Node k + 1 holds entry
+// order[k], so that the order the nodes meet and the array's order differ.
+std::string lit_triangle_gltf(const std::vector<int>& order) {
+  std::string lights, nodes = R"([{"mesh": 0})", scene_nodes = "[0";
+  const int count = static_cast<int>(order.size());
+  for (int k = 0; k < count; ++k) {
+    const std::string intensity = std::to_string(2 + k);
+    if (k % 3 == 0) lights += R"({"type": "point", "color": [1, 0.5, 0.25], "intensity": )" + intensity + R"(, "range": 4})";
+    if (k % 3 == 1) lights += R"({"type": "spot", "intensity": )" + intensity + R"(, "spot": {"innerConeAngle": 0.2, "outerConeAngle": 0.5}})";
+    if (k % 3 == 2) lights += R"({"type": "directional", "color": [0.5, 1, 1], "intensity": )" + intensity + "}";
+    if (k + 1 < count) lights += ", ";
+    // Light k at (k, 3, -k); the spots turned -90 degrees about x, aiming down (-z becomes -y).
+    const std::string rotation = order[static_cast<std::size_t>(k)] % 3 == 1 ? R"(, "rotation": [-0.70710678, 0, 0, 0.70710678])" : "";
+    nodes += R"(, {"extensions": {"KHR_lights_punctual": {"light": )" + std::to_string(order[static_cast<std::size_t>(k)]) +
+             R"(}}, "translation": [)" + std::to_string(order[static_cast<std::size_t>(k)]) + ", 3, " +
+             std::to_string(-order[static_cast<std::size_t>(k)]) + "]" + rotation + "}";
+    scene_nodes += ", " + std::to_string(k + 1);
+  }
+  return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": )" + scene_nodes + R"(]}], "nodes": )" + nodes +
+         R"(], "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}], "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, )"
+         R"("type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}], "bufferViews": [{"buffer": 0, "byteLength": 36}], "buffers": [{"byteLength": 36, "uri": ")" +
+         triangle_data_uri + R"("}], "extensionsUsed": ["KHR_lights_punctual"], "extensions": {"KHR_lights_punctual": {"lights": [)" + lights + "]}}}";
+}
+
+void check_same_lights(const std::vector<scene_light>& a, const std::vector<scene_light>& b) {
+  REQUIRE(a.size() == b.size());
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    CAPTURE(k);
+    REQUIRE(a[k].kind == b[k].kind);
+    check_close(light_power(a[k]), light_power(b[k]), 1e-6f);
+    if (a[k].kind == light_kind::point) check_close(a[k].point.position, b[k].point.position, 1e-6f);
+    if (a[k].kind == light_kind::spot) {
+      check_close(a[k].spot.position, b[k].spot.position, 1e-6f);
+      check_close(a[k].spot.direction, b[k].spot.direction, 1e-6f);
+      CHECK(a[k].spot.cos_inner == doctest::Approx(b[k].spot.cos_inner).epsilon(1e-6));
+      CHECK(a[k].spot.cos_outer == doctest::Approx(b[k].spot.cos_outer).epsilon(1e-6));
+    }
+    if (a[k].kind == light_kind::directional) check_close(a[k].directional.direction, b[k].directional.direction, 1e-6f);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("three KHR_lights_punctual lights (point, spot, sun) are read in the order the nodes meet them, with their values, and written back") {
+  // The nodes meet entries 2, 0, 1 of the array: the scene's lights are in that order.
+  const scene read = parse_gltf(lit_triangle_gltf({2, 0, 1}), false, "lit.gltf", {});
+  REQUIRE(read.lights.size() == 3);
+  REQUIRE(read.lights[0].kind == light_kind::directional);
+  REQUIRE(read.lights[1].kind == light_kind::point);
+  REQUIRE(read.lights[2].kind == light_kind::spot);
+  // Photometric values one to one: intensity x colour, no unit conversion.
+  check_close(read.lights[0].directional.irradiance, glm::vec3(4.0f) * glm::vec3(0.5f, 1.0f, 1.0f), 1e-6f);
+  check_close(read.lights[0].directional.direction, glm::vec3(0, 0, -1), 1e-6f);
+  check_close(read.lights[1].point.intensity, glm::vec3(2.0f) * glm::vec3(1.0f, 0.5f, 0.25f), 1e-6f);
+  check_close(read.lights[1].point.position, glm::vec3(0, 3, 0), 1e-6f);
+  check_close(read.lights[2].spot.intensity, glm::vec3(3.0f), 1e-6f);
+  check_close(read.lights[2].spot.position, glm::vec3(1, 3, -1), 1e-6f);
+  check_close(read.lights[2].spot.direction, glm::vec3(0, -1, 0), 1e-6f);
+  CHECK(read.lights[2].spot.cos_inner == doctest::Approx(std::cos(0.2)).epsilon(1e-6));
+  CHECK(read.lights[2].spot.cos_outer == doctest::Approx(std::cos(0.5)).epsilon(1e-6));
+  // The range is not read: noted, never applied.
+  CHECK(std::any_of(read.notes.begin(), read.notes.end(), [](const std::string& note) { return note.find("light range") != std::string::npos; }));
+
+  const scene back = parse_gltf(gltf_text(read), false, "back.gltf", {});
+  check_same_lights(back.lights, read.lights);
+}
+
+TEST_CASE("a glTF with 9 lights reads; check_scene and the writer refuse it naming --lights; two chosen lights pass, 8 round-trip") {
+  scene many = parse_gltf(lit_triangle_gltf({0, 1, 2, 3, 4, 5, 6, 7, 8}), false, "nine.gltf", {});
+  REQUIRE(many.lights.size() == 9);
+  CHECK_THROWS_WITH_AS(check_scene(many), doctest::Contains("9 lights, at most 8 are rendered (choose some with --lights)"), vplkit::error);
+  const std::vector<scene_light> all = many.lights;
+  many.lights = {all[0], all[2]};
+  CHECK_NOTHROW(check_scene(many));
+  // The writer checks the scene as every consumer does: 9 lights are refused there too, 8 written and read back in order.
+  many.lights = all;
+  CHECK_THROWS_WITH_AS(gltf_text(many), doctest::Contains("choose some with --lights"), vplkit::error);
+  many.lights.pop_back();
+  check_same_lights(parse_gltf(gltf_text(many), false, "eight-back.gltf", {}).lights, many.lights);
+}

@@ -75,6 +75,28 @@ TEST_CASE("apply_pose moves a camera, a spot light and a directional light") {
   CHECK_THROWS_AS(apply_pose({{1, 1, 1}, {1, 1, 1}}, sun, "test"), error);
 }
 
+TEST_CASE("apply_pose moves a point light to the pose's position; pose_of gives it back, its target one unit below") {
+  scene_light bulb;
+  bulb.kind = light_kind::point;
+  bulb.point.intensity = glm::vec3(5.0f, 4.0f, 3.0f);
+  apply_pose({{1, 2, 3}, {4, 0, 0}}, bulb, "test");
+  CHECK(bulb.point.position == glm::vec3(1, 2, 3));
+  CHECK(bulb.point.intensity == glm::vec3(5.0f, 4.0f, 3.0f));  // the power is kept
+  const pose back = pose_of(bulb);
+  CHECK(back.position == glm::vec3(1, 2, 3));
+  CHECK(back.target == glm::vec3(1, 1, 3));
+  // The pose written by the viewer moves the bulb to the same place again (format, parse, apply).
+  pose parsed;
+  REQUIRE(parse_pose(format_pose(back), parsed).empty());
+  scene_light again;
+  again.kind = light_kind::point;
+  apply_pose(parsed, again, "test");
+  CHECK(again.point.position == bulb.point.position);
+  // A pose whose two points coincide is refused for a point light too, naming the owner, and changes nothing.
+  CHECK_THROWS_WITH_AS(apply_pose({{7, 7, 7}, {7, 7, 7}}, bulb, "--light"), doctest::Contains("--light"), error);
+  CHECK(bulb.point.position == glm::vec3(1, 2, 3));
+}
+
 namespace {
 
 // A pose file in a fresh temporary folder, removed afterwards.

@@ -65,3 +65,20 @@ TEST_CASE("fly moves position and target together along the pose's axes") {
   const pose_axes down = axes_of({{0, 5, 0}, {0, 0, 0}});
   CHECK(glm::length(down.right) == doctest::Approx(1.0f));
 }
+
+TEST_CASE("light_arguments: the text reproduces the view's lights, the selected one first and placed") {
+  const pose where{{0.5f, 2.0f, 0.25f}, {0.0f, 0.0f, 0.0f}};
+  const std::string placed = "--light " + format_pose(where);
+  // Every light of the file, the first selected: as with one light, --light alone.
+  CHECK(light_arguments(std::nullopt, 1, 0, where) == placed);
+  CHECK(light_arguments(std::nullopt, 3, 0, where) == placed);
+  // Another selected: it goes first (--light places the first chosen), the rest in their order.
+  CHECK(light_arguments(std::nullopt, 3, 2, where) == "--lights 2,0,1 " + placed);
+  CHECK(light_arguments(std::nullopt, 3, 1, where) == "--lights 1,0,2 " + placed);
+  // The view drew some of the file's lights (--lights 4,1): their file indices, even with the first selected.
+  CHECK(light_arguments(std::vector<std::size_t>{4, 1}, 2, 0, where) == "--lights 4,1 " + placed);
+  CHECK(light_arguments(std::vector<std::size_t>{4, 1}, 2, 1, where) == "--lights 1,4 " + placed);
+  // No light: nothing placed, none drawn.
+  CHECK(light_arguments(std::nullopt, 0, 0, where) == "--lights none");
+  CHECK(light_arguments(std::vector<std::size_t>{}, 0, 0, where) == "--lights none");
+}
