@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <memory>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -15,6 +16,7 @@
 #include "frontend/image/image_files.hpp"
 #include "frontend/reference/reference.hpp"
 #include "frontend/techniques/lightwave/lightwave_pipeline.hpp"
+#include "frontend/techniques/registry.hpp"
 
 using namespace vplkit;
 using namespace vplkit::parity;
@@ -893,4 +895,27 @@ TEST_CASE("Light Wave, two spots: passes named by light; moving light 1 rebuilds
   scene dark = both;
   dark.lights.clear();
   CHECK_THROWS_WITH_AS(lightwave_pipeline(test_shaders(), dark, settings), doctest::Contains("has none"), vplkit::error);
+}
+
+TEST_CASE("Light Wave, two spots: a setting applied in place reaches both lights: the image of a fresh pipeline with it") {
+  const scene both = two_spot_boxes();
+  const lightwave_settings settings = small("lightwave-accurate");
+  lightwave_pipeline pipeline(test_shaders(), both, settings);
+  pipeline.draw();
+  // The clamp distance: in place, the shadow maps redrawn and the same VPLs summed again, per light.
+  std::unique_ptr<technique_settings> live = family_of("lightwave-accurate").make_settings("lightwave-accurate");
+  auto& typed = dynamic_cast<described_settings<lightwave_settings, lightwave_technique>&>(*live);
+  typed.value() = settings;
+  typed.value().irradiance.min_distance = 0.4f;
+  REQUIRE(pipeline.apply_settings(*live));
+  pipeline.draw_changed();
+  const image applied = pipeline.output().read_image();
+  const image fresh = lightwave_pipeline(test_shaders(), both, typed.value()).render().radiance;
+  const image before = lightwave_pipeline(test_shaders(), both, settings).render().radiance;
+  std::size_t changed = 0;
+  for (std::size_t i = 0; i < applied.texels.size(); ++i) {
+    for (int c = 0; c < 3; ++c) REQUIRE(applied.texels[i][c] == doctest::Approx(fresh.texels[i][c]).epsilon(1e-6).scale(1e-7));
+    changed += std::abs(fresh.texels[i].r - before.texels[i].r) > 1e-4f * (before.texels[i].r + 1e-3f);
+  }
+  CHECK(changed > 0);  // the setting changes the image: the comparison above sees it
 }
