@@ -158,6 +158,41 @@ OutputIterator lightwave_layout(const lightwave_layout_settings<T>& settings, Ou
   return out;
 }
 
+// ---- A point light's VPLs: the stacked hemispheres on both sides of the light ----
+//
+// A point light sends light into the whole sphere, and [LW]'s hemispheres face one way. The
+// sphere layout is the hemisphere layout twice: around an axis `light_direction` (any unit
+// vector; its choice only turns the pattern) and around its opposite. The thesis layout's last
+// ring lies at 90 degrees, on the equator both hemispheres share, so the second hemisphere leaves
+// that ring out (no VPL twice); the flux layout's patches of half-angle 90 tile each hemisphere,
+// so both keep every ray and the patches tile the sphere (solid angles summing to 4 pi).
+
+/// Rays of the thesis layout over the sphere: both hemispheres, the equator's ring once.
+constexpr int lightwave_sphere_ray_count(int angle_deg) { return 2 * lightwave_ray_count(angle_deg) - 360 / angle_deg; }
+
+/// VPLs of the thesis layout over the sphere: per_ray on each of lightwave_sphere_ray_count rays.
+constexpr int lightwave_sphere_vpl_count(int angle_deg, int per_ray) { return per_ray * lightwave_sphere_ray_count(angle_deg); }
+
+/// Samples of the flux layout over the sphere: a hemisphere's cone layout (half-angle 90) twice.
+constexpr int lightwave_sphere_sample_count(int angle_deg, int per_ray) { return 2 * lightwave_vpl_count(angle_deg, per_ray); }
+
+/// VPL `index` (0 .. lightwave_sphere_vpl_count - 1) of the thesis layout over the sphere: first
+/// the hemisphere layout's VPLs around light_direction in their order (lightwave_layout_vpl), then
+/// those around -light_direction without its equator ring, hemisphere-major.
+template <typename T>
+lightwave_vpl<T> lightwave_sphere_layout_vpl(int index, const lightwave_layout_settings<T>& settings) {
+  const int rays = lightwave_ray_count(settings.angle_deg);
+  const int first = settings.per_ray * rays;
+  if (index < first) return lightwave_layout_vpl(index, settings);
+  // The equator ring is the last one (ray indices rays - 360 / angle .. rays - 1).
+  const int lower_rays = rays - 360 / settings.angle_deg;
+  const int hemisphere = (index - first) / lower_rays;
+  const int ray = (index - first) - hemisphere * lower_rays;
+  lightwave_layout_settings<T> opposite = settings;
+  opposite.light_direction = -settings.light_direction;
+  return lightwave_layout_vpl(hemisphere * rays + ray, opposite);
+}
+
 // ---- VPLs that carry the light's flux (vplkit's default energy; docs/errata.md, LW-8) ----
 //
 // The thesis's VPLs float in space with a strength that ignores the light (Eq. 4.5 has no flux
@@ -242,6 +277,31 @@ glm::vec<3, T> lightwave_ray_flux(const spot_light<T>& light, const glm::vec<3, 
   const T cone = spot_light_cone(light, glm::dot(light.direction, direction));
   const T facing = glm::dot(surface_normal, direction) < T(0) ? T(1) : T(0);
   return albedo * light.intensity * (facing * cone * solid_angle);
+}
+
+/// Sample `index` (0 .. lightwave_sphere_sample_count - 1) of a point light's flux layout:
+/// (unit direction, solid angle). Below lightwave_vpl_count: lightwave_cone_sample around
+/// settings.light_direction with the half-angle 90; from there on the same around its opposite.
+/// settings.half_angle_deg is not read (a sphere has no cone).
+template <typename T>
+glm::vec<4, T> lightwave_sphere_sample(int index, const lightwave_cone_settings<T>& settings) {
+  const int count = lightwave_vpl_count(settings.angle_deg, settings.per_ray);
+  lightwave_cone_settings<T> hemisphere = settings;
+  hemisphere.half_angle_deg = T(90);
+  if (index >= count) {
+    hemisphere.light_direction = -settings.light_direction;
+    index -= count;
+  }
+  return lightwave_cone_sample(index, hemisphere);
+}
+
+/// The flux a point light's patch brings to the surface it meets and that surface reflects:
+/// albedo * I * solid_angle, 0 when the surface faces away from the light.
+template <typename T>
+glm::vec<3, T> lightwave_ray_flux(const point_light<T>& light, const glm::vec<3, T>& direction, T solid_angle, const glm::vec<3, T>& albedo,
+                                  const glm::vec<3, T>& surface_normal) {
+  const T facing = glm::dot(surface_normal, direction) < T(0) ? T(1) : T(0);
+  return albedo * light.intensity * (facing * solid_angle);
 }
 
 /// The radius of the disk with the area a patch of `solid_angle` covers on a surface at

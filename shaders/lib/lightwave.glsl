@@ -58,6 +58,26 @@ lightwave_vpl lightwave_layout_vpl(int index, lightwave_layout_settings settings
                        lightwave_attenuation(hemisphere));
 }
 
+// ---- A point light's VPLs: the stacked hemispheres on both sides (see the C++ twin) ----
+
+int lightwave_sphere_ray_count(int angle_deg) { return 2 * lightwave_ray_count(angle_deg) - 360 / angle_deg; }
+
+int lightwave_sphere_vpl_count(int angle_deg, int per_ray) { return per_ray * lightwave_sphere_ray_count(angle_deg); }
+
+int lightwave_sphere_sample_count(int angle_deg, int per_ray) { return 2 * lightwave_vpl_count(angle_deg, per_ray); }
+
+lightwave_vpl lightwave_sphere_layout_vpl(int index, lightwave_layout_settings settings) {
+  int rays = lightwave_ray_count(settings.angle_deg);
+  int first = settings.per_ray * rays;
+  if (index < first) return lightwave_layout_vpl(index, settings);
+  int lower_rays = rays - 360 / settings.angle_deg;
+  int hemisphere = (index - first) / lower_rays;
+  int ray = (index - first) - hemisphere * lower_rays;
+  lightwave_layout_settings opposite = settings;
+  opposite.light_direction = -settings.light_direction;
+  return lightwave_layout_vpl(hemisphere * rays + ray, opposite);
+}
+
 // ---- VPLs that carry the light's flux (see the C++ twin) ----
 
 struct lightwave_cone_settings {
@@ -93,6 +113,22 @@ vec3 lightwave_ray_flux(spot_light light, vec3 direction, float solid_angle, vec
   float cone = spot_light_cone(light, dot(light.direction, direction));
   float facing = dot(surface_normal, direction) < 0.0 ? 1.0 : 0.0;
   return albedo * light.intensity * (facing * cone * solid_angle);
+}
+
+vec4 lightwave_sphere_sample(int index, lightwave_cone_settings settings) {
+  int count = lightwave_vpl_count(settings.angle_deg, settings.per_ray);
+  lightwave_cone_settings hemisphere = settings;
+  hemisphere.half_angle_deg = 90.0;
+  if (index >= count) {
+    hemisphere.light_direction = -settings.light_direction;
+    index -= count;
+  }
+  return lightwave_cone_sample(index, hemisphere);
+}
+
+vec3 lightwave_ray_flux(point_light light, vec3 direction, float solid_angle, vec3 albedo, vec3 surface_normal) {
+  float facing = dot(surface_normal, direction) < 0.0 ? 1.0 : 0.0;
+  return albedo * light.intensity * (facing * solid_angle);
 }
 
 float lightwave_patch_radius(float solid_angle, float distance_to_patch, float cos_incidence) {

@@ -445,3 +445,100 @@ TEST_CASE("lightwave_flux_vpl_faces: exactly where a flux VPL's light is positiv
   CHECK(lit > 2000);  // a quarter of random pairs face each other
   CHECK(lit < 8000);
 }
+
+TEST_CASE("a point light's flux layout: the sphere's patches' solid angles sum to 4 pi, every direction once, both hemispheres alike") {
+  for (int angle : {5, 10, 30, 90})
+    for (int per_ray : {1, 3, 5}) {
+      lightwave_cone_settings<double> settings = cone_settings(angle, per_ray, 17.0);  // the half-angle is not read
+      const int count = lightwave_sphere_sample_count(angle, per_ray), half = lightwave_vpl_count(angle, per_ray);
+      REQUIRE(count == 2 * half);
+      double total = 0.0, upper = 0.0;
+      glm::dvec3 mean(0.0);  // sum of direction * solid angle
+      for (int index = 0; index < count; ++index) {
+        const glm::dvec4 sample = lightwave_sphere_sample(index, settings);
+        const glm::dvec3 direction(sample);
+        REQUIRE(glm::length(direction) == doctest::Approx(1.0).epsilon(1e-8));
+        REQUIRE(sample.w > 0.0);
+        // The first half faces the axis, the second its opposite (the equator's patches touch it).
+        const double side = glm::dot(direction, settings.light_direction);
+        REQUIRE((index < half ? side : -side) >= -1e-9);
+        // The second half mirrors the first: the same solid angles in the same order.
+        if (index >= half) REQUIRE(sample.w == doctest::Approx(lightwave_sphere_sample(index - half, settings).w).epsilon(1e-12));
+        total += sample.w;
+        if (index < half) upper += sample.w;
+        mean += direction * sample.w;
+      }
+      CAPTURE(angle);
+      CAPTURE(per_ray);
+      CHECK(total == doctest::Approx(4.0 * pi).epsilon(1e-8));
+      CHECK(upper == doctest::Approx(2.0 * pi).epsilon(1e-8));
+      // The hemispheres mirror each other's polar angles: the component along the axis cancels
+      // (a layout that put both halves on one side would give 2 pi).
+      CHECK(std::abs(glm::dot(mean, settings.light_direction)) < 1e-6);
+    }
+}
+
+TEST_CASE("a point light's flux: the VPLs of the sphere carry 4 pi I times the albedo; nothing on a back face") {
+  point_light<double> light;
+  light.position = {0.1, 1.5, -0.2};
+  light.intensity = glm::dvec3(2.0, 1.0, 0.5);
+  const glm::dvec3 albedo(0.5, 0.25, 1.0);
+  const glm::dvec3 down(0, -1, 0);
+  CHECK(lightwave_ray_flux(light, down, 0.01, albedo, glm::dvec3(0, 1, 0)) == glm::dvec3(0.01, 0.0025, 0.005));
+  CHECK(lightwave_ray_flux(light, down, 0.01, albedo, glm::dvec3(0, -1, 0)) == glm::dvec3(0.0));  // the back of a surface
+  // Every direction lit, the same as a spot whose cone is open everywhere.
+  spot_light<double> open;
+  open.position = light.position;
+  open.direction = down;
+  open.intensity = light.intensity;
+  open.cos_inner = -1.0;
+  open.cos_outer = -1.0 - 1e-9;
+  const glm::dvec3 sideways = glm::normalize(glm::dvec3(1.0, 0.2, 0.0)), facing_it(-1.0, 0.0, 0.0);
+  CHECK(lightwave_ray_flux(light, sideways, 0.02, albedo, facing_it) == lightwave_ray_flux(open, sideways, 0.02, albedo, facing_it));
+  // Summed over the sphere with every surface facing its ray: 4 pi I albedo.
+  const lightwave_cone_settings<double> settings = cone_settings(5, 5, 90.0);
+  glm::dvec3 total(0.0);
+  for (int index = 0; index < lightwave_sphere_sample_count(5, 5); ++index) {
+    const glm::dvec4 sample = lightwave_sphere_sample(index, settings);
+    total += lightwave_ray_flux(light, glm::dvec3(sample), sample.w, albedo, -glm::dvec3(sample));
+  }
+  CHECK(total.x == doctest::Approx(4.0 * pi * 2.0 * 0.5).epsilon(1e-8));
+  CHECK(total.y == doctest::Approx(4.0 * pi * 1.0 * 0.25).epsilon(1e-8));
+  CHECK(total.z == doctest::Approx(4.0 * pi * 0.5 * 1.0).epsilon(1e-8));
+}
+
+TEST_CASE("a point light's thesis layout: the stacked hemispheres on both sides, the equator's ring once, the first half the spot's layout") {
+  for (int angle : {5, 10, 30, 45, 90}) {
+    lightwave_layout_settings<double> settings;
+    settings.light_position = {0.3, 2.0, -0.4};
+    settings.light_direction = glm::normalize(glm::dvec3(0.2, -1.0, 0.1));
+    settings.angle_deg = angle;
+    settings.per_ray = 3;
+    settings.max_distance = 3.0;
+    const int rays = lightwave_ray_count(angle), count = lightwave_sphere_vpl_count(angle, 3);
+    REQUIRE(count == 3 * (2 * rays - 360 / angle));
+    std::vector<lightwave_vpl<double>> vpls;
+    for (int index = 0; index < count; ++index) vpls.push_back(lightwave_sphere_layout_vpl(index, settings));
+    int below = 0;
+    for (int index = 0; index < count; ++index) {
+      const lightwave_vpl<double>& vpl = vpls[static_cast<std::size_t>(index)];
+      if (index < 3 * rays) {
+        const lightwave_vpl<double> spot = lightwave_layout_vpl(index, settings);
+        REQUIRE(vpl.position == spot.position);
+        REQUIRE(vpl.attenuation == spot.attenuation);
+      }
+      const glm::dvec3 offset = vpl.position - settings.light_position;
+      REQUIRE(glm::dot(vpl.normal, glm::normalize(offset)) == doctest::Approx(1.0).epsilon(1e-9));  // away from the light
+      below += glm::dot(vpl.normal, settings.light_direction) < -1e-6;
+    }
+    CAPTURE(angle);
+    // The second hemisphere: every ray strictly below the equator, as many as above it.
+    CHECK(below == 3 * (rays - 360 / angle));
+    // Each hemisphere's VPLs (same distance, same attenuation) at distinct places: none twice on the equator.
+    double closest = 1e30;
+    for (std::size_t i = 0; i < vpls.size(); ++i)
+      for (std::size_t j = i + 1; j < vpls.size(); ++j)
+        if (vpls[i].attenuation == vpls[j].attenuation) closest = std::min(closest, glm::length(vpls[i].position - vpls[j].position));
+    CHECK(closest > 1e-3);
+  }
+}

@@ -415,3 +415,76 @@ TEST_CASE("parity: the flux VPLs' light summed per vertex (lightwave_vertex_boun
                              gpu_sums.floats[k], packed_sums[k], inputs, bounds, 4));
   }
 }
+
+TEST_CASE("parity: a point light's sphere layouts (lightwave_sphere_sample, lightwave_sphere_layout_vpl) and its ray flux, on every target") {
+  const lightwave_layout_settings<float> layout = test_layout();
+  const int samples = lightwave_sphere_sample_count(layout.angle_deg, layout.per_ray);  // 12970
+  const int vpls = lightwave_sphere_vpl_count(layout.angle_deg, layout.per_ray);        // 12610
+  kernel_inputs inputs;
+  inputs.width = 128;
+  inputs.height = 102;  // 13056 texels >= 12970
+  inputs.uints.assign(1, std::vector<glm::uvec4>(inputs.size()));
+  inputs.floats.assign(1, std::vector<glm::vec4>(inputs.size()));
+  std::mt19937 random(38);
+  std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    inputs.uints[0][i] = glm::uvec4(static_cast<unsigned>(std::min<std::size_t>(i, static_cast<std::size_t>(samples - 1))),
+                                    static_cast<unsigned>(i % static_cast<std::size_t>(vpls)), 0u, 0u);
+    // A surface normal for the flux: random, so that both faces are met.
+    inputs.floats[0][i] = glm::vec4(glm::normalize(glm::vec3(uniform(random), uniform(random), uniform(random))), 0.0f);
+  }
+  point_light<float> light;
+  light.position = {0.2f, 1.9f, -0.3f};
+  light.intensity = {3.0f, 2.0f, 1.0f};
+  kernel_source source;
+  source.includes = {"lib/lightwave.glsl"};
+  // The cone settings from the layout's block (every target has std140 blocks; the half-angle is not read).
+  source.body = "lightwave_cone_settings cone = lightwave_cone_settings(layout_settings.light_direction, layout_settings.angle_deg, layout_settings.per_ray, 17.0);\n"
+                "vec4 sample_ = lightwave_sphere_sample(int(uin0.x), cone);\n"
+                "lightwave_vpl vpl = lightwave_sphere_layout_vpl(int(uin0.y), layout_settings);\n"
+                "fout0 = sample_;\n"
+                "fout1 = vec4(vpl.position, vpl.attenuation);\n"
+                "fout2 = vec4(vpl.normal, float(lightwave_sphere_vpl_count(layout_settings.angle_deg, layout_settings.per_ray)));\n"
+                "fout3 = vec4(lightwave_ray_flux(light, sample_.xyz, sample_.w, vec3(0.5, 0.7, 0.9), fin0.xyz), "
+                "float(lightwave_sphere_sample_count(layout_settings.angle_deg, layout_settings.per_ray)));";
+  source.float_outputs = 4;
+  kernel_resources resources;
+  resources.blocks = {settings_block("layout_settings", layout), settings_block("light", light)};
+  lightwave_cone_settings<float> cone;
+  cone.light_direction = layout.light_direction;
+  cone.angle_deg = layout.angle_deg;
+  cone.per_ray = layout.per_ray;
+  cone.half_angle_deg = 17.0f;
+  std::vector<glm::vec4> sample_out(inputs.size()), position(inputs.size()), normal(inputs.size()), flux(inputs.size());
+  std::size_t lit = 0;
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const glm::vec4 sample = lightwave_sphere_sample(static_cast<int>(inputs.uints[0][i].x), cone);
+    const lightwave_vpl<float> vpl = lightwave_sphere_layout_vpl(static_cast<int>(inputs.uints[0][i].y), layout);
+    sample_out[i] = sample;
+    position[i] = glm::vec4(vpl.position, vpl.attenuation);
+    normal[i] = glm::vec4(vpl.normal, static_cast<float>(vpls));
+    flux[i] = glm::vec4(lightwave_ray_flux(light, glm::vec3(sample), sample.w, glm::vec3(0.5f, 0.7f, 0.9f), glm::vec3(inputs.floats[0][i])),
+                        static_cast<float>(samples));
+    lit += flux[i].x > 0.0f;
+  }
+  CHECK(lit > inputs.size() / 4);  // both faces are met
+  CHECK(lit < 3 * inputs.size() / 4);
+  for (const testing::target_run& run : testing::every_target()) {
+    const std::string target = run.name();
+    CAPTURE(target);
+    if (!testing::target_runs(run.where)) continue;
+    source.name = "point light sphere layouts (" + target + ")";
+    const kernel_outputs gpu = run.run(source, inputs, run.where, resources);
+    // As lightwave_cone_sample's and lightwave_layout_vpl's bounds: the same arithmetic, plus a negation.
+    require_parity(compare("lightwave_sphere_sample (" + target + ")", gpu.floats[0], sample_out, inputs, {1e-6f, 1e-6f, 16, 0.0, "polynomial cos, sqrt, normalize, cross"}));
+    require_parity(compare("lightwave_sphere_layout_vpl position, attenuation (" + target + ")", gpu.floats[1], position, inputs,
+                           {1e-6f, 0.0f, 8, 0.0, "polynomial sin/cos, normalize, cross"}));
+    require_parity(compare("lightwave_sphere_layout_vpl normal, count (" + target + ")", gpu.floats[2], normal, inputs,
+                           {1e-6f, 0.0f, 8, 0.0, "polynomial sin/cos, normalize, cross"}));
+    // The flux: the sample's solid angle (1e-6 relative) times the intensity and albedo; whether
+    // the random surface faces the ray is a decision that may flip where they are perpendicular
+    // to a few ulp (1e-3 of the texels at most).
+    require_parity(compare("lightwave_ray_flux for a point light (" + target + ")", gpu.floats[3], flux, inputs,
+                           {1e-7f, 2e-6f, 16, 1e-3, "the solid angle's cancellation; the facing decision at near-ties"}));
+  }
+}

@@ -36,10 +36,12 @@ lightwave_pipeline::lightwave_pipeline(const shader_library& shaders, const scen
                                   has_alpha_cutouts(source.geometry) ? shader_defines{} : shader_defines{{"VPLKIT_MATERIAL_NO_ALPHA_TEST", "1"}})),
       shadow_framebuffer_(generate_framebuffer()),
       target_(settings.width, settings.height, {settings.format, settings.format, settings.format, settings.format}, true) {
-  const scene_light& primary = single_light(source, "Light Wave");
-  if (primary.kind != light_kind::spot)
-    throw error("Light Wave needs a spot light; scene " + source.name + " has a " + light_kind_name(primary.kind) + " one");
-  check_light(primary, "scene " + source.name);
+  if (source.lights.empty()) throw error("Light Wave draws at least one light; scene " + source.name + " has none (choose some with --lights)");
+  check_lights(source.lights, "scene " + source.name);
+  for (std::size_t k = 0; k < source.lights.size(); ++k)
+    if (source.lights[k].kind != light_kind::spot)
+      throw error("Light Wave draws spot lights; scene " + source.name + "'s light " + std::to_string(k) + " is a " +
+                  light_kind_name(source.lights[k].kind) + " one (choose the spots with --lights)");
   const shader_defines defines = shader_defines_of();
   load_main_programs(shaders, defines);
   // Direct light alone and the faked indirect light use no VPLs.
@@ -49,6 +51,20 @@ lightwave_pipeline::lightwave_pipeline(const shader_library& shaders, const scen
     set_up_indirect_buffer(shaders, source, defines);
   }
   allocate_shadow_maps();
+  // Each further light: a pipeline of its own on the scene with that light alone. The images are
+  // linear in the light, so their sum is the image of all lights; the caches (VPLs, shadow maps,
+  // receivers' sums) stay per light, so moving one light rebuilds that light's alone.
+  if (source.lights.size() > 1) {
+    pass_prefix_ = "light 0: ";
+    sum_program_ = load_program(shaders, "fullscreen.vert", "lightwave_sum.frag");
+    if (!empty_vertex_array_.get()) empty_vertex_array_ = gl_vertex_array(generate_vertex_array());
+    for (std::size_t k = 1; k < source.lights.size(); ++k) {
+      scene alone = source;
+      alone.lights = {source.lights[k]};
+      light_pipelines_.push_back(std::make_unique<lightwave_pipeline>(shaders, alone, settings));
+      light_pipelines_.back()->pass_prefix_ = "light " + std::to_string(k) + ": ";
+    }
+  }
 }
 
 // The defines every program of the main pass is built with.
@@ -145,6 +161,9 @@ bool lightwave_pipeline::apply_settings(const technique_settings& settings) {
   const bool clamp_moves = next.irradiance.min_distance != settings_.irradiance.min_distance;
   const bool shadows_move = vpls_move || clamp_moves || next.seed != settings_.seed || next.vpl_field_of_view != settings_.vpl_field_of_view ||
                             next.accurate_maps != settings_.accurate_maps || next.integrated_maps != settings_.integrated_maps;
+  // The further lights' pipelines share these settings: the same tests hold for them.
+  for (const auto& other : light_pipelines_)
+    if (!other->apply_settings(settings)) return false;
   settings_ = next;
   if (vpls_move) vpls_dirty_ = true;
   if (clamp_moves && receiver_buffers_) sums_dirty_ = true;
@@ -156,10 +175,12 @@ bool lightwave_pipeline::apply_settings(const technique_settings& settings) {
 void lightwave_pipeline::set_light(std::size_t index, const scene_light& light) {
   if (index >= scene_.lights.size())
     throw error("Light Wave scene " + scene_.name + ": no light " + std::to_string(index) + " (it has " + std::to_string(scene_.lights.size()) + ")");
-  if (light.kind != light_kind::spot) throw error("Light Wave needs a spot light; make a new pipeline for a scene with a directional one");
+  if (light.kind != light_kind::spot)
+    throw error("Light Wave draws spot lights; light " + std::to_string(index) + " would be a " + light_kind_name(light.kind) + " one");
   check_light(light, "Light Wave scene " + scene_.name);
   scene_.lights[index].spot = light.spot;
-  vpls_dirty_ = shadows_dirty_ = true;
+  if (index == 0) vpls_dirty_ = shadows_dirty_ = true;
+  else light_pipelines_[index - 1]->set_light(0, light);
   view_valid_ = false;
 }
 
@@ -174,7 +195,8 @@ std::string lightwave_pipeline::draw_counts() const {
 
 std::string lightwave_pipeline::describe() const {
   std::ostringstream out;
-  out << "scene " << scene_.name << " (" << scene_.geometry.triangle_count() << " triangles), technique " << settings_.technique << ", " << settings_.width
+  out << "scene " << scene_.name << " (" << scene_.geometry.triangle_count() << " triangles), "
+      << (light_pipelines_.empty() ? std::string() : std::to_string(light_count()) + " lights (the counts below per light), ") << "technique " << settings_.technique << ", " << settings_.width
       << "x" << settings_.height << ", " << vpl_count() << " VPLs (" << settings_.angle_deg << " degrees, " << settings_.per_ray << " per ray"
       << (settings_.energy == lightwave_energy::flux && technique_.mode >= lightwave_mode::unshadowed
               ? ", flux energy: " + std::to_string(lit_vpl_count()) + " carry light"
@@ -405,6 +427,7 @@ void lightwave_pipeline::set_camera(const camera& view) {
   scene_.view = view;
   if (casters_follow_camera()) shadows_dirty_ = true;
   view_valid_ = false;
+  for (const auto& other : light_pipelines_) other->set_camera(view);
 }
 
 lightwave_frame lightwave_pipeline::render() {
@@ -413,21 +436,78 @@ lightwave_frame lightwave_pipeline::render() {
   frame.radiance = target_.read_image(0);
   frame.indirect_shadow = target_.read_image(1);
   frame.indirect = target_.read_image(2);
-  frame.pass_times = timer_.collect();
+  frame.pass_times = collect_pass_times();
   return frame;
 }
 
 void lightwave_pipeline::draw() {
   vpls_dirty_ = shadows_dirty_ = true;
+  for (const auto& other : light_pipelines_) other->vpls_dirty_ = other->shadows_dirty_ = true;
   draw_changed();
 }
 
 void lightwave_pipeline::draw_changed() {
+  // The further lights first: a light whose image changed changes the sum, which starts from the
+  // first light's image.
+  for (const auto& other : light_pipelines_) {
+    const int draws = other->main_draws_;
+    other->draw_changed();
+    if (other->main_draws_ != draws) view_valid_ = false;
+  }
   if (vpls_dirty_ || shadows_dirty_) {
     rebuild();
     view_valid_ = false;
   }
-  if (!view_valid_) draw_main_pass();
+  if (!view_valid_) {
+    draw_main_pass();
+    add_light_pipelines();
+  }
+}
+
+void lightwave_pipeline::add_light_pipelines() {
+  if (light_pipelines_.empty()) return;
+  timer_.begin("sum of the lights");
+  target_.bind();
+  glDisable(GL_DEPTH_TEST);
+  glDepthMask(GL_FALSE);
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_ONE, GL_ONE);
+  // The indirect shadow factor is a ratio, not a light: the first light's stays.
+  glColorMaski(1, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  sum_program_.use();
+  sum_program_.set("radiance_image", 0);
+  sum_program_.set("indirect_image", 1);
+  sum_program_.set("irradiance_image", 2);
+  glBindVertexArray(empty_vertex_array_.get());
+  for (const auto& other : light_pipelines_) {
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, other->target_.colour(0).id());
+    glActiveTexture(GL_TEXTURE1);
+    glBindTexture(GL_TEXTURE_2D, other->target_.colour(2).id());
+    glActiveTexture(GL_TEXTURE2);
+    glBindTexture(GL_TEXTURE_2D, other->target_.colour(3).id());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+  }
+  glBindVertexArray(0);
+  glColorMaski(1, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glDisable(GL_BLEND);
+  glDepthMask(GL_TRUE);
+  glEnable(GL_DEPTH_TEST);
+  timer_.end();
+  check_gl("adding the further lights' Light Wave images");
+}
+
+std::vector<pass_time> lightwave_pipeline::collect_pass_times() {
+  // The further lights' passes ran first (draw_changed).
+  std::vector<pass_time> times;
+  for (const auto& other : light_pipelines_)
+    for (pass_time& t : other->collect_pass_times()) times.push_back(std::move(t));
+  for (pass_time& t : timer_.collect()) {
+    // The sum belongs to no one light.
+    if (t.pass != "sum of the lights") t.pass = pass_prefix_ + t.pass;
+    times.push_back(std::move(t));
+  }
+  return times;
 }
 
 void lightwave_pipeline::draw_main_pass() {

@@ -8,10 +8,15 @@
 // the light sees, each reflecting the flux its patch of the cone brings, summed once per light at
 // the vertices of the scene subdivided (lightwave_capture.frag) and drawn into a screen buffer
 // the main pass reads (docs/lightwave-shadows.md).
+// Several lights (spots, up to max_scene_lights): the first is drawn here, each further one by a
+// pipeline of its own on the scene with that light alone (its own VPLs, shadow maps and, for the
+// flux energy, receivers' sums), whose images are added onto the first's (lightwave_sum.frag);
+// pass times carry the light's number ("light 1: shadow maps").
 #pragma once
 
 #include <cstdint>
 #include <array>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -55,8 +60,8 @@ class lightwave_pipeline final : public pipeline {
   /// the camera; the flux energy's do not), the main
   /// pass after any move; nothing when nothing moved.
   void draw_changed() override;
-  /// Moves the spot light: VPLs and shadow maps are rebuilt on the next frame. Throws
-  /// vplkit::error for a directional light or an invalid one.
+  /// Moves spot light `index`: its VPLs and shadow maps are rebuilt on the next frame. Throws
+  /// vplkit::error for a light that is not a spot, an invalid one or an index past the scene's lights.
   void set_light(std::size_t index, const scene_light& light) override;
   /// Moves the camera. The VPLs stay; the shadow maps are rebuilt on the next frame only for the
   /// importance variant of the accurate shadows, whose casters are drawn and aimed for the
@@ -69,7 +74,8 @@ class lightwave_pipeline final : public pipeline {
   /// the main pass, after the VPLs and shadow maps where the change moves them.
   bool apply_settings(const technique_settings& settings) override;
   /// The pass times since the last render() or collect_pass_times().
-  std::vector<pass_time> collect_pass_times() override { return timer_.collect(); }
+  /// With several lights each pass's name starts with its light's ("light 1: shadow maps").
+  std::vector<pass_time> collect_pass_times() override;
   /// The last frame's radiance and indirect shadow factor (red).
   const texture_2d& output() const override { return target_.colour(0); }
   const texture_2d* indirect_shadow_output() const override;
@@ -81,7 +87,10 @@ class lightwave_pipeline final : public pipeline {
   std::string draw_counts() const override;
   std::string describe() const override;
   std::string scene_name() const override { return scene_.name; }
-  /// How many times VPLs and shadow maps have been built (1 after the first frame).
+  /// The lights drawn: the scene's (each its own VPLs and shadow maps).
+  std::size_t light_count() const { return 1 + light_pipelines_.size(); }
+  /// How many times the first light's VPLs and shadow maps have been built (1 after the first frame).
+  /// The accessors below (VPLs, casters, captures) are the first light's.
   int rebuilds() const { return rebuilds_; }
   std::uint64_t shadow_map_bytes() const;
   /// The layout's VPLs (Eq. 5.1); the flux energy keeps those whose ray met a lit surface.
@@ -142,6 +151,8 @@ class lightwave_pipeline final : public pipeline {
   };
   frame_geometry geometry() const;
   void draw_main_pass();
+  /// Several lights: the further lights' images added onto target_ (lightwave_sum.frag).
+  void add_light_pipelines();
   /// The accurate shadows' importance variant: casters grouped by the light they bring to points
   /// of the surface, and maps aimed at those points.
   bool casters_by_importance() const {
@@ -208,6 +219,11 @@ class lightwave_pipeline final : public pipeline {
   bool view_valid_ = false;    ///< the main pass matches the camera and the light
   int rebuilds_ = 0;
   int main_draws_ = 0;
+  /// Lights 1 .. n - 1, each drawn by a pipeline on the scene with that light alone.
+  std::vector<std::unique_ptr<lightwave_pipeline>> light_pipelines_;
+  program sum_program_;  ///< lightwave_sum.frag, with several lights
+  /// "light k: " before the pass names with several lights, else empty.
+  std::string pass_prefix_;
 };
 
 }  // namespace vplkit
