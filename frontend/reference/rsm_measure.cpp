@@ -63,9 +63,9 @@ frame_reference make_frame_reference(const shader_library& shaders, const scene&
     rsm_brute_force_options options;
     options.receiver_stride = stride;
     options.threads = threads;
-    reference.unoccluded = reference_rsm_gather(*reference.rays, reference.buffers, reference.constants, options);
+    reference.unoccluded = reference_rsm_gather(*reference.rays, pipeline, options);  // every light's, summed
     options.exact_visibility = true;
-    reference.exact = reference_rsm_gather(*reference.rays, reference.buffers, reference.constants, options);
+    reference.exact = reference_rsm_gather(*reference.rays, pipeline, options);
     if (!cache.empty())
       write_all_or_nothing({{unoccluded_file, [&] { return encode_pfm(reference.unoccluded); }}, {exact_file, [&] { return encode_pfm(reference.exact); }}});
   }
@@ -73,7 +73,7 @@ frame_reference make_frame_reference(const shader_library& shaders, const scene&
   reference.covered = blank(reference);
   reference.uncovered = blank(reference);
   reference.leak = blank(reference);
-  const std::vector<std::uint8_t> covered = rsm_covered_receivers(reference.buffers, reference.constants, stride);
+  const std::vector<std::uint8_t> covered = rsm_covered_receivers(pipeline, stride);
   double all = 0.0, behind = 0.0, seen = 0.0, leak_all = 0.0, leak_seen = 0.0;
   for (int y = 0; y < reference.unoccluded.height; y += stride)
     for (int x = 0; x < reference.unoccluded.width; x += stride) {
