@@ -51,6 +51,7 @@ frame_reference make_frame_reference(const shader_library& shaders, const scene&
   pipeline.render();
   reference.buffers = pipeline.read_buffers();
   reference.constants = pipeline.constants();
+  reference.views = pipeline.view_count();
   reference.stride = stride;
   const std::string unoccluded_file = cache + "-unoccluded.pfm", exact_file = cache + "-exact.pfm";
   if (!cache.empty() && std::filesystem::exists(unoccluded_file) && std::filesystem::exists(exact_file)) {
@@ -105,7 +106,20 @@ frame_reference make_frame_reference(const shader_library& shaders, const scene&
   return reference;
 }
 
+namespace {
+
+// The radius and visibility splits run one view's RSM: with several they would compare the sum of
+// every light's gather with one light's.
+void require_one_view(const frame_reference& reference, const char* what) {
+  if (reference.views > 1)
+    throw error(std::string(what) + " measures one light view; scene " + reference.source->name + " has " + std::to_string(reference.views) +
+                " (choose one spot or sun with --lights k)");
+}
+
+}  // namespace
+
 image brute_force_within(const frame_reference& reference, float radius, int threads) {
+  require_one_view(reference, "the radius split (brute force within the radius)");
   rsm_brute_force_options options;
   options.receiver_stride = reference.stride;
   options.max_radius = radius;
@@ -152,6 +166,7 @@ relative_error seed_noise(const std::vector<image>& raws, const frame_reference&
 }
 
 image ray_cast_gather(const frame_reference& reference, const rsm_pipeline_settings& settings, int threads) {
+  require_one_view(reference, "the visibility split (the pattern with ray-cast visibility)");
   const rsm_frame_constants constants = make_frame_constants(*reference.source, settings);
   return gather_with_ray_cast_visibility(*reference.rays, reference.buffers, constants, reference.stride, threads);
 }
