@@ -11,7 +11,11 @@
 #if VPLKIT_PACKED_BLUR
 #extension GL_ARB_shading_language_packing : require
 #endif
+#ifndef VPLKIT_LIGHT_POINT
+#define VPLKIT_LIGHT_POINT 0  // the pipeline defines it; 0 for a program loaded without it
+#endif
 #include "lib/bilateral.glsl"
+#include "lib/cube_map.glsl"
 #include "lib/direct_light.glsl"
 #include "lib/shading.glsl"
 
@@ -30,6 +34,9 @@ uniform sampler2D gbuffer_albedo_density;
 uniform sampler2D gbuffer_normal;
 #if VPLKIT_LIGHT_DIRECTIONAL
 uniform directional_light directional;
+#elif VPLKIT_LIGHT_POINT
+uniform point_light point;
+uniform int light_face;  // the cube face this pass draws (lib/cube_map.glsl)
 #else
 uniform spot_light spot;
 #endif
@@ -69,6 +76,11 @@ void main() {
 #endif
 #if VPLKIT_LIGHT_DIRECTIONAL
   vec3 direct = directional_light_irradiance(n, directional);
+#elif VPLKIT_LIGHT_POINT
+  // Each receiver takes a point light's direct light from the one face its direction falls in:
+  // the face whose RSM depth shadowed it in the G-buffer of this pass.
+  vec3 direct = cube_face_of(position_depth.xyz - point.position) == light_face ? point_light_irradiance(position_depth.xyz, n, point, irradiance)
+                                                                               : vec3(0.0);
 #else
   vec3 direct = spot_light_irradiance(position_depth.xyz, n, spot, irradiance);
 #endif

@@ -80,10 +80,10 @@ int run_rsm_brute_force(const session& io, const reference_state& s) {
   brute_force.receiver_stride = s.options.receiver_stride;
   brute_force.threads = hardware_threads();
   const progress_settings progress =
-      announce(s, estimate_rsm_gather(rays, buffers, pipeline.constants(), brute_force), started, brute_force.threads);
-  const image gathered = reference_rsm_gather(rays, buffers, pipeline.constants(), brute_force, progress);
+      announce(s, estimate_rsm_gather(rays, pipeline, brute_force), started, brute_force.threads);
+  const image gathered = reference_rsm_gather(rays, pipeline, brute_force, progress);  // every light's, summed
   // The mask: every computed receiver with a surface (all), or those the pattern covers.
-  const std::vector<std::uint8_t> covered = rsm_covered_receivers(buffers, pipeline.constants(), s.options.receiver_stride);
+  const std::vector<std::uint8_t> covered = rsm_covered_receivers(pipeline, s.options.receiver_stride);
   image mask(gathered.width, gathered.height);
   std::size_t counted = 0, counted_covered = 0;
   for (int y = 0; y < mask.height; y += s.options.receiver_stride)

@@ -218,4 +218,50 @@ std::vector<std::uint8_t> rsm_covered_receivers(const rsm_pass_buffers& buffers,
   return covered;
 }
 
+image reference_rsm_gather(const ray_scene& rays, const rsm_pipeline& drawn, const rsm_brute_force_options& options, const progress_settings& progress) {
+  image sum = reference_rsm_gather(rays, drawn.read_buffers(0), drawn.constants(0), options, progress);
+  if (drawn.view_count() == 1) return sum;
+  // The visible fraction of the sum weighs each light's by its unoccluded light (the brightness of
+  // its irradiance over its own fraction); a receiver no light reaches keeps the largest fraction
+  // a light gave it (1 where computed, 0 where the stride skipped it).
+  std::vector<double> seen(sum.texels.size(), 0.0), unoccluded(sum.texels.size(), 0.0);
+  std::vector<float> fallback(sum.texels.size(), 0.0f);
+  const auto add = [&](const image& light, bool first) {
+    for (std::size_t i = 0; i < light.texels.size(); ++i) {
+      const glm::vec4 value = light.texels[i];
+      if (!first) sum.texels[i] += glm::vec4(glm::vec3(value), 0.0f);
+      const double brightness = static_cast<double>(value.x) + value.y + value.z;
+      seen[i] += brightness;
+      if (value.w > 0.0f) unoccluded[i] += brightness / value.w;
+      fallback[i] = std::max(fallback[i], value.w);
+    }
+  };
+  add(sum, true);
+  for (std::size_t k = 1; k < drawn.view_count(); ++k) add(reference_rsm_gather(rays, drawn.read_buffers(k), drawn.constants(k), options, progress), false);
+  for (std::size_t i = 0; i < sum.texels.size(); ++i)
+    sum.texels[i].w = unoccluded[i] > 0.0 ? static_cast<float>(std::min(1.0, seen[i] / unoccluded[i])) : fallback[i];
+  return sum;
+}
+
+reference_cost estimate_rsm_gather(const ray_scene& rays, const rsm_pipeline& drawn, const rsm_brute_force_options& options) {
+  reference_cost total = estimate_rsm_gather(rays, drawn.read_buffers(0), drawn.constants(0), options);
+  for (std::size_t k = 1; k < drawn.view_count(); ++k) {
+    const reference_cost light = estimate_rsm_gather(rays, drawn.read_buffers(k), drawn.constants(k), options);
+    total.rays += light.rays;
+    total.seconds += light.seconds;
+    total.units += light.units;
+    total.what += "; light view " + std::to_string(k) + ": " + light.what;
+  }
+  return total;
+}
+
+std::vector<std::uint8_t> rsm_covered_receivers(const rsm_pipeline& drawn, int receiver_stride) {
+  std::vector<std::uint8_t> covered = rsm_covered_receivers(drawn.read_buffers(0), drawn.constants(0), receiver_stride);
+  for (std::size_t k = 1; k < drawn.view_count(); ++k) {
+    const std::vector<std::uint8_t> light = rsm_covered_receivers(drawn.read_buffers(k), drawn.constants(k), receiver_stride);
+    for (std::size_t i = 0; i < covered.size(); ++i) covered[i] = covered[i] | light[i];
+  }
+  return covered;
+}
+
 }  // namespace vplkit

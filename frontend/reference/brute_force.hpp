@@ -56,4 +56,15 @@ image gather_with_ray_cast_visibility(const ray_scene& rays, const rsm_pass_buff
 /// every stride-th receiver per axis can count (the ones a strided reference computes).
 std::vector<std::uint8_t> rsm_covered_receivers(const rsm_pass_buffers& buffers, const rsm_frame_constants& constants, int receiver_stride = 1);
 
+/// Every light of the frame `drawn` last drew (rsm_pipeline::read_buffers and constants per light),
+/// each light's brute force summed: [the summed irradiance | the fraction of the summed unoccluded
+/// irradiance that is visible]. One light: exactly reference_rsm_gather of its buffers.
+image reference_rsm_gather(const ray_scene& rays, const rsm_pipeline& drawn, const rsm_brute_force_options& options, const progress_settings& progress = {});
+
+/// The cost of the call above: each light's estimate_rsm_gather added up.
+reference_cost estimate_rsm_gather(const ray_scene& rays, const rsm_pipeline& drawn, const rsm_brute_force_options& options);
+
+/// The receivers some light's pattern covers (rsm_covered_receivers of each light, or-ed).
+std::vector<std::uint8_t> rsm_covered_receivers(const rsm_pipeline& drawn, int receiver_stride = 1);
+
 }  // namespace vplkit

@@ -51,6 +51,7 @@ frame_reference make_frame_reference(const shader_library& shaders, const scene&
   pipeline.render();
   reference.buffers = pipeline.read_buffers();
   reference.constants = pipeline.constants();
+  reference.views = pipeline.view_count();
   reference.stride = stride;
   const std::string unoccluded_file = cache + "-unoccluded.pfm", exact_file = cache + "-exact.pfm";
   if (!cache.empty() && std::filesystem::exists(unoccluded_file) && std::filesystem::exists(exact_file)) {
@@ -63,9 +64,9 @@ frame_reference make_frame_reference(const shader_library& shaders, const scene&
     rsm_brute_force_options options;
     options.receiver_stride = stride;
     options.threads = threads;
-    reference.unoccluded = reference_rsm_gather(*reference.rays, reference.buffers, reference.constants, options);
+    reference.unoccluded = reference_rsm_gather(*reference.rays, pipeline, options);  // every light's, summed
     options.exact_visibility = true;
-    reference.exact = reference_rsm_gather(*reference.rays, reference.buffers, reference.constants, options);
+    reference.exact = reference_rsm_gather(*reference.rays, pipeline, options);
     if (!cache.empty())
       write_all_or_nothing({{unoccluded_file, [&] { return encode_pfm(reference.unoccluded); }}, {exact_file, [&] { return encode_pfm(reference.exact); }}});
   }
@@ -73,7 +74,7 @@ frame_reference make_frame_reference(const shader_library& shaders, const scene&
   reference.covered = blank(reference);
   reference.uncovered = blank(reference);
   reference.leak = blank(reference);
-  const std::vector<std::uint8_t> covered = rsm_covered_receivers(reference.buffers, reference.constants, stride);
+  const std::vector<std::uint8_t> covered = rsm_covered_receivers(pipeline, stride);
   double all = 0.0, behind = 0.0, seen = 0.0, leak_all = 0.0, leak_seen = 0.0;
   for (int y = 0; y < reference.unoccluded.height; y += stride)
     for (int x = 0; x < reference.unoccluded.width; x += stride) {
@@ -105,7 +106,20 @@ frame_reference make_frame_reference(const shader_library& shaders, const scene&
   return reference;
 }
 
+namespace {
+
+// The radius and visibility splits run one view's RSM: with several they would compare the sum of
+// every light's gather with one light's.
+void require_one_view(const frame_reference& reference, const char* what) {
+  if (reference.views > 1)
+    throw error(std::string(what) + " measures one light view; scene " + reference.source->name + " has " + std::to_string(reference.views) +
+                " (choose one spot or sun with --lights k)");
+}
+
+}  // namespace
+
 image brute_force_within(const frame_reference& reference, float radius, int threads) {
+  require_one_view(reference, "the radius split (brute force within the radius)");
   rsm_brute_force_options options;
   options.receiver_stride = reference.stride;
   options.max_radius = radius;
@@ -152,6 +166,7 @@ relative_error seed_noise(const std::vector<image>& raws, const frame_reference&
 }
 
 image ray_cast_gather(const frame_reference& reference, const rsm_pipeline_settings& settings, int threads) {
+  require_one_view(reference, "the visibility split (the pattern with ray-cast visibility)");
   const rsm_frame_constants constants = make_frame_constants(*reference.source, settings);
   return gather_with_ray_cast_visibility(*reference.rays, reference.buffers, constants, reference.stride, threads);
 }

@@ -25,7 +25,8 @@ struct frame_reference {
   std::unique_ptr<scene> source;       ///< kept alive for `rays`
   std::unique_ptr<ray_scene> rays;
   rsm_pass_buffers buffers;            ///< RSM and G-buffer of the frame (the same for every gather setting)
-  rsm_frame_constants constants;
+  rsm_frame_constants constants;        ///< light view 0's (buffers: its RSM)
+  std::size_t views = 1;               ///< the frame's light views; unoccluded and exact sum them all
   int stride = 1;
   image unoccluded;              ///< brute force, every lit texel, no visibility
   image exact;                   ///< brute force with ray-cast visibility

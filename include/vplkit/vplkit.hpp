@@ -2,6 +2,7 @@
 #pragma once
 
 #include <vplkit/bilateral.hpp>
+#include <vplkit/cube_map.hpp>
 #include <vplkit/direct_light.hpp>
 #include <vplkit/final_gather.hpp>
 #include <vplkit/form_factor.hpp>

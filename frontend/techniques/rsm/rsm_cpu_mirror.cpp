@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <vector>
 
+#include <vplkit/cube_map.hpp>
 #include <vplkit/direct_light.hpp>
 #include <vplkit/shading.hpp>
 #include <vplkit/transform.hpp>
@@ -213,9 +214,13 @@ post_images cpu_post_pass(const image& filtered_input, const rsm_pass_buffers& b
         indirect = separable ? bilateral_filter_axis(centre, position_depth.w, n, taps, constants.indirect_size, 1, constants.bilateral)
                              : bilateral_filter(centre, position_depth.w, n, taps, constants.indirect_size, constants.bilateral);
       }
-      const glm::vec3 direct = constants.primary.kind == light_kind::spot
-                                   ? spot_light_irradiance(glm::vec3(position_depth), n, constants.primary.spot, constants.gather.irradiance)
-                                   : directional_light_irradiance(n, constants.primary.directional);
+      glm::vec3 direct(0.0f);
+      if (constants.primary.kind == light_kind::spot)
+        direct = spot_light_irradiance(glm::vec3(position_depth), n, constants.primary.spot, constants.gather.irradiance);
+      else if (constants.primary.kind == light_kind::directional)
+        direct = directional_light_irradiance(n, constants.primary.directional);
+      else if (cube_face_of(glm::vec3(position_depth) - constants.primary.point.position) == constants.face)  // the face this view draws
+        direct = point_light_irradiance(glm::vec3(position_depth), n, constants.primary.point, constants.gather.irradiance);
       out.radiance.at(pixel) =
           glm::vec4(diffuse_radiance(glm::vec3(albedo_density), direct, albedo_density.w, indirect), 1.0f);
       out.indirect.at(pixel) = glm::vec4(indirect, 1.0f);

@@ -8,6 +8,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/packing.hpp>
 
+#include <vplkit/cube_map.hpp>
 #include <vplkit/hash.hpp>
 #include <vplkit/gl/settings_uniforms.hpp>
 
@@ -16,14 +17,35 @@
 
 namespace vplkit {
 
-light_frustum make_light_frustum(const scene& source, int rsm_size) { return make_light_frustum(source, bounds(source.geometry), rsm_size); }
+namespace {
 
-light_frustum make_light_frustum(const scene& source, const bounding_box& box, int rsm_size) {
+// Light `index` of `source`, refused with the reason when the RSM pipeline cannot draw it.
+const scene_light& rsm_light(const scene& source, std::size_t index) {
+  if (source.lights.empty()) throw error("scene " + source.name + ": the RSM pipeline needs a light, the scene has none");
+  if (index >= source.lights.size())
+    throw error("scene " + source.name + ": no light " + std::to_string(index) + " (it has " + std::to_string(source.lights.size()) + ")");
+  return source.lights[index];
+}
+
+}  // namespace
+
+light_frustum make_light_frustum(const scene& source, int rsm_size, std::size_t light, int face) {
+  return make_light_frustum(source, bounds(source.geometry), rsm_size, light, face);
+}
+
+light_frustum make_light_frustum(const scene& source, const bounding_box& box, int rsm_size, std::size_t light_index, int face) {
   light_frustum frustum;
   const float radius = std::max(box.radius(), 1e-3f);
-  const scene_light& primary = single_light(source, "the RSM pipeline");
-  if (primary.kind == light_kind::point) throw error("scene " + source.name + ": the RSM pipeline does not draw point lights yet");
-  if (primary.kind == light_kind::spot) {
+  const scene_light& primary = rsm_light(source, light_index);
+  if (primary.kind == light_kind::point) {
+    if (face < 0 || face > 5) throw error("scene " + source.name + ", light " + std::to_string(light_index) + ": no cube face " + std::to_string(face));
+    // One face of the cube: 90 degrees around its axis, OpenGL's orientation (vplkit/cube_map.hpp).
+    const glm::vec3 position = primary.point.position;
+    frustum.view = glm::lookAt(position, position + cube_face_axis<float>(face), cube_face_up<float>(face));
+    frustum.tan_half_fov = 1.0f;
+    const float far_plane = glm::length(position - box.centre()) + 2.0f * radius;
+    frustum.view_projection = glm::perspective(glm::radians(90.0f), 1.0f, 0.01f * radius, far_plane) * frustum.view;
+  } else if (primary.kind == light_kind::spot) {
     const spot_light<float>& light = primary.spot;
     const glm::vec3 up = std::abs(light.direction.y) > 0.99f ? glm::vec3(0, 0, -1) : glm::vec3(0, 1, 0);
     frustum.view = glm::lookAt(light.position, light.position + light.direction, up);
@@ -43,21 +65,24 @@ light_frustum make_light_frustum(const scene& source, const bounding_box& box, i
   return frustum;
 }
 
-rsm_frame_constants make_frame_constants(const scene& source, const rsm_pipeline_settings& settings) {
-  return make_frame_constants(source, bounds(source.geometry), source.geometry.triangle_count(), settings);
+rsm_frame_constants make_frame_constants(const scene& source, const rsm_pipeline_settings& settings, std::size_t light, int face) {
+  return make_frame_constants(source, bounds(source.geometry), source.geometry.triangle_count(), settings, light, face);
 }
 
-rsm_frame_constants make_frame_constants(const scene& source, const bounding_box& box, std::size_t triangles, const rsm_pipeline_settings& settings) {
+rsm_frame_constants make_frame_constants(const scene& source, const bounding_box& box, std::size_t triangles, const rsm_pipeline_settings& settings,
+                                         std::size_t light, int face) {
   if (const std::string problem = validate(settings); !problem.empty()) throw error("RSM pipeline settings: " + problem);
-  const scene_light& primary = single_light(source, "the RSM pipeline");
-  check_light(primary, "scene " + source.name);
+  const scene_light& primary = rsm_light(source, light);
+  check_light(primary, "scene " + source.name + ", light " + std::to_string(light));
   if (triangles == 0) throw error("scene " + source.name + " has no triangles");
   rsm_frame_constants constants;
   constants.technique = find_rsm_technique(settings.technique);
-  constants.light = make_light_frustum(source, box, settings.rsm_size);
+  constants.light = make_light_frustum(source, box, settings.rsm_size, light, face);
   constants.primary = primary;
+  constants.light_index = light;
+  constants.face = primary.kind == light_kind::point ? face : -1;
   constants.gather = derive(settings).gather;
-  const bool spot = primary.kind == light_kind::spot;
+  const bool spot = primary.kind != light_kind::directional;  // a spot or a point light's face: perspective
   constants.gather.perspective = spot ? 1 : 0;
   constants.light_view_inverse = glm::inverse(constants.light.view);
   constants.voxel_march = settings.voxel_march;
@@ -75,11 +100,22 @@ rsm_frame_constants make_frame_constants(const scene& source, const bounding_box
   return constants;
 }
 
+std::vector<rsm_frame_constants> make_view_constants(const scene& source, const bounding_box& box, std::size_t triangles,
+                                                     const rsm_pipeline_settings& settings) {
+  if (source.lights.empty()) throw error("scene " + source.name + ": the RSM pipeline needs a light, the scene has none");
+  check_lights(source.lights, "scene " + source.name);
+  std::vector<rsm_frame_constants> views;
+  for (std::size_t k = 0; k < source.lights.size(); ++k) {
+    const int faces = source.lights[k].kind == light_kind::point ? 6 : 1;
+    for (int face = 0; face < faces; ++face) views.push_back(make_frame_constants(source, box, triangles, settings, k, face));
+  }
+  return views;
+}
+
 namespace {
 
 const char* flag(bool value) { return value ? "1" : "0"; }
 
-bool is_directional(const scene& source) { return single_light(source, "the RSM pipeline").kind == light_kind::directional; }
 
 // Whether the frame reduces the RSM to coarse lights: a gathering technique with coverage.
 bool with_coverage(const rsm_frame_constants& constants) { return constants.technique.indirect && constants.gather.coverage_blocks > 0; }
@@ -123,7 +159,8 @@ bool packed_blur(const rsm_pipeline_settings& settings) {
 
 void set_light_uniforms(const program& target, const rsm_frame_constants& constants) {
   if (constants.primary.kind == light_kind::spot) set_uniforms(target, "spot", constants.primary.spot);
-  else set_uniforms(target, "directional", constants.primary.directional);
+  else if (constants.primary.kind == light_kind::directional) set_uniforms(target, "directional", constants.primary.directional);
+  else set_uniforms(target, "point", constants.primary.point);
 }
 
 }  // namespace
@@ -133,15 +170,11 @@ rsm_pipeline::rsm_pipeline(const shader_library& shaders, const scene& source, c
       bounds_(bounds(source.geometry)),
       triangles_(source.geometry.triangle_count()),
       settings_(settings),
-      constants_(make_frame_constants(source, bounds_, triangles_, settings)),
+      views_(make_view_constants(source, bounds_, triangles_, settings)),
+      constants_(views_.front()),
       mesh_(source.geometry),
-      rsm_program_(load_program(shaders, "scene.vert", "rsm.frag", {{"VPLKIT_LIGHT_DIRECTIONAL", flag(is_directional(source))}})),
       gbuffer_program_(load_program(shaders, "scene.vert", "gbuffer.frag")),
-      rsm_target_(settings.rsm_size, settings.rsm_size, {texel_format::rgba32ui}, true),
-      coarse_target_(std::max(constants_.gather.coverage_blocks, 1), std::max(constants_.gather.coverage_blocks, 1),
-                     {texel_format::rgba32f, texel_format::rgba32f, texel_format::rgba32f}, false),
       gbuffer_target_(settings.width, settings.height, {settings.format, settings.format, settings.format}, true),
-      indirect_target_(constants_.indirect_size.x, constants_.indirect_size.y, {settings.format}, false),
       history_targets_{framebuffer(with_temporal(constants_) ? constants_.indirect_size.x : 1, with_temporal(constants_) ? constants_.indirect_size.y : 1,
                                    {settings.format}, false),
                        framebuffer(with_temporal(constants_) ? constants_.indirect_size.x : 1, with_temporal(constants_) ? constants_.indirect_size.y : 1,
@@ -151,6 +184,14 @@ rsm_pipeline::rsm_pipeline(const shader_library& shaders, const scene& source, c
                      {packed_blur(settings) ? texel_format::rgba32ui : settings.format}, false),
       post_target_(settings.width, settings.height, {settings.format, settings.format}, false),
       empty_vertex_array_(generate_vertex_array()) {
+  // Each light has its own RSM (cached while it does not move), coverage lights and gather output.
+  for (std::size_t k = 0; k < views_.size(); ++k) {
+    rsm_targets_.emplace_back(settings.rsm_size, settings.rsm_size, std::vector<texel_format>{texel_format::rgba32ui}, true);
+    coarse_targets_.emplace_back(std::max(constants_.gather.coverage_blocks, 1), std::max(constants_.gather.coverage_blocks, 1),
+                                 std::vector<texel_format>{texel_format::rgba32f, texel_format::rgba32f, texel_format::rgba32f}, false);
+    indirect_targets_.emplace_back(constants_.indirect_size.x, constants_.indirect_size.y, std::vector<texel_format>{settings.format}, false);
+  }
+  rsm_valid_.assign(views_.size(), 0);
   if (with_voxels(constants_)) {
     // Built once: a pipeline's triangles are fixed for its life (a new scene is a new pipeline).
     const auto start = std::chrono::steady_clock::now();
@@ -159,13 +200,13 @@ rsm_pipeline::rsm_pipeline(const shader_library& shaders, const scene& source, c
     const glm::ivec2 size = voxel_texture_size(voxels_->shape.cells);
     voxel_texture_.emplace(size.x, size.y, texel_format::rgba32ui, voxels_->texels.data());
   }
-  load_programs(shaders, source);
+  load_programs(shaders);
   set_settings_uniforms();
   set_pose_uniforms();
   check_gl("setting up the RSM pipeline");
 }
 
-void rsm_pipeline::load_programs(const shader_library& shaders, const scene& source) {
+void rsm_pipeline::load_programs(const shader_library& shaders) {
   const rsm_technique& technique = constants_.technique;
   const bool separable = settings_.filter == post_filter::separable;
   const bool packed = separable && blur_x_target_.colour(0).format() == texel_format::rgba32ui;
@@ -179,11 +220,19 @@ void rsm_pipeline::load_programs(const shader_library& shaders, const scene& sou
     if (with_temporal(constants_)) temporal_program_ = load_program(shaders, "fullscreen.vert", "temporal.frag");
     if (separable) blur_x_program_ = load_program(shaders, "fullscreen.vert", "blur_x.frag", {{"VPLKIT_PACKED_BLUR", flag(packed)}});
   }
-  post_program_ = load_program(shaders, "fullscreen.vert", "post.frag",
-                               {{"VPLKIT_INDIRECT", flag(technique.indirect)},
-                                {"VPLKIT_SEPARABLE", flag(separable)},
-                                {"VPLKIT_PACKED_BLUR", flag(technique.indirect && packed)},
-                                {"VPLKIT_LIGHT_DIRECTIONAL", flag(is_directional(source))}});
+  // The light-dependent programs for the kinds the scene's lights have (set_light keeps a light's kind).
+  for (const rsm_frame_constants& view : views_) {
+    const auto slot = static_cast<std::size_t>(view.primary.kind);
+    if (rsm_programs_[slot].id() != 0) continue;
+    const bool directional = view.primary.kind == light_kind::directional, point = view.primary.kind == light_kind::point;
+    rsm_programs_[slot] = load_program(shaders, "scene.vert", "rsm.frag", {{"VPLKIT_LIGHT_DIRECTIONAL", flag(directional)}, {"VPLKIT_LIGHT_POINT", flag(point)}});
+    post_programs_[slot] = load_program(shaders, "fullscreen.vert", "post.frag",
+                                        {{"VPLKIT_INDIRECT", flag(technique.indirect)},
+                                         {"VPLKIT_SEPARABLE", flag(separable)},
+                                         {"VPLKIT_PACKED_BLUR", flag(technique.indirect && packed)},
+                                         {"VPLKIT_LIGHT_DIRECTIONAL", flag(directional)},
+                                         {"VPLKIT_LIGHT_POINT", flag(point)}});
+  }
 
 }
 
@@ -192,7 +241,7 @@ void rsm_pipeline::load_programs(const shader_library& shaders, const scene& sou
 void rsm_pipeline::set_settings_uniforms() {
   const rsm_technique& technique = constants_.technique;
   const bool separable = settings_.filter == post_filter::separable;
-  rsm_program_.set("rsm_size", glm::ivec2(settings_.rsm_size));
+  rsm_program().set("rsm_size", glm::ivec2(settings_.rsm_size));
   gbuffer_program_.set("rsm_size", glm::ivec2(settings_.rsm_size));
   set_uniforms(gbuffer_program_, "shadow", constants_.shadow);
   gbuffer_program_.set("rsm_packed", 0);
@@ -231,14 +280,14 @@ void rsm_pipeline::set_settings_uniforms() {
       blur_x_program_.set("gbuffer_normal", 1);
     }
   }
-  set_uniforms(post_program_, "bilateral", constants_.bilateral);
-  set_uniforms(post_program_, "irradiance", constants_.gather.irradiance);
-  post_program_.set("indirect_divisor", constants_.indirect_divisor);
-  post_program_.set("indirect_size", constants_.indirect_size);
-  post_program_.set("gbuffer_size", constants_.image_size);
+  set_uniforms(post_program(), "bilateral", constants_.bilateral);
+  set_uniforms(post_program(), "irradiance", constants_.gather.irradiance);
+  post_program().set("indirect_divisor", constants_.indirect_divisor);
+  post_program().set("indirect_size", constants_.indirect_size);
+  post_program().set("gbuffer_size", constants_.image_size);
   int unit = 0;
   for (const char* name : {"indirect_buffer", "gbuffer_position_depth", "gbuffer_albedo_density", "gbuffer_normal"})
-    post_program_.set(name, unit++);
+    post_program().set(name, unit++);
 }
 
 bool rsm_pipeline::apply_settings(const technique_settings& settings) {
@@ -248,11 +297,11 @@ bool rsm_pipeline::apply_settings(const technique_settings& settings) {
   // Another technique, or a setting that sets a define or sizes what the constructor builds (the
   // table says which: setting::defines, setting::builds), needs a new pipeline.
   if (!validate(next).empty() || next.technique != settings_.technique || !rebuilding_changes(rsm_settings_table(), settings_, next).empty()) return false;
-  const rsm_frame_constants constants = make_frame_constants(scene_, bounds_, triangles_, next);
+  const std::vector<rsm_frame_constants> views = make_view_constants(scene_, bounds_, triangles_, next);
   settings_ = next;
-  constants_ = constants;
-  set_settings_uniforms();
-  set_pose_uniforms();
+  views_ = views;
+  pattern_frame_ = 0;
+  bind_view(0);
   check_gl("applying the RSM pipeline's settings");
   // The G-buffer to the post filter again, and no history from the old settings. The RSM and the
   // coverage's coarse lights depend on the light, the RSM's size and the blocks only, which a
@@ -265,11 +314,11 @@ bool rsm_pipeline::apply_settings(const technique_settings& settings) {
 
 void rsm_pipeline::set_pose_uniforms() {
   const light_frustum& light = constants_.light;
-  rsm_program_.set("view_projection", light.view_projection);
-  rsm_program_.set("light_view", light.view);
-  rsm_program_.set("tan_half_fov", light.tan_half_fov);
-  rsm_program_.set("texel_area", light.texel_area);
-  set_light_uniforms(rsm_program_, constants_);
+  rsm_program().set("view_projection", light.view_projection);
+  rsm_program().set("light_view", light.view);
+  rsm_program().set("tan_half_fov", light.tan_half_fov);
+  rsm_program().set("texel_area", light.texel_area);
+  set_light_uniforms(rsm_program(), constants_);
   gbuffer_program_.set("view_projection", constants_.camera_view_projection);
   gbuffer_program_.set("camera_view", constants_.camera_view);
   gbuffer_program_.set("light_view", light.view);
@@ -282,7 +331,8 @@ void rsm_pipeline::set_pose_uniforms() {
     gather_program_.set("light_view_projection", light.view_projection);
     if (with_voxels(constants_)) gather_program_.set("voxel_from_light", voxel_cells_from(voxels_->shape, constants_.light_view_inverse));
   }
-  set_light_uniforms(post_program_, constants_);
+  set_light_uniforms(post_program(), constants_);
+  if (constants_.face >= 0) post_program().set("light_face", constants_.face);
 }
 
 void rsm_pipeline::move_to(const camera& view, const std::vector<scene_light>& lights) {
@@ -291,12 +341,27 @@ void rsm_pipeline::move_to(const camera& view, const std::vector<scene_light>& l
   scene_.view = view;
   scene_.lights = lights;
   try {
-    constants_ = make_frame_constants(scene_, bounds_, triangles_, settings_);
+    views_ = make_view_constants(scene_, bounds_, triangles_, settings_);
   } catch (...) {
     scene_.view = previous_view;
     scene_.lights = previous_lights;
     throw;
   }
+  bind_view(0);
+}
+
+std::string rsm_pipeline::pass_name(const char* pass, std::size_t view) const {
+  // With one view, the name it always had; else the light, and a point light's face, so that
+  // render --stats shows the time per light.
+  if (views_.size() == 1) return pass;
+  const rsm_frame_constants& drawn = views_[view];
+  return std::string(pass) + " light " + std::to_string(drawn.light_index) + (drawn.face >= 0 ? " face " + std::to_string(drawn.face) : "");
+}
+
+void rsm_pipeline::bind_view(std::size_t view) {
+  constants_ = views_.at(view);
+  set_settings_uniforms();
+  if (constants_.technique.indirect) set_pattern_frame(pattern_frame_);
   set_pose_uniforms();
 }
 
@@ -317,7 +382,9 @@ void rsm_pipeline::set_light(std::size_t index, const scene_light& light) {
   std::vector<scene_light> moved = scene_.lights;
   moved[index] = light;
   move_to(scene_.view, moved);
-  rsm_valid_ = view_valid_ = false;
+  for (std::size_t v = 0; v < views_.size(); ++v)
+    if (views_[v].light_index == index) rsm_valid_[v] = 0;  // the other lights' RSMs stay valid
+  view_valid_ = false;
 }
 
 rsm_frame rsm_pipeline::render() {
@@ -332,6 +399,7 @@ rsm_frame rsm_pipeline::render() {
 bool rsm_pipeline::accumulates() const { return with_temporal(constants_); }
 
 void rsm_pipeline::set_pattern_frame(std::uint32_t frame) {
+  pattern_frame_ = frame;
   rsm_gather_settings<float> gather = constants_.gather;
   if (frame > 0) {
     gather.radial.seed = hash_combine(gather.radial.seed, frame);
@@ -342,6 +410,10 @@ void rsm_pipeline::set_pattern_frame(std::uint32_t frame) {
 
 void rsm_pipeline::draw_next() {
   if (!accumulates()) return draw();
+  // Temporal accumulation keeps one history of one gather; several views would need one each.
+  if (views_.size() > 1)
+    throw error("scene " + scene_.name + ": temporal accumulation (temporal blend < 1) draws one spot or sun, the scene has " +
+                std::to_string(views_.size()) + " light views (choose one spot or sun with --lights k, or --temporal-blend 1)");
   set_pattern_frame(sequence_frame_);
   draw_passes(true, true);
   ++sequence_frame_;
@@ -359,80 +431,91 @@ rsm_frame rsm_pipeline::render_next() {
 void rsm_pipeline::draw() { draw_passes(true); }
 
 void rsm_pipeline::draw_changed() {
-  if (!rsm_valid_ || !view_valid_) draw_passes(!rsm_valid_);
+  const bool rsms_valid = std::all_of(rsm_valid_.begin(), rsm_valid_.end(), [](char valid) { return valid != 0; });
+  if (!rsms_valid || !view_valid_) draw_passes(false);  // redraws the RSMs of the lights that moved
 }
 
-void rsm_pipeline::draw_passes(bool with_rsm, bool accumulate) {
+void rsm_pipeline::draw_passes(bool all_rsms, bool accumulate) {
   const rsm_technique& technique = constants_.technique;
   if (!accumulate && (history_valid_ || sequence_frame_ > 0)) {
     // A frame outside a sequence: no history, and the settings' own pattern.
     history_valid_ = false;
     sequence_frame_ = 0;
-    if (technique.indirect) set_pattern_frame(0);
+    pattern_frame_ = 0;
   }
   last_accumulated_ = accumulate;
   glClearColor(0.0f, 0.0f, 0.0f, 0.0f);  // depth 0 marks "no surface" in every buffer
   glDisable(GL_BLEND);
   glDisable(GL_CULL_FACE);
 
-  glEnable(GL_DEPTH_TEST);
-  if (with_rsm) draw_rsm();
-  draw_gbuffer();
-  glDisable(GL_DEPTH_TEST);
-  glBindVertexArray(empty_vertex_array_.get());
-  if (technique.indirect) draw_gather();
-  // The filter's input: the gather, or (sequences) the gather accumulated over the frames.
-  draw_post(accumulate ? accumulate_history() : indirect_target_);
-  glBindVertexArray(0);
+  // The passes once per light view (a spot or sun: one; a point light: six cube faces), each with
+  // its own RSM, shadow density and gather; the post pass of every view after the first adds its
+  // radiance and filtered indirect light to the ones before (the filter is linear in its input
+  // for the fixed G-buffer guides, so the sum of the filtered images is the filtered sum). One
+  // spot or sun draws exactly what it always drew.
+  for (std::size_t k = 0; k < views_.size(); ++k) {  // k: the light view
+    bind_view(k);
+    glEnable(GL_DEPTH_TEST);
+    if (all_rsms || !rsm_valid_[k]) draw_rsm(k);
+    draw_gbuffer(k);
+    glDisable(GL_DEPTH_TEST);
+    glBindVertexArray(empty_vertex_array_.get());
+    if (technique.indirect) draw_gather(k);
+    // The filter's input: the gather, or (sequences, one light) the gather accumulated over the frames.
+    draw_post(accumulate ? accumulate_history() : indirect_targets_[k], k);
+    glBindVertexArray(0);
+  }
   check_gl("rendering scene " + scene_.name + " with " + technique.name);
   view_valid_ = true;
   ++view_draws_;
 }
 
 // Pass 1, and the coverage's coarse lights from it.
-void rsm_pipeline::draw_rsm() {
-  timer_.begin("RSM generation");
-  rsm_target_.bind();
+void rsm_pipeline::draw_rsm(std::size_t view) {
+  const framebuffer& rsm_target = rsm_targets_[view];
+  timer_.begin(pass_name("RSM generation", view));
+  rsm_target.bind();
   const GLuint empty_texel[4] = {0, 0, 0, 0};  // glClear's float colour is undefined for an integer target
   glClearBufferuiv(GL_COLOR, 0, empty_texel);
   glClear(GL_DEPTH_BUFFER_BIT);
-  mesh_.draw(rsm_program_);
+  mesh_.draw(rsm_program());
   timer_.end();
   if (with_coverage(constants_)) {
-    timer_.begin("coverage lights");
+    timer_.begin(pass_name("coverage lights", view));
     glDisable(GL_DEPTH_TEST);
     glBindVertexArray(empty_vertex_array_.get());
-    coarse_target_.bind();
-    rsm_target_.colour(0).bind(0);
+    coarse_targets_[view].bind();
+    rsm_target.colour(0).bind(0);
     coarse_program_.use();
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindVertexArray(0);
     glEnable(GL_DEPTH_TEST);
     timer_.end();
   }
-  rsm_valid_ = true;
+  rsm_valid_[view] = 1;
   ++rsm_draws_;
 }
 
 // Pass 2.
-void rsm_pipeline::draw_gbuffer() {
-  timer_.begin("G-buffer generation");
+// With several views the G-buffer is drawn per view: its shadow density (Alg. 4) is the view's.
+void rsm_pipeline::draw_gbuffer(std::size_t view) {
+  timer_.begin(pass_name("G-buffer generation", view));
   gbuffer_target_.bind();
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  rsm_target_.colour(0).bind(0);
+  rsm_targets_[view].colour(0).bind(0);
   mesh_.draw(gbuffer_program_);
   timer_.end();
 }
 
 // Pass 3: the gather at the indirect buffer's receivers.
-void rsm_pipeline::draw_gather() {
-  timer_.begin("RSM sampling");
-  indirect_target_.bind();
-  rsm_target_.colour(0).bind(0);
+void rsm_pipeline::draw_gather(std::size_t view) {
+  timer_.begin(pass_name("RSM sampling", view));
+  indirect_targets_[view].bind();
+  rsm_targets_[view].colour(0).bind(0);
   gbuffer_target_.colour(0).bind(1);
   gbuffer_target_.colour(2).bind(2);
   if (with_coverage(constants_))
-    for (int i = 0; i < 3; ++i) coarse_target_.colour(static_cast<std::size_t>(i)).bind(3 + i);
+    for (int i = 0; i < 3; ++i) coarse_targets_[view].colour(static_cast<std::size_t>(i)).bind(3 + i);
   if (with_voxels(constants_)) voxel_texture_->bind(voxel_unit(constants_));
   gather_program_.use();
   glDrawArrays(GL_TRIANGLES, 0, 3);
@@ -444,7 +527,7 @@ const framebuffer& rsm_pipeline::accumulate_history() {
   timer_.begin("temporal accumulation");
   const int written = 1 - history_index_;
   history_targets_[written].bind();
-  indirect_target_.colour(0).bind(0);
+  indirect_targets_.front().colour(0).bind(0);  // one view (draw_next refuses more)
   history_targets_[history_index_].colour(0).bind(1);
   gbuffer_target_.colour(0).bind(2);
   last_temporal_inputs_ = {history_valid_, history_view_, history_view_projection_};
@@ -462,8 +545,8 @@ const framebuffer& rsm_pipeline::accumulate_history() {
 }
 
 // Pass 4: the bilateral filter (separable: its x pass first) and the shading.
-void rsm_pipeline::draw_post(const framebuffer& filter_input) {
-  timer_.begin("post processing");
+void rsm_pipeline::draw_post(const framebuffer& filter_input, std::size_t view) {
+  timer_.begin(pass_name("post processing", view));
   const bool separable = constants_.technique.indirect && settings_.filter == post_filter::separable;
   if (separable) {
     blur_x_target_.bind();
@@ -475,8 +558,14 @@ void rsm_pipeline::draw_post(const framebuffer& filter_input) {
   post_target_.bind();
   (separable ? blur_x_target_ : filter_input).colour(0).bind(0);
   for (int i = 0; i < 3; ++i) gbuffer_target_.colour(static_cast<std::size_t>(i)).bind(i + 1);
-  post_program_.use();
+  post_program().use();
+  if (view > 0) {
+    // Added to the views before: radiance and indirect light sum, alpha (1) stays.
+    glEnable(GL_BLEND);
+    glBlendFuncSeparate(GL_ONE, GL_ONE, GL_ZERO, GL_ONE);
+  }
   glDrawArrays(GL_TRIANGLES, 0, 3);
+  glDisable(GL_BLEND);
   timer_.end();
 }
 
@@ -496,7 +585,8 @@ std::string rsm_pipeline::draw_counts() const {
 
 std::string rsm_pipeline::describe() const {
   return "scene " + scene_.name + " (" + std::to_string(triangles_) + " triangles), technique " + settings_.technique + ", " +
-         std::to_string(settings_.width) + "x" + std::to_string(settings_.height) + ", RSM " + std::to_string(settings_.rsm_size) + "^2, indirect " +
+         std::to_string(settings_.width) + "x" + std::to_string(settings_.height) + ", RSM " + std::to_string(settings_.rsm_size) + "^2" +
+         (views_.size() > 1 ? " x " + std::to_string(views_.size()) + " light views" : std::string()) + ", indirect " +
          std::to_string(constants_.indirect_size.x) + "x" + std::to_string(constants_.indirect_size.y) +
          (voxels_ ? ", voxel grid " + std::to_string(voxels_->shape.cells.x) + "x" + std::to_string(voxels_->shape.cells.y) + "x" +
                         std::to_string(voxels_->shape.cells.z) + " (" + std::to_string(voxels_->bytes() / 1024) + " KiB, built in " +
@@ -506,22 +596,30 @@ std::string rsm_pipeline::describe() const {
 
 std::optional<image> rsm_pipeline::raw_indirect() const {
   if (!constants_.technique.indirect) return std::nullopt;
-  return indirect_target_.read_image(0);
+  // The sum over the lights of each one's gather; the depth (alpha) is the receivers', the same for all.
+  image sum = indirect_targets_.front().read_image(0);
+  for (std::size_t k = 1; k < indirect_targets_.size(); ++k) {
+    const image light = indirect_targets_[k].read_image(0);
+    for (std::size_t i = 0; i < sum.texels.size(); ++i) sum.texels[i] += glm::vec4(glm::vec3(light.texels[i]), 0.0f);
+  }
+  return sum;
 }
 
-rsm_pass_buffers rsm_pipeline::read_buffers() const {
+rsm_pass_buffers rsm_pipeline::read_buffers(std::size_t view) const {
+  const framebuffer& rsm_target = rsm_targets_.at(view);
+  const framebuffer& indirect_target = indirect_targets_.at(view);
   rsm_pass_buffers buffers;
-  buffers.rsm.width = rsm_target_.width();
-  buffers.rsm.height = rsm_target_.height();
-  const std::vector<std::uint32_t> words = rsm_target_.read_uint(0);
+  buffers.rsm.width = rsm_target.width();
+  buffers.rsm.height = rsm_target.height();
+  const std::vector<std::uint32_t> words = rsm_target.read_uint(0);
   buffers.rsm.texels.resize(words.size() / 4);
   std::memcpy(buffers.rsm.texels.data(), words.data(), words.size() * sizeof(std::uint32_t));
   for (std::size_t i = 0; i < 3; ++i) buffers.gbuffer[i] = gbuffer_target_.read_image(i);
   if (with_coverage(constants_))
-    for (std::size_t i = 0; i < 3; ++i) buffers.coarse[i] = coarse_target_.read_image(i);
+    for (std::size_t i = 0; i < 3; ++i) buffers.coarse[i] = coarse_targets_[view].read_image(i);
   buffers.voxels = voxels_;
   if (constants_.technique.indirect) {
-    buffers.indirect = indirect_target_.read_image(0);
+    buffers.indirect = indirect_target.read_image(0);
     if (last_accumulated_) {
       buffers.accumulated = history_targets_[history_index_].read_image(0);
       buffers.history = history_targets_[1 - history_index_].read_image(0);

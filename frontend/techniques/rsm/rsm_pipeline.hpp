@@ -41,9 +41,11 @@ struct light_frustum {
   float half_extent = 0.0f;   ///< directional light: half the side of the orthographic frustum
   float texel_area = 0.0f;    ///< directional light: area one RSM texel covers across the light
 };
-light_frustum make_light_frustum(const scene& source, int rsm_size);
-/// The same for the light of `source` around a mesh whose bounds are `box` (source.geometry is not read).
-light_frustum make_light_frustum(const scene& source, const bounding_box& box, int rsm_size);
+/// For light `light` of `source`; a point light's face `face` (0..5, vplkit/cube_map.hpp): a
+/// 90-degree perspective view along the face's axis (tan_half_fov = 1).
+light_frustum make_light_frustum(const scene& source, int rsm_size, std::size_t light = 0, int face = 0);
+/// The same for light `light` of `source` around a mesh whose bounds are `box` (source.geometry is not read).
+light_frustum make_light_frustum(const scene& source, const bounding_box& box, int rsm_size, std::size_t light = 0, int face = 0);
 
 /// The constants of a frame that the GL passes and their CPU mirror share (one derivation).
 struct rsm_frame_constants {
@@ -54,6 +56,8 @@ struct rsm_frame_constants {
   glm::mat4 light_view_inverse{1.0f};    ///< rsm-voxel: the light's eye space back to the world (the grid's space)
   voxel_march_settings<float> voxel_march;  ///< rsm-voxel: the march's offsets
   scene_light primary;
+  std::size_t light_index = 0;  ///< which of the scene's lights this view draws
+  int face = -1;                ///< a point light's cube face (0..5, vplkit/cube_map.hpp); -1 for a spot or a sun
   glm::mat4 camera_view{1.0f};
   glm::mat4 camera_view_projection{1.0f};
   shadow_density_settings<float> shadow;
@@ -64,10 +68,17 @@ struct rsm_frame_constants {
   glm::ivec2 indirect_size{0};
   int indirect_divisor = 2;
 };
-rsm_frame_constants make_frame_constants(const scene& source, const rsm_pipeline_settings& settings);
-/// The same for the camera and light of `source` around a mesh of `triangles` triangles whose
+/// The constants of the frame's passes for light `light` of `source` (each light view is drawn with
+/// its own); `face`: which face of a point light (0..5), unused for the other kinds.
+rsm_frame_constants make_frame_constants(const scene& source, const rsm_pipeline_settings& settings, std::size_t light = 0, int face = 0);
+/// The same for the camera and light `light` of `source` around a mesh of `triangles` triangles whose
 /// bounds are `box` (source.geometry is not read: the pipeline keeps these, not a copy of the mesh).
-rsm_frame_constants make_frame_constants(const scene& source, const bounding_box& box, std::size_t triangles, const rsm_pipeline_settings& settings);
+rsm_frame_constants make_frame_constants(const scene& source, const bounding_box& box, std::size_t triangles, const rsm_pipeline_settings& settings,
+                                         std::size_t light = 0, int face = 0);
+/// The light views of `source` in order: a spot or a sun is one view, a point light six (its cube
+/// faces 0..5). Throws for a scene without lights or with more than max_scene_lights.
+std::vector<rsm_frame_constants> make_view_constants(const scene& source, const bounding_box& box, std::size_t triangles,
+                                                     const rsm_pipeline_settings& settings);
 
 /// The RSM as the GPU stores it: one packed texel per pixel light (vplkit/rsm_packing.hpp), rows
 /// bottom-up; all bits 0 where nothing was rendered.
@@ -95,6 +106,13 @@ struct rsm_frame {
   std::vector<pass_time> pass_times;
 };
 
+/// Several lights (spot, directional and point, any mix, up to max_scene_lights), each one or more
+/// light views (make_view_constants): each view has its own RSM (redrawn only when its light
+/// moves), coverage lights, G-buffer shadow density and gather; the post pass of each adds its
+/// direct and filtered indirect light to the output, so the image of several lights is the sum of
+/// the images of each. A point light's face adds the direct light of the receivers whose
+/// direction from the light falls in it (cube_face_of), shadowed by its RSM's depth. Temporal
+/// accumulation draws one view.
 class rsm_pipeline final : public pipeline {
  public:
   /// Validates, loads the programs and uploads the scene. Throws vplkit::error with the reason.
@@ -150,19 +168,23 @@ class rsm_pipeline final : public pipeline {
   /// draw() timed by wall clock between two glFinish calls: the frame's cost on any renderer
   /// (llvmpipe's timer queries measure only the span of its last rasterizer tiles).
   double draw_wall_clock_ms();
-  const rsm_frame_constants& constants() const { return constants_; }
+  /// The constants light view `view` is drawn with (make_view_constants' order).
+  const rsm_frame_constants& constants(std::size_t view = 0) const { return views_.at(view); }
+  std::size_t view_count() const { return views_.size(); }
   /// rsm-voxel: the scene's occupancy grid (null for the other techniques) and the wall-clock ms
   /// its CPU build took when the pipeline was made (reported apart from the frame's cost).
   const std::shared_ptr<const voxel_grid>& voxels() const { return voxels_; }
   double voxel_build_ms() const { return voxel_build_ms_; }
-  /// The intermediate buffers of the last frame.
-  rsm_pass_buffers read_buffers() const;
+  /// The intermediate buffers of the last frame for light view `view`: its RSM, coarse lights and
+  /// gather; the G-buffer is the last view's (its positions and normals are every view's, its
+  /// shadow density the last view's).
+  rsm_pass_buffers read_buffers(std::size_t view = 0) const;
   /// The final radiance texture of the last frame.
   const texture_2d& output() const override { return post_target_.colour(0); }
   /// The filtered indirect irradiance of the last frame at the image's size (black for direct light).
   const texture_2d& indirect_output() const override { return post_target_.colour(1); }
   bool has_indirect() const override { return constants_.technique.indirect; }
-  /// The gather's output at the indirect buffer's receivers, before the post filter.
+  /// The gather's output at the indirect buffer's receivers, before the post filter (summed over the light views).
   std::optional<image> raw_indirect() const override;
 
  private:
@@ -172,14 +194,23 @@ class rsm_pipeline final : public pipeline {
   /// The camera and light of the next frame; leaves both as they were when the frame constants
   /// cannot be made.
   void move_to(const camera& view, const std::vector<scene_light>& lights);
-  void draw_passes(bool with_rsm, bool accumulate = false);
+  /// Every light's passes; all_rsms: every RSM, else only those of the lights that moved.
+  void draw_passes(bool all_rsms, bool accumulate = false);
+  /// Makes view `view`'s constants the current ones and sets the programs' uniforms from them.
+  void bind_view(std::size_t view);
   // The constructor's and draw_passes' steps.
-  void load_programs(const shader_library& shaders, const scene& source);
-  void draw_rsm();
-  void draw_gbuffer();
-  void draw_gather();
+  void load_programs(const shader_library& shaders);
+  void draw_rsm(std::size_t view);
+  void draw_gbuffer(std::size_t view);
+  void draw_gather(std::size_t view);
   const framebuffer& accumulate_history();
-  void draw_post(const framebuffer& filter_input);
+  /// The post pass of view `view`, added to the output of the views before it.
+  void draw_post(const framebuffer& filter_input, std::size_t view);
+  /// A pass's timer name: with several views it carries the light (and a point light's face).
+  std::string pass_name(const char* pass, std::size_t view) const;
+  // The programs that depend on the light's kind, indexed by light_kind (the current view's).
+  const program& rsm_program() const { return rsm_programs_[static_cast<std::size_t>(constants_.primary.kind)]; }
+  const program& post_program() const { return post_programs_[static_cast<std::size_t>(constants_.primary.kind)]; }
   /// The gather's pattern seeds for frame `frame` of a sequence (0: the settings' own).
   void set_pattern_frame(std::uint32_t frame);
 
@@ -189,34 +220,36 @@ class rsm_pipeline final : public pipeline {
   bounding_box bounds_;
   std::size_t triangles_ = 0;
   rsm_pipeline_settings settings_;
-  rsm_frame_constants constants_;
+  std::vector<rsm_frame_constants> views_;  ///< one per light view
+  rsm_frame_constants constants_;           ///< the view being drawn (bind_view)
   mesh_buffers mesh_;
-  program rsm_program_;
+  program rsm_programs_[3];
   program gbuffer_program_;
   program coarse_program_;
   program gather_program_;
   program temporal_program_;
   program blur_x_program_;
-  program post_program_;
+  program post_programs_[3];
   std::shared_ptr<const voxel_grid> voxels_;
   double voxel_build_ms_ = 0.0;
   std::optional<texture_2d> voxel_texture_;
-  framebuffer rsm_target_;
-  framebuffer coarse_target_;
+  std::vector<framebuffer> rsm_targets_;       ///< one per view
+  std::vector<framebuffer> coarse_targets_;    ///< one per view (1 x 1 without coverage)
   framebuffer gbuffer_target_;
-  framebuffer indirect_target_;
+  std::vector<framebuffer> indirect_targets_;  ///< one per view
   framebuffer history_targets_[2];  ///< temporal accumulation, ping-pong (1 x 1 when the pipeline does not accumulate)
   framebuffer blur_x_target_;
   framebuffer post_target_;
   gl_vertex_array empty_vertex_array_;
   pass_timer timer_;
-  bool rsm_valid_ = false;   ///< the RSM matches the light
+  std::vector<char> rsm_valid_;  ///< per view: its RSM matches its light
   bool view_valid_ = false;  ///< the G-buffer to post filter match the camera and the RSM
   int rsm_draws_ = 0;
   int view_draws_ = 0;
   // Temporal accumulation: the frame index in the sequence, the target the last frame wrote, whether
   // it holds a history, and the camera it was seen with.
   std::uint32_t sequence_frame_ = 0;
+  std::uint32_t pattern_frame_ = 0;  ///< the seed frame of the gather's pattern (set_pattern_frame)
   int history_index_ = 0;
   bool history_valid_ = false;
   bool last_accumulated_ = false;
