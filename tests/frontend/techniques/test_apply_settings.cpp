@@ -54,13 +54,13 @@ std::string small_object_file() {
 }
 
 // Other values to try for a setting: its choices or allowed values, its range's closed ends, the
-// value doubled, halved, plus and minus one or a tenth; another size, point or object.
+// value doubled, halved, plus and minus one or a tenth; another size, point, object or placement.
 std::vector<std::string> other_values(const setting_info& info, const std::string& value) {
   switch (info.type) {
     case setting_type::choice: return info.choices;
     case setting_type::size: return {"20x12"};
     case setting_type::point: return {"0.2,0.8,-0.1"};
-    case setting_type::text: return {small_object_file()};
+    case setting_type::text: return {small_object_file(), "0,0.6,0,0.2"};  // an object file, or a placement (object-at)
     default: break;
   }
   std::vector<std::string> candidates;
