@@ -102,7 +102,15 @@ rsm_frame_constants make_frame_constants(const scene& source, const bounding_box
 
 std::vector<rsm_frame_constants> make_view_constants(const scene& source, const bounding_box& box, std::size_t triangles,
                                                      const rsm_pipeline_settings& settings) {
-  if (source.lights.empty()) throw error("scene " + source.name + ": the RSM pipeline needs a light, the scene has none");
+  if (source.lights.empty()) {
+    // No light (--lights none): one view of a sun of zero irradiance. Its RSM's flux, the gather
+    // and the direct light are all 0, so the frame is the scene unlit, drawn by the same passes.
+    scene_light dark;
+    dark.kind = light_kind::directional;
+    dark.directional.irradiance = glm::vec3(0.0f);
+    const scene unlit{source.name, mesh{}, source.view, {dark}, {}, {}};
+    return {make_frame_constants(unlit, box, triangles, settings, 0, 0)};
+  }
   check_lights(source.lights, "scene " + source.name);
   std::vector<rsm_frame_constants> views;
   for (std::size_t k = 0; k < source.lights.size(); ++k) {
