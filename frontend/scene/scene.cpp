@@ -138,7 +138,9 @@ bool surface_cut_out(const mesh& geometry, std::size_t triangle, glm::vec2 baryc
 
 namespace {
 
-glm::vec3& power_of(scene_light& light) {
+// The light's power field, for a const or a mutable light (one choice of field for both).
+template <typename Light>
+auto& power_of(Light& light) {
   return light.kind == light_kind::spot ? light.spot.intensity : light.kind == light_kind::point ? light.point.intensity : light.directional.irradiance;
 }
 
@@ -148,9 +150,7 @@ void check_intensity(float intensity) {
 
 }  // namespace
 
-glm::vec3 light_power(const scene_light& light) {
-  return light.kind == light_kind::spot ? light.spot.intensity : light.kind == light_kind::point ? light.point.intensity : light.directional.irradiance;
-}
+glm::vec3 light_power(const scene_light& light) { return power_of(light); }
 
 void set_light_intensity(scene_light& light, float intensity) {
   check_intensity(intensity);
@@ -162,7 +162,7 @@ void set_light_intensity(scene_light& light, float intensity) {
 void scale_light_intensities(std::vector<scene_light>& lights, float intensity) {
   check_intensity(intensity);
   float peak = 0.0f;
-  for (scene_light& light : lights) peak = std::max({peak, power_of(light).r, power_of(light).g, power_of(light).b});
+  for (const scene_light& light : lights) peak = std::max({peak, power_of(light).r, power_of(light).g, power_of(light).b});
   for (scene_light& light : lights) power_of(light) = peak > 0.0f ? power_of(light) / peak * intensity : glm::vec3(intensity);  // as set_light_intensity rounds
 }
 
