@@ -70,15 +70,23 @@ T spot_light_cone(const spot_light<T>& light, T cos_axis) {
   return t * t * (T(3) - T(2) * t);
 }
 
+/// The unit direction from x to a light at `position`, and the squared distance clamped below at
+/// min_distance^2 (the clamp of pixel_light_irradiance), which spot and point lights divide by.
+template <typename T, glm::qualifier Q>
+glm::vec<3, T, Q> direction_to_light_at(const glm::vec<3, T, Q>& x, const glm::vec<3, T>& position, T min_distance,
+                                        T& distance_squared) {
+  const glm::vec<3, T, Q> to_light = position - x;
+  distance_squared = glm::max(glm::dot(to_light, to_light), min_distance * min_distance);
+  return to_light / std::sqrt(distance_squared);
+}
+
 /// Irradiance at (x, n) from the spot light, without visibility.
 template <typename T, glm::qualifier Q, typename S = T>
 glm::vec<3, T, Q> spot_light_irradiance(const glm::vec<3, T, Q>& x, const glm::vec<3, T, Q>& n,
                                         const spot_light<T>& light,
                                         const irradiance_settings<S>& settings = {}) {
-  const glm::vec<3, T, Q> to_light = light.position - x;
-  const T min_distance = T(settings.min_distance);
-  const T distance_squared = glm::max(glm::dot(to_light, to_light), min_distance * min_distance);
-  const glm::vec<3, T, Q> direction_to_light = to_light / std::sqrt(distance_squared);
+  T distance_squared;
+  const glm::vec<3, T, Q> direction_to_light = direction_to_light_at(x, light.position, T(settings.min_distance), distance_squared);
   const T cos_receiver = glm::max(T(0), glm::dot(n, direction_to_light));
   const T cone = spot_light_cone(light, -glm::dot(light.direction, direction_to_light));
   return light.intensity * (cone * cos_receiver / distance_squared);
@@ -138,10 +146,8 @@ template <typename T, glm::qualifier Q, typename S = T>
 glm::vec<3, T, Q> point_light_irradiance(const glm::vec<3, T, Q>& x, const glm::vec<3, T, Q>& n,
                                          const point_light<T>& light,
                                          const irradiance_settings<S>& settings = {}) {
-  const glm::vec<3, T, Q> to_light = light.position - x;
-  const T min_distance = T(settings.min_distance);
-  const T distance_squared = glm::max(glm::dot(to_light, to_light), min_distance * min_distance);
-  const glm::vec<3, T, Q> direction_to_light = to_light / std::sqrt(distance_squared);
+  T distance_squared;
+  const glm::vec<3, T, Q> direction_to_light = direction_to_light_at(x, light.position, T(settings.min_distance), distance_squared);
   const T cos_receiver = glm::max(T(0), glm::dot(n, direction_to_light));
   return light.intensity * (cos_receiver / distance_squared);
 }

@@ -18,11 +18,15 @@ float spot_light_cone(spot_light light, float cos_axis) {
   return t * t * (3.0 - 2.0 * t);
 }
 
+vec3 direction_to_light_at(vec3 x, vec3 position, float min_distance, out float distance_squared) {
+  vec3 to_light = position - x;
+  distance_squared = max(dot(to_light, to_light), min_distance * min_distance);
+  return to_light / sqrt(distance_squared);
+}
+
 vec3 spot_light_irradiance(vec3 x, vec3 n, spot_light light, irradiance_settings settings) {
-  vec3 to_light = light.position - x;
-  float min_distance = settings.min_distance;
-  float distance_squared = max(dot(to_light, to_light), min_distance * min_distance);
-  vec3 direction_to_light = to_light / sqrt(distance_squared);
+  float distance_squared;
+  vec3 direction_to_light = direction_to_light_at(x, light.position, settings.min_distance, distance_squared);
   float cos_receiver = max(0.0, dot(n, direction_to_light));
   float cone = spot_light_cone(light, -dot(light.direction, direction_to_light));
   return light.intensity * (cone * cos_receiver / distance_squared);
@@ -43,10 +47,8 @@ struct point_light {
 };
 
 vec3 point_light_irradiance(vec3 x, vec3 n, point_light light, irradiance_settings settings) {
-  vec3 to_light = light.position - x;
-  float min_distance = settings.min_distance;
-  float distance_squared = max(dot(to_light, to_light), min_distance * min_distance);
-  vec3 direction_to_light = to_light / sqrt(distance_squared);
+  float distance_squared;
+  vec3 direction_to_light = direction_to_light_at(x, light.position, settings.min_distance, distance_squared);
   float cos_receiver = max(0.0, dot(n, direction_to_light));
   return light.intensity * (cos_receiver / distance_squared);
 }

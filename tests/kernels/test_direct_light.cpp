@@ -79,3 +79,19 @@ TEST_CASE("point light: the inverse-square law and cosine, the spot without its 
   CHECK(point_light_texel_flux(glm::dvec3(0.5), below, glm::dvec3(0, 1, 0), bulb, ndc, glm::ivec2(size)).x == doctest::Approx(0.5 * 4.0 * omega));
   CHECK(point_light_texel_flux(glm::dvec3(0.5), below, glm::dvec3(0, -1, 0), bulb, ndc, glm::ivec2(size)).x == 0.0);
 }
+
+TEST_CASE("direction_to_light_at: the unit direction to the light and the squared distance, clamped near the light") {
+  double distance_squared = -1.0;
+  const glm::dvec3 x(1, 2, 3), far_light(4, 6, 3);  // 3-4-5 triangle: distance 5
+  const glm::dvec3 direction = direction_to_light_at(x, far_light, 0.1, distance_squared);
+  CHECK(distance_squared == doctest::Approx(25.0));
+  CHECK(direction.x == doctest::Approx(0.6));
+  CHECK(direction.y == doctest::Approx(0.8));
+  CHECK(direction.z == doctest::Approx(0.0));
+  // Closer than min_distance: the distance is held at min_distance, so the direction shrinks
+  // with it instead of being renormalised (the irradiance stays bounded and continuous).
+  const glm::dvec3 near_light = x + glm::dvec3(0, 0.05, 0);
+  const glm::dvec3 near_direction = direction_to_light_at(x, near_light, 0.1, distance_squared);
+  CHECK(distance_squared == doctest::Approx(0.01));
+  CHECK(near_direction.y == doctest::Approx(0.5));
+}
