@@ -3,13 +3,15 @@
 // the single-light images (linear, within 1 %) for the three techniques and both references of
 // the object's indirect light; a point light's occluder darkens the wall behind it in the
 // distance cube map (the point light's cube shadow map); a second light of zero power leaves the
-// single-spot images bit for bit (the summing passes add exact zeros); no light is black.
+// single-spot images bit for bit (the summing passes add exact zeros); a sun over the closed box
+// lights nothing inside (its orthographic shadow map); no light is black.
 #include <doctest/doctest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <string>
 
+#include <vplkit/direct_light.hpp>
 #include <vplkit/final_gather.hpp>
 
 #include "frontend/reference/final_gather_reference.hpp"
@@ -195,4 +197,41 @@ TEST_CASE("final gathering with no light is black: the view, the object's indire
     CHECK(pipeline.current_lights().empty());
     CHECK_THROWS_WITH_AS(pipeline.set_light(0, final_gather_box().lights[0]), doctest::Contains("no light 0 (it has 0)"), vplkit::error);
   }
+}
+
+TEST_CASE("final gathering: a sun over the closed box lights nothing inside it (its orthographic shadow map: the ceiling and walls hide it)") {
+  scene_light sun;
+  sun.kind = light_kind::directional;
+  sun.directional.direction = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f));
+  sun.directional.irradiance = glm::vec3(2.0f);
+  final_gather_pipeline pipeline(test_shaders(), box_lit_by({sun}), small("finalgather-polygon"));
+  const final_gather_frame frame = pipeline.render();
+  const final_gather_buffers buffers = pipeline.read_buffers();
+  // Receivers the sun faces (unshadowed irradiance > 0) must all be dark, except on the room's
+  // edges: a pixel whose surface point lies exactly where a wall meets the floor or the ceiling
+  // touches its occluder, which any depth bias lets through (and a shadow ray starting on the
+  // wall's plane misses it too).
+  std::size_t facing = 0, lit = 0, edge = 0;
+  double unshadowed = 0.0, indirect = 0.0;
+  for (std::size_t i = 0; i < buffers.gbuffer[0].texels.size(); ++i) {
+    const glm::vec4 position_kind = buffers.gbuffer[0].texels[i];
+    if (position_kind.w < 0.5f) continue;
+    const glm::vec3 p(position_kind), n(buffers.gbuffer[1].texels[i]);
+    const float e = directional_light_irradiance(n, sun.directional).r;
+    unshadowed += e;
+    indirect += frame.indirect.texels[i].r;
+    if (e <= 0.0f) continue;
+    const int at_bounds = (1.0f - std::abs(p.x) < 0.004f) + (std::min(p.y, 2.0f - p.y) < 0.004f) + (1.0f - std::abs(p.z) < 0.004f);
+    if (at_bounds >= 2) {
+      ++edge;
+      continue;
+    }
+    ++facing;
+    lit += buffers.direct.texels[i].r > 0.0f;
+  }
+  MESSAGE("receivers facing the sun " << facing << " (lit: " << lit << "), on the room's edges " << edge << "; indirect " << indirect
+                                      << " against the unshadowed irradiance " << unshadowed);
+  REQUIRE(facing > 500);
+  CHECK(lit == 0);
+  CHECK(indirect < 0.01 * unshadowed);
 }
