@@ -4,11 +4,19 @@
 # reference of the object's indirect light, the bunny near a wall and far from the walls (two
 # poses each) in each room, three seeds of the reference. One line per render:
 #   room place technique seed rel_rmse rel_bias rel_rmse_corrected
-#   bench/fg_rooms.sh [VPLKIT] [OUT_FOLDER]     (default: build/vplkit, output/fg-rooms)
+#   bench/fg_rooms.sh [VPLKIT] [OUT_FOLDER] [LIGHTS]     (default: build/vplkit, output/fg-rooms, spot)
+# LIGHTS picks the rooms' light variant (bench/make_fg_rooms.py): spot (fg-studio.gltf,
+# fg-hall.gltf), point (fg-*-point.gltf: a bulb) or two (fg-*-two.gltf: the spot and the bulb).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 vplkit=${1:-build/vplkit}
 out=${2:-output/fg-rooms}
+case "${3:-spot}" in
+  spot) variant= ;;
+  point) variant=-point ;;
+  two) variant=-two ;;
+  *) echo "fg_rooms.sh: LIGHTS is spot, point or two, not '$3'" >&2; exit 2 ;;
+esac
 mkdir -p "$out"
 # room | place name | object centre | camera eye (it looks at the object)
 poses=(
@@ -25,12 +33,12 @@ for pose in "${poses[@]}"; do
   read -r room place centre eye <<<"$pose"
   for technique in finalgather-polygon finalgather-point envmap; do
     for seed in 1 2 3; do
-      log="$out/$room-$place-$technique-$seed.txt"
-      "$vplkit" render --technique "$technique" --scene "bench/scenes/$room.gltf" --object meshes/bunny.obj --object-position "$centre" \
+      log="$out/$room$variant-$place-$technique-$seed.txt"
+      "$vplkit" render --technique "$technique" --scene "bench/scenes/$room$variant.gltf" --object meshes/bunny.obj --object-position "$centre" \
         --object-size 0.4 --camera "$eye,$centre" --size 128 --face-size 256 --reference monte-carlo --samples 512 --reference-seed "$seed" \
-        --out "$out/$room-$place-$technique-$seed.png" >"$log" 2>&1
+        --out "$out/$room$variant-$place-$technique-$seed.png" >"$log" 2>&1
       value() { awk -v name="$1" -F'|' '$2 ~ "^ "name" $" { gsub(/ /, "", $3); print $3 }' "$log"; }
-      echo "$room $place $technique $seed $(value rel_rmse) $(value rel_bias) $(value rel_rmse_corrected)"
+      echo "$room$variant $place $technique $seed $(value rel_rmse) $(value rel_bias) $(value rel_rmse_corrected)"
     done
   done
 done

@@ -4,6 +4,11 @@ final-gathering measurements of docs/scenes.md ("Final gathering in the user's s
 after the techniques were built and never used to tune them. Each is what an authoring tool
 exports: boxes (one unit-cube mesh per material) placed by node TRS, a KHR_lights_punctual spot
 aimed by its node's rotation, a perspective camera, named nodes.
+Light variants of each room (the same geometry and camera; the final-gathering measurements with
+a point light and with two lights, issue 38):
+  fg-studio-point: a bulb (point light) under the studio's ceiling instead of the spot;
+  fg-studio-two:   the spot and the bulb;
+  fg-hall-point, fg-hall-two: the same for the hall.
   fg-studio: 3.4 x 2.5 x 4.2, a green wall, a bed, a desk and a shelf, a warm spot in a corner
              aimed down across the room; a node "vase" on the desk (for --object-node).
   fg-hall:   8 x 3.6 x 6, a blue floor, a yellow wall, two columns and a bench, a cold spot high
@@ -58,7 +63,14 @@ def unit_cube():
             idx += [base, base + 1, base + 2, base, base + 2, base + 3]
     return pos, nor, idx
 
-def write_room(path, materials, boxes, spot, camera, note):
+def light_json(light):
+    """A KHR_lights_punctual light: a spot (cone angles in degrees) or a point light."""
+    out = {"type": light["type"], "color": light["color"], "intensity": light["intensity"]}
+    if light["type"] == "spot":
+        out["spot"] = {"innerConeAngle": math.radians(light["inner"]), "outerConeAngle": math.radians(light["outer"])}
+    return out
+
+def write_room(path, materials, boxes, lights, camera, note):
     pos, nor, idx = unit_cube()
     binary = b"".join(struct.pack("<3f", *p) for p in pos) + b"".join(struct.pack("<3f", *n) for n in nor) + b"".join(struct.pack("<H", i) for i in idx)
     names = list(materials)
@@ -76,17 +88,18 @@ def write_room(path, materials, boxes, spot, camera, note):
         "meshes": [{"name": n + " cube", "primitives": [{"attributes": {"POSITION": 0, "NORMAL": 1}, "indices": 2, "material": m}]}
                    for m, n in enumerate(names)],
         "cameras": [{"type": "perspective", "perspective": {"yfov": math.radians(60.0), "znear": 0.05, "zfar": 100.0}}],
-        "extensions": {"KHR_lights_punctual": {"lights": [{"type": "spot", "color": spot["color"], "intensity": spot["intensity"],
-                                                           "spot": {"innerConeAngle": math.radians(spot["inner"]),
-                                                                    "outerConeAngle": math.radians(spot["outer"])}}]}},
+        "extensions": {"KHR_lights_punctual": {"lights": [light_json(light) for light in lights]}},
         "nodes": [], "scenes": [{"nodes": []}], "scene": 0,
     }
     nodes = gltf["nodes"]
     for name, material, centre, size in boxes:
         nodes.append({"name": name, "mesh": names.index(material), "translation": list(centre), "scale": list(size)})
     nodes.append({"name": "camera", "camera": 0, "translation": camera[0], "rotation": look_rotation(camera[0], camera[1])})
-    nodes.append({"name": "spot", "translation": spot["at"], "rotation": look_rotation(spot["at"], spot["target"]),
-                  "extensions": {"KHR_lights_punctual": {"light": 0}}})
+    for k, light in enumerate(lights):
+        node = {"name": "spot" if light["type"] == "spot" else "bulb", "translation": light["at"]}
+        if light["type"] == "spot": node["rotation"] = look_rotation(light["at"], light["target"])
+        node["extensions"] = {"KHR_lights_punctual": {"light": k}}
+        nodes.append(node)
     gltf["scenes"][0]["nodes"] = list(range(len(nodes)))
     pathlib.Path(path).write_text(json.dumps(gltf, indent=1) + "\n")
 
@@ -111,9 +124,14 @@ boxes += [("bed", "linen", (0.95, 0.25, -1.0), (1.4, 0.5, 2.0)),
           ("desk side", "walnut", (-1.3, 0.365, 1.2), (0.7, 0.73, 0.04)),
           ("shelf", "walnut", (-1.5, 1.0, -1.7), (0.35, 2.0, 0.9)),
           ("vase", "ceramic", (-1.3, 0.9, 0.4), (0.16, 0.26, 0.16))]
-write_room(here / "fg-studio.gltf", studio, boxes,
-           {"color": [1.0, 0.9, 0.75], "intensity": 7.0, "inner": 40.0, "outer": 60.0, "at": [1.4, 2.35, 1.8], "target": [-0.6, 0.0, -0.8]},
-           ([0.9, 1.5, 1.9], [-0.4, 0.9, -0.4]), "a small studio")
+spot = {"type": "spot", "color": [1.0, 0.9, 0.75], "intensity": 7.0, "inner": 40.0, "outer": 60.0, "at": [1.4, 2.35, 1.8],
+        "target": [-0.6, 0.0, -0.8]}
+# A warm bulb under the ceiling, off the middle towards the desk (W/sr: about the spot's light on the floor).
+bulb = {"type": "point", "color": [1.0, 0.85, 0.7], "intensity": 2.5, "at": [-0.5, 2.2, -0.3]}
+camera = ([0.9, 1.5, 1.9], [-0.4, 0.9, -0.4])
+write_room(here / "fg-studio.gltf", studio, boxes, [spot], camera, "a small studio")
+write_room(here / "fg-studio-point.gltf", studio, boxes, [bulb], camera, "a small studio lit by a bulb")
+write_room(here / "fg-studio-two.gltf", studio, boxes, [spot, bulb], camera, "a small studio lit by a spot and a bulb")
 
 hall = {"blue floor": (0.15, 0.25, 0.55), "white": (0.85, 0.85, 0.85), "yellow wall": (0.8, 0.7, 0.15), "stone": (0.55, 0.52, 0.5),
         "grey wall": (0.6, 0.6, 0.62), "red bench": (0.65, 0.12, 0.1)}
@@ -122,6 +140,11 @@ boxes = shell(w, h, d, 0.15, "blue floor", "white", ["yellow wall", "grey wall",
 boxes += [("column 0", "stone", (-1.5, h / 2, -0.5), (0.45, h, 0.45)),
           ("column 1", "stone", (1.5, h / 2, -0.5), (0.45, h, 0.45)),
           ("bench", "red bench", (0.0, 0.22, 1.6), (2.4, 0.44, 0.5))]
-write_room(here / "fg-hall.gltf", hall, boxes,
-           {"color": [0.8, 0.9, 1.0], "intensity": 30.0, "inner": 45.0, "outer": 70.0, "at": [-3.5, 3.3, 2.5], "target": [0.5, 0.0, -0.5]},
-           ([2.5, 1.8, 2.7], [-0.5, 1.0, -1.0]), "a hall with columns")
+spot = {"type": "spot", "color": [0.8, 0.9, 1.0], "intensity": 30.0, "inner": 45.0, "outer": 70.0, "at": [-3.5, 3.3, 2.5],
+        "target": [0.5, 0.0, -0.5]}
+# A cold lamp high over the far half of the hall, behind the right column as seen from the spot.
+bulb = {"type": "point", "color": [0.9, 0.95, 1.0], "intensity": 8.0, "at": [2.5, 3.2, -1.5]}
+camera = ([2.5, 1.8, 2.7], [-0.5, 1.0, -1.0])
+write_room(here / "fg-hall.gltf", hall, boxes, [spot], camera, "a hall with columns")
+write_room(here / "fg-hall-point.gltf", hall, boxes, [bulb], camera, "a hall with columns lit by a lamp")
+write_room(here / "fg-hall-two.gltf", hall, boxes, [spot, bulb], camera, "a hall with columns lit by a spot and a lamp")

@@ -1,6 +1,6 @@
 #version 330 core
-// Final gathering: the room seen from the spot light, its light eye depth (negative in front of
-// the light, lib/shadow.glsl's convention) for final_gather_shadow.glsl; cut-outs are discarded.
+// Final gathering: the room seen from one light (a spot, a sun, or one face of a point light),
+// its light eye depth (negative in front of the light, lib/shadow.glsl's convention) for final_gather_shadow.glsl; cut-outs are discarded.
 #include "lib/transform.glsl"
 #include "surface_material.glsl"
 

@@ -1,6 +1,6 @@
 #version 330 core
-// Final gathering, shading ([FG]): the environment with its direct light (shadowed by the room:
-// the G-buffer's light visibility, final_gather_gbuffer.frag); the object with
+// Final gathering, shading ([FG]): the environment with its direct light (every light's,
+// shadowed by the room: final_gather_direct.frag's sum); the object with
 // direct light plus the indirect irradiance of the variant: VPLKIT_FINAL_GATHER 0 polygon-to-point,
 // 1 point-to-point (lib/final_gather.glsl), 2 the classic environment-map lookup.
 // Writes [radiance | 1] and [indirect irradiance | 1].
@@ -9,17 +9,15 @@
 #else
 #define VPLKIT_FORM_FACTOR 0
 #endif
-#include "lib/direct_light.glsl"
 #include "lib/final_gather.glsl"
 #include "lib/shading.glsl"
 
-uniform spot_light light;
-uniform irradiance_settings irradiance;
 uniform sampler2D small_cube;
 uniform sampler2D environment_map;
 uniform sampler2D gbuffer_position_kind;
 uniform sampler2D gbuffer_normal;
 uniform sampler2D gbuffer_albedo;
+uniform sampler2D direct_irradiance;
 uniform int resolution;
 uniform int environment_resolution;
 uniform vec3 reference_point;
@@ -37,8 +35,7 @@ void main() {
     return;
   }
   vec3 x = position_kind.xyz;
-  vec4 normal_visibility = texelFetch(gbuffer_normal, pixel, 0);
-  vec3 n = normal_visibility.xyz;
+  vec3 n = texelFetch(gbuffer_normal, pixel, 0).xyz;
   vec3 albedo = texelFetch(gbuffer_albedo, pixel, 0).xyz;
   vec3 indirect = vec3(0.0);
   if (position_kind.w > 1.5) {
@@ -49,7 +46,7 @@ void main() {
     indirect = final_gather_irradiance(x, n, reference_point, resolution);
 #endif
   }
-  vec3 direct = spot_light_irradiance(x, n, light, irradiance) * normal_visibility.w;
+  vec3 direct = texelFetch(direct_irradiance, pixel, 0).xyz;
   radiance = vec4(diffuse_radiance(albedo, direct, 1.0, indirect), 1.0);
   indirect_out = vec4(indirect, 1.0);
 }

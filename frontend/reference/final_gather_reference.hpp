@@ -11,7 +11,7 @@ namespace vplkit {
 
 /// The exact indirect irradiance at (x, n) in the final-gathering room without self-shadowing
 /// (the paper's assumption), summed over the RGB channels: each wall cut into `cuts` x `cuts`
-/// patches of its direct-lit radiance, gathered with the polygon form factor (exact for a
+/// patches of its radiance lit by every light of the scene (unshadowed), gathered with the polygon form factor (exact for a
 /// planar patch) in double precision.
 double final_gather_reference(const final_gather_scene& scene, const glm::dvec3& x, const glm::dvec3& n, int cuts = 24);
 

@@ -163,8 +163,7 @@ frame_quality scene_references::measure(pipeline& drawn, const technique_setting
         const image indirect = gathering->indirect_output().read_image();
         const final_gather_scene& source = gathering->source();
         const ray_scene room(source.room);
-        std::vector<scene_light> lights(1);
-        lights[0].spot = source.light;
+        const std::vector<scene_light>& lights = source.lights;  // every light the pipeline drew
         const image& positions = buffers.gbuffer[0];
         image reference(positions.width, positions.height), second(positions.width, positions.height), mask(positions.width, positions.height);
         const irradiance_settings<float> irradiance = gathering->settings().irradiance;

@@ -41,8 +41,25 @@ expect_failure("final gathering in a scene with the object inside the table" "ou
 expect_failure("final gathering in a scene outside its walls" "outside the room or inside geometry" "${WORK}/room-fail*.png"
                "${VPLKIT}" render --technique finalgather-point --scene "${room}" --object-position 0,1,9 --size 32 --face-size 32
                --out "${WORK}/room-fail.png")
-expect_failure("final gathering in a scene lit by a sun" "final gathering in scene .*its light is directional" "${WORK}/sun-fail*.png"
+# Every light of the scene: fg-studio-two.gltf's spot and bulb, each with its passes in the table;
+# --lights picks them; --lights none is drawn unlit. An open scene (indirect-shadow, lit by a sun)
+# is refused by the cube-map check, not for its light.
+set(studio_two "${FUZZ_INPUTS}/../../../bench/scenes/fg-studio-two.gltf")
+expect_success("final gathering with two lights (a spot and a point light): the time per light"
+               "light depth light 1 .*cube map light 1 .*direct light light 1 .*wrote .*/two-lights\\.png"
+               "${VPLKIT}" render --technique finalgather-polygon --scene "${studio_two}" --object-position 0,1.3,0.6 --object-size 0.4
+               --size 32 --face-size 32 --out "${WORK}/two-lights.png")
+expect_success("final gathering with the scene's point light alone (--lights 1)" "object sphere .*wrote .*/bulb\\.png"
+               "${VPLKIT}" render --technique finalgather-point --scene "${studio_two}" --lights 1 --object-position 0,1.3,0.6
+               --object-size 0.4 --size 32 --face-size 32 --out "${WORK}/bulb.png")
+expect_success("final gathering with no light (--lights none)" "object sphere .*wrote .*/unlit\\.png"
+               "${VPLKIT}" render --technique envmap --scene "${studio_two}" --lights none --object-position 0,1.3,0.6
+               --object-size 0.4 --size 32 --face-size 32 --out "${WORK}/unlit.png")
+expect_failure("final gathering in an open scene lit by a sun" "outside the room or inside geometry" "${WORK}/sun-fail*.png"
                "${VPLKIT}" render --technique envmap --scene indirect-shadow --size 32 --face-size 32 --out "${WORK}/sun-fail.png")
+expect_failure("final gathering: --lights names a light the scene lacks" "--lights: the scene has no light 2 \\(it has 2, 0 to 1\\)"
+               "${WORK}/lights-fail*.png"
+               "${VPLKIT}" render --technique envmap --scene "${studio_two}" --lights 2 --size 32 --face-size 32 --out "${WORK}/lights-fail.png")
 expect_failure("final gathering in a scene file that does not exist" "no-room\\.gltf" "${WORK}/none-fail*.png"
                "${VPLKIT}" render --technique finalgather-polygon --scene "${WORK}/no-room.gltf" --size 32 --out "${WORK}/none-fail.png")
 

@@ -1,6 +1,5 @@
 #include "frontend/techniques/final_gather/final_gather_cpu_mirror.hpp"
 
-#include <vplkit/direct_light.hpp>
 #include <vplkit/final_gather.hpp>
 #include <vplkit/shading.hpp>
 
@@ -36,8 +35,8 @@ final_gather_images cpu_final_gather_shade(const final_gather_buffers& buffers, 
           indirect = final_gather_irradiance<gather_form_factor::polygon>(p, n, source.reference_point, m, fetch);
         }
       }
-      // The G-buffer's normal carries the spot's visibility past the room (final_gather_gbuffer.frag).
-      const glm::vec3 direct = spot_light_irradiance(p, n, source.light, settings.irradiance) * buffers.gbuffer[1].at(pixel).w;
+      // The lights' shadowed direct irradiance, summed on the GPU (final_gather_direct.frag).
+      const glm::vec3 direct(buffers.direct.at(pixel));
       out.radiance.at(pixel) = glm::vec4(diffuse_radiance(albedo, direct, 1.0f, indirect), 1.0f);
       out.indirect.at(pixel) = glm::vec4(indirect, 1.0f);
     }

@@ -1,9 +1,13 @@
-// The final-gathering pipeline of [FG] for one dynamic object in a coloured box room:
-// 0. the room's light eye depths from the spot (its shadows in the cube map and the view), 1. the cube map around the object's centre o (6 faces, radiance and distance, the object left
-// out), 2. each face averaged down to M x M, 3. (baseline only) the irradiance environment map,
-// 4. a G-buffer of the camera view, 5. shading: the room with its direct light, the object with
-// direct light plus the indirect irradiance of the variant. Its CPU mirror shades from the
-// read-back small cube map and G-buffer with the same kernels.
+// The final-gathering pipeline of [FG] for one dynamic object in a room (the built-in box or the
+// user's scene): 1. a G-buffer of the camera view; per light of the scene (none: unlit):
+// 2. the room's light eye depths from the light (a spot's or a sun's map, a point light's six
+// faces: its shadows in the cube map and the view), 3. the cube map around the object's centre o
+// (6 faces, radiance and distance, the object left out), the lights' radiances added,
+// 4. the light's shadowed direct irradiance at the G-buffer's surfaces, added; then 5. each face
+// averaged down to M x M, 6. (baseline only) the irradiance environment map, 7. shading: the
+// room with its direct light, the object with direct light plus the indirect irradiance of the
+// variant. Its CPU mirror shades from the read-back small cube map, G-buffer and direct light
+// with the same kernels.
 #pragma once
 
 #include <string>
@@ -36,12 +40,14 @@ struct final_gather_frame {
 struct final_gather_buffers {
   image small_cube;       ///< 6 M x M: [radiance | distance]
   image environment_map;  ///< 6 K x K: [irradiance | 1] (baseline only, else empty)
-  image gbuffer[3];       ///< [position | kind], [normal | the spot's visibility past the room], [albedo | -]
+  image gbuffer[3];       ///< [position | kind], [normal | -], [albedo | -]
+  image direct;           ///< [the lights' direct irradiance, shadowed by the room | 0]
 };
 
-/// The side of the spot's depth map of the room (final_gather_shadow.glsl): texels of about
-/// 1/1000 of the room at the distances a room's spot lights it from, which the slope-scaled bias
-/// of a few footprints keeps free of acne without losing the contact shadows of furniture.
+/// The side of a light's depth map of the room (final_gather_shadow.glsl; each of a point
+/// light's six faces): texels of about 1/1000 of the room at the distances a room's spot lights
+/// it from, which the slope-scaled bias of a few footprints keeps free of acne without losing the
+/// contact shadows of furniture.
 inline constexpr int final_gather_light_depth_size = 1024;
 
 class final_gather_pipeline final : public pipeline {
@@ -56,7 +62,7 @@ class final_gather_pipeline final : public pipeline {
   /// any move; nothing when nothing moved. The viewer draws its frames this way.
   void draw_changed() override;
   void set_camera(const camera& view) override;
-  /// Throws vplkit::error for a directional or an invalid light.
+  /// Light `index` of the scene (any kind); throws vplkit::error for an invalid light or index.
   void set_light(std::size_t index, const scene_light& light) override;
   camera current_camera() const override { return scene_.view; }
   std::vector<scene_light> current_lights() const override;
@@ -98,11 +104,13 @@ class final_gather_pipeline final : public pipeline {
   program environment_program_;
   program gbuffer_program_;
   program shade_program_;
-  framebuffer light_depth_;
+  program direct_program_;
+  framebuffer light_depth_;  ///< one tile per face of the light drawn (six while a point light is there)
   framebuffer faces_;
   framebuffer small_cube_;
   framebuffer environment_;
   framebuffer gbuffer_;
+  framebuffer direct_;
   framebuffer output_;
   gl_vertex_array empty_vertex_array_;
   pass_timer timer_;
@@ -113,7 +121,13 @@ class final_gather_pipeline final : public pipeline {
 
   void set_pose_uniforms();
   void draw_passes(bool with_cube);
-  void draw_cube_map(float room_size);
+  /// Light `light`'s uniforms (the faces' and the direct light's) and its depth map(s).
+  void draw_light_depth(std::size_t light);
+  /// The cube map's faces lit by light `light` (SIZE_MAX: none, black), added to the earlier lights' unless `first`.
+  void draw_cube_faces(std::size_t light, bool first, float room_size);
+  void draw_direct(std::size_t light);
+  void finish_cube_map();
+  std::string pass_name(const char* pass, std::size_t light) const;
 };
 
 }  // namespace vplkit

@@ -122,14 +122,12 @@ final_gather_scene make_final_gather_scene(const scene* given, const final_gathe
   const scene box = given ? scene() : final_gather_box();
   const scene& environment = given ? *given : box;
   const std::string where = "final gathering in scene " + environment.name;
-  const scene_light& light = single_light(environment, "final gathering");
-  if (light.kind != light_kind::spot)
-    throw error(where + ": its light is " + light_kind_name(light.kind) + "; the cube map's faces and the shading are lit by a spot light (give the scene a spot)");
+  check_lights(environment.lights, where);
   if (environment.geometry.indices.empty()) throw error(where + ": the scene has no triangles around the object");
   if (!(setup.object_size > 0.0f)) throw error("the object's size must be > 0");
   final_gather_scene s;
   s.view = environment.view;
-  s.light = light.spot;
+  s.lights = environment.lights;
   s.object_source = object_key(setup);
   s.object_size = setup.object_size;
   mesh shape;

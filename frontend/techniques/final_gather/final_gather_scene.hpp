@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -29,7 +30,9 @@ struct final_gather_scene {
   glm::vec3 reference_point{0.0f};  ///< the object's centre (its bounding box's)
   float object_radius = 0.0f;       ///< of its bounding sphere around the reference point
   camera view;
-  spot_light<float> light;
+  /// The environment's lights (none: unlit), each lighting the cube map's faces and the view's
+  /// direct light with its own shadows; the pipeline sums them.
+  std::vector<scene_light> lights;
 };
 
 /// The Cornell room without its blocks, closed by a front wall, the object ("sphere": 2304 triangles, or an OBJ file
@@ -43,10 +46,10 @@ final_gather_scene make_final_gather_scene(const std::string& object, glm::vec3 
 scene final_gather_box();
 
 /// The user's scene as the environment (--scene): its geometry (every triangle: the object is
-/// not part of it), its camera and its spot light, lighting the cube map's faces with direct light
-/// as for the box; the object as above. Throws vplkit::error naming the scene for a directional
-/// light or a scene without triangles. A position inside geometry or outside the scene is found
-/// by the pipeline's cube-map check.
+/// not part of it), its camera and all its lights (spots, point lights, suns, or none), lighting
+/// the cube map's faces with direct light as for the box; the object as above. Throws
+/// vplkit::error naming the scene for an invalid light or a scene without triangles. A position
+/// inside geometry or outside the scene is found by the pipeline's cube-map check.
 final_gather_scene make_final_gather_scene(const scene& environment, const std::string& object, glm::vec3 position, float size);
 
 /// The scene of a setup: the environment (`environment`, or the built-in room when null) and the

@@ -49,7 +49,7 @@ const std::vector<setting<final_gather_setup, final_gather_technique>>& final_ga
           .builds("the output targets"),
       entry::number("min-distance", path_of(&S::pipeline, &P::irradiance, &I::min_distance))
           .feeds("cube_face.frag", "irradiance", irradiance, &I::min_distance)
-          .feeds("final_gather_shade.frag", "irradiance", irradiance, &I::min_distance),
+          .feeds("final_gather_direct.frag", "irradiance", irradiance, &I::min_distance),
       entry::number("cube-resolution", path_of(&S::pipeline, &P::resolution), schema::closed_range(1, 64), "texels",
                     "M, the small cube map's face resolution (the paper: 4 or 2)")
           .feeds("cube_downsample.frag: resolution; final_gather_shade.frag: resolution")

@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <random>
 
@@ -150,20 +151,35 @@ TEST_CASE("final gathering in a scene: the built-in box written as glTF and read
   }
 }
 
-TEST_CASE("final gathering in a scene: its light, camera and geometry are used; a sun or an empty scene is refused by name") {
+TEST_CASE("final gathering in a scene: its lights, camera and geometry are used; an empty scene or a bad light is refused by name") {
   scene room = final_gather_box();
   room.name = "my-room";
   room.lights[0].spot.intensity *= 2.0f;
   room.view.position.z += 0.25f;
   const final_gather_scene s = make_final_gather_scene(room, "sphere", glm::vec3(0.0f, 0.7f, 0.0f), 0.5f);
-  CHECK(s.light.intensity == room.lights[0].spot.intensity);
+  REQUIRE(s.lights.size() == 1);
+  CHECK(s.lights[0].spot.intensity == room.lights[0].spot.intensity);
   CHECK(s.view.position == room.view.position);
   CHECK(s.room.triangle_count() == room.geometry.triangle_count());
   CHECK(s.object.triangle_count() == 2304u);
-  scene sun = room;
-  sun.lights[0].kind = light_kind::directional;
-  CHECK_THROWS_WITH_AS(make_final_gather_scene(sun, "sphere", glm::vec3(0.0f, 0.7f, 0.0f), 0.5f),
-                       doctest::Contains("final gathering in scene my-room: its light is directional"), vplkit::error);
+  // Every kind, all of them kept in order.
+  scene mixed = room;
+  scene_light sun, bulb;
+  sun.kind = light_kind::directional;
+  sun.directional.direction = glm::vec3(0.0f, -1.0f, 0.0f);
+  sun.directional.irradiance = glm::vec3(1.0f);
+  bulb.kind = light_kind::point;
+  bulb.point.position = glm::vec3(0.0f, 1.5f, 0.0f);
+  bulb.point.intensity = glm::vec3(2.0f);
+  mixed.lights = {room.lights[0], sun, bulb};
+  const final_gather_scene m = make_final_gather_scene(mixed, "sphere", glm::vec3(0.0f, 0.7f, 0.0f), 0.5f);
+  REQUIRE(m.lights.size() == 3);
+  CHECK(m.lights[1].kind == light_kind::directional);
+  CHECK(m.lights[2].point.position == bulb.point.position);
+  scene bad = room;
+  bad.lights[0].spot.intensity = glm::vec3(std::nanf(""));
+  CHECK_THROWS_WITH_AS(make_final_gather_scene(bad, "sphere", glm::vec3(0.0f, 0.7f, 0.0f), 0.5f),
+                       doctest::Contains("final gathering in scene my-room, light 0"), vplkit::error);
   scene empty = room;
   empty.geometry = mesh();
   CHECK_THROWS_WITH_AS(make_final_gather_scene(empty, "sphere", glm::vec3(0.0f, 0.7f, 0.0f), 0.5f),
@@ -193,20 +209,22 @@ TEST_CASE("final gathering in a scene: the room's shadows are in the view's dire
   const final_gather_frame frame = pipeline.render();
   const final_gather_buffers buffers = pipeline.read_buffers();
   const ray_scene rays(s.room);
-  std::vector<scene_light> lights(1);
-  lights[0].spot = s.light;
+  const std::vector<scene_light>& lights = s.lights;
+  const spot_light<float>& spot = s.lights.at(0).spot;
 
-  // The G-buffer's visibility (what the view's direct light and the cube faces read, through
-  // final_gather_shadow.glsl) against a shadow ray to the spot, for the room's lit pixels.
+  // The view's direct light (what final_gather_direct.frag finds through final_gather_shadow.glsl,
+  // as the cube faces do): lit where it is more than half the unshadowed irradiance, against a
+  // shadow ray to the spot, for the room's lit pixels.
   std::size_t lit = 0, shadowed = 0, disagreeing = 0;
   for (std::size_t i = 0; i < buffers.gbuffer[0].texels.size(); ++i) {
     const glm::vec4 position_kind = buffers.gbuffer[0].texels[i];
     if (position_kind.w < 0.5f || position_kind.w > 1.5f) continue;
     const glm::vec3 p(position_kind), n(buffers.gbuffer[1].texels[i]);
-    if (spot_light_irradiance(p, n, s.light, settings.irradiance) == glm::vec3(0.0f)) continue;
-    const bool occluded = rays.occluded(p + n * 1e-4f, s.light.position);
+    const glm::vec3 unshadowed = spot_light_irradiance(p, n, spot, settings.irradiance);
+    if (unshadowed == glm::vec3(0.0f)) continue;
+    const bool occluded = rays.occluded(p + n * 1e-4f, spot.position);
     (occluded ? shadowed : lit) += 1;
-    disagreeing += (buffers.gbuffer[1].texels[i].w > 0.5f) == occluded;
+    disagreeing += (buffers.direct.texels[i].r > 0.5f * unshadowed.r) == occluded;
   }
   MESSAGE("room pixels lit " << lit << ", in the table's shadow " << shadowed << ", visibility disagreeing with the shadow ray " << disagreeing);
   REQUIRE(shadowed > 100);

@@ -247,10 +247,13 @@ TEST_CASE("every technique's pipeline takes cameras and lights the same way and 
       broken.target = broken.position;
       CHECK_THROWS_AS(drawn->set_camera(broken), vplkit::error);
       CHECK(drawn->current_camera().target == moved.target);
-      if (family.name != "rsm") {
-        scene_light sun;
-        sun.kind = light_kind::directional;
+      scene_light sun;
+      sun.kind = light_kind::directional;
+      if (family.name == "lightwave") {
         CHECK_THROWS_WITH_AS(drawn->set_light(0, sun), doctest::Contains("spot light"), vplkit::error);
+      } else if (family.name == "final-gather") {  // every kind of light, each with its own shadows
+        drawn->set_light(0, sun);
+        CHECK(drawn->current_lights().at(0).kind == light_kind::directional);
       }
       CHECK(drawn->has_indirect() == (technique.name != "direct" && technique.name != "lightwave-direct"));
       CHECK(drawn->describe().find(technique.name) != std::string::npos);
