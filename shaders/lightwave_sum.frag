@@ -8,10 +8,12 @@
 uniform sampler2D radiance_image;
 uniform sampler2D indirect_image;
 uniform sampler2D irradiance_image;
+uniform sampler2D direct_image;
 layout(location = 0) out vec4 colour;
 layout(location = 1) out vec4 indirect_shadow;
 layout(location = 2) out vec4 indirect_out;
 layout(location = 3) out vec4 indirect_irradiance_out;
+layout(location = 4) out vec4 direct_irradiance_out;
 
 void main() {
   // The same size as the target: texel for texel, no filtering.
@@ -20,4 +22,5 @@ void main() {
   indirect_shadow = vec4(0.0);
   indirect_out = vec4(texelFetch(indirect_image, texel, 0).rgb, 0.0);
   indirect_irradiance_out = vec4(texelFetch(irradiance_image, texel, 0).rgb, 0.0);
+  direct_irradiance_out = vec4(texelFetch(direct_image, texel, 0).rgb, 0.0);
 }

@@ -35,7 +35,7 @@ lightwave_pipeline::lightwave_pipeline(const shader_library& shaders, const scen
       depth_program_(load_program(shaders, "scene.vert", "depth_only.frag",
                                   has_alpha_cutouts(source.geometry) ? shader_defines{} : shader_defines{{"VPLKIT_MATERIAL_NO_ALPHA_TEST", "1"}})),
       shadow_framebuffer_(generate_framebuffer()),
-      target_(settings.width, settings.height, {settings.format, settings.format, settings.format, settings.format}, true) {
+      target_(settings.width, settings.height, {settings.format, settings.format, settings.format, settings.format, settings.format}, true) {
   if (source.lights.empty()) throw error("Light Wave draws at least one light; scene " + source.name + " has none (choose some with --lights)");
   check_lights(source.lights, "scene " + source.name);
   for (std::size_t k = 0; k < source.lights.size(); ++k)
@@ -478,6 +478,7 @@ void lightwave_pipeline::add_light_pipelines() {
   sum_program_.set("radiance_image", 0);
   sum_program_.set("indirect_image", 1);
   sum_program_.set("irradiance_image", 2);
+  sum_program_.set("direct_image", 3);
   glBindVertexArray(empty_vertex_array_.get());
   for (const auto& other : light_pipelines_) {
     glActiveTexture(GL_TEXTURE0);
@@ -486,6 +487,8 @@ void lightwave_pipeline::add_light_pipelines() {
     glBindTexture(GL_TEXTURE_2D, other->target_.colour(2).id());
     glActiveTexture(GL_TEXTURE2);
     glBindTexture(GL_TEXTURE_2D, other->target_.colour(3).id());
+    glActiveTexture(GL_TEXTURE3);
+    glBindTexture(GL_TEXTURE_2D, other->target_.colour(4).id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
   }
   glBindVertexArray(0);

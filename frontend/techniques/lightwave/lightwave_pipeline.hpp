@@ -82,6 +82,8 @@ class lightwave_pipeline final : public pipeline {
   /// The indirect irradiance (-indirect.pfm, the quantity of every family): the indirect
   /// radiance of lightwave_frame::indirect over the surface's reflectance albedo / pi.
   const texture_2d& indirect_output() const override { return target_.colour(3); }
+  /// The spots' direct irradiance after their shadow maps (lightwave.frag's output 4).
+  const texture_2d& direct_output() const override { return target_.colour(4); }
   bool has_indirect() const override { return technique_.mode != lightwave_mode::direct; }
   int view_draws() const override { return main_draws_; }
   std::string draw_counts() const override;
