@@ -74,6 +74,7 @@ layout(location = 0) out vec4 colour;
 layout(location = 1) out vec4 indirect_shadow;
 layout(location = 2) out vec4 indirect_out;
 layout(location = 3) out vec4 indirect_irradiance_out;
+layout(location = 4) out vec4 direct_irradiance_out;  // render's -direct.pfm: the shadowed direct irradiance
 
 // The receiver moved along its normal and towards a map's origin (`to_origin`: towards the light,
 // or the VPL of a VPL's map) by lib/shadow.glsl's normal offset and slope-scaled bias, in the
@@ -220,6 +221,8 @@ void main() {
 #endif
   indirect_shadow = vec4(factor, 0.0, 0.0, 1.0);
   indirect_out = vec4(indirect, 1.0);
+  // Before the albedo, as -indirect.pfm: the irradiance the light brings, after its shadow map.
+  direct_irradiance_out = vec4(light_irradiance * shadow, 1.0);
   // -indirect.pfm is the indirect irradiance for every family: the quantity the RSM's gather and
   // final gathering compute and `vplkit reference` writes. Light Wave sums the radiance its
   // surfaces reflect (Eq. 4.5 and the flux VPLs include the receiver's albedo); the irradiance is

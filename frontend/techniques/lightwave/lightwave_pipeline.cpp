@@ -258,8 +258,8 @@ void lightwave_pipeline::build_flux_vpls() {
   };
   // One set of images per map, allocated before any is pointed at (a point light's six faces are
   // looked up together).
-  const std::size_t maps = kind_ == light_kind::point ? 6 : 1;
-  if (shared_->surface_texels.size() < maps) shared_->surface_texels.resize(maps);
+  const std::size_t map_count = kind_ == light_kind::point ? 6 : 1;
+  if (shared_->surface_texels.size() < map_count) shared_->surface_texels.resize(map_count);
   cone_.angle_deg = settings_.angle_deg;
   cone_.per_ray = settings_.per_ray;
   cone_.light_direction = light_axis();
@@ -363,8 +363,8 @@ std::uint64_t lightwave_pipeline::shared_bytes() const {
   const auto texture_bytes = [](const texture_2d& t) { return static_cast<std::uint64_t>(t.width()) * static_cast<std::uint64_t>(t.height()) * 16u; };
   const std::uint64_t pixels = static_cast<std::uint64_t>(settings_.width) * static_cast<std::uint64_t>(settings_.height);
   const std::uint64_t texel = settings_.format == texel_format::rgba32f ? 16u : 8u;
-  // The output image: four colours in the output's format and a 32-bit depth.
-  bytes += pixels * (4u * texel + 4u);
+  // The output image: five colours in the output's format (lightwave.frag's outputs) and a 32-bit depth.
+  bytes += pixels * (5u * texel + 4u);
   if (shared_->receiver_buffers) {
     bytes += static_cast<std::uint64_t>(shared_->receivers.vertices.size()) * sizeof(vertex) +
              static_cast<std::uint64_t>(shared_->receivers.indices.size()) * sizeof(std::uint32_t);

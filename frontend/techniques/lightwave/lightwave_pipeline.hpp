@@ -89,6 +89,8 @@ class lightwave_pipeline final : public pipeline {
   /// The indirect irradiance (-indirect.pfm, the quantity of every family): the indirect
   /// radiance of lightwave_frame::indirect over the surface's reflectance albedo / pi.
   const texture_2d& indirect_output() const override { return shared_->target.colour(3); }
+  /// The lights' direct irradiance after their shadow maps (lightwave.frag's output 4).
+  const texture_2d& direct_output() const override { return shared_->target.colour(4); }
   bool has_indirect() const override { return technique_.mode != lightwave_mode::direct; }
   int view_draws() const override { return main_draws_; }
   std::string draw_counts() const override;
@@ -148,7 +150,8 @@ class lightwave_pipeline final : public pipeline {
   /// costs its VPLs, its shadow maps and its image, not another copy of the scene).
   struct shared_resources {
     shared_resources(const mesh& geometry, const lightwave_settings& settings)
-        : scene_mesh(geometry), target(settings.width, settings.height, {settings.format, settings.format, settings.format, settings.format}, true) {}
+        : scene_mesh(geometry),
+          target(settings.width, settings.height, {settings.format, settings.format, settings.format, settings.format, settings.format}, true) {}
     mesh_buffers scene_mesh;
     /// The image every light's main pass draws into: the first light's clears it and lays its
     /// depth, each further light's adds its light on that depth.
