@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
-"""Writes the rooms of docs/scenes.md "Lights" into bench/scenes/: two furnished rooms vplkit was
+"""Writes the rooms of docs/scenes.md "Lights" into bench/scenes/: three furnished rooms vplkit was
 never tuned on (den: 4 x 2.5 x 5 m, a green and a blue wall, a bed, a desk, a bookshelf; studio:
-6 x 3 x 4 m, a yellow wall, a sofa, a table, a pillar), each lit two ways: <room>-point.gltf (one
+6 x 3 x 4 m, a yellow wall, a sofa, a table, a pillar; workshop: 5 x 2.8 x 4.5 m, a red wall, a
+partition half across the room, a workbench, shelves, its bulb low and off-centre so that much of
+the room is lit through a point light's side faces), each lit two ways: <room>-point.gltf (one
 point light under the ceiling) and <room>-two-spots.gltf (two spots from opposite corners, light 0
 warm, light 1 cool, so `--lights 0`, `--lights 1` and `--lights 0,1` differ). Boxes are instances
 of room-a.gltf's unit cube (its buffer is copied), one material per colour.
@@ -81,3 +83,26 @@ room("studio", (6.0, 3.0, 4.0),
      ((2.6, 1.6, 1.8), (-1.0, 0.6, -1.2)),
      ((-0.5, 2.6, -0.2), (1.0, 0.9, 0.8), 7.0),
      [((-2.8, 2.85, 1.8), (-1.2, 0.0, -1.2), (1.0, 0.85, 0.65), 9.0), ((2.8, 2.85, -1.8), (0.5, 0.0, 0.8), (0.6, 0.75, 1.0), 7.0)])
+
+# Light Wave's own room (docs/scenes.md "Lights: Light Wave"), never tuned on: a 5 x 2.7 x 3.6 m
+# kitchen with a red wall, a counter along the back, an island, a tall fridge and a table; a bulb
+# over the island (lw-kitchen-point.gltf) or two spots (lw-kitchen-two-spots.gltf).
+room("lw-kitchen", (5.0, 2.7, 3.6),
+     {"floor": (0.55, 0.5, 0.45), "ceiling": (0.85, 0.85, 0.85), "wall": (0.8, 0.78, 0.74), "back": (0.75, 0.74, 0.7),
+      "left": (0.7, 0.18, 0.15), "counter": (0.3, 0.3, 0.32), "wood": (0.5, 0.35, 0.2), "fridge": (0.88, 0.88, 0.9)},
+     [("counter", "counter", (0.3, 0.45, -1.5), (3.0, 0.9, 0.6)), ("island", "wood", (0.4, 0.45, 0.1), (1.4, 0.9, 0.8)),
+      ("fridge", "fridge", (2.1, 0.95, -1.45), (0.7, 1.9, 0.7)), ("table", "wood", (-1.6, 0.74, 0.9), (1.0, 0.05, 0.9)),
+      ("table block", "wood", (-1.6, 0.37, 0.9), (0.3, 0.74, 0.3))],
+     ((2.2, 1.6, 1.6), (-1.0, 0.7, -0.8)),
+     ((0.2, 2.3, 0.3), (1.0, 0.92, 0.8), 6.0),
+     [((-2.3, 2.6, 1.6), (0.3, 0.9, -1.4), (1.0, 0.85, 0.65), 8.0), ((2.3, 2.6, 1.6), (-1.6, 0.0, 0.4), (0.6, 0.75, 1.0), 6.0)])
+
+room("workshop", (5.0, 2.8, 4.5),
+     {"floor": (0.45, 0.45, 0.5), "ceiling": (0.8, 0.8, 0.8), "wall": (0.75, 0.72, 0.65), "back": (0.7, 0.2, 0.15),
+      "left": (0.3, 0.5, 0.55), "bench": (0.6, 0.45, 0.25), "metal": (0.35, 0.38, 0.4), "partition": (0.85, 0.8, 0.55)},
+     [("partition", "partition", (0.6, 1.1, -0.4), (0.1, 2.2, 2.4)), ("workbench", "bench", (-1.5, 0.85, -1.6), (1.6, 0.08, 0.8)),
+      ("bench legs", "metal", (-1.5, 0.42, -1.6), (1.4, 0.84, 0.6)), ("shelves", "metal", (2.2, 0.9, -1.5), (0.5, 1.8, 1.2)),
+      ("crate", "bench", (-0.4, 0.3, 1.0), (0.6, 0.6, 0.6))],
+     ((-2.0, 1.7, 2.0), (1.0, 0.7, -1.3)),
+     ((-0.6, 1.9, 0.5), (1.0, 0.92, 0.8), 4.0),
+     [((-2.3, 2.65, 2.0), (0.0, 0.0, -1.0), (1.0, 0.85, 0.65), 8.0), ((2.3, 2.65, 2.0), (-0.5, 0.0, -1.5), (0.6, 0.75, 1.0), 6.0)])

@@ -3,7 +3,7 @@
 // shadowed by the room: final_gather_direct.frag's sum); the object with
 // direct light plus the indirect irradiance of the variant: VPLKIT_FINAL_GATHER 0 polygon-to-point,
 // 1 point-to-point (lib/final_gather.glsl), 2 the classic environment-map lookup.
-// Writes [radiance | 1] and [indirect irradiance | 1].
+// Writes [radiance | 1], [indirect irradiance | 1] and [shadowed direct irradiance | 1].
 #if VPLKIT_FINAL_GATHER == 1
 #define VPLKIT_FORM_FACTOR 1
 #else
@@ -23,6 +23,7 @@ uniform int environment_resolution;
 uniform vec3 reference_point;
 layout(location = 0) out vec4 radiance;
 layout(location = 1) out vec4 indirect_out;
+layout(location = 2) out vec4 direct_out;
 
 vec4 small_cube_fetch(int face, int i, int j) { return texelFetch(small_cube, ivec2(face * resolution + i, j), 0); }
 
@@ -32,6 +33,7 @@ void main() {
   if (position_kind.w < 0.5) {
     radiance = vec4(0.0, 0.0, 0.0, 1.0);
     indirect_out = vec4(0.0, 0.0, 0.0, 1.0);
+    direct_out = vec4(0.0, 0.0, 0.0, 1.0);
     return;
   }
   vec3 x = position_kind.xyz;
@@ -49,4 +51,5 @@ void main() {
   vec3 direct = texelFetch(direct_irradiance, pixel, 0).xyz;
   radiance = vec4(diffuse_radiance(albedo, direct, 1.0, indirect), 1.0);
   indirect_out = vec4(indirect, 1.0);
+  direct_out = vec4(direct, 1.0);
 }

@@ -3,7 +3,8 @@
 // by the bilateral filter (full 2D, or the y axis over pass 4a's output when VPLKIT_SEPARABLE),
 // then direct light from the G-buffer (albedo, shadow density) plus indirect:
 //   radiance = albedo / pi * (E_direct * shadow_density + E_indirect).
-// Writes [radiance | 1] and [filtered indirect irradiance | 1].
+// Writes [radiance | 1], [filtered indirect irradiance | 1] and [shadowed direct irradiance | 1]
+// (render's -direct.pfm).
 // VPLKIT_PACKED_BLUR: the y pass reads pass 4a's packed taps (blur_x.frag), one fetch per tap.
 #ifndef VPLKIT_PACKED_BLUR
 #define VPLKIT_PACKED_BLUR 0  // the pipeline defines it; 0 for a program loaded without it
@@ -43,6 +44,7 @@ uniform spot_light spot;
 
 layout(location = 0) out vec4 radiance;
 layout(location = 1) out vec4 indirect_out;
+layout(location = 2) out vec4 direct_out;
 
 bilateral_tap bilateral_fetch(ivec2 texel) {
 #if VPLKIT_PACKED_BLUR
@@ -61,6 +63,7 @@ void main() {
   if (!(position_depth.w < 0.0)) {
     radiance = vec4(0.0, 0.0, 0.0, 1.0);
     indirect_out = vec4(0.0, 0.0, 0.0, 1.0);
+    direct_out = vec4(0.0, 0.0, 0.0, 1.0);
     return;
   }
   vec4 albedo_density = texelFetch(gbuffer_albedo_density, pixel, 0);
@@ -86,4 +89,5 @@ void main() {
 #endif
   radiance = vec4(diffuse_radiance(albedo_density.rgb, direct, albedo_density.a, indirect_irradiance), 1.0);
   indirect_out = vec4(indirect_irradiance, 1.0);
+  direct_out = vec4(direct * albedo_density.a, 1.0);
 }

@@ -38,6 +38,26 @@ std::string relative_cell(const relative_error& error, double value) {
   return text.str();
 }
 
+// The share of the reference's lit pixels (luminance > 0; within the mask when one is given) where
+// the image's luminance is below half the reference's: the missing light that a mean hides (shadow
+// acne, a seam, a light leak's opposite). The direct-light target is <= 1 %.
+struct darker_than_half {
+  std::size_t lit = 0;
+  std::size_t darker = 0;
+};
+
+darker_than_half darker_than_half_of(const image& candidate, const image& reference, const image* mask) {
+  darker_than_half count;
+  for (std::size_t i = 0; i < reference.texels.size(); ++i) {
+    if (mask && !(luminance(glm::dvec3(mask->texels[i])) > 0.5)) continue;
+    const double expected = luminance(glm::dvec3(reference.texels[i]));
+    if (!(expected > 0.0)) continue;
+    ++count.lit;
+    if (luminance(glm::dvec3(candidate.texels[i])) < 0.5 * expected) ++count.darker;
+  }
+  return count;
+}
+
 int run_compare(const session& io, const compare_state& s) {
   std::optional<output_set> files;
   if (!s.error_image.empty()) {
@@ -63,6 +83,11 @@ int run_compare(const session& io, const compare_state& s) {
   io.out << " |\n| SSIM (luminance) | " << m.ssim << " |\n| similarity (Alg. 1, %) | " << m.similarity << " |\n";
   io.out << "| relative RMSE (RMSE / reference mean) | " << relative_cell(m.relative, m.relative.rmse)
          << " |\n| relative bias ((mean - reference mean) / reference mean) | " << relative_cell(m.relative, m.relative.bias) << " |\n";
+  const darker_than_half darker = darker_than_half_of(candidate, reference, mask ? &*mask : nullptr);
+  io.out << "| lit pixels darker than half the reference (%" << (mask ? ", in the mask" : "") << ") | ";
+  if (darker.lit == 0) io.out << "undefined: the reference has no lit pixel" << (mask ? " in the mask" : "");
+  else io.out << 100.0 * static_cast<double>(darker.darker) / static_cast<double>(darker.lit) << " (" << darker.darker << " of " << darker.lit << ")";
+  io.out << " |\n";
   if (m.leak_rmse) io.out << "| masked RMSE (" << m.leak_pixels << " pixels, e.g. a leak region) | " << *m.leak_rmse << " |\n";
   if (m.masked)
     io.out << "| masked relative RMSE (" << m.masked->pixels << " pixels) | " << relative_cell(*m.masked, m.masked->rmse) << " |\n| masked relative bias | "

@@ -113,7 +113,7 @@ int run_rsm_brute_force(const session& io, const reference_state& s) {
 int run_monte_carlo(const session& io, const reference_state& s) {
   const std::unique_ptr<technique_settings> frame = frame_settings(s);
   const std::string scene_name = drawn_scene_name(s.common, *frame);
-  output_set files(s.out, "output/" + stem_of(scene_name) + "-reference.pfm", ".pfm", "--out", "a .png and -indirect.pfm go next to it");
+  output_set files(s.out, "output/" + stem_of(scene_name) + "-reference.pfm", ".pfm", "--out", "a .png, -indirect.pfm and -direct.pfm go next to it");
   if (io.dry_run) return 0;
   const double started = steady_seconds();
   const scene source = load_scene(s.common, scene_name);
@@ -124,9 +124,11 @@ int run_monte_carlo(const session& io, const reference_state& s) {
   const progress_settings progress =
       announce(s, estimate_one_bounce(rays, source, w, h, s.options.samples, s.options.seed, threads), started, threads);
   const one_bounce_images images = reference_one_bounce(rays, source, w, h, s.options.samples, s.options.seed, threads, progress);
-  // PFM and PNG of the final image, PFM of the indirect irradiance: written only after all is done.
+  // PFM and PNG of the final image, PFMs of the indirect and the direct irradiance (the quantities
+  // of render's -indirect.pfm and -direct.pfm): written only after all is done.
   files.add_pfm(files.main(), images.radiance);
   files.add_pfm(files.sibling("-indirect", ".pfm"), images.indirect);
+  files.add_pfm(files.sibling("-direct", ".pfm"), images.direct);
   files.add_png(files.sibling("", ".png"), images.radiance, exposure_scale(s.common, images.radiance, io.out));
   io.out << "scene " << source.name << ", one-bounce Monte Carlo reference, " << w << "x" << h << ", " << s.options.samples << " bounce rays per pixel, seed "
          << s.options.seed << "\n";
@@ -174,7 +176,7 @@ command add_reference_command(CLI::App& app) {
                         "refuse when the estimated time (printed before the work starts) exceeds this, and stop, writing nothing, when the "
                         "run takes longer; counted from the start; 0: no limit")
       ->check(number_in(0.0, 1e9, false, "seconds"))->capture_default_str();
-  reference->add_option("--out", state->out, "output .pfm (monte-carlo: the final image, with -indirect.pfm and a .png next to it; "
+  reference->add_option("--out", state->out, "output .pfm (monte-carlo: the final image, with -indirect.pfm, -direct.pfm and a .png next to it; "
                                              "rsm-brute-force: the indirect irradiance, with a .png and -receivers.pfm)");
   return {reference, [state](const session& io) {
             state->scope.require_read_by(state->method, "method");

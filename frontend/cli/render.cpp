@@ -89,7 +89,7 @@ int render_sequence(const session& io, const render_state& s, const technique_se
   drawn->draw();
   drawn->collect_pass_times();
   const image first = drawn->output().read_image();
-  const double bytes_per_frame = static_cast<double>(first.width) * first.height * (s.raw_indirect ? 19.0 : 15.0);
+  const double bytes_per_frame = static_cast<double>(first.width) * first.height * (s.raw_indirect ? 31.0 : 27.0);
   if (bytes_per_frame * static_cast<double>(frames.size()) > 4.0 * 1024 * 1024 * 1024)
     throw error(s.poses + ": " + std::to_string(frames.size()) + " frames of " + std::to_string(first.width) + "x" + std::to_string(first.height) +
                 " would hold more than 4 GiB until they are written; split the pose file");
@@ -124,6 +124,7 @@ int render_sequence(const session& io, const render_state& s, const technique_se
     const std::string suffix = frame_suffix(i + 1, frames.size());
     files.add_png(files.sibling(suffix, ".png"), drawn->output().read_image());
     files.add_pfm(files.sibling(suffix + "-indirect", ".pfm"), drawn->indirect_output().read_image());
+    files.add_pfm(files.sibling(suffix + "-direct", ".pfm"), drawn->direct_output().read_image());
     if (s.raw_indirect)
       if (const std::optional<image> raw = drawn->raw_indirect()) files.add_pfm(files.sibling(suffix + "-raw-indirect", ".pfm"), *raw);
     rendered_frames = i + 1;
@@ -172,6 +173,7 @@ int run_render(const session& io, const render_state& s) {
   const std::vector<pass_time> every_pass = drawn->collect_pass_times();
   const image radiance = drawn->output().read_image();
   const image indirect = drawn->indirect_output().read_image();
+  const image direct = drawn->direct_output().read_image();
 
   // Everything is rendered before anything is written, so a failure leaves no partial set.
   files.add_png(files.main(), radiance, exposure_scale(o.common, radiance, io.out));
@@ -182,6 +184,8 @@ int run_render(const session& io, const render_state& s) {
   if (const texture_2d* shadow = drawn->indirect_shadow_output()) files.add_png(files.sibling("-indirect-shadow", ".png"), red_as_grey(shadow->read_image()));
   // The indirect light, linear (0 for direct light only).
   files.add_pfm(files.sibling("-indirect", ".pfm"), indirect);
+  // The direct light, linear: the shadowed direct irradiance (reference --method monte-carlo's -direct.pfm).
+  files.add_pfm(files.sibling("-direct", ".pfm"), direct);
   if (s.raw_indirect) files.add_pfm(files.sibling("-raw-indirect", ".pfm"), *drawn->raw_indirect());
 
   // What a camera move costs: the camera "moved" onto itself, then only what that invalidated.

@@ -105,10 +105,10 @@ float camera_ray_lod(const mesh& geometry, const ray_scene::hit& hit, const glm:
   return rho > 0.0f && std::isfinite(rho) ? std::log2(rho) : 0.0f;
 }
 
-// One pixel of the Monte Carlo reference: [radiance, indirect irradiance], whether the camera
-// sees the back of the surface (its normal faces away), nothing for a miss.
+// One pixel of the Monte Carlo reference: [radiance, indirect irradiance, direct irradiance],
+// whether the camera sees the back of the surface (its normal faces away), nothing for a miss.
 struct one_bounce_pixel {
-  glm::vec3 radiance, indirect;
+  glm::vec3 radiance, indirect, direct;
   bool back_facing = false;
 };
 
@@ -134,7 +134,7 @@ std::optional<one_bounce_pixel> trace_one_bounce_pixel(const ray_scene& rays, co
   const std::uint32_t key = static_cast<std::uint32_t>(y * width + x);
   const glm::vec3 direct = direct_irradiance(rays, source.lights, irradiance, hit.position, n);
   const glm::vec3 bounce = samples > 0 ? one_bounce_irradiance(rays, source.lights, irradiance, hit.position, n, samples, seed, key) : glm::vec3(0.0f);
-  return one_bounce_pixel{diffuse_radiance(hit.albedo, direct, 1.0f, bounce), bounce, glm::dot(hit.normal, ray.direction) > 0.0f};
+  return one_bounce_pixel{diffuse_radiance(hit.albedo, direct, 1.0f, bounce), bounce, direct, glm::dot(hit.normal, ray.direction) > 0.0f};
 }
 
 }  // namespace
@@ -145,6 +145,7 @@ one_bounce_images reference_one_bounce(const ray_scene& rays, const scene& sourc
   one_bounce_images out;
   out.radiance = image(width, height, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
   out.indirect = out.radiance;
+  out.direct = out.radiance;
   progress_monitor progress("one-bounce Monte Carlo reference", static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height), "pixels",
                             progress_to);
   std::atomic<std::uint64_t> back_facing{0};
@@ -156,6 +157,7 @@ one_bounce_images reference_one_bounce(const ray_scene& rays, const scene& sourc
       if (const std::optional<one_bounce_pixel> pixel = trace_one_bounce_pixel(rays, source, primary, x, y, width, samples, seed)) {
         out.radiance.at(x, height - 1 - y) = glm::vec4(pixel->radiance, 1.0f);
         out.indirect.at(x, height - 1 - y) = glm::vec4(pixel->indirect, 1.0f);
+        out.direct.at(x, height - 1 - y) = glm::vec4(pixel->direct, 1.0f);
         if (pixel->back_facing) back_facing.fetch_add(1, std::memory_order_relaxed);
       }
       progress.advance();

@@ -41,6 +41,7 @@ glm::vec3 one_bounce_irradiance(const ray_scene& bounce_rays, const ray_scene& l
 struct one_bounce_images {
   image radiance;  ///< albedo / pi * (E_direct + E_one_bounce), what the camera sees
   image indirect;  ///< E_one_bounce at each pixel's surface
+  image direct;    ///< E_direct at each pixel's surface: every light's, each with an exact shadow ray
   /// Pixels whose surface faces away from the camera (the normal points away from the eye). Every
   /// surface is lit on the side its normal faces, by the reference as by the GL techniques, so
   /// these see only what reaches that side: usually the sign of reversed faces in the mesh.

@@ -66,6 +66,11 @@ class pipeline {
   virtual const texture_2d& output() const = 0;
   /// The last frame's indirect light as `vplkit render` writes it to -indirect.pfm.
   virtual const texture_2d& indirect_output() const = 0;
+  /// The last frame's direct light as `vplkit render` writes it to -direct.pfm: the direct
+  /// irradiance at each pixel's surface after the technique's shadows (every light's, summed),
+  /// before the surface's albedo; the quantity of indirect_output() for direct light, and of
+  /// `vplkit reference --method monte-carlo`'s -direct.pfm. 0 where there is no surface.
+  virtual const texture_2d& direct_output() const = 0;
   /// Whether the technique computes indirect light at all (direct light only does not).
   virtual bool has_indirect() const = 0;
   /// The indirect shadow factor in red (Light Wave's accurate and integrated shadows), or null.

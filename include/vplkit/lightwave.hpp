@@ -304,6 +304,58 @@ glm::vec<3, T> lightwave_ray_flux(const point_light<T>& light, const glm::vec<3,
   return albedo * light.intensity * (facing * solid_angle);
 }
 
+// ---- A sun's VPLs: parallel rays on a grid across its orthographic map (docs/errata.md, LW-9) ----
+//
+// A directional light has no position to spread rays from: its flux layout is a square grid of
+// cells across the window of an orthographic map that holds the scene (half-side `half_extent`,
+// looking along the sun's direction), each cell split into `per_ray` samples by the cone
+// layout's rank-1 lattice, so that every sample stands for an equal part of the window's area.
+// The grid has as many cells as the cone layout has rays (lightwave_ray_count, rounded up to a
+// square), so that `angle_deg` sets the same VPL count for every kind of light.
+
+/// The side of the sun's grid: the least s with s * s >= lightwave_ray_count(angle_deg).
+constexpr int lightwave_parallel_side(int angle_deg) {
+  int side = 1;
+  while (side * side < lightwave_ray_count(angle_deg)) ++side;
+  return side;
+}
+
+/// Samples of the sun's flux layout: per_ray on each of the grid's cells.
+constexpr int lightwave_parallel_sample_count(int angle_deg, int per_ray) {
+  return per_ray * lightwave_parallel_side(angle_deg) * lightwave_parallel_side(angle_deg);
+}
+
+/// Sample `index` (0 .. lightwave_parallel_sample_count - 1; index = sample_index * cells + cell,
+/// cell = row * side + column) of the sun's flux layout: (x, y) in [-1, 1] across the map's
+/// window and the sample's share of the window's area (whose side is 2: the shares sum to 4; the
+/// area in scene units is share * half_extent^2). Sample s of a cell lies at ((s + 1/2) / per_ray,
+/// frac(1/2 + s g)) of the cell, g the golden ratio's conjugate (the cone layout's lattice).
+template <typename T>
+glm::vec<3, T> lightwave_parallel_sample(int index, int angle_deg, int per_ray) {
+  const int side = lightwave_parallel_side(angle_deg);
+  const int cells = side * side;
+  const int sample_index = index / cells;
+  const int cell = index - sample_index * cells;
+  const int row = cell / side;
+  const int column = cell - row * side;
+  const T u = (T(sample_index) + T(0.5)) / T(per_ray);
+  const T lattice = T(0.5) + T(sample_index) * T(0.618033988749894848);
+  const T v = lattice - std::floor(lattice);
+  const T cell_side = T(2) / T(side);
+  return {T(-1) + (T(column) + u) * cell_side, T(-1) + (T(row) + v) * cell_side, cell_side * cell_side / T(per_ray)};
+}
+
+/// The flux a sun's sample brings to the surface it meets and that surface reflects: albedo *
+/// irradiance * area (the sample's cross-section, perpendicular to the light), 0 when the surface
+/// faces away from the light. `direction` is the light's (the twins of the other kinds take the
+/// ray's).
+template <typename T>
+glm::vec<3, T> lightwave_ray_flux(const directional_light<T>& light, const glm::vec<3, T>& direction, T area, const glm::vec<3, T>& albedo,
+                                  const glm::vec<3, T>& surface_normal) {
+  const T facing = glm::dot(surface_normal, direction) < T(0) ? T(1) : T(0);
+  return albedo * light.irradiance * (facing * area);
+}
+
 /// The radius of the disk with the area a patch of `solid_angle` covers on a surface at
 /// `distance` met at `cos_incidence` (the ray against the surface's normal): sqrt(solid_angle
 /// distance^2 / (|cos| pi)), with |cos| at least 1/16 (a grazing patch is long, not wide).

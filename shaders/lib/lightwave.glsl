@@ -131,6 +131,33 @@ vec3 lightwave_ray_flux(point_light light, vec3 direction, float solid_angle, ve
   return albedo * light.intensity * (facing * solid_angle);
 }
 
+int lightwave_parallel_side(int angle_deg) {
+  int side = 1;
+  while (side * side < lightwave_ray_count(angle_deg)) ++side;
+  return side;
+}
+
+int lightwave_parallel_sample_count(int angle_deg, int per_ray) { return per_ray * lightwave_parallel_side(angle_deg) * lightwave_parallel_side(angle_deg); }
+
+vec3 lightwave_parallel_sample(int index, int angle_deg, int per_ray) {
+  int side = lightwave_parallel_side(angle_deg);
+  int cells = side * side;
+  int sample_index = index / cells;
+  int cell = index - sample_index * cells;
+  int row = cell / side;
+  int column = cell - row * side;
+  float u = (float(sample_index) + 0.5) / float(per_ray);
+  float lattice = 0.5 + float(sample_index) * 0.618033988749894848;
+  float v = lattice - floor(lattice);
+  float cell_side = 2.0 / float(side);
+  return vec3(-1.0 + (float(column) + u) * cell_side, -1.0 + (float(row) + v) * cell_side, cell_side * cell_side / float(per_ray));
+}
+
+vec3 lightwave_ray_flux(directional_light light, vec3 direction, float area, vec3 albedo, vec3 surface_normal) {
+  float facing = dot(surface_normal, direction) < 0.0 ? 1.0 : 0.0;
+  return albedo * light.irradiance * (facing * area);
+}
+
 float lightwave_patch_radius(float solid_angle, float distance_to_patch, float cos_incidence) {
   return sqrt(solid_angle * distance_to_patch * distance_to_patch / (max(abs(cos_incidence), 0.0625) * 3.14159265358979323846));
 }

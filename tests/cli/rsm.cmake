@@ -144,10 +144,11 @@ math(EXPR zeros "5 - ${digits}")
 string(REPEAT "0" ${zeros} next_padding)
 file(GLOB cut_files "${WORK}/cut-*")
 list(LENGTH cut_files cut_count)
-math(EXPR expected_files "2 * ${written}")
+math(EXPR expected_files "3 * ${written}")  # .png, -indirect.pfm and -direct.pfm per frame
 expect_true("render --poses --max-seconds 1 of 20,000 frames: exit 3 (${code}), frames 1 to ${written} written whole, none after (${cut_count} files): ${err}"
             code EQUAL 3 AND written GREATER 0 AND written LESS 20000 AND cut_count EQUAL expected_files
             AND EXISTS "${WORK}/cut-${padding}${written}.png" AND EXISTS "${WORK}/cut-${padding}${written}-indirect.pfm"
+            AND EXISTS "${WORK}/cut-${padding}${written}-direct.pfm"
             AND NOT EXISTS "${WORK}/cut-${next_padding}${next}.png" AND out MATCHES "\n${written} frames from .*wrote .*/cut-00001\\.png")
 expect_failure("--max-seconds bounds a sequence" "--max-seconds bounds a --poses sequence, not one frame" "${WORK}/one.png"
                "${VPLKIT}" render --max-seconds 5 --size 16 --out "${WORK}/one.png")

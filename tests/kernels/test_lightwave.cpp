@@ -542,3 +542,45 @@ TEST_CASE("a point light's thesis layout: the stacked hemispheres on both sides,
     CHECK(closest > 1e-3);
   }
 }
+
+TEST_CASE("a sun's flux layout: the samples tile the window, each cell holding per_ray of equal area; the flux is E x area x albedo, nothing on a back face") {
+  for (int angle : {5, 10, 30, 90})
+    for (int per_ray : {1, 3, 5}) {
+      CAPTURE(angle);
+      CAPTURE(per_ray);
+      const int side = lightwave_parallel_side(angle);
+      // The least square grid with a cell per ray of the cone layout: the same VPL count.
+      REQUIRE(side * side >= lightwave_ray_count(angle));
+      REQUIRE((side - 1) * (side - 1) < lightwave_ray_count(angle));
+      const int count = lightwave_parallel_sample_count(angle, per_ray);
+      REQUIRE(count == per_ray * side * side);
+      double total = 0.0;
+      glm::dvec2 mean(0.0);
+      std::vector<int> per_cell(static_cast<std::size_t>(side * side), 0);
+      for (int index = 0; index < count; ++index) {
+        const glm::dvec3 sample = lightwave_parallel_sample<double>(index, angle, per_ray);
+        REQUIRE(sample.x > -1.0);
+        REQUIRE(sample.x < 1.0);
+        REQUIRE(sample.y > -1.0);
+        REQUIRE(sample.y < 1.0);
+        REQUIRE(sample.z == doctest::Approx(4.0 / count).epsilon(1e-12));
+        // Sample index k * cells + cell lies in that cell (row-major from the window's corner).
+        const int cell = index % (side * side);
+        const int column = static_cast<int>(std::floor((sample.x + 1.0) / 2.0 * side)), row = static_cast<int>(std::floor((sample.y + 1.0) / 2.0 * side));
+        REQUIRE(row * side + column == cell);
+        ++per_cell[static_cast<std::size_t>(cell)];
+        total += sample.z;
+        mean += glm::dvec2(sample) * sample.z;
+      }
+      CHECK(total == doctest::Approx(4.0).epsilon(1e-10));
+      CHECK(std::all_of(per_cell.begin(), per_cell.end(), [&](int n) { return n == per_ray; }));
+      // Stratified in each cell: the samples' centroid is near the window's centre.
+      CHECK(glm::length(mean / total) < 1.0 / side);
+    }
+  directional_light<double> sun;
+  sun.direction = glm::normalize(glm::dvec3(0.2, -1.0, 0.1));
+  sun.irradiance = glm::dvec3(2.0, 1.0, 0.5);
+  const glm::dvec3 albedo(0.5, 0.25, 1.0);
+  CHECK(lightwave_ray_flux(sun, sun.direction, 0.01, albedo, glm::dvec3(0, 1, 0)) == glm::dvec3(0.01, 0.0025, 0.005));
+  CHECK(lightwave_ray_flux(sun, sun.direction, 0.01, albedo, glm::dvec3(0, -1, 0)) == glm::dvec3(0.0));
+}

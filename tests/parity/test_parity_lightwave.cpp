@@ -488,3 +488,52 @@ TEST_CASE("parity: a point light's sphere layouts (lightwave_sphere_sample, ligh
                            {1e-7f, 2e-6f, 16, 1e-3, "the solid angle's cancellation; the facing decision at near-ties"}));
   }
 }
+
+TEST_CASE("parity: a sun's parallel layout (lightwave_parallel_sample) and its ray flux, on every target") {
+  const lightwave_layout_settings<float> layout = test_layout();
+  const int samples = lightwave_parallel_sample_count(layout.angle_deg, layout.per_ray);
+  kernel_inputs inputs;
+  inputs.width = 128;
+  inputs.height = (samples + 127) / 128;
+  inputs.uints.assign(1, std::vector<glm::uvec4>(inputs.size()));
+  inputs.floats.assign(1, std::vector<glm::vec4>(inputs.size()));
+  std::mt19937 random(39);
+  std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    inputs.uints[0][i] = glm::uvec4(static_cast<unsigned>(std::min<std::size_t>(i, static_cast<std::size_t>(samples - 1))), 0u, 0u, 0u);
+    inputs.floats[0][i] = glm::vec4(glm::normalize(glm::vec3(uniform(random), uniform(random), uniform(random))), 0.0f);
+  }
+  directional_light<float> sun;
+  sun.direction = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f));
+  sun.irradiance = {3.0f, 2.0f, 1.0f};
+  kernel_source source;
+  source.includes = {"lib/lightwave.glsl"};
+  source.body = "vec3 sample_ = lightwave_parallel_sample(int(uin0.x), layout_settings.angle_deg, layout_settings.per_ray);\n"
+                "fout0 = vec4(sample_, float(lightwave_parallel_sample_count(layout_settings.angle_deg, layout_settings.per_ray)));\n"
+                "fout1 = vec4(lightwave_ray_flux(light, light.direction, sample_.z, vec3(0.5, 0.7, 0.9), fin0.xyz), float(lightwave_parallel_side(layout_settings.angle_deg)));";
+  source.float_outputs = 2;
+  kernel_resources resources;
+  resources.blocks = {settings_block("layout_settings", layout), settings_block("light", sun)};
+  std::vector<glm::vec4> sample_out(inputs.size()), flux(inputs.size());
+  std::size_t lit = 0;
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    const glm::vec3 sample = lightwave_parallel_sample<float>(static_cast<int>(inputs.uints[0][i].x), layout.angle_deg, layout.per_ray);
+    sample_out[i] = glm::vec4(sample, static_cast<float>(samples));
+    flux[i] = glm::vec4(lightwave_ray_flux(sun, sun.direction, sample.z, glm::vec3(0.5f, 0.7f, 0.9f), glm::vec3(inputs.floats[0][i])),
+                        static_cast<float>(lightwave_parallel_side(layout.angle_deg)));
+    lit += flux[i].x > 0.0f;
+  }
+  CHECK(lit > inputs.size() / 4);  // both faces are met
+  CHECK(lit < 3 * inputs.size() / 4);
+  for (const testing::target_run& run : testing::every_target()) {
+    const std::string target = run.name();
+    CAPTURE(target);
+    if (!testing::target_runs(run.where)) continue;
+    source.name = "sun parallel layout (" + target + ")";
+    const kernel_outputs gpu = run.run(source, inputs, run.where, resources);
+    // A few multiplies, adds and a floor: the lattice's fraction rounds alike on every target.
+    require_parity(compare("lightwave_parallel_sample (" + target + ")", gpu.floats[0], sample_out, inputs, {1e-6f, 1e-6f, 8, 0.0, "the lattice's floor and a few products"}));
+    require_parity(compare("lightwave_ray_flux for a sun (" + target + ")", gpu.floats[1], flux, inputs,
+                           {1e-7f, 2e-6f, 16, 1e-3, "the facing decision at near-ties"}));
+  }
+}

@@ -69,7 +69,7 @@ final_gather_pipeline::final_gather_pipeline(const shader_library& shaders, cons
                    technique_.variant == final_gather_variant::environment_map ? settings.environment_resolution : 1, {texel_format::rgba32f}, false),
       gbuffer_(settings.width, settings.height, {texel_format::rgba32f, texel_format::rgba32f, texel_format::rgba32f}, true),
       direct_(settings.width, settings.height, {texel_format::rgba32f}, false),
-      output_(settings.width, settings.height, {settings.format, settings.format}, false),
+      output_(settings.width, settings.height, {settings.format, settings.format, settings.format}, false),
       empty_vertex_array_(generate_vertex_array()) {
   if (source.object.indices.empty()) throw error("final gathering: the object " + source.name + " has no triangles");
   if (technique_.variant == final_gather_variant::environment_map)

@@ -86,6 +86,8 @@ class final_gather_pipeline final : public pipeline {
   /// The last frame's radiance and the object's indirect irradiance (black elsewhere).
   const texture_2d& output() const override { return output_.colour(0); }
   const texture_2d& indirect_output() const override { return output_.colour(1); }
+  /// The room's and the object's direct irradiance: every light's, after its own shadow map.
+  const texture_2d& direct_output() const override { return output_.colour(2); }
   bool has_indirect() const override { return true; }
   final_gather_buffers read_buffers() const;
   const final_gather_scene& source() const { return scene_; }

@@ -9,6 +9,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <vplkit/cube_map.hpp>
 #include <vplkit/lightwave.hpp>
 #include <vplkit/gl/settings_uniforms.hpp>
 
@@ -31,46 +32,62 @@ lightwave_pipeline::lightwave_pipeline(const shader_library& shaders, const scen
     : scene_(source),
       settings_(checked(settings)),
       technique_(find_lightwave_technique(settings.technique)),
-      mesh_(source.geometry),
       depth_program_(load_program(shaders, "scene.vert", "depth_only.frag",
                                   has_alpha_cutouts(source.geometry) ? shader_defines{} : shader_defines{{"VPLKIT_MATERIAL_NO_ALPHA_TEST", "1"}})),
-      shadow_framebuffer_(generate_framebuffer()),
-      target_(settings.width, settings.height, {settings.format, settings.format, settings.format, settings.format}, true) {
+      shadow_framebuffer_(generate_framebuffer()) {
   if (source.lights.empty()) throw error("Light Wave draws at least one light; scene " + source.name + " has none (choose some with --lights)");
   check_lights(source.lights, "scene " + source.name);
-  for (std::size_t k = 0; k < source.lights.size(); ++k)
-    if (source.lights[k].kind != light_kind::spot)
-      throw error("Light Wave draws spot lights; scene " + source.name + "'s light " + std::to_string(k) + " is a " +
-                  light_kind_name(source.lights[k].kind) + " one (choose the spots with --lights)");
-  const shader_defines defines = shader_defines_of();
-  load_main_programs(shaders, defines);
-  // Direct light alone and the faked indirect light use no VPLs.
-  if (settings_.energy == lightwave_energy::flux && technique_.mode >= lightwave_mode::unshadowed) {
-    set_up_receivers(shaders, source);
-    set_up_vpl_blocks(shaders);
-    set_up_indirect_buffer(shaders, source, defines);
-  }
-  allocate_shadow_maps();
-  // Each further light: a pipeline of its own on the scene with that light alone. The images are
-  // linear in the light, so their sum is the image of all lights; the caches (VPLs, shadow maps,
-  // receivers' sums) stay per light, so moving one light rebuilds that light's alone.
+  shared_ = std::make_shared<shared_resources>(source.geometry, settings_);
+  set_up(shaders, source, true);
+  // Each further light: a pipeline of its own on the scene with that light alone, drawing with
+  // this one's shared resources. The images are linear in the light, so their sum is the image of
+  // all lights; the caches (VPLs, shadow maps, receivers' sums) stay per light, so moving one
+  // light rebuilds that light's alone.
   if (source.lights.size() > 1) {
     pass_prefix_ = "light 0: ";
-    sum_program_ = load_program(shaders, "fullscreen.vert", "lightwave_sum.frag");
-    if (!empty_vertex_array_.get()) empty_vertex_array_ = gl_vertex_array(generate_vertex_array());
     for (std::size_t k = 1; k < source.lights.size(); ++k) {
       scene alone = source;
       alone.lights = {source.lights[k]};
-      light_pipelines_.push_back(std::make_unique<lightwave_pipeline>(shaders, alone, settings));
+      light_pipelines_.push_back(std::unique_ptr<lightwave_pipeline>(new lightwave_pipeline(shaders, alone, settings, shared_)));
       light_pipelines_.back()->pass_prefix_ = "light " + std::to_string(k) + ": ";
     }
   }
 }
 
+lightwave_pipeline::lightwave_pipeline(const shader_library& shaders, const scene& source, const lightwave_settings& settings,
+                                       std::shared_ptr<shared_resources> shared)
+    : scene_(source),
+      shared_(std::move(shared)),
+      settings_(settings),
+      technique_(find_lightwave_technique(settings.technique)),
+      depth_program_(load_program(shaders, "scene.vert", "depth_only.frag",
+                                  has_alpha_cutouts(source.geometry) ? shader_defines{} : shader_defines{{"VPLKIT_MATERIAL_NO_ALPHA_TEST", "1"}})),
+      shadow_framebuffer_(generate_framebuffer()) {
+  set_up(shaders, source, false);
+}
+
+void lightwave_pipeline::set_up(const shader_library& shaders, const scene& source, bool make_shared) {
+  kind_ = source.lights[0].kind;
+  light_layers_ = kind_ == light_kind::point ? 6 : 1;
+  if (make_shared) {
+    shared_->mesh_bytes = static_cast<std::uint64_t>(source.geometry.vertices.size()) * sizeof(vertex) +
+                          static_cast<std::uint64_t>(source.geometry.indices.size()) * sizeof(std::uint32_t);
+  }
+  const shader_defines defines = shader_defines_of();
+  load_main_programs(shaders, defines);
+  // Direct light alone and the faked indirect light use no VPLs.
+  if (settings_.energy == lightwave_energy::flux && technique_.mode >= lightwave_mode::unshadowed) {
+    set_up_receivers(shaders, source, make_shared);
+    set_up_vpl_blocks(shaders);
+    set_up_indirect_buffer(shaders, source, defines, make_shared);
+  }
+  allocate_shadow_maps();
+}
+
 // The defines every program of the main pass is built with.
 shader_defines lightwave_pipeline::shader_defines_of() const {
   const std::string energy = std::to_string(static_cast<int>(settings_.energy));
-  // The flux energy's indirect light: from a screen buffer the receivers fill (indirect_target_),
+  // The flux energy's indirect light: from a screen buffer the receivers fill (shared_->indirect_target),
   // so that the main pass runs on the scene's own triangles, with their materials (the receivers
   // have none) and, with indirect shadows, its heavy fragment stage on few large triangles.
   const bool indirect_buffer = settings_.energy == lightwave_energy::flux && technique_.mode >= lightwave_mode::unshadowed;
@@ -79,7 +96,9 @@ shader_defines lightwave_pipeline::shader_defines_of() const {
                                   {"VPLKIT_LIGHTWAVE_SHADOW_VARIANT", std::to_string(static_cast<int>(settings_.shadow_variant))},
                                   {"VPLKIT_LIGHTWAVE_ENERGY", energy},
                                   {"VPLKIT_LIGHTWAVE_INDIRECT", technique_.mode >= lightwave_mode::unshadowed ? "1" : "0"},
-                                  {"VPLKIT_MAX_SHADOW_MAPS", std::to_string(lightwave_max_shadow_maps)}};
+                                  {"VPLKIT_MAX_SHADOW_MAPS", std::to_string(lightwave_max_shadow_maps)},
+                                  {"VPLKIT_LIGHT_POINT", kind_ == light_kind::point ? "1" : "0"},
+                                  {"VPLKIT_LIGHT_DIRECTIONAL", kind_ == light_kind::directional ? "1" : "0"}};
   return defines;
 }
 
@@ -94,10 +113,10 @@ void lightwave_pipeline::load_main_programs(const shader_library& shaders, const
         {"vertex_indirect"});
 }
 
-// The flux energy's indirect light as a screen buffer the main pass reads (indirect_target_), so
+// The flux energy's indirect light as a screen buffer the main pass reads (shared_->indirect_target), so
 // that the main pass runs on the scene's own triangles, with their materials (the receivers have
 // none) and, with indirect shadows, its heavy fragment stage on few large triangles.
-void lightwave_pipeline::set_up_indirect_buffer(const shader_library& shaders, const scene& source, const shader_defines& defines) {
+void lightwave_pipeline::set_up_indirect_buffer(const shader_library& shaders, const scene& source, const shader_defines& defines, bool make_shared) {
   // Without cut-outs its fragments need no material (no discard: the depth is tested first).
   shader_defines indirect_defines = defines;
   if (!has_alpha_cutouts(source.geometry)) indirect_defines.emplace_back("VPLKIT_MATERIAL_NO_ALPHA_TEST", "1");
@@ -105,14 +124,15 @@ void lightwave_pipeline::set_up_indirect_buffer(const shader_library& shaders, c
   // In the output's format (half floats by default, a relative step of 2^-11, as the image's):
   // half the bytes to clear and write cost a software rasteriser about 2 ms less of the boxes'
   // 1280x720 frame.
-  indirect_target_.emplace(settings_.width, settings_.height, std::vector<texel_format>{settings_.format}, true);
+  // Filled and read by one light's passes at a time: one for every light.
+  if (make_shared) shared_->indirect_target.emplace(settings_.width, settings_.height, std::vector<texel_format>{settings_.format}, true);
 }
 
 void lightwave_pipeline::allocate_shadow_maps() {
-  // The shadow maps: layer 0 for the light, then one per chosen VPL.
+  // The shadow maps: the light's (one, or a point light's six faces), then one per chosen VPL.
   const lightwave_derived_settings derived = derive(settings_);
   shadow_size_ = derived.shadow_map_size;
-  shadow_layers_ = 1 + derived.indirect_maps;
+  shadow_layers_ = light_layers_ + derived.indirect_maps;
   check_texture_size(shadow_size_.x, shadow_size_.y, "Light Wave shadow maps (" + std::to_string(settings_.shadow_map_scale) + " x the screen)");
   GLint max_layers = 0;
   glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &max_layers);
@@ -166,7 +186,7 @@ bool lightwave_pipeline::apply_settings(const technique_settings& settings) {
     if (!other->apply_settings(settings)) return false;
   settings_ = next;
   if (vpls_move) vpls_dirty_ = true;
-  if (clamp_moves && receiver_buffers_) sums_dirty_ = true;
+  if (clamp_moves && shared_->receiver_buffers) sums_dirty_ = true;
   if (shadows_move) shadows_dirty_ = true;
   view_valid_ = false;
   return true;
@@ -175,10 +195,11 @@ bool lightwave_pipeline::apply_settings(const technique_settings& settings) {
 void lightwave_pipeline::set_light(std::size_t index, const scene_light& light) {
   if (index >= scene_.lights.size())
     throw error("Light Wave scene " + scene_.name + ": no light " + std::to_string(index) + " (it has " + std::to_string(scene_.lights.size()) + ")");
-  if (light.kind != light_kind::spot)
-    throw error("Light Wave draws spot lights; light " + std::to_string(index) + " would be a " + light_kind_name(light.kind) + " one");
+  if (light.kind != scene_.lights[index].kind)
+    throw error("Light Wave scene " + scene_.name + ": light " + std::to_string(index) + " is a " + light_kind_name(scene_.lights[index].kind) +
+                " light and cannot become a " + light_kind_name(light.kind) + " one in place (its shadow maps and programs are made for its kind)");
   check_light(light, "Light Wave scene " + scene_.name);
-  scene_.lights[index].spot = light.spot;
+  scene_.lights[index] = light;
   if (index == 0) vpls_dirty_ = shadows_dirty_ = true;
   else light_pipelines_[index - 1]->set_light(0, light);
   view_valid_ = false;
@@ -186,7 +207,7 @@ void lightwave_pipeline::set_light(std::size_t index, const scene_light& light) 
 
 const texture_2d* lightwave_pipeline::indirect_shadow_output() const {
   const bool shadowed = technique_.mode == lightwave_mode::accurate || technique_.mode == lightwave_mode::integrated;
-  return shadowed ? &target_.colour(1) : nullptr;
+  return shadowed ? &shared_->target.colour(1) : nullptr;
 }
 
 std::string lightwave_pipeline::draw_counts() const {
@@ -214,28 +235,55 @@ int lightwave_pipeline::summed_vpl_count() const {
   return static_cast<int>(settings_.energy == lightwave_energy::flux ? receiver_vpls_.size() : vpls_.size());
 }
 
-void lightwave_pipeline::build_flux_vpls(const glm::mat4& light_view_projection) {
-  const spot_light<float>& light = scene_.lights[0].spot;
+void lightwave_pipeline::draw_surfaces(const glm::mat4& view_projection, std::size_t slot) {
   // What the light sees: world position (w = 1 where a surface is), normal and albedo per texel.
-  surfaces_->bind();
+  shared_->surfaces->bind();
   glEnable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
   glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   surface_program_.use();
-  surface_program_.set("view_projection", light_view_projection);
-  mesh_.draw(surface_program_);
+  surface_program_.set("view_projection", view_projection);
+  shared_->scene_mesh.draw(surface_program_);
   // Into the same host memory at every light move.
-  surfaces_->colour(0).read_image_into(surface_texels_[0]);
-  surfaces_->colour(1).read_image_into(surface_texels_[1]);
-  surfaces_->colour(2).read_image_into(surface_texels_[2]);
-  const image &positions = surface_texels_[0], &normals = surface_texels_[1], &albedos = surface_texels_[2];
-  // The rays cover the cone up to its outer edge, inside the map's frustum (2 degrees of margin).
-  cone_.light_direction = light.direction;
+  for (std::size_t k = 0; k < 3; ++k) shared_->surfaces->colour(k).read_image_into(shared_->surface_texels[slot][k]);
+}
+
+void lightwave_pipeline::build_flux_vpls() {
+  const scene_light& light = scene_.lights[0];
+  const auto map_of = [&](const glm::mat4& view_projection, std::size_t slot) {
+    draw_surfaces(view_projection, slot);
+    const std::array<image, 3>& texels = shared_->surface_texels[slot];
+    return lightwave_surface_map{view_projection, &texels[0], &texels[1], &texels[2]};
+  };
+  // One set of images per map, allocated before any is pointed at (a point light's six faces are
+  // looked up together).
+  const std::size_t map_count = kind_ == light_kind::point ? 6 : 1;
+  if (shared_->surface_texels.size() < map_count) shared_->surface_texels.resize(map_count);
   cone_.angle_deg = settings_.angle_deg;
   cone_.per_ray = settings_.per_ray;
-  cone_.half_angle_deg = glm::degrees(spot_light_frustum_half_angle(light)) - 2.0f;
-  flux_vpls_ = lightwave_flux_vpls_from_map(light, cone_, light_view_projection, positions, normals, albedos, flux_layout_index_);
+  cone_.light_direction = light_axis();
+  if (kind_ == light_kind::spot) {
+    const frame_geometry g = geometry();
+    const glm::mat4 view_projection = glm::perspective(2.0f * spot_light_frustum_half_angle(light.spot), 1.0f, g.near_plane, g.far_plane) * g.light_view;
+    const lightwave_surface_map map = map_of(view_projection, 0);
+    // The rays cover the cone up to its outer edge, inside the map's frustum (2 degrees of margin).
+    cone_.half_angle_deg = glm::degrees(spot_light_frustum_half_angle(light.spot)) - 2.0f;
+    flux_vpls_ = lightwave_flux_vpls_from_map(light.spot, cone_, view_projection, *map.positions, *map.normals, *map.albedos, flux_layout_index_);
+  } else if (kind_ == light_kind::point) {
+    // The six faces the direct light's shadow uses, each a map of what the light sees.
+    const std::vector<glm::mat4> faces = light_matrices();
+    std::array<lightwave_surface_map, 6> maps;
+    for (std::size_t f = 0; f < 6; ++f) maps[f] = map_of(faces[f], f);
+    cone_.half_angle_deg = 90.0f;
+    flux_vpls_ = lightwave_point_flux_vpls(light.point, cone_, maps, flux_layout_index_);
+  } else {
+    const frame_geometry g = geometry();
+    const glm::mat4 view_projection = light_matrices().front();
+    const lightwave_surface_map map = map_of(view_projection, 0);
+    const glm::vec3 right(g.light_view[0][0], g.light_view[1][0], g.light_view[2][0]), up(g.light_view[0][1], g.light_view[1][1], g.light_view[2][1]);
+    flux_vpls_ = lightwave_sun_flux_vpls(light.directional, settings_.angle_deg, settings_.per_ray, light_origin(), right, up, g.radius, map, flux_layout_index_);
+  }
 }
 
 namespace {
@@ -252,20 +300,89 @@ lightwave_vpl_view view_of(const lightwave_settings& settings, const std::vector
 }  // namespace
 
 lightwave_pipeline::frame_geometry lightwave_pipeline::geometry() const {
-  const spot_light<float>& light = scene_.lights[0].spot;
   const bounding_box box = bounds(scene_.geometry);
   frame_geometry g;
   g.radius = std::max(box.radius(), 1e-3f);
   g.near_plane = 0.01f * g.radius;
-  g.far_plane = glm::length(light.position - box.centre()) + 2.0f * g.radius;
-  g.light_view = lightwave_look_along(light.position, light.direction);
+  g.far_plane = glm::length(light_origin() - box.centre()) + 2.0f * g.radius;
+  g.light_view = lightwave_look_along(light_origin(), light_axis());
   return g;
 }
 
+glm::vec3 lightwave_pipeline::light_origin() const {
+  const scene_light& light = scene_.lights[0];
+  if (kind_ == light_kind::spot) return light.spot.position;
+  if (kind_ == light_kind::point) return light.point.position;
+  // A sun has no position: its maps and VPL layouts start two bounding radii out from the scene's
+  // centre against its direction (outside the bounds, as the RSM's orthographic map does).
+  const bounding_box box = bounds(scene_.geometry);
+  return box.centre() - 2.0f * std::max(box.radius(), 1e-3f) * light.directional.direction;
+}
+
+glm::vec3 lightwave_pipeline::light_axis() const {
+  const scene_light& light = scene_.lights[0];
+  if (kind_ == light_kind::spot) return light.spot.direction;
+  if (kind_ == light_kind::directional) return light.directional.direction;
+  // A point light's sphere layouts turn about any axis: straight down puts the first hemisphere's
+  // rays (and the integrated shadows' ring) on the floor under the light.
+  return {0.0f, -1.0f, 0.0f};
+}
+
+std::vector<glm::mat4> lightwave_pipeline::light_matrices() const {
+  const frame_geometry g = geometry();
+  if (kind_ == light_kind::spot) {
+    const float aspect = static_cast<float>(shadow_size_.x) / static_cast<float>(shadow_size_.y);
+    return {glm::perspective(2.0f * spot_light_frustum_half_angle(scene_.lights[0].spot), aspect, g.near_plane, g.far_plane) * g.light_view};
+  }
+  if (kind_ == light_kind::point) {
+    // The cube's faces (vplkit/cube_map.hpp): 90 degrees square each, so that every direction
+    // from the light falls in exactly one (cube_face_of), which the main pass looks up.
+    std::vector<glm::mat4> faces;
+    const glm::vec3 position = light_origin();
+    for (int face = 0; face < 6; ++face)
+      faces.push_back(glm::perspective(glm::radians(90.0f), 1.0f, g.near_plane, g.far_plane) *
+                      glm::lookAt(position, position + cube_face_axis<float>(face), cube_face_up<float>(face)));
+    return faces;
+  }
+  // A sun: parallel rays through a square window of the scene's bounding diameter around its
+  // centre, seen from its virtual eye two radii out: the scene lies 1 to 3 radii deep (the RSM's
+  // orthographic map, with its margins).
+  return {glm::ortho(-g.radius, g.radius, -g.radius, g.radius, 0.5f * g.radius, 3.5f * g.radius) * g.light_view};
+}
+
+int lightwave_pipeline::vpl_count() const {
+  const bool thesis = settings_.energy == lightwave_energy::thesis;
+  if (kind_ == light_kind::point)
+    return thesis ? lightwave_sphere_vpl_count(settings_.angle_deg, settings_.per_ray) : lightwave_sphere_sample_count(settings_.angle_deg, settings_.per_ray);
+  if (kind_ == light_kind::directional && !thesis) return lightwave_parallel_sample_count(settings_.angle_deg, settings_.per_ray);
+  return lightwave_vpl_count(settings_.angle_deg, settings_.per_ray);
+}
+
+std::uint64_t lightwave_pipeline::shared_bytes() const {
+  std::uint64_t bytes = shared_->mesh_bytes;
+  const auto texture_bytes = [](const texture_2d& t) { return static_cast<std::uint64_t>(t.width()) * static_cast<std::uint64_t>(t.height()) * 16u; };
+  const std::uint64_t pixels = static_cast<std::uint64_t>(settings_.width) * static_cast<std::uint64_t>(settings_.height);
+  const std::uint64_t texel = settings_.format == texel_format::rgba32f ? 16u : 8u;
+  // The output image: five colours in the output's format (lightwave.frag's outputs) and a 32-bit depth.
+  bytes += pixels * (5u * texel + 4u);
+  if (shared_->receiver_buffers) {
+    bytes += static_cast<std::uint64_t>(shared_->receivers.vertices.size()) * sizeof(vertex) +
+             static_cast<std::uint64_t>(shared_->receivers.indices.size()) * sizeof(std::uint32_t);
+    for (const texture_2d& t : shared_->receiver_textures) bytes += texture_bytes(t);
+    for (const framebuffer& f : shared_->receiver_sum_targets)
+      for (std::size_t k = 0; k < static_cast<std::size_t>(lightwave_sum_receivers); ++k) bytes += texture_bytes(f.colour(k));
+  }
+  // The surface map: three rgba32f colours and a 32-bit depth.
+  if (shared_->surfaces) bytes += static_cast<std::uint64_t>(lightwave_surface_map_size) * lightwave_surface_map_size * (3u * 16u + 4u);
+  // The indirect screen buffer: one colour in the output's format and a 32-bit depth.
+  if (shared_->indirect_target) bytes += pixels * (texel + 4u);
+  return bytes;
+}
+
 void lightwave_pipeline::build_vpls() {
-  const spot_light<float>& light = scene_.lights[0].spot;
   const bounding_box box = bounds(scene_.geometry);
   const frame_geometry g = geometry();
+  const glm::vec3 origin = light_origin(), axis = light_axis();
   float max_distance = settings_.max_distance;
   vpls_.clear();
   flux_vpls_.clear();
@@ -277,16 +394,25 @@ void lightwave_pipeline::build_vpls() {
       for (int corner = 0; corner < 8; ++corner) {
         const glm::vec3 p((corner & 1) ? box.maximum.x : box.minimum.x, (corner & 2) ? box.maximum.y : box.minimum.y,
                           (corner & 4) ? box.maximum.z : box.minimum.z);
-        max_distance = std::max(max_distance, glm::length(p - light.position));
+        max_distance = std::max(max_distance, glm::length(p - origin));
       }
-    layout_ = {light.position, light.direction, settings_.angle_deg, settings_.per_ray, max_distance};
-    lightwave_layout(layout_, std::back_inserter(vpls_));
+    // A spot's and a sun's hemispheres (the sun's from its virtual eye outside the scene, along
+    // its direction: docs/errata.md, LW-11); a point light's on both sides of it.
+    layout_ = {origin, axis, settings_.angle_deg, settings_.per_ray, max_distance};
+    if (kind_ == light_kind::point) {
+      const int count = lightwave_sphere_vpl_count(settings_.angle_deg, settings_.per_ray);
+      for (int index = 0; index < count; ++index) vpls_.push_back(lightwave_sphere_layout_vpl(index, layout_));
+    } else {
+      lightwave_layout(layout_, std::back_inserter(vpls_));
+    }
   } else {
-    layout_ = {light.position, light.direction, settings_.angle_deg, settings_.per_ray, 0.0f};
-    build_flux_vpls(glm::perspective(2.0f * spot_light_frustum_half_angle(light), 1.0f, g.near_plane, g.far_plane) * g.light_view);
+    layout_ = {origin, axis, settings_.angle_deg, settings_.per_ray, 0.0f};
+    build_flux_vpls();
     // The receivers sum a ray's samples on one plane as one VPL (a thousandth of the scene's
     // radius: one plane); the shadow casters keep every sample.
-    receiver_vpls_ = lightwave_merge_ray_samples(flux_vpls_, flux_layout_index_, lightwave_ray_count(settings_.angle_deg), 1e-3f * g.radius, &receiver_vpl_of_);
+    int rays = 0;
+    const std::vector<int> ray_of = lightwave_sample_rays(kind_, settings_.angle_deg, settings_.per_ray, flux_layout_index_, rays);
+    receiver_vpls_ = lightwave_merge_ray_samples(flux_vpls_, ray_of, rays, 1e-3f * g.radius, &receiver_vpl_of_);
   }
   layout_.max_distance = max_distance;
 
@@ -305,7 +431,7 @@ void lightwave_pipeline::build_vpls() {
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, 2, static_cast<GLsizei>(rows), 0, GL_RGBA, GL_FLOAT, texels.data());
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  } else if (receiver_buffers_) {
+  } else if (shared_->receiver_buffers) {
     // The receivers' VPLs, a uniform block per pass: [position | radius], [normal | 0], [flux | 0].
     // The flux energy's indirect light does not depend on the camera: summed once per light, at
     // the receivers' vertices, into the buffer the main pass reads.
@@ -319,14 +445,13 @@ void lightwave_pipeline::build_vpls() {
 }
 
 void lightwave_pipeline::build_shadow_maps() {
-  const spot_light<float>& light = scene_.lights[0].spot;
   const frame_geometry g = geometry();
   const float aspect = static_cast<float>(shadow_size_.x) / static_cast<float>(shadow_size_.y);
   const lightwave_vpl_view view = view_of(settings_, vpls_, flux_vpls_);
-  // Shadow matrices: the spot light's frustum, then each chosen VPL's.
+  // Shadow matrices: the light's (a spot's frustum, a point light's six faces, a sun's
+  // orthographic window), then each chosen VPL's.
   const float map_far = g.far_plane + layout_.max_distance;
-  shadow_matrices_.clear();
-  shadow_matrices_.push_back(glm::perspective(2.0f * spot_light_frustum_half_angle(light), aspect, g.near_plane, g.far_plane) * g.light_view);
+  shadow_matrices_ = light_matrices();
   // The shadow casters: groups by importance (accurate), drawn uniformly (the thesis variant),
   // the fixed ring (integrated). The integrated shadows keep the thesis's maps (along the VPLs'
   // normals, one field of view): their in-between lookups interpolate a fragment's coordinates
@@ -380,7 +505,7 @@ void lightwave_pipeline::draw_shadow_layers() {
       throw error("Light Wave shadow map framebuffer is incomplete");
     glClear(GL_DEPTH_BUFFER_BIT);
     depth_program_.set("view_projection", shadow_matrices_[layer]);
-    mesh_.draw(depth_program_);
+    shared_->scene_mesh.draw(depth_program_);
   }
   glDisable(GL_POLYGON_OFFSET_FILL);
 }
@@ -433,9 +558,9 @@ void lightwave_pipeline::set_camera(const camera& view) {
 lightwave_frame lightwave_pipeline::render() {
   draw();
   lightwave_frame frame;
-  frame.radiance = target_.read_image(0);
-  frame.indirect_shadow = target_.read_image(1);
-  frame.indirect = target_.read_image(2);
+  frame.radiance = shared_->target.read_image(0);
+  frame.indirect_shadow = shared_->target.read_image(1);
+  frame.indirect = shared_->target.read_image(2);
   frame.pass_times = collect_pass_times();
   return frame;
 }
@@ -447,95 +572,84 @@ void lightwave_pipeline::draw() {
 }
 
 void lightwave_pipeline::draw_changed() {
-  // The further lights first: a light whose image changed changes the sum, which starts from the
-  // first light's image.
-  for (const auto& other : light_pipelines_) {
-    const int draws = other->main_draws_;
-    other->draw_changed();
-    if (other->main_draws_ != draws) view_valid_ = false;
-  }
+  // What a move invalidated, light by light; then, when anything changed, every light's main pass
+  // into the shared image: the first clears it, each further one adds its light (the sum starts
+  // from the first light's image, so an unchanged light is drawn again, from its cached VPLs,
+  // shadow maps and receivers' sums).
+  bool redraw = !view_valid_;
   if (vpls_dirty_ || shadows_dirty_) {
     rebuild();
-    view_valid_ = false;
+    redraw = true;
   }
-  if (!view_valid_) {
-    draw_main_pass();
-    add_light_pipelines();
-  }
-}
-
-void lightwave_pipeline::add_light_pipelines() {
-  if (light_pipelines_.empty()) return;
-  timer_.begin("sum of the lights");
-  target_.bind();
-  glDisable(GL_DEPTH_TEST);
-  glDepthMask(GL_FALSE);
-  glEnable(GL_BLEND);
-  glBlendFunc(GL_ONE, GL_ONE);
-  // The indirect shadow factor is a ratio, not a light: the first light's stays.
-  glColorMaski(1, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-  sum_program_.use();
-  sum_program_.set("radiance_image", 0);
-  sum_program_.set("indirect_image", 1);
-  sum_program_.set("irradiance_image", 2);
-  glBindVertexArray(empty_vertex_array_.get());
   for (const auto& other : light_pipelines_) {
-    glActiveTexture(GL_TEXTURE0);
-    glBindTexture(GL_TEXTURE_2D, other->target_.colour(0).id());
-    glActiveTexture(GL_TEXTURE1);
-    glBindTexture(GL_TEXTURE_2D, other->target_.colour(2).id());
-    glActiveTexture(GL_TEXTURE2);
-    glBindTexture(GL_TEXTURE_2D, other->target_.colour(3).id());
-    glDrawArrays(GL_TRIANGLES, 0, 3);
+    if (other->vpls_dirty_ || other->shadows_dirty_) {
+      other->rebuild();
+      redraw = true;
+    }
+    redraw = redraw || !other->view_valid_;
   }
-  glBindVertexArray(0);
-  glColorMaski(1, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  glDisable(GL_BLEND);
-  glDepthMask(GL_TRUE);
-  glEnable(GL_DEPTH_TEST);
-  timer_.end();
-  check_gl("adding the further lights' Light Wave images");
+  if (!redraw) return;
+  draw_main_pass(true);
+  for (const auto& other : light_pipelines_) other->draw_main_pass(false);
 }
 
 std::vector<pass_time> lightwave_pipeline::collect_pass_times() {
-  // The further lights' passes ran first (draw_changed).
+  // Light by light, each light's passes in the order they ran.
   std::vector<pass_time> times;
-  for (const auto& other : light_pipelines_)
-    for (pass_time& t : other->collect_pass_times()) times.push_back(std::move(t));
   for (pass_time& t : timer_.collect()) {
-    // The sum belongs to no one light.
-    if (t.pass != "sum of the lights") t.pass = pass_prefix_ + t.pass;
+    t.pass = pass_prefix_ + t.pass;
     times.push_back(std::move(t));
   }
+  for (const auto& other : light_pipelines_)
+    for (pass_time& t : other->collect_pass_times()) times.push_back(std::move(t));
   return times;
 }
 
-void lightwave_pipeline::draw_main_pass() {
+void lightwave_pipeline::draw_main_pass(bool first) {
   glEnable(GL_DEPTH_TEST);
   glDisable(GL_CULL_FACE);
-  if (indirect_target_) {
+  if (shared_->indirect_target) {
     timer_.begin("indirect buffer");
     // Flux energy: the receivers' indirect light into the screen buffer the main pass reads.
-    indirect_target_->bind();
+    shared_->indirect_target->bind();
     glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     set_vertex_uniforms(indirect_program_);
     indirect_program_.use();
-    receiver_buffers_->draw(indirect_program_);
+    // The shared receivers carry this light's sums.
+    shared_->receiver_buffers->attach_vec4_attribute(3, indirect_buffer_.get());
+    shared_->receiver_buffers->draw(indirect_program_);
     main_program_.set("indirect_buffer", 2);
     glActiveTexture(GL_TEXTURE2);
-    glBindTexture(GL_TEXTURE_2D, indirect_target_->colour(0).id());
+    glBindTexture(GL_TEXTURE_2D, shared_->indirect_target->colour(0).id());
     timer_.end();
   }
   timer_.begin("main pass");
-  target_.bind();
-  glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  const GLfloat unshadowed[4] = {1.0f, 0.0f, 0.0f, 1.0f};  // the factor where no surface is
-  glClearBufferfv(GL_COLOR, 1, unshadowed);
+  shared_->target.bind();
+  if (first) {
+    glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    const GLfloat unshadowed[4] = {1.0f, 0.0f, 0.0f, 1.0f};  // the factor where no surface is
+    glClearBufferfv(GL_COLOR, 1, unshadowed);
+  } else {
+    // A further light adds its light: every output of the main pass is linear in the light
+    // (direct x shadow + indirect, no emission or ambient term), so the sum is the image of all
+    // lights. The alpha stays the first light's 1; the indirect shadow factor, a ratio, not a
+    // light, stays the first light's.
+    glEnable(GL_BLEND);
+    glBlendFuncSeparate(GL_ONE, GL_ONE, GL_ZERO, GL_ONE);
+    glColorMaski(1, GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  }
   set_vertex_uniforms(main_program_);
   main_program_.set("shadow_maps", 1);
-  set_uniforms(main_program_, "light", scene_.lights[0].spot);
+  const scene_light& light = scene_.lights[0];
+  if (kind_ == light_kind::point) set_uniforms(main_program_, "light", light.point);
+  else if (kind_ == light_kind::directional) set_uniforms(main_program_, "light", light.directional);
+  else set_uniforms(main_program_, "light", light.spot);
+  main_program_.set("light_layers", light_layers_);
+  // A spot's map has the screen's aspect and square texels; a point light's faces and a sun's
+  // window are square frusta on the same maps: their texels are as wide as the map's shorter side allows.
+  main_program_.set("light_map_width", kind_ == light_kind::spot ? shadow_size_.x : std::min(shadow_size_.x, shadow_size_.y));
   set_uniforms(main_program_, "irradiance", settings_.irradiance);
   main_program_.set("indirect_maps", static_cast<int>(casters_.size()));
   main_program_.set("integrated_steps", settings_.integrated_steps);
@@ -550,22 +664,32 @@ void lightwave_pipeline::draw_main_pass() {
   glBindTexture(GL_TEXTURE_2D, vpl_texture_.get());
   glActiveTexture(GL_TEXTURE1);
   glBindTexture(GL_TEXTURE_2D_ARRAY, shadow_maps_.get());
-  if (depth_prepass()) {
+  if (!first) {
+    // The first light's pass laid the depth of the visible surface: only it adds light (the same
+    // positions to the bit in every program that draws the mesh: invariant gl_Position).
+    glDepthFunc(GL_EQUAL);
+    glDepthMask(GL_FALSE);
+    main_program_.use();
+  } else if (depth_prepass()) {
     // The shadowed pass's fragments are the costly part of the frame: a depth pre-pass first, so
     // that only the visible one of each pixel runs them (its shader has no discard, so its depth
     // is tested before it runs; the pre-pass did the alpha test).
     depth_program_.use();
     depth_program_.set("view_projection", camera_view_projection());
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    mesh_.draw(depth_program_);
+    shared_->scene_mesh.draw(depth_program_);
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
     glDepthFunc(GL_EQUAL);
     glDepthMask(GL_FALSE);
     main_program_.use();
   }
-  mesh_.draw(main_program_);
+  shared_->scene_mesh.draw(main_program_);
   glDepthFunc(GL_LESS);
   glDepthMask(GL_TRUE);
+  if (!first) {
+    glColorMaski(1, GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+    glDisable(GL_BLEND);
+  }
   timer_.end();
   check_gl("rendering scene " + scene_.name + " with " + technique_.name);
   view_valid_ = true;
@@ -592,7 +716,7 @@ void lightwave_pipeline::capture_into(GLuint buffer, const mesh_buffers& vertice
   glBindTexture(GL_TEXTURE_2D, vpl_texture_.get());
   // Nothing is rasterised, but a draw needs a complete framebuffer (a surfaceless EGL context
   // has no default one).
-  target_.bind();
+  shared_->target.bind();
   capture_program_.use();
   glEnable(GL_RASTERIZER_DISCARD);
   glBeginTransformFeedback(GL_POINTS);
@@ -604,22 +728,22 @@ void lightwave_pipeline::capture_into(GLuint buffer, const mesh_buffers& vertice
 }
 
 std::vector<glm::vec3> lightwave_pipeline::capture_vertex_indirect() {
-  if (settings_.energy == lightwave_energy::flux && !receiver_buffers_)
+  if (settings_.energy == lightwave_energy::flux && !shared_->receiver_buffers)
     throw error(std::string("Light Wave technique ") + technique_.name + " sums no VPLs: no vertex indirect light to capture");
   if (vpls_dirty_ || shadows_dirty_) {
     rebuild();
     timer_.collect();  // not a frame's passes
   }
   // Flux energy: the buffer the main pass reads, captured at the last build.
-  const std::size_t count = receiver_buffers_ ? receivers_.vertices.size() : scene_.geometry.vertices.size();
+  const std::size_t count = shared_->receiver_buffers ? shared_->receivers.vertices.size() : scene_.geometry.vertices.size();
   gl_buffer captured(generate_buffer());
-  if (!receiver_buffers_) {
+  if (!shared_->receiver_buffers) {
     glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, captured.get());
     glBufferData(GL_TRANSFORM_FEEDBACK_BUFFER, static_cast<GLsizeiptr>(count * sizeof(glm::vec3)), nullptr, GL_STATIC_READ);
-    capture_into(captured.get(), mesh_);
+    capture_into(captured.get(), shared_->scene_mesh);
   }
   std::vector<glm::vec3> result(count);
-  if (receiver_buffers_) {
+  if (shared_->receiver_buffers) {
     std::vector<glm::vec4> texels(count);
     glBindBuffer(GL_ARRAY_BUFFER, indirect_buffer_.get());
     glGetBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(count * sizeof(glm::vec4)), texels.data());

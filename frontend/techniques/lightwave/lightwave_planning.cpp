@@ -8,6 +8,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <vplkit/cube_map.hpp>
 #include <vplkit/hash.hpp>
 
 #include "frontend/core/error.hpp"
@@ -325,36 +326,111 @@ std::vector<lightwave_flux_vpl<float>> lightwave_merge_ray_samples(const std::ve
 }
 
 
+namespace {
+
+// The VPL where the ray from `origin` along unit `direction` meets the surface the map holds at
+// the ray's texel, reflecting `flux` (a function of the texel's albedo and normal; 0: none);
+// `measure` is the sample's solid angle (a perspective map) or its cross-section's area
+// (`parallel`: an orthographic map), for the patch's radius.
+template <typename Flux>
+std::optional<lightwave_flux_vpl<float>> flux_vpl_on_map(const glm::vec3& origin, const glm::vec3& direction, float measure, bool parallel, Flux&& flux_of,
+                                                         const lightwave_surface_map& map) {
+  const int side = map.positions->width;
+  const glm::vec4 clip = map.view_projection * glm::vec4(origin + direction, 1.0f);
+  if (!(clip.w > 0.0f)) return std::nullopt;
+  const glm::ivec2 texel =
+      glm::clamp(glm::ivec2(glm::floor((glm::vec2(clip) / clip.w * 0.5f + 0.5f) * static_cast<float>(side))), glm::ivec2(0), glm::ivec2(side - 1));
+  const glm::vec4 surface = map.positions->at(texel);
+  if (!(surface.w > 0.5f)) return std::nullopt;  // the ray leaves the scene
+  const glm::vec3 normal(map.normals->at(texel)), albedo(map.albedos->at(texel));
+  const glm::vec3 flux = flux_of(albedo, normal);
+  if (!(flux.x + flux.y + flux.z > 0.0f)) return std::nullopt;  // black, the back of a surface, or outside the cone
+  // The texel holds the surface at its centre's ray; the ray's own point lies on that surface's
+  // plane (unless the texel straddles an edge: then the texel's point, at its distance).
+  const glm::vec3 texel_point(surface);
+  // (Along a parallel ray its depth; from a light's position, its distance.)
+  const float texel_distance = parallel ? glm::dot(texel_point - origin, direction) : glm::length(texel_point - origin);
+  const float facing = glm::dot(direction, normal);
+  float distance = glm::dot(texel_point - origin, normal) / facing;
+  if (!(distance > 0.5f * texel_distance && distance < 2.0f * texel_distance)) distance = texel_distance;
+  const glm::vec3 position = origin + direction * distance;
+  // An orthographic map's rays are parallel: the patch's area does not grow with the distance.
+  const float radius = parallel ? lightwave_patch_radius(measure, 1.0f, facing) : lightwave_patch_radius(measure, distance, facing);
+  return lightwave_flux_vpl<float>{position, normal, flux, radius};
+}
+
+}  // namespace
+
 std::vector<lightwave_flux_vpl<float>> lightwave_flux_vpls_from_map(const spot_light<float>& light, const lightwave_cone_settings<float>& cone,
                                                                    const glm::mat4& light_view_projection, const image& positions, const image& normals,
                                                                    const image& albedos, std::vector<int>& layout_index) {
   std::vector<lightwave_flux_vpl<float>> vpls;
   layout_index.clear();
+  const lightwave_surface_map map{light_view_projection, &positions, &normals, &albedos};
   const int count = lightwave_vpl_count(cone.angle_deg, cone.per_ray);
-  const int side = positions.width;
   for (int index = 0; index < count; ++index) {
     const glm::vec4 sample = lightwave_cone_sample(index, cone);
     const glm::vec3 direction(sample);
-    const glm::vec4 clip = light_view_projection * glm::vec4(light.position + direction, 1.0f);
-    if (!(clip.w > 0.0f)) continue;
-    const glm::ivec2 texel = glm::clamp(glm::ivec2(glm::floor((glm::vec2(clip) / clip.w * 0.5f + 0.5f) * static_cast<float>(side))), glm::ivec2(0),
-                                        glm::ivec2(side - 1));
-    const glm::vec4 surface = positions.at(texel);
-    if (!(surface.w > 0.5f)) continue;  // the ray leaves the scene
-    const glm::vec3 normal(normals.at(texel)), albedo(albedos.at(texel));
-    const glm::vec3 flux = lightwave_ray_flux(light, direction, sample.w, albedo, normal);
-    if (!(flux.x + flux.y + flux.z > 0.0f)) continue;  // black, the back of a surface, or outside the cone
-    // The texel holds the surface at its centre's ray; the ray's own point lies on that surface's
-    // plane (unless the texel straddles an edge: then the texel's point).
-    const glm::vec3 texel_point(surface);
-    const float texel_distance = glm::length(texel_point - light.position);
-    const float facing = glm::dot(direction, normal);
-    float distance = glm::dot(texel_point - light.position, normal) / facing;
-    if (!(distance > 0.5f * texel_distance && distance < 2.0f * texel_distance)) distance = texel_distance;
-    vpls.push_back({light.position + direction * distance, normal, flux, lightwave_patch_radius(sample.w, distance, facing)});
-    layout_index.push_back(index);
+    const auto flux = [&](const glm::vec3& albedo, const glm::vec3& normal) { return lightwave_ray_flux(light, direction, sample.w, albedo, normal); };
+    if (const auto vpl = flux_vpl_on_map(light.position, direction, sample.w, false, flux, map)) {
+      vpls.push_back(*vpl);
+      layout_index.push_back(index);
+    }
   }
   return vpls;
+}
+
+std::vector<lightwave_flux_vpl<float>> lightwave_point_flux_vpls(const point_light<float>& light, const lightwave_cone_settings<float>& cone,
+                                                                 const std::array<lightwave_surface_map, 6>& faces, std::vector<int>& layout_index) {
+  std::vector<lightwave_flux_vpl<float>> vpls;
+  layout_index.clear();
+  const int count = lightwave_sphere_sample_count(cone.angle_deg, cone.per_ray);
+  for (int index = 0; index < count; ++index) {
+    const glm::vec4 sample = lightwave_sphere_sample(index, cone);
+    const glm::vec3 direction(sample);
+    const auto flux = [&](const glm::vec3& albedo, const glm::vec3& normal) { return lightwave_ray_flux(light, direction, sample.w, albedo, normal); };
+    // The one face whose frustum holds the direction (the direct light's shadow reads the same).
+    const lightwave_surface_map& face = faces[static_cast<std::size_t>(cube_face_of(direction))];
+    if (const auto vpl = flux_vpl_on_map(light.position, direction, sample.w, false, flux, face)) {
+      vpls.push_back(*vpl);
+      layout_index.push_back(index);
+    }
+  }
+  return vpls;
+}
+
+std::vector<lightwave_flux_vpl<float>> lightwave_sun_flux_vpls(const directional_light<float>& light, int angle_deg, int per_ray,
+                                                               const glm::vec3& view_origin, const glm::vec3& right, const glm::vec3& up, float half_extent,
+                                                               const lightwave_surface_map& map, std::vector<int>& layout_index) {
+  std::vector<lightwave_flux_vpl<float>> vpls;
+  layout_index.clear();
+  const int count = lightwave_parallel_sample_count(angle_deg, per_ray);
+  const glm::vec3 direction = light.direction;
+  for (int index = 0; index < count; ++index) {
+    const glm::vec3 sample = lightwave_parallel_sample<float>(index, angle_deg, per_ray);
+    const float area = sample.z * half_extent * half_extent;
+    const glm::vec3 origin = view_origin + (sample.x * right + sample.y * up) * half_extent;
+    const auto flux = [&](const glm::vec3& albedo, const glm::vec3& normal) { return lightwave_ray_flux(light, direction, area, albedo, normal); };
+    if (const auto vpl = flux_vpl_on_map(origin, direction, area, true, flux, map)) {
+      vpls.push_back(*vpl);
+      layout_index.push_back(index);
+    }
+  }
+  return vpls;
+}
+
+std::vector<int> lightwave_sample_rays(light_kind kind, int angle_deg, int per_ray, const std::vector<int>& layout_index, int& rays) {
+  std::vector<int> result(layout_index.size());
+  if (kind == light_kind::directional) {
+    rays = lightwave_parallel_side(angle_deg) * lightwave_parallel_side(angle_deg);
+    for (std::size_t i = 0; i < result.size(); ++i) result[i] = layout_index[i] % rays;
+    return result;
+  }
+  const int hemisphere_rays = lightwave_ray_count(angle_deg), half = lightwave_vpl_count(angle_deg, per_ray);
+  rays = kind == light_kind::point ? 2 * hemisphere_rays : hemisphere_rays;
+  for (std::size_t i = 0; i < result.size(); ++i)
+    result[i] = layout_index[i] % hemisphere_rays + (kind == light_kind::point && layout_index[i] >= half ? hemisphere_rays : 0);
+  return result;
 }
 
 std::vector<lightwave_shadow_caster> lightwave_importance_casters(const lightwave_vpl_view& view, const std::vector<lightwave_receiver_point>& points,

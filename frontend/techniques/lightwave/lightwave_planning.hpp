@@ -7,6 +7,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -199,5 +200,38 @@ glm::mat4 lightwave_look_along(const glm::vec3& position, const glm::vec3& direc
 std::vector<lightwave_flux_vpl<float>> lightwave_flux_vpls_from_map(const spot_light<float>& light, const lightwave_cone_settings<float>& cone,
                                                                    const glm::mat4& light_view_projection, const image& positions, const image& normals,
                                                                    const image& albedos, std::vector<int>& layout_index);
+
+/// What a light sees through one map: world position (w = 1 where a surface is), normal and
+/// albedo per texel of square images drawn with `view_projection`.
+struct lightwave_surface_map {
+  glm::mat4 view_projection{1.0f};
+  const image* positions = nullptr;
+  const image* normals = nullptr;
+  const image* albedos = nullptr;
+};
+
+/// A point light's flux VPLs: each sample of the sphere layout (lightwave_sphere_sample around
+/// cone.light_direction) looked up in the cube face its direction falls in (cube_face_of; `faces`
+/// in OpenGL's order, each a 90-degree view from the light), a VPL where it meets a surface that
+/// faces the light, reflecting lightwave_ray_flux(point), in sample order; `layout_index` gets
+/// each VPL's sample index.
+std::vector<lightwave_flux_vpl<float>> lightwave_point_flux_vpls(const point_light<float>& light, const lightwave_cone_settings<float>& cone,
+                                                                 const std::array<lightwave_surface_map, 6>& faces, std::vector<int>& layout_index);
+
+/// A sun's flux VPLs: each sample of the parallel layout (lightwave_parallel_sample of angle_deg,
+/// per_ray) a ray along the light's direction from `view_origin` + (x right + y up) half_extent,
+/// (`right`, `up` unit, spanning the orthographic map `map` of half-side half_extent), a VPL where
+/// it meets a surface that faces the light, reflecting lightwave_ray_flux(directional) of its
+/// share of the window's area, in sample order; `layout_index` gets each VPL's sample index.
+std::vector<lightwave_flux_vpl<float>> lightwave_sun_flux_vpls(const directional_light<float>& light, int angle_deg, int per_ray,
+                                                               const glm::vec3& view_origin, const glm::vec3& right, const glm::vec3& up, float half_extent,
+                                                               const lightwave_surface_map& map, std::vector<int>& layout_index);
+
+/// The ray each flux sample belongs to, for lightwave_merge_ray_samples (which merges the
+/// samples of one ray on one plane): a spot's and a sun's ray is the layout index modulo its
+/// rays; a point light's sphere has twice the rays of a hemisphere, the second hemisphere's after
+/// the first's (two rays of the same number on either side must not merge). Returns the ray of
+/// each of `layout_index` and sets `rays` to their count.
+std::vector<int> lightwave_sample_rays(light_kind kind, int angle_deg, int per_ray, const std::vector<int>& layout_index, int& rays);
 
 }  // namespace vplkit

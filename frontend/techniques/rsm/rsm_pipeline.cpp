@@ -190,7 +190,7 @@ rsm_pipeline::rsm_pipeline(const shader_library& shaders, const scene& source, c
       blur_x_target_(settings.filter == post_filter::separable ? constants_.indirect_size.x : 1,
                      settings.filter == post_filter::separable ? constants_.indirect_size.y : 1,
                      {packed_blur(settings) ? texel_format::rgba32ui : settings.format}, false),
-      post_target_(settings.width, settings.height, {settings.format, settings.format}, false),
+      post_target_(settings.width, settings.height, {settings.format, settings.format, settings.format}, false),
       empty_vertex_array_(generate_vertex_array()) {
   // Each light has its own RSM (cached while it does not move), coverage lights and gather output.
   for (std::size_t k = 0; k < views_.size(); ++k) {

@@ -183,6 +183,8 @@ class rsm_pipeline final : public pipeline {
   const texture_2d& output() const override { return post_target_.colour(0); }
   /// The filtered indirect irradiance of the last frame at the image's size (black for direct light).
   const texture_2d& indirect_output() const override { return post_target_.colour(1); }
+  /// The shadowed direct irradiance of the last frame (every view's, summed by the post pass).
+  const texture_2d& direct_output() const override { return post_target_.colour(2); }
   bool has_indirect() const override { return constants_.technique.indirect; }
   /// The gather's output at the indirect buffer's receivers, before the post filter (summed over the light views).
   std::optional<image> raw_indirect() const override;
