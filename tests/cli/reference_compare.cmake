@@ -23,6 +23,8 @@ expect_success("compare against a black reference: the relative numbers are unde
                "${VPLKIT}" compare "${WORK}/ref.pfm" "${WORK}/direct-indirect.pfm" --mask "${WORK}/ref.pfm")
 execute_process(COMMAND "${VPLKIT}" compare "${WORK}/ref.pfm" "${WORK}/direct-indirect.pfm" OUTPUT_VARIABLE out)
 expect_true("no relative number reads 0 against a black reference" NOT out MATCHES "relative (RMSE|bias)[^\n]*[|] 0 [|]")
+expect_true("nor does the share of lit pixels darker than half: the reference has none"
+            out MATCHES "[|] lit pixels darker than half the reference [(]%[)] [|] undefined: the reference has no lit pixel [|]")
 expect_failure("compare images of different sizes" "the image ${WORK}/ref\\.pfm is 24x24 but the reference ${WORK}/small\\.png is 48x32" "${WORK}/err2.png"
                "${VPLKIT}" compare "${WORK}/ref.pfm" "${WORK}/small.png" --error-image "${WORK}/err2.png")
 expect_failure("compare an unreadable file" "${WORK}/missing\\.pfm: no such PFM image" "" "${VPLKIT}" compare "${WORK}/missing.pfm" "${WORK}/ref.pfm")

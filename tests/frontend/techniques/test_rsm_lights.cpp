@@ -80,6 +80,8 @@ TEST_CASE("RSM pipeline, two lights: every technique's radiance and indirect lig
     const rsm_frame a = first.render(), b = second.render(), ab = pair.render();
     // The same passes in the same order per light; only the float addition of the blend differs.
     CHECK(sum_error(ab.radiance, a.radiance, b.radiance) < 1e-5);
+    // The direct light (render's -direct.pfm) is summed by the same blend.
+    CHECK(sum_error(pair.direct_output().read_image(), first.direct_output().read_image(), second.direct_output().read_image()) < 1e-5);
     if (technique.indirect) {
       CHECK(sum_error(ab.indirect, a.indirect, b.indirect) < 1e-5);
       const std::optional<image> raw_a = first.raw_indirect(), raw_b = second.raw_indirect(), raw_ab = pair.raw_indirect();
