@@ -106,6 +106,8 @@ vec2 bilateral_quad_centre(ivec2 texel, int s) {
   return (vec2(2 * texel + ivec2(s & 1, s >> 1)) + 0.5) / 2.0;
 }
 
+// One tap of one of the quad's four pixels; its C++ twin is the loop body over the centres in
+// detail::bilateral_filter_axis_shared.
 void bilateral_quad_add(bilateral_tap tap, vec2 offset, bilateral_centre centre, int normal_power, inout vec3 sum, inout float weight_sum) {
   float weight = bilateral_weight(offset, tap.depth, tap.normal, centre, normal_power);
   sum += weight * tap.value;
