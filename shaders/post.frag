@@ -6,33 +6,44 @@
 // Writes [radiance | 1], [filtered indirect irradiance | 1] and [shadowed direct irradiance | 1]
 // (render's -direct.pfm).
 // VPLKIT_PACKED_BLUR: the y pass reads pass 4a's packed taps (blur_x.frag), one fetch per tap.
+// VPLKIT_QUAD_BLUR (separable, indirect divisor 2): the y pass ran in pass 4b (blur_y.frag), which
+// filtered the 2 x 2 pixels of each indirect texel at once; this pass reads its pixel's value.
 #ifndef VPLKIT_PACKED_BLUR
 #define VPLKIT_PACKED_BLUR 0  // the pipeline defines it; 0 for a program loaded without it
 #endif
-#if VPLKIT_PACKED_BLUR
+#ifndef VPLKIT_QUAD_BLUR
+#define VPLKIT_QUAD_BLUR 0  // the pipeline defines it; 0 for a program loaded without it
+#endif
+#if VPLKIT_PACKED_BLUR && !VPLKIT_QUAD_BLUR
 #extension GL_ARB_shading_language_packing : require
 #endif
 #ifndef VPLKIT_LIGHT_POINT
 #define VPLKIT_LIGHT_POINT 0  // the pipeline defines it; 0 for a program loaded without it
 #endif
-#include "lib/bilateral.glsl"
+#if !VPLKIT_QUAD_BLUR
+#include "lib/bilateral.glsl"  // with the quad y pass this pass filters nothing
+#endif
 #include "lib/cube_map.glsl"
 #include "lib/direct_light.glsl"
 #include "lib/shading.glsl"
 
+#if !VPLKIT_QUAD_BLUR
 uniform bilateral_settings bilateral;
+#endif
 uniform irradiance_settings irradiance;
 uniform int indirect_divisor;
 uniform ivec2 indirect_size;
 uniform ivec2 gbuffer_size;
-#if VPLKIT_PACKED_BLUR
-uniform usampler2D indirect_buffer;
-#else
-uniform sampler2D indirect_buffer;
-#endif
 uniform sampler2D gbuffer_position_depth;
 uniform sampler2D gbuffer_albedo_density;
 uniform sampler2D gbuffer_normal;
+#if VPLKIT_QUAD_BLUR
+uniform sampler2D filtered_red;  // blur_y.frag's planes: component (x & 1) + 2 (y & 1) of texel pixel / 2
+uniform sampler2D filtered_green;
+uniform sampler2D filtered_blue;
+#else
+#include "blur_taps.glsl"
+#endif
 #if VPLKIT_LIGHT_DIRECTIONAL
 uniform directional_light directional;
 #elif VPLKIT_LIGHT_POINT
@@ -45,17 +56,6 @@ uniform spot_light spot;
 layout(location = 0) out vec4 radiance;
 layout(location = 1) out vec4 indirect_out;
 layout(location = 2) out vec4 direct_out;
-
-bilateral_tap bilateral_fetch(ivec2 texel) {
-#if VPLKIT_PACKED_BLUR
-  uvec4 words = texelFetch(indirect_buffer, texel, 0);
-  vec2 blue_depth = unpackHalf2x16(words.y);
-  return bilateral_tap(vec3(unpackHalf2x16(words.x), blue_depth.x), blue_depth.y, vec3(unpackHalf2x16(words.z), unpackHalf2x16(words.w).x));
-#else
-  vec4 value = texelFetch(indirect_buffer, texel, 0);
-  return bilateral_tap(value.xyz, value.w, texelFetch(gbuffer_normal, min(texel * indirect_divisor, gbuffer_size - 1), 0).xyz);
-#endif
-}
 
 void main() {
   ivec2 pixel = ivec2(gl_FragCoord.xy);
@@ -70,11 +70,14 @@ void main() {
   vec3 n = texelFetch(gbuffer_normal, pixel, 0).xyz;
   vec3 indirect_irradiance = vec3(0.0);
 #if VPLKIT_INDIRECT
-  vec2 centre = (vec2(pixel) + 0.5) / float(indirect_divisor);
-#if VPLKIT_SEPARABLE
-  indirect_irradiance = bilateral_filter_axis(centre, position_depth.w, n, indirect_size, 1, bilateral);
+#if VPLKIT_QUAD_BLUR
+  ivec2 texel = pixel / 2;
+  int s = (pixel.x & 1) + 2 * (pixel.y & 1);
+  indirect_irradiance = vec3(texelFetch(filtered_red, texel, 0)[s], texelFetch(filtered_green, texel, 0)[s], texelFetch(filtered_blue, texel, 0)[s]);
+#elif VPLKIT_SEPARABLE
+  indirect_irradiance = bilateral_filter_axis((vec2(pixel) + 0.5) / float(indirect_divisor), position_depth.w, n, indirect_size, 1, bilateral);
 #else
-  indirect_irradiance = bilateral_filter(centre, position_depth.w, n, indirect_size, bilateral);
+  indirect_irradiance = bilateral_filter((vec2(pixel) + 0.5) / float(indirect_divisor), position_depth.w, n, indirect_size, bilateral);
 #endif
 #endif
 #if VPLKIT_LIGHT_DIRECTIONAL

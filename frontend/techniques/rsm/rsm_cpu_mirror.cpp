@@ -4,6 +4,7 @@
 #include "frontend/core/parallel.hpp"
 
 #include <algorithm>
+#include <array>
 #include <vector>
 
 #include <vplkit/cube_map.hpp>
@@ -201,6 +202,31 @@ post_images cpu_post_pass(const image& filtered_input, const rsm_pass_buffers& b
   }
   const filter_taps taps{filtered_input, buffers, constants};
   const bool separable = constants.filter == post_filter::separable;
+  // Pass 4b (blur_y.frag): the y axis of the 2 x 2 pixels of each indirect texel, from their
+  // G-buffer depths and normals (clamped to the image, as the shader does).
+  image quad_filtered;
+  const bool quad = constants.technique.indirect && separable && constants.indirect_divisor == 2;
+  if (quad) {
+    quad_filtered = image(constants.image_size.x, constants.image_size.y);
+    parallel_for(constants.indirect_size.y, threads, [&](int y) {
+      for (int x = 0; x < constants.indirect_size.x; ++x) {
+        const glm::ivec2 texel(x, y);
+        std::array<float, 4> depth;
+        std::array<glm::vec3, 4> normal;
+        for (int s = 0; s < 4; ++s) {
+          const glm::ivec2 pixel = glm::min(2 * texel + glm::ivec2(s & 1, s >> 1), constants.image_size - 1);
+          depth[static_cast<std::size_t>(s)] = buffers.gbuffer[0].at(pixel).w;
+          normal[static_cast<std::size_t>(s)] = glm::vec3(buffers.gbuffer[2].at(pixel));
+        }
+        const std::array<glm::vec3, 4> filtered = bilateral_filter_axis_quad(texel, depth, normal, taps, constants.indirect_size, 1, constants.bilateral);
+        for (int s = 0; s < 4; ++s) {
+          const glm::ivec2 pixel = 2 * texel + glm::ivec2(s & 1, s >> 1);
+          if (pixel.x < constants.image_size.x && pixel.y < constants.image_size.y)
+            quad_filtered.at(pixel) = glm::vec4(filtered[static_cast<std::size_t>(s)], 0.0f);
+        }
+      }
+    });
+  }
   parallel_for(constants.image_size.y, threads, [&](int y) {
     for (int x = 0; x < constants.image_size.x; ++x) {
       const glm::ivec2 pixel(x, y);
@@ -211,8 +237,9 @@ post_images cpu_post_pass(const image& filtered_input, const rsm_pass_buffers& b
       glm::vec3 indirect(0.0f);
       if (constants.technique.indirect) {
         const glm::vec2 centre = (glm::vec2(pixel) + 0.5f) / static_cast<float>(constants.indirect_divisor);
-        indirect = separable ? bilateral_filter_axis(centre, position_depth.w, n, taps, constants.indirect_size, 1, constants.bilateral)
-                             : bilateral_filter(centre, position_depth.w, n, taps, constants.indirect_size, constants.bilateral);
+        indirect = quad        ? glm::vec3(quad_filtered.at(pixel))
+                   : separable ? bilateral_filter_axis(centre, position_depth.w, n, taps, constants.indirect_size, 1, constants.bilateral)
+                               : bilateral_filter(centre, position_depth.w, n, taps, constants.indirect_size, constants.bilateral);
       }
       glm::vec3 direct(0.0f);
       if (constants.primary.kind == light_kind::spot)

@@ -53,7 +53,9 @@ struct post_images {
 };
 
 /// Pass 4 on the CPU, reading `filtered_input`: the indirect buffer (full filter) or the x pass's
-/// output (separable filter).
+/// output (separable filter). With the separable filter at indirect divisor 2 the y axis runs as
+/// pass 4b does (blur_y.frag): the 2 x 2 pixels of each indirect texel at once
+/// (bilateral_filter_axis_quad), the same values as per pixel.
 post_images cpu_post_pass(const image& filtered_input, const rsm_pass_buffers& buffers,
                           const rsm_frame_constants& constants, int threads);
 

@@ -165,6 +165,11 @@ bool packed_blur(const rsm_pipeline_settings& settings) {
   return settings.filter == post_filter::separable && settings.format == texel_format::rgba16f && has_half_packing();
 }
 
+// The separable filter's y pass for the 2 x 2 pixels of each indirect texel at once (blur_y.frag),
+// where the indirect buffer is half resolution: the four share the texel's taps. The same values
+// as post.frag's y pass per pixel, a quarter of its tap fetches.
+bool quad_blur(const rsm_pipeline_settings& settings) { return settings.filter == post_filter::separable && settings.indirect_divisor == 2; }
+
 void set_light_uniforms(const program& target, const rsm_frame_constants& constants) {
   if (constants.primary.kind == light_kind::spot) set_uniforms(target, "spot", constants.primary.spot);
   else if (constants.primary.kind == light_kind::directional) set_uniforms(target, "directional", constants.primary.directional);
@@ -190,6 +195,8 @@ rsm_pipeline::rsm_pipeline(const shader_library& shaders, const scene& source, c
       blur_x_target_(settings.filter == post_filter::separable ? constants_.indirect_size.x : 1,
                      settings.filter == post_filter::separable ? constants_.indirect_size.y : 1,
                      {packed_blur(settings) ? texel_format::rgba32ui : settings.format}, false),
+      blur_y_target_(quad_blur(settings) ? constants_.indirect_size.x : 1, quad_blur(settings) ? constants_.indirect_size.y : 1,
+                     {texel_format::rgba32f, texel_format::rgba32f, texel_format::rgba32f}, false),
       post_target_(settings.width, settings.height, {settings.format, settings.format, settings.format}, false),
       empty_vertex_array_(generate_vertex_array()) {
   // Each light has its own RSM (cached while it does not move), coverage lights and gather output.
@@ -227,6 +234,7 @@ void rsm_pipeline::load_programs(const shader_library& shaders) {
     if (with_coverage(constants_)) coarse_program_ = load_program(shaders, "fullscreen.vert", "rsm_coarse.frag");
     if (with_temporal(constants_)) temporal_program_ = load_program(shaders, "fullscreen.vert", "temporal.frag");
     if (separable) blur_x_program_ = load_program(shaders, "fullscreen.vert", "blur_x.frag", {{"VPLKIT_PACKED_BLUR", flag(packed)}});
+    if (quad_blur(settings_)) blur_y_program_ = load_program(shaders, "fullscreen.vert", "blur_y.frag", {{"VPLKIT_PACKED_BLUR", flag(packed)}});
   }
   // The light-dependent programs for the kinds the scene's lights have (set_light keeps a light's kind).
   for (const rsm_frame_constants& view : views_) {
@@ -238,6 +246,7 @@ void rsm_pipeline::load_programs(const shader_library& shaders) {
                                         {{"VPLKIT_INDIRECT", flag(technique.indirect)},
                                          {"VPLKIT_SEPARABLE", flag(separable)},
                                          {"VPLKIT_PACKED_BLUR", flag(technique.indirect && packed)},
+                                         {"VPLKIT_QUAD_BLUR", flag(technique.indirect && quad_blur(settings_))},
                                          {"VPLKIT_LIGHT_DIRECTIONAL", flag(directional)},
                                          {"VPLKIT_LIGHT_POINT", flag(point)}});
   }
@@ -287,15 +296,29 @@ void rsm_pipeline::set_settings_uniforms() {
       blur_x_program_.set("indirect_buffer", 0);
       blur_x_program_.set("gbuffer_normal", 1);
     }
+    if (quad_blur(settings_)) {
+      set_uniforms(blur_y_program_, "bilateral", constants_.bilateral);
+      blur_y_program_.set("indirect_divisor", constants_.indirect_divisor);
+      blur_y_program_.set("indirect_size", constants_.indirect_size);
+      blur_y_program_.set("gbuffer_size", constants_.image_size);
+      int blur_y_unit = 0;
+      for (const char* name : {"indirect_buffer", "gbuffer_position_depth", "gbuffer_normal"}) blur_y_program_.set(name, blur_y_unit++);
+    }
   }
-  set_uniforms(post_program(), "bilateral", constants_.bilateral);
+  const bool quad = technique.indirect && quad_blur(settings_);
+  if (!quad) set_uniforms(post_program(), "bilateral", constants_.bilateral);  // else blur_y.frag filters
   set_uniforms(post_program(), "irradiance", constants_.gather.irradiance);
   post_program().set("indirect_divisor", constants_.indirect_divisor);
   post_program().set("indirect_size", constants_.indirect_size);
   post_program().set("gbuffer_size", constants_.image_size);
   int unit = 0;
-  for (const char* name : {"indirect_buffer", "gbuffer_position_depth", "gbuffer_albedo_density", "gbuffer_normal"})
+  // Unit 0: the y pass's taps (blur_taps.glsl), or with the quad y pass its planes at units 0, 4, 5.
+  for (const char* name : {quad ? "filtered_red" : "indirect_buffer", "gbuffer_position_depth", "gbuffer_albedo_density", "gbuffer_normal"})
     post_program().set(name, unit++);
+  if (quad) {
+    post_program().set("filtered_green", unit++);
+    post_program().set("filtered_blue", unit++);
+  }
 }
 
 bool rsm_pipeline::apply_settings(const technique_settings& settings) {
@@ -563,9 +586,20 @@ void rsm_pipeline::draw_post(const framebuffer& filter_input, std::size_t view) 
     blur_x_program_.use();
     glDrawArrays(GL_TRIANGLES, 0, 3);
   }
+  const bool quad = separable && quad_blur(settings_);
+  if (quad) {
+    blur_y_target_.bind();
+    blur_x_target_.colour(0).bind(0);
+    gbuffer_target_.colour(0).bind(1);
+    gbuffer_target_.colour(2).bind(2);
+    blur_y_program_.use();
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+  }
   post_target_.bind();
-  (separable ? blur_x_target_ : filter_input).colour(0).bind(0);
+  (quad ? blur_y_target_ : separable ? blur_x_target_ : filter_input).colour(0).bind(0);
   for (int i = 0; i < 3; ++i) gbuffer_target_.colour(static_cast<std::size_t>(i)).bind(i + 1);
+  if (quad)
+    for (int i = 1; i < 3; ++i) blur_y_target_.colour(static_cast<std::size_t>(i)).bind(i + 3);
   post_program().use();
   if (view > 0) {
     // Added to the views before: radiance and indirect light sum, alpha (1) stays.

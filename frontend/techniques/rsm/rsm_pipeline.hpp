@@ -231,6 +231,7 @@ class rsm_pipeline final : public pipeline {
   program gather_program_;
   program temporal_program_;
   program blur_x_program_;
+  program blur_y_program_;  ///< the y pass for 2 x 2 pixels at once (quad_blur; else post.frag runs it per pixel)
   program post_programs_[3];
   std::shared_ptr<const voxel_grid> voxels_;
   double voxel_build_ms_ = 0.0;
@@ -241,6 +242,7 @@ class rsm_pipeline final : public pipeline {
   std::vector<framebuffer> indirect_targets_;  ///< one per view
   framebuffer history_targets_[2];  ///< temporal accumulation, ping-pong (1 x 1 when the pipeline does not accumulate)
   framebuffer blur_x_target_;
+  framebuffer blur_y_target_;  ///< blur_y.frag's red, green and blue planes (1 x 1 unless quad_blur)
   framebuffer post_target_;
   gl_vertex_array empty_vertex_array_;
   pass_timer timer_;

@@ -368,6 +368,8 @@ TEST_CASE("every shipped pass program compiles and links") {
   }
   // The separable filter's x pass packing the y pass's taps (rgba16f buffers).
   CHECK_NOTHROW(load_program(library, "fullscreen.vert", "blur_x.frag", {{"VPLKIT_PACKED_BLUR", "1"}}));
+  // The y pass for 2 x 2 pixels at once (indirect divisor 2), on packed or float taps.
+  for (const char* packed : {"0", "1"}) CHECK_NOTHROW(load_program(library, "fullscreen.vert", "blur_y.frag", {{"VPLKIT_PACKED_BLUR", packed}}));
   // The variant programs, every define combination the pipeline uses.
   for (const char* light : {"0", "1"}) {
     CHECK_NOTHROW(load_program(library, "scene.vert", "rsm.frag", {{"VPLKIT_LIGHT_DIRECTIONAL", light}}));
@@ -377,6 +379,9 @@ TEST_CASE("every shipped pass program compiles and links") {
                                    {{"VPLKIT_INDIRECT", indirect}, {"VPLKIT_SEPARABLE", separable}, {"VPLKIT_LIGHT_DIRECTIONAL", light}}));
     CHECK_NOTHROW(load_program(library, "fullscreen.vert", "post.frag",
                                {{"VPLKIT_INDIRECT", "1"}, {"VPLKIT_SEPARABLE", "1"}, {"VPLKIT_PACKED_BLUR", "1"}, {"VPLKIT_LIGHT_DIRECTIONAL", light}}));
+    for (const char* packed : {"0", "1"})
+      CHECK_NOTHROW(load_program(library, "fullscreen.vert", "post.frag",
+                                 {{"VPLKIT_INDIRECT", "1"}, {"VPLKIT_SEPARABLE", "1"}, {"VPLKIT_PACKED_BLUR", packed}, {"VPLKIT_QUAD_BLUR", "1"}, {"VPLKIT_LIGHT_DIRECTIONAL", light}}));
   }
   for (const char* coverage : {"0", "1"}) {
     for (const char* visibility : {"0", "2", "3", "6", "7", "8"})
