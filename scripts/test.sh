@@ -2,9 +2,9 @@
 # README command 2: set up, build, and run the whole test suite:
 #   1. the Release build (GCC), both tiers of tests (ctest -L fast, then -L slow);
 #   2. the sanitizer build (clang, -fsanitize=address,undefined,float-cast-overflow, with
-#      libFuzzer coverage), its fast tier;
+#      libFuzzer coverage), what its fast tier runs (target vplkit_fast_tier), its fast tier;
 #   3. each fuzz target for FUZZ_SECONDS (default 10) in that same build (scripts/fuzz.sh).
-# Ends with a table of where the time went.
+# Ends with a table of where the time went: wall and CPU seconds per step.
 #   scripts/test.sh          everything (what CI runs, .ci/run)
 #   scripts/test.sh --fast   the developer's loop: the Release build and its fast tier only
 # Tests run headless (EGL; the parity tests also under OSMesa in the Release build's slow tier;
@@ -29,16 +29,30 @@ threads_per_test=1
 
 steps=()
 times=()
+cpu_times=()
 started=$SECONDS
-# timed <label> <command...>: runs the step and records its wall time; a failing step prints the
-# table so far and stops the run with its status.
+# The CPU time (user + system) of this shell's finished children, in clock ticks: fields 16 and 17
+# of /proc/<shell>/stat (cutime, cstime), which count every descendant that was waited for. On a
+# machine that others share, wall time measures the load; CPU time is what idle cores would take.
+clock_ticks=$(getconf CLK_TCK)
+children_ticks() {
+  local stat
+  read -r stat < /proc/$$/stat
+  set -- ${stat##*) }  # the fields after the command name, from field 3 on
+  echo $(( ${14} + ${15} ))
+}
+cpu_started=$(children_ticks)
+# timed <label> <command...>: runs the step and records its wall and CPU time; a failing step
+# prints the table so far and stops the run with its status.
 timed() {
-  local label=$1 start=$SECONDS status=0
+  local label=$1 start=$SECONDS cpu_start status=0
+  cpu_start=$(children_ticks)
   shift
   echo "== $label"
   "$@" || status=$?
   steps+=("$label")
   times+=($((SECONDS - start)))
+  cpu_times+=($(( ($(children_ticks) - cpu_start) / clock_ticks )))
   if [ $status -ne 0 ]; then
     table
     echo "test.sh: '$label' failed (exit $status)" >&2
@@ -47,10 +61,12 @@ timed() {
 }
 table() {
   echo
-  echo "| step | seconds |"
-  echo "|---|---:|"
-  for i in "${!steps[@]}"; do printf '| %s | %d |\n' "${steps[$i]}" "${times[$i]}"; done
-  printf '| **total** | **%d** |\n' $((SECONDS - started))
+  echo "| step | seconds | CPU seconds |"
+  echo "|---|---:|---:|"
+  for i in "${!steps[@]}"; do printf '| %s | %d | %d |\n' "${steps[$i]}" "${times[$i]}" "${cpu_times[$i]}"; done
+  printf '| **total** | **%d** | **%d** |\n' $((SECONDS - started)) $(( ($(children_ticks) - cpu_started) / clock_ticks ))
+  echo "(CPU seconds: user + system of every process of the step; on $jobs idle cores a step takes"
+  echo " at least CPU seconds / $jobs)"
 }
 # tests <build folder> <label> : ctest of one tier, the tests side by side on every core.
 tests() {
@@ -68,7 +84,10 @@ if [ "$fast" = yes ]; then
   exit 0
 fi
 timed "tests: Release, slow tier" tests build slow
-timed "build: sanitizer (clang, ASan + UBSan + libFuzzer coverage)" scripts/setup.sh --sanitize --no-meshes "${threads[@]}"
+# The sanitizer build makes what its fast tier runs (tests/CMakeLists.txt, vplkit_fast_tier): not
+# the slow tier's executables, which it does not run; scripts/fuzz.sh links the fuzz executables.
+timed "build: sanitizer (clang, ASan + UBSan + libFuzzer coverage), the fast tier's executables" \
+  scripts/setup.sh --sanitize --no-meshes --target vplkit_fast_tier "${threads[@]}"
 timed "tests: sanitizer, fast tier" tests build-sanitize fast
 timed "fuzzing: each target for ${fuzz_seconds} s" scripts/fuzz.sh "$fuzz_seconds"
 table
