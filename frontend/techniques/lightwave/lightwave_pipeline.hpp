@@ -219,7 +219,14 @@ class lightwave_pipeline final : public pipeline {
   /// the surfaces they light and its points cover the whole scene, so its maps depend on the light
   /// alone and a camera move redraws the main pass only, as the thesis's maps do (the shadows'
   /// distance to the one-bounce reference is the same either way on the study's scenes).
-  bool casters_follow_camera() const { return casters_by_importance() && settings_.energy == lightwave_energy::thesis; }
+  bool casters_follow_camera() const { return (casters_by_importance() || integrated_by_importance()) && settings_.energy == lightwave_energy::thesis; }
+  /// A point light's integrated shadows: its VPLs cover the sphere (floor, walls and ceiling), so
+  /// the thesis's axis VPL and ring of the first hemisphere (the floor under the bulb, looking up)
+  /// see little of what the rest light; its maps go to the medoids of the groups of equal light
+  /// on the scene (lightwave_importance_casters, as the accurate shadows'), along their normals
+  /// with the one field of view, and the in-between lookups run only between maps that look the
+  /// same way (lightwave_integrated_pair_cos). A spot's and a sun's keep the thesis's ring.
+  bool integrated_by_importance() const { return technique_.mode == lightwave_mode::integrated && kind_ == light_kind::point; }
   /// Whether the main pass draws a depth pre-pass first: the shadowed modes, whose fragments look
   /// up every indirect shadow map.
   bool depth_prepass() const { return technique_.mode >= lightwave_mode::accurate; }
