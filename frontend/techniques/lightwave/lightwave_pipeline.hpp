@@ -62,7 +62,7 @@ class lightwave_pipeline final : public pipeline {
   /// Every pass: the VPLs, the shadow maps, the indirect buffer (flux energy), the main pass.
   void draw() override;
   /// What the moves since the last frame invalidated: the VPLs and shadow maps after set_light
-  /// (and after set_camera for the importance variant with the thesis energy, whose casters follow
+  /// (and after set_camera for casters grouped by importance with the thesis energy, which follow
   /// the camera; the flux energy's do not), the main
   /// pass after any move; nothing when nothing moved.
   void draw_changed() override;
@@ -70,9 +70,9 @@ class lightwave_pipeline final : public pipeline {
   /// vplkit::error for a light of another kind than the one it replaces (its programs and shadow
   /// maps are made for its kind), an invalid one or an index past the scene's lights.
   void set_light(std::size_t index, const scene_light& light) override;
-  /// Moves the camera. The VPLs stay; the shadow maps are rebuilt on the next frame only for the
-  /// importance variant of the accurate shadows, whose casters are drawn and aimed for the
-  /// visible surface.
+  /// Moves the camera. The VPLs stay; the shadow maps are rebuilt on the next frame only where
+  /// the casters follow the camera (casters_follow_camera: the thesis energy's casters grouped by
+  /// importance, the accurate shadows' or a point light's integrated ones).
   void set_camera(const camera& view) override;
   camera current_camera() const override { return scene_.view; }
   std::vector<scene_light> current_lights() const override { return scene_.lights; }
