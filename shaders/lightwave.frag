@@ -59,6 +59,9 @@ uniform vec4 group_position_radius[VPLKIT_MAX_SHADOW_MAPS];   // its group as on
 uniform vec4 group_normal_power[VPLKIT_MAX_SHADOW_MAPS];
 uniform int indirect_maps;
 uniform int integrated_steps;
+// In-between lookups only between maps whose VPLs' normals agree this far (-2: every pair; a point
+// light's maps, placed by importance over the whole room: lightwave_integrated_pair_cos).
+uniform float integrated_pair_cos;
 uniform float faked_multiplier;
 uniform int shadow_map_width;
 uniform shadow_density_settings shadow_bias;  // its normal offset and slope-scaled bias (lib/shadow.glsl)
@@ -205,9 +208,10 @@ void main() {
     vec4 coordinate_a = map_coordinate(a);
     for (int b = a + 1; b <= indirect_maps; ++b) {
       vec4 coordinate_b = map_coordinate(b);
+      bool between = dot(caster_normal[a - 1].xyz, caster_normal[b - 1].xyz) >= integrated_pair_cos;
       for (int lookup = 0; lookup <= integrated_steps + 1; ++lookup) {
         bool votes = lookup == 0 ? coordinate_a.w > 0.5
-                                 : lookup == integrated_steps + 1 ? coordinate_b.w > 0.5 : coordinate_a.w > 0.5 && coordinate_b.w > 0.5;
+                                 : lookup == integrated_steps + 1 ? coordinate_b.w > 0.5 : between && coordinate_a.w > 0.5 && coordinate_b.w > 0.5;
         if (!votes) continue;
         vec4 step_point = lightwave_integrated_step(coordinate_a.xyz, coordinate_b.xyz, lookup, integrated_steps);
         lit += shadow_lookup(step_point.xyz, vpl_layer(step_point.w < 0.5 ? a : b));

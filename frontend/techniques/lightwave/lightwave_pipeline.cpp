@@ -457,18 +457,27 @@ void lightwave_pipeline::build_shadow_maps() {
   // normals, one field of view): their in-between lookups interpolate a fragment's coordinates
   // between two maps, which stands for an in-between light only when the maps share their
   // projection; aimed maps of different fields of view darkened an empty plane (lowest factor
-  // 0.72, measured).
+  // 0.72, measured). A point light's integrated maps are placed by importance instead (see
+  // integrated_by_importance), still along their VPLs' normals with the one field of view.
   // A flux VPL sits on its surface: its map's eye is lifted off it, so that the surface does not
   // shadow what it lights.
   const auto eye_of = [&](std::size_t i) { return view.position(i) + (view.thesis ? 0.0f : 1e-3f * g.radius) * view.normal(i); };
-  if (casters_by_importance()) {
+  const auto along_normal = [&](std::size_t i) {
+    return glm::perspective(glm::radians(settings_.vpl_field_of_view), aspect, g.near_plane, map_far) * lightwave_look_along(eye_of(i), view.normal(i));
+  };
+  if (casters_by_importance() || integrated_by_importance()) {
     const std::vector<lightwave_receiver_point> points =
         lightwave_surface_points(scene_.geometry, casters_follow_camera() ? &scene_.view : nullptr,
                                  static_cast<float>(settings_.width) / static_cast<float>(settings_.height), 4096);
-    casters_ = lightwave_importance_casters(view, points, view.flux ? &receiver_vpls_ : nullptr, receiver_vpl_of_, settings_.accurate_maps, 0.25f * g.radius);
+    casters_ = lightwave_importance_casters(view, points, view.flux ? &receiver_vpls_ : nullptr, receiver_vpl_of_, derive(settings_).indirect_maps,
+                                            0.25f * g.radius);
     std::vector<float> weights(points.size());
     for (const lightwave_shadow_caster& caster : casters_) {
       const auto i = static_cast<std::size_t>(caster.vpl);
+      if (integrated_by_importance()) {
+        shadow_matrices_.push_back(along_normal(i));
+        continue;
+      }
       for (std::size_t k = 0; k < points.size(); ++k) weights[k] = view.weight(i, points[k]);
       shadow_matrices_.push_back(
           lightwave_aimed_shadow_matrix(eye_of(i), view.normal(i), points, weights, g.near_plane, map_far, aspect, settings_.vpl_field_of_view));
@@ -477,11 +486,7 @@ void lightwave_pipeline::build_shadow_maps() {
     const std::vector<int> drawn =
         lightwave_shadow_vpls(technique_.mode, settings_.angle_deg, settings_.per_ray, derive(settings_).indirect_maps, settings_.seed);
     casters_ = lightwave_layout_casters(drawn, view.flux ? &flux_layout_index_ : nullptr);
-    for (const lightwave_shadow_caster& caster : casters_) {
-      const auto i = static_cast<std::size_t>(caster.vpl);
-      shadow_matrices_.push_back(glm::perspective(glm::radians(settings_.vpl_field_of_view), aspect, g.near_plane, map_far) *
-                                 lightwave_look_along(eye_of(i), view.normal(i)));
-    }
+    for (const lightwave_shadow_caster& caster : casters_) shadow_matrices_.push_back(along_normal(static_cast<std::size_t>(caster.vpl)));
   }
   draw_shadow_layers();
   set_caster_uniforms(view);
@@ -653,6 +658,7 @@ void lightwave_pipeline::draw_main_pass(bool first) {
   set_uniforms(main_program_, "irradiance", settings_.irradiance);
   main_program_.set("indirect_maps", static_cast<int>(casters_.size()));
   main_program_.set("integrated_steps", settings_.integrated_steps);
+  main_program_.set("integrated_pair_cos", integrated_by_importance() ? lightwave_integrated_pair_cos : -2.0f);
   main_program_.set("faked_multiplier", settings_.faked_multiplier);
   // The normal offset and slope-scaled bias of include/vplkit/shadow.hpp in every map; the
   // constant part stays the raster state's polygon offset.

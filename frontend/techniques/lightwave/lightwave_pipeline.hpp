@@ -62,7 +62,7 @@ class lightwave_pipeline final : public pipeline {
   /// Every pass: the VPLs, the shadow maps, the indirect buffer (flux energy), the main pass.
   void draw() override;
   /// What the moves since the last frame invalidated: the VPLs and shadow maps after set_light
-  /// (and after set_camera for the importance variant with the thesis energy, whose casters follow
+  /// (and after set_camera for casters grouped by importance with the thesis energy, which follow
   /// the camera; the flux energy's do not), the main
   /// pass after any move; nothing when nothing moved.
   void draw_changed() override;
@@ -70,9 +70,9 @@ class lightwave_pipeline final : public pipeline {
   /// vplkit::error for a light of another kind than the one it replaces (its programs and shadow
   /// maps are made for its kind), an invalid one or an index past the scene's lights.
   void set_light(std::size_t index, const scene_light& light) override;
-  /// Moves the camera. The VPLs stay; the shadow maps are rebuilt on the next frame only for the
-  /// importance variant of the accurate shadows, whose casters are drawn and aimed for the
-  /// visible surface.
+  /// Moves the camera. The VPLs stay; the shadow maps are rebuilt on the next frame only where
+  /// the casters follow the camera (casters_follow_camera: the thesis energy's casters grouped by
+  /// importance, the accurate shadows' or a point light's integrated ones).
   void set_camera(const camera& view) override;
   camera current_camera() const override { return scene_.view; }
   std::vector<scene_light> current_lights() const override { return scene_.lights; }
@@ -219,7 +219,14 @@ class lightwave_pipeline final : public pipeline {
   /// the surfaces they light and its points cover the whole scene, so its maps depend on the light
   /// alone and a camera move redraws the main pass only, as the thesis's maps do (the shadows'
   /// distance to the one-bounce reference is the same either way on the study's scenes).
-  bool casters_follow_camera() const { return casters_by_importance() && settings_.energy == lightwave_energy::thesis; }
+  bool casters_follow_camera() const { return (casters_by_importance() || integrated_by_importance()) && settings_.energy == lightwave_energy::thesis; }
+  /// A point light's integrated shadows: its VPLs cover the sphere (floor, walls and ceiling), so
+  /// the thesis's axis VPL and ring of the first hemisphere (the floor under the bulb, looking up)
+  /// see little of what the rest light; its maps go to the medoids of the groups of equal light
+  /// on the scene (lightwave_importance_casters, as the accurate shadows'), along their normals
+  /// with the one field of view, and the in-between lookups run only between maps that look the
+  /// same way (lightwave_integrated_pair_cos). A spot's and a sun's keep the thesis's ring.
+  bool integrated_by_importance() const { return technique_.mode == lightwave_mode::integrated && kind_ == light_kind::point; }
   /// Whether the main pass draws a depth pre-pass first: the shadowed modes, whose fragments look
   /// up every indirect shadow map.
   bool depth_prepass() const { return technique_.mode >= lightwave_mode::accurate; }

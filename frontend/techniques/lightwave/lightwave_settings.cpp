@@ -104,7 +104,7 @@ std::vector<entry> shadow_settings() {
           .read_by(accurate, "the accurate shadows")
           .defines("lightwave.frag: VPLKIT_LIGHTWAVE_SHADOW_VARIANT"),
       entry::number("integrated-maps", path_of(&S::integrated_maps), schema::closed_range(2, lightwave_max_shadow_maps), "",
-                    "shadow maps of the integrated shadows: the axis VPL and a ring of the innermost hemisphere")
+                    "shadow maps of the integrated shadows: the axis VPL and a ring of the innermost hemisphere (a point light's: placed by importance)")
           .read_by(modes({lightwave_mode::integrated}), "the integrated shadows")
           .feeds("lightwave.frag: indirect_maps; lightwave.frag: shadow_matrix")
           .builds("the shadow maps' layers", shadow_layers),

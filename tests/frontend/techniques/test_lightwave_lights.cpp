@@ -319,6 +319,71 @@ TEST_CASE("Light Wave, a point light's flux VPLs in a closed box carry the whole
     }
 }
 
+namespace {
+
+// The image's indirect light (red, summed) and its lowest indirect shadow factor.
+struct indirect_summary {
+  double indirect = 0.0;
+  float lowest_factor = 1.0f;
+};
+indirect_summary summarise(const lightwave_frame& frame) {
+  indirect_summary s;
+  for (const glm::vec4& t : frame.indirect.texels) s.indirect += t.r;
+  for (const glm::vec4& t : frame.indirect_shadow.texels) s.lowest_factor = std::min(s.lowest_factor, t.r);
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("Light Wave, a point light's integrated shadows: in a closed box nothing occludes, every wall gets the unshadowed indirect light; a block still shadows the floor") {
+  // The old failure: the thesis's integrated maps (the axis VPL under the bulb and a ring 45
+  // degrees off it, all in the sphere's first hemisphere) all faced one way, and their lookups,
+  // stepped between maps that see the other walls edge-on, darkened an empty box: 0.82 to 0.92
+  // of the unshadowed light on five walls, lowest factors 0.52 to 0.60 (the kitchen measured 0.41
+  // of the Monte Carlo reference, docs/scenes.md). Placed by importance they keep 0.91 to 0.98,
+  // lowest factors 0.77 to 0.82: what remains is the stepping's own error (coordinates
+  // interpolated between two views of a wall seen at a grazing angle), which the thesis has too.
+  const scene box = closed_box();
+  lightwave_pipeline integrated(test_shaders(), box, small("lightwave-integrated", 32));
+  lightwave_pipeline unshadowed(test_shaders(), box, small("lightwave-unshadowed", 32));
+  for (int axis = 0; axis < 3; ++axis)
+    for (float side : {-1.0f, 1.0f}) {
+      integrated.set_camera(facing_wall(axis, side));
+      unshadowed.set_camera(facing_wall(axis, side));
+      const indirect_summary shadowed = summarise(integrated.render()), open = summarise(unshadowed.render());
+      CAPTURE(axis);
+      CAPTURE(side);
+      REQUIRE(open.indirect > 0.0);
+      CHECK(shadowed.indirect / open.indirect >= 0.9);
+      CHECK(shadowed.lowest_factor >= 0.7f);
+    }
+  // The maps spread over the room: not all on one surface.
+  const std::vector<lightwave_shadow_caster>& casters = integrated.shadow_casters();
+  REQUIRE(casters.size() == 5);
+  int facings = 0;
+  for (std::size_t i = 0; i < casters.size(); ++i) {
+    bool new_facing = true;
+    for (std::size_t k = 0; k < i; ++k)
+      new_facing = new_facing && glm::dot(integrated.flux_vpls()[static_cast<std::size_t>(casters[i].vpl)].normal,
+                                          integrated.flux_vpls()[static_cast<std::size_t>(casters[k].vpl)].normal) < 0.9f;
+    facings += new_facing;
+  }
+  CHECK(facings >= 3);
+
+  // A block on the floor under the light: the floor at its foot loses the light of the VPLs the
+  // block hides (the walls' and the floor's beyond it), so the shadows must still darken there.
+  scene blocked = box;
+  add_box(blocked.geometry, {0.0f, -0.75f, 0.0f}, {0.5f, 0.5f, 0.5f}, 0.0f, glm::vec3(0.6f));
+  lightwave_pipeline blocked_integrated(test_shaders(), blocked, small("lightwave-integrated", 32));
+  lightwave_pipeline blocked_unshadowed(test_shaders(), blocked, small("lightwave-unshadowed", 32));
+  blocked_integrated.set_camera(facing_wall(1, -1.0f));
+  blocked_unshadowed.set_camera(facing_wall(1, -1.0f));
+  const indirect_summary shadowed = summarise(blocked_integrated.render()), open = summarise(blocked_unshadowed.render());
+  MESSAGE("a block on the floor: integrated / unshadowed indirect " << shadowed.indirect / open.indirect << ", lowest factor " << shadowed.lowest_factor);
+  CHECK(shadowed.lowest_factor < 0.8f);
+  CHECK(shadowed.indirect < 0.99 * open.indirect);
+}
+
 TEST_CASE("Light Wave, a sun on an open floor: its direct light is the closed form; its flux VPLs carry E x albedo x the floor's area across the light") {
   const glm::vec3 direction = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f));
   const scene source = open_floor(sun_along(direction, glm::vec3(1.2f)));
