@@ -602,7 +602,7 @@ void rsm_pipeline::draw_post(const framebuffer& filter_input, std::size_t view) 
     for (int i = 1; i < 3; ++i) blur_y_target_.colour(static_cast<std::size_t>(i)).bind(i + 3);
   post_program().use();
   if (view > 0) {
-    // Added to the views before: radiance and indirect light sum, alpha (1) stays.
+    // Added to the views before: radiance, indirect and direct light sum, alpha (1) stays.
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_ONE, GL_ONE, GL_ZERO, GL_ONE);
   }
