@@ -2,12 +2,13 @@
 // Pass 4a (separable post filter only): the x axis of the bilateral filter at the indirect
 // buffer's resolution. Writes [irradiance | camera eye depth] like the indirect buffer, or, with
 // VPLKIT_PACKED_BLUR (rgba16f buffers), the y pass's whole tap in one RGBA32UI texel: irradiance,
-// depth and the texel's G-buffer normal as halves, so that the y pass (post.frag) fetches one
-// texture per tap instead of two (the normal fetch was a fifth of the 256^2 frame's post filter,
-// docs/performance.md). The depth and the normal come from rgba16f textures, exact as halves; the
-// irradiance is rounded to half as the rgba16f target would store it, up to the rounding mode
-// (llvmpipe's targets truncate, its packHalf2x16 rounds to nearest: the filtered image moves by
-// about one half ulp, within the RSM pipeline's rgba16f parity test).
+// depth and the texel's G-buffer normal as halves, so that the y pass (post.frag, or blur_y.frag
+// at indirect divisor 2) fetches one texture per tap instead of two (the normal fetch was a fifth
+// of the 256^2 frame's post filter, docs/performance.md). The depth and the normal come from
+// rgba16f textures, exact as halves; the irradiance is rounded to half as the rgba16f target
+// would store it, up to the rounding mode (llvmpipe's targets truncate, its packHalf2x16 rounds
+// to nearest: the filtered image moves by about one half ulp, within the RSM pipeline's rgba16f
+// parity test).
 #ifndef VPLKIT_PACKED_BLUR
 #define VPLKIT_PACKED_BLUR 0  // the pipeline defines it; 0 for a program loaded without it
 #endif

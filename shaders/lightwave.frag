@@ -20,7 +20,8 @@
 // VPLKIT_LIGHT_POINT / VPLKIT_LIGHT_DIRECTIONAL: the light's kind (else a spot).
 // Output 1 is the indirect shadow factor (red), output 2 the indirect radiance added to the
 // direct light (after the factor), for tests and reports, output 3 the indirect irradiance: what
-// `vplkit render` writes to -indirect.pfm for every family (see main()).
+// `vplkit render` writes to -indirect.pfm for every family (see main()), output 4 the light's
+// direct irradiance after its shadow map (-direct.pfm).
 // VPLKIT_LIGHTWAVE_INDIRECT_BUFFER (the flux energy): the indirect light comes from the screen
 // buffer lightwave_indirect.frag filled at this pixel from the receivers, not from the vertices.
 #ifndef VPLKIT_LIGHT_POINT

@@ -118,15 +118,23 @@ T bilateral_weight(const glm::vec<2, T>& offset, T tap_depth, const glm::vec<3, 
   return std::exp(-exponent) * depth * integer_power(facing, normal_power);
 }
 
+/// One fetched tap, `offset` from a centre, weighed and added to that centre's sums: what every
+/// filter does per tap and centre (the quad's four centres share the fetch, not this).
+template <typename T>
+void bilateral_accumulate(const bilateral_tap<T>& tap, const glm::vec<2, T>& offset, const bilateral_centre<T>& centre, int normal_power,
+                          glm::vec<3, T>& sum, T& weight_sum) {
+  const T weight = bilateral_weight(offset, tap.depth, tap.normal, centre, normal_power);
+  sum += weight * tap.value;
+  weight_sum += weight;
+}
+
 template <typename T, typename Fetch>
 void bilateral_add_tap(const glm::ivec2& texel, const glm::vec<2, T>& centre_coordinate, const bilateral_centre<T>& centre, Fetch& fetch,
                        const glm::ivec2& size, int normal_power, glm::vec<3, T>& sum, T& weight_sum) {
   if (texel.x < 0 || texel.y < 0 || texel.x >= size.x || texel.y >= size.y) return;
   const bilateral_tap<T> tap = fetch(texel);
   if (!(tap.depth < T(0))) return;
-  const T weight = bilateral_weight(glm::vec<2, T>(texel) + T(0.5) - centre_coordinate, tap.depth, tap.normal, centre, normal_power);
-  sum += weight * tap.value;
-  weight_sum += weight;
+  bilateral_accumulate(tap, glm::vec<2, T>(texel) + T(0.5) - centre_coordinate, centre, normal_power, sum, weight_sum);
 }
 
 /// One axis of taps around texel `base` for N centres that all lie in it (floor(centre) == base):
@@ -147,11 +155,8 @@ std::array<glm::vec<3, T>, N> bilateral_filter_axis_shared(const glm::ivec2& bas
     if (texel.x < 0 || texel.y < 0 || texel.x >= size.x || texel.y >= size.y) continue;
     const bilateral_tap<T> tap = fetch(texel);
     if (!(tap.depth < T(0))) continue;
-    for (std::size_t s = 0; s < N; ++s) {
-      const T weight = bilateral_weight(glm::vec<2, T>(texel) + T(0.5) - centres[s], tap.depth, tap.normal, constants[s], settings.normal_power);
-      sum[s] += weight * tap.value;
-      weight_sum[s] += weight;
-    }
+    for (std::size_t s = 0; s < N; ++s)
+      bilateral_accumulate(tap, glm::vec<2, T>(texel) + T(0.5) - centres[s], constants[s], settings.normal_power, sum[s], weight_sum[s]);
   }
   std::array<glm::vec<3, T>, N> filtered;
   for (std::size_t s = 0; s < N; ++s) filtered[s] = weight_sum[s] > T(0) ? sum[s] / weight_sum[s] : glm::vec<3, T>(0);

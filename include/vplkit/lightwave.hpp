@@ -304,7 +304,7 @@ glm::vec<3, T> lightwave_ray_flux(const point_light<T>& light, const glm::vec<3,
   return albedo * light.intensity * (facing * solid_angle);
 }
 
-// ---- A sun's VPLs: parallel rays on a grid across its orthographic map (docs/errata.md, LW-9) ----
+// ---- A sun's VPLs: parallel rays on a grid across its orthographic map (docs/errata.md, LW-11) ----
 //
 // A directional light has no position to spread rays from: its flux layout is a square grid of
 // cells across the window of an orthographic map that holds the scene (half-side `half_extent`,

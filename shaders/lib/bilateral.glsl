@@ -66,14 +66,18 @@ float bilateral_weight(vec2 offset, float centre_depth, float tap_depth, vec3 ce
                                  settings.normal_power);
 }
 
+void bilateral_accumulate(bilateral_tap tap, vec2 offset, bilateral_centre centre, int normal_power, inout vec3 sum, inout float weight_sum) {
+  float weight = bilateral_weight(offset, tap.depth, tap.normal, centre, normal_power);
+  sum += weight * tap.value;
+  weight_sum += weight;
+}
+
 void bilateral_add_tap(ivec2 texel, vec2 centre_coordinate, bilateral_centre centre, ivec2 size, int normal_power,
                        inout vec3 sum, inout float weight_sum) {
   if (texel.x < 0 || texel.y < 0 || texel.x >= size.x || texel.y >= size.y) return;
   bilateral_tap tap = bilateral_fetch(texel);
   if (!(tap.depth < 0.0)) return;
-  float weight = bilateral_weight(vec2(texel) + 0.5 - centre_coordinate, tap.depth, tap.normal, centre, normal_power);
-  sum += weight * tap.value;
-  weight_sum += weight;
+  bilateral_accumulate(tap, vec2(texel) + 0.5 - centre_coordinate, centre, normal_power, sum, weight_sum);
 }
 
 vec3 bilateral_filter(vec2 centre, float centre_depth, vec3 centre_normal, ivec2 size, bilateral_settings settings) {
@@ -106,14 +110,6 @@ vec2 bilateral_quad_centre(ivec2 texel, int s) {
   return (vec2(2 * texel + ivec2(s & 1, s >> 1)) + 0.5) / 2.0;
 }
 
-// One tap of one of the quad's four pixels; its C++ twin is the loop body over the centres in
-// detail::bilateral_filter_axis_shared.
-void bilateral_quad_add(bilateral_tap tap, vec2 offset, bilateral_centre centre, int normal_power, inout vec3 sum, inout float weight_sum) {
-  float weight = bilateral_weight(offset, tap.depth, tap.normal, centre, normal_power);
-  sum += weight * tap.value;
-  weight_sum += weight;
-}
-
 // bilateral_filter_axis for the 2 x 2 full-resolution pixels of half-resolution texel `texel`
 // (see the C++ twin): each tap fetched once for the four, each pixel's sums in the same order.
 // Pixel s (filtered_s) is 2 texel + (s & 1, s >> 1), of depth centre_depth[s] and normal
@@ -138,10 +134,10 @@ void bilateral_filter_axis_quad(ivec2 texel, vec4 centre_depth, vec3 normal_0, v
     bilateral_tap tap = bilateral_fetch(tap_texel);
     if (!(tap.depth < 0.0)) continue;
     vec2 tap_centre = vec2(tap_texel) + 0.5;
-    bilateral_quad_add(tap, tap_centre - centre_0, constants_0, settings.normal_power, sum_0, weight_sum_0);
-    bilateral_quad_add(tap, tap_centre - centre_1, constants_1, settings.normal_power, sum_1, weight_sum_1);
-    bilateral_quad_add(tap, tap_centre - centre_2, constants_2, settings.normal_power, sum_2, weight_sum_2);
-    bilateral_quad_add(tap, tap_centre - centre_3, constants_3, settings.normal_power, sum_3, weight_sum_3);
+    bilateral_accumulate(tap, tap_centre - centre_0, constants_0, settings.normal_power, sum_0, weight_sum_0);
+    bilateral_accumulate(tap, tap_centre - centre_1, constants_1, settings.normal_power, sum_1, weight_sum_1);
+    bilateral_accumulate(tap, tap_centre - centre_2, constants_2, settings.normal_power, sum_2, weight_sum_2);
+    bilateral_accumulate(tap, tap_centre - centre_3, constants_3, settings.normal_power, sum_3, weight_sum_3);
   }
   filtered_0 = weight_sum_0 > 0.0 ? sum_0 / weight_sum_0 : vec3(0.0);
   filtered_1 = weight_sum_1 > 0.0 ? sum_1 / weight_sum_1 : vec3(0.0);

@@ -117,18 +117,22 @@ foreach(light 0 1 2)
   direct_matches("RSM direct light, ${kind}: the ray-traced direct light" "${WORK}/rsm-${kind}-direct.pfm" "${WORK}/mc-${kind}-direct.pfm")
 endforeach()
 # A gathering technique writes the same direct light as direct light only (the post pass adds
-# its indirect light apart), and the Light Wave and final-gathering pipelines write theirs (spots
-# only: they draw no other light) for the same scene (final gathering's object made a speck in a
-# corner, which the reference does not hold).
+# its indirect light apart), and the Light Wave and final-gathering pipelines write theirs for
+# every kind of light too (each their own shadow maps: a spot's frustum, a point light's six
+# faces, a sun's orthographic map; final gathering's object made a speck in a corner, which the
+# reference does not hold).
 expect_success("rsm-alg6's direct light" "wrote" "${VPLKIT}" render --scene "${WORK}/lights.gltf" --lights 0 --technique rsm-alg6 --size 64 --rsm-size 256
                --out "${WORK}/alg6-spot.png")
 compare_within("rsm-alg6's direct light is direct light only's" "${WORK}/alg6-spot-direct.pfm" "${WORK}/rsm-spot-direct.pfm" 1e-6)
-expect_success("Light Wave's direct light" "wrote .*/lw-spot-direct\\.pfm" "${VPLKIT}" render --scene "${WORK}/lights.gltf" --lights 0 --technique lightwave-direct
-               --size 64 --out "${WORK}/lw-spot.png")
-direct_matches("Light Wave direct light, spot: the ray-traced direct light" "${WORK}/lw-spot-direct.pfm" "${WORK}/mc-spot-direct.pfm")
-expect_success("final gathering's direct light" "wrote .*/fg-spot-direct\\.pfm" "${VPLKIT}" render --scene "${WORK}/lights.gltf" --lights 0
-               --technique finalgather-point --size 64 --object-at 0.9,0,-0.9,0.02 --out "${WORK}/fg-spot.png")
-direct_matches("final gathering direct light, spot: the ray-traced direct light" "${WORK}/fg-spot-direct.pfm" "${WORK}/mc-spot-direct.pfm")
+foreach(light 0 1 2)
+  set(kind ${kind_${light}})
+  expect_success("Light Wave's direct light, ${kind}" "wrote .*/lw-${kind}-direct\\.pfm" "${VPLKIT}" render --scene "${WORK}/lights.gltf" --lights ${light}
+                 --technique lightwave-direct --size 64 --out "${WORK}/lw-${kind}.png")
+  direct_matches("Light Wave direct light, ${kind}: the ray-traced direct light" "${WORK}/lw-${kind}-direct.pfm" "${WORK}/mc-${kind}-direct.pfm")
+  expect_success("final gathering's direct light, ${kind}" "wrote .*/fg-${kind}-direct\\.pfm" "${VPLKIT}" render --scene "${WORK}/lights.gltf" --lights ${light}
+                 --technique finalgather-point --size 64 --object-at 0.9,0,-0.9,0.02 --out "${WORK}/fg-${kind}.png")
+  direct_matches("final gathering direct light, ${kind}: the ray-traced direct light" "${WORK}/fg-${kind}-direct.pfm" "${WORK}/mc-${kind}-direct.pfm")
+endforeach()
 # All or nothing: a -direct.pfm that cannot be written (a folder in its place) leaves no file of
 # the set, for render and for the reference.
 file(MAKE_DIRECTORY "${H}/dblocked-direct.pfm")

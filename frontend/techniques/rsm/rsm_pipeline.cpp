@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <initializer_list>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/packing.hpp>
@@ -170,6 +171,18 @@ bool packed_blur(const rsm_pipeline_settings& settings) {
 // as post.frag's y pass per pixel, a quarter of its tap fetches.
 bool quad_blur(const rsm_pipeline_settings& settings) { return settings.filter == post_filter::separable && settings.indirect_divisor == 2; }
 
+// The uniforms the post filter's passes share (blur_x.frag, blur_y.frag, post.frag): the
+// bilateral settings where the pass filters, the buffers' sizes, and its samplers' units in the
+// order given.
+void set_filter_uniforms(const program& target, const rsm_frame_constants& constants, bool filters, std::initializer_list<const char*> samplers) {
+  if (filters) set_uniforms(target, "bilateral", constants.bilateral);
+  target.set("indirect_divisor", constants.indirect_divisor);
+  target.set("indirect_size", constants.indirect_size);
+  target.set("gbuffer_size", constants.image_size);
+  int unit = 0;
+  for (const char* name : samplers) target.set(name, unit++);
+}
+
 void set_light_uniforms(const program& target, const rsm_frame_constants& constants) {
   if (constants.primary.kind == light_kind::spot) set_uniforms(target, "spot", constants.primary.spot);
   else if (constants.primary.kind == light_kind::directional) set_uniforms(target, "directional", constants.primary.directional);
@@ -288,37 +301,18 @@ void rsm_pipeline::set_settings_uniforms() {
       int temporal_unit = 0;
       for (const char* name : {"indirect_buffer", "history_buffer", "gbuffer_position_depth"}) temporal_program_.set(name, temporal_unit++);
     }
-    if (separable) {
-      set_uniforms(blur_x_program_, "bilateral", constants_.bilateral);
-      blur_x_program_.set("indirect_divisor", constants_.indirect_divisor);
-      blur_x_program_.set("indirect_size", constants_.indirect_size);
-      blur_x_program_.set("gbuffer_size", constants_.image_size);
-      blur_x_program_.set("indirect_buffer", 0);
-      blur_x_program_.set("gbuffer_normal", 1);
-    }
-    if (quad_blur(settings_)) {
-      set_uniforms(blur_y_program_, "bilateral", constants_.bilateral);
-      blur_y_program_.set("indirect_divisor", constants_.indirect_divisor);
-      blur_y_program_.set("indirect_size", constants_.indirect_size);
-      blur_y_program_.set("gbuffer_size", constants_.image_size);
-      int blur_y_unit = 0;
-      for (const char* name : {"indirect_buffer", "gbuffer_position_depth", "gbuffer_normal"}) blur_y_program_.set(name, blur_y_unit++);
-    }
+    if (separable) set_filter_uniforms(blur_x_program_, constants_, true, {"indirect_buffer", "gbuffer_normal"});
+    if (quad_blur(settings_)) set_filter_uniforms(blur_y_program_, constants_, true, {"indirect_buffer", "gbuffer_position_depth", "gbuffer_normal"});
   }
   const bool quad = technique.indirect && quad_blur(settings_);
-  if (!quad) set_uniforms(post_program(), "bilateral", constants_.bilateral);  // else blur_y.frag filters
   set_uniforms(post_program(), "irradiance", constants_.gather.irradiance);
-  post_program().set("indirect_divisor", constants_.indirect_divisor);
-  post_program().set("indirect_size", constants_.indirect_size);
-  post_program().set("gbuffer_size", constants_.image_size);
-  int unit = 0;
-  // Unit 0: the y pass's taps (blur_taps.glsl), or with the quad y pass its planes at units 0, 4, 5.
-  for (const char* name : {quad ? "filtered_red" : "indirect_buffer", "gbuffer_position_depth", "gbuffer_albedo_density", "gbuffer_normal"})
-    post_program().set(name, unit++);
-  if (quad) {
-    post_program().set("filtered_green", unit++);
-    post_program().set("filtered_blue", unit++);
-  }
+  // Unit 0: the y pass's taps (blur_taps.glsl), or with the quad y pass (which filtered: the
+  // shading pass does not) its planes at units 0, 4, 5.
+  if (quad)
+    set_filter_uniforms(post_program(), constants_, false,
+                        {"filtered_red", "gbuffer_position_depth", "gbuffer_albedo_density", "gbuffer_normal", "filtered_green", "filtered_blue"});
+  else
+    set_filter_uniforms(post_program(), constants_, true, {"indirect_buffer", "gbuffer_position_depth", "gbuffer_albedo_density", "gbuffer_normal"});
 }
 
 bool rsm_pipeline::apply_settings(const technique_settings& settings) {
@@ -602,7 +596,7 @@ void rsm_pipeline::draw_post(const framebuffer& filter_input, std::size_t view) 
     for (int i = 1; i < 3; ++i) blur_y_target_.colour(static_cast<std::size_t>(i)).bind(i + 3);
   post_program().use();
   if (view > 0) {
-    // Added to the views before: radiance and indirect light sum, alpha (1) stays.
+    // Added to the views before: radiance, indirect and direct light sum, alpha (1) stays.
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_ONE, GL_ONE, GL_ZERO, GL_ONE);
   }

@@ -78,7 +78,8 @@ std::vector<entry> target_settings() {
       entry::number("indirect-divisor", path_of(&S::indirect_divisor), schema::closed_range(1, 8), "", "indirect buffer = image / this per axis (2: half, 1: full)")
           .allowing({1, 2, 4, 8})
           .read_by(gathers, gathering)
-          .feeds("gather.frag: indirect_divisor; blur_x.frag: indirect_divisor; post.frag: indirect_divisor")
+          .feeds("gather.frag: indirect_divisor; blur_x.frag: indirect_divisor; blur_y.frag: indirect_divisor; post.frag: indirect_divisor")
+          .defines("post.frag: VPLKIT_QUAD_BLUR")  // divisor 2 with the separable filter: blur_y.frag's quads
           .builds("the indirect buffers"),
   };
 }
@@ -227,22 +228,27 @@ std::vector<entry> filter_settings() {
       entry::choice("post-filter", path_of(&S::filter), {{"separable", post_filter::separable}, {"full", post_filter::full}},
                     "bilateral post filter of the indirect light: separable (2 x 17 taps) or the full 2D kernel")
           .read_by(gathers, gathering)
-          .defines("post.frag: VPLKIT_SEPARABLE"),
+          .defines("post.frag: VPLKIT_SEPARABLE")
+          .defines("post.frag: VPLKIT_QUAD_BLUR"),
       entry::number("filter-kernel-size", path_of(&S::bilateral, &B::kernel_size))
           .read_by(gathers, gathering)
           .feeds("blur_x.frag", "bilateral", bilateral, &B::kernel_size)
+          .feeds("blur_y.frag", "bilateral", bilateral, &B::kernel_size)
           .feeds("post.frag", "bilateral", bilateral, &B::kernel_size),
       entry::number("filter-spatial-sigma", path_of(&S::bilateral, &B::spatial_sigma))
           .read_by(gathers, gathering)
           .feeds("blur_x.frag", "bilateral", bilateral, &B::spatial_sigma)
+          .feeds("blur_y.frag", "bilateral", bilateral, &B::spatial_sigma)
           .feeds("post.frag", "bilateral", bilateral, &B::spatial_sigma),
       entry::number("filter-depth-sigma", path_of(&S::bilateral, &B::depth_sigma))
           .read_by(gathers, gathering)
           .feeds("blur_x.frag", "bilateral", bilateral, &B::depth_sigma)
+          .feeds("blur_y.frag", "bilateral", bilateral, &B::depth_sigma)
           .feeds("post.frag", "bilateral", bilateral, &B::depth_sigma),
       entry::number("filter-normal-power", path_of(&S::bilateral, &B::normal_power))
           .read_by(gathers, gathering)
           .feeds("blur_x.frag", "bilateral", bilateral, &B::normal_power)
+          .feeds("blur_y.frag", "bilateral", bilateral, &B::normal_power)
           .feeds("post.frag", "bilateral", bilateral, &B::normal_power),
       entry::number("shadow-kernel-size", path_of(&S::shadow, &K::kernel_size)).feeds("gbuffer.frag", "shadow", shadow, &K::kernel_size),
       entry::number("shadow-depth-bias", path_of(&S::shadow, &K::depth_bias)).feeds("gbuffer.frag", "shadow", shadow, &K::depth_bias),

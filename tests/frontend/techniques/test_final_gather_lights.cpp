@@ -1,6 +1,7 @@
 // Final gathering with the scene's lights (issue 38): any mix of spots, point lights and suns,
 // each with its own shadows, summed; none is black. The properties: two lights give the sum of
-// the single-light images (linear, within 1 %) for the three techniques and both references of
+// the single-light images (linear: to float rounding in the pipeline, within 1 % for the sampled
+// references) for the three techniques and both references of
 // the object's indirect light; a point light's occluder darkens the wall behind it in the
 // distance cube map (the point light's cube shadow map); a second light of zero power leaves the
 // single-spot images bit for bit (the summing passes add exact zeros); a sun over the closed box
@@ -68,7 +69,7 @@ image sum_of(const image& a, const image& b) {
 
 }  // namespace
 
-TEST_CASE("final gathering with two lights (a spot and a point light) is the sum of the single-light images within 1 %: the three techniques") {
+TEST_CASE("final gathering with two lights (a spot and a point light) is the sum of the single-light images (radiance, indirect and direct light) to float rounding: the three techniques") {
   const scene_light spot = final_gather_box().lights.at(0);
   const scene_light bulb = bulb_at(glm::vec3(-0.4f, 1.5f, -0.3f), 0.6f);
   for (const char* technique : {"finalgather-polygon", "finalgather-point", "envmap"}) {
@@ -85,9 +86,17 @@ TEST_CASE("final gathering with two lights (a spot and a point light) is the sum
     CHECK(bulb_share > 0.1);
     const double radiance_error = relative_difference(f2.radiance, sum_of(fs.radiance, fb.radiance));
     const double indirect_error = relative_difference(f2.indirect, sum_of(fs.indirect, fb.indirect));
-    MESSAGE(std::string(technique) << ": two lights against the sum, radiance " << radiance_error << ", indirect " << indirect_error);
-    CHECK(radiance_error < 0.01);
-    CHECK(indirect_error < 0.01);
+    // The direct light (render's -direct.pfm: the shading pass's third output, the per-light
+    // final_gather_direct.frag passes summed).
+    const double direct_error = relative_difference(both.direct_output().read_image(),
+                                                    sum_of(only_spot.direct_output().read_image(), only_bulb.direct_output().read_image()));
+    MESSAGE(std::string(technique) << ": two lights against the sum, radiance " << radiance_error << ", indirect " << indirect_error << ", direct "
+                                   << direct_error);
+    // Each light's passes are the same alone and in the pair; only the blends' float additions
+    // differ (measured below 1.1e-7), so 1e-5 rather than the issue's 1 % for half floats.
+    CHECK(radiance_error < 1e-5);
+    CHECK(indirect_error < 1e-5);
+    CHECK(direct_error < 1e-5);
   }
 }
 
