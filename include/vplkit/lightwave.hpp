@@ -238,6 +238,16 @@ struct settings_description<lightwave_cone_settings<T>> {
   }
 };
 
+/// Where sample s of a patch (or of a sun's cell) lies in the patch's unit square: (u, v) =
+/// ((s + 1/2) / per_ray, frac(1/2 + s g)), g the golden ratio's conjugate: u stratified, v a rank-1
+/// lattice, so the per_ray samples of one patch spread over both coordinates.
+template <typename T>
+glm::vec<2, T> lightwave_stratum_point(int sample_index, int per_ray) {
+  const T u = (T(sample_index) + T(0.5)) / T(per_ray);
+  const T lattice = T(0.5) + T(sample_index) * T(0.618033988749894848);
+  return {u, lattice - std::floor(lattice)};
+}
+
 /// Sample `index` (0 .. lightwave_vpl_count - 1; index = sample_index * rays + ray, ray 0 the axis) of
 /// the flux layout: (unit direction, solid angle). The axis ray's patch is the cap of polar
 /// angles [0, d/2], ring e's (e = 1 .. 90 / angle) the band [(e - 1/2) d, (e + 1/2) d] cut into
@@ -257,9 +267,9 @@ glm::vec<4, T> lightwave_cone_sample(int index, const lightwave_cone_settings<T>
   const T band_turns = settings.half_angle_deg / (T(360) * (T(rings) + T(0.5)));  // d in turns
   const T lower = direction_from_turns(ray == 0 ? T(0) : (T(ring) - T(0.5)) * band_turns).x;  // cos of the patch's polar bounds
   const T upper = direction_from_turns((T(ring) + T(0.5)) * band_turns).x;
-  const T u = (T(sample_index) + T(0.5)) / T(settings.per_ray);
-  const T lattice = T(0.5) + T(sample_index) * T(0.618033988749894848);
-  const T v = lattice - std::floor(lattice);
+  const glm::vec<2, T> stratum = lightwave_stratum_point<T>(sample_index, settings.per_ray);
+  const T u = stratum.x;
+  const T v = stratum.y;
   const T cos_polar = lower + (upper - lower) * u;
   const T sin_polar = std::sqrt(glm::max(T(0), T(1) - cos_polar * cos_polar));
   const T azimuth_turns = ray == 0 ? v : (T(sector) + v - T(0.5)) / T(azimuths);
@@ -338,9 +348,9 @@ glm::vec<3, T> lightwave_parallel_sample(int index, int angle_deg, int per_ray) 
   const int cell = index - sample_index * cells;
   const int row = cell / side;
   const int column = cell - row * side;
-  const T u = (T(sample_index) + T(0.5)) / T(per_ray);
-  const T lattice = T(0.5) + T(sample_index) * T(0.618033988749894848);
-  const T v = lattice - std::floor(lattice);
+  const glm::vec<2, T> stratum = lightwave_stratum_point<T>(sample_index, per_ray);
+  const T u = stratum.x;
+  const T v = stratum.y;
   const T cell_side = T(2) / T(side);
   return {T(-1) + (T(column) + u) * cell_side, T(-1) + (T(row) + v) * cell_side, cell_side * cell_side / T(per_ray)};
 }

@@ -87,6 +87,12 @@ struct lightwave_cone_settings {
   float half_angle_deg;
 };
 
+vec2 lightwave_stratum_point(int sample_index, int per_ray) {
+  float u = (float(sample_index) + 0.5) / float(per_ray);
+  float lattice = 0.5 + float(sample_index) * 0.618033988749894848;
+  return vec2(u, lattice - floor(lattice));
+}
+
 vec4 lightwave_cone_sample(int index, lightwave_cone_settings settings) {
   int rays = lightwave_ray_count(settings.angle_deg);
   int rings = 90 / settings.angle_deg;
@@ -98,9 +104,9 @@ vec4 lightwave_cone_sample(int index, lightwave_cone_settings settings) {
   float band_turns = settings.half_angle_deg / (360.0 * (float(rings) + 0.5));
   float lower = direction_from_turns(ray == 0 ? 0.0 : (float(ring) - 0.5) * band_turns).x;
   float upper = direction_from_turns((float(ring) + 0.5) * band_turns).x;
-  float u = (float(sample_index) + 0.5) / float(settings.per_ray);
-  float lattice = 0.5 + float(sample_index) * 0.618033988749894848;
-  float v = lattice - floor(lattice);
+  vec2 stratum = lightwave_stratum_point(sample_index, settings.per_ray);
+  float u = stratum.x;
+  float v = stratum.y;
   float cos_polar = lower + (upper - lower) * u;
   float sin_polar = sqrt(max(0.0, 1.0 - cos_polar * cos_polar));
   float azimuth_turns = ray == 0 ? v : (float(sector) + v - 0.5) / float(azimuths);
@@ -146,9 +152,9 @@ vec3 lightwave_parallel_sample(int index, int angle_deg, int per_ray) {
   int cell = index - sample_index * cells;
   int row = cell / side;
   int column = cell - row * side;
-  float u = (float(sample_index) + 0.5) / float(per_ray);
-  float lattice = 0.5 + float(sample_index) * 0.618033988749894848;
-  float v = lattice - floor(lattice);
+  vec2 stratum = lightwave_stratum_point(sample_index, per_ray);
+  float u = stratum.x;
+  float v = stratum.y;
   float cell_side = 2.0 / float(side);
   return vec3(-1.0 + (float(column) + u) * cell_side, -1.0 + (float(row) + v) * cell_side, cell_side * cell_side / float(per_ray));
 }

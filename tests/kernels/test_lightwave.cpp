@@ -584,3 +584,24 @@ TEST_CASE("a sun's flux layout: the samples tile the window, each cell holding p
   CHECK(lightwave_ray_flux(sun, sun.direction, 0.01, albedo, glm::dvec3(0, 1, 0)) == glm::dvec3(0.01, 0.0025, 0.005));
   CHECK(lightwave_ray_flux(sun, sun.direction, 0.01, albedo, glm::dvec3(0, -1, 0)) == glm::dvec3(0.0));
 }
+
+TEST_CASE("lightwave_stratum_point: u stratified, v the golden-ratio lattice, both inside the unit square") {
+  for (int per_ray : {1, 5, 16}) {
+    std::vector<double> vs;
+    for (int s = 0; s < per_ray; ++s) {
+      const glm::dvec2 p = lightwave_stratum_point<double>(s, per_ray);
+      CAPTURE(per_ray);
+      CAPTURE(s);
+      CHECK(p.x == doctest::Approx((s + 0.5) / per_ray));
+      CHECK(p.y >= 0.0);
+      CHECK(p.y < 1.0);
+      vs.push_back(p.y);
+    }
+    // A rank-1 lattice with the golden ratio: any two of the first n points are more than 0.38 / n
+    // apart in v (the golden ratio is the worst approximable number: n times the smallest gap stays
+    // near 1 / sqrt(5) or above), so no two samples of a patch land together.
+    std::sort(vs.begin(), vs.end());
+    for (std::size_t k = 1; k < vs.size(); ++k) CHECK(vs[k] - vs[k - 1] > 0.38 / per_ray);
+  }
+  CHECK(lightwave_stratum_point<double>(1, 5).y == doctest::Approx(0.118033988749894848));
+}
