@@ -254,15 +254,9 @@ struct setting : setting_info {
   static setting number(std::string name, member_path<Members...> path, setting_range range, std::string unit, std::string help) {
     using value_type = path_value_t<Settings, member_path<Members...>>;
     static_assert(std::is_arithmetic_v<value_type>, "setting::number needs a number field");
-    setting entry;
-    entry.name = std::move(name);
-    entry.type = std::is_integral_v<value_type> ? setting_type::integer : setting_type::real;
-    entry.range = range;
-    entry.unit = std::move(unit);
-    entry.help = std::move(help);
-    entry.get = [path](const Settings& s) { return detail::value_text(path(s)); };
-    entry.set = [path](Settings& s, const std::string& text) { path(s) = detail::text_value<value_type>(text); };
-    return entry;
+    return described(std::move(name), std::is_integral_v<value_type> ? setting_type::integer : setting_type::real, range, std::move(unit), std::move(help),
+                     [path](const Settings& s) { return detail::value_text(path(s)); },
+                     [path](Settings& s, const std::string& text) { path(s) = detail::text_value<value_type>(text); });
   }
   /// A number field with a kernel struct's description (range, unit and help).
   template <typename... Members>
@@ -279,83 +273,75 @@ struct setting : setting_info {
   template <typename... Members>
   static setting choice(std::string name, member_path<Members...> path,
                         std::vector<std::pair<std::string, path_value_t<Settings, member_path<Members...>>>> options, std::string help) {
-    setting entry;
-    entry.name = std::move(name);
-    entry.type = setting_type::choice;
+    setting entry = described(
+        std::move(name), setting_type::choice, setting_range{}, "", std::move(help),
+        [path, options](const Settings& s) {
+          for (const auto& option : options)
+            if (option.second == path(s)) return option.first;
+          return std::string("?");
+        },
+        [path, options](Settings& s, const std::string& text) {
+          for (const auto& option : options)
+            if (option.first == text) path(s) = option.second;
+        });
     for (const auto& option : options) entry.choices.push_back(option.first);
-    entry.help = std::move(help);
-    entry.get = [path, options](const Settings& s) {
-      for (const auto& option : options)
-        if (option.second == path(s)) return option.first;
-      return std::string("?");
-    };
-    entry.set = [path, options](Settings& s, const std::string& text) {
-      for (const auto& option : options)
-        if (option.first == text) path(s) = option.second;
-    };
     return entry;
   }
 
   /// Two whole-number fields given as N (both) or WxH: an image's size.
   template <typename Width, typename Height>
   static setting extent(std::string name, Width width, Height height, setting_range range, std::string unit, std::string help) {
-    setting entry;
-    entry.name = std::move(name);
-    entry.type = setting_type::size;
-    entry.range = range;
-    entry.unit = std::move(unit);
-    entry.help = std::move(help);
-    entry.get = [width, height](const Settings& s) {
-      return width(s) == height(s) ? std::to_string(width(s)) : std::to_string(width(s)) + "x" + std::to_string(height(s));
-    };
-    entry.set = [width, height](Settings& s, const std::string& text) { std::tie(width(s), height(s)) = *parse_extent(text); };
-    return entry;
+    return described(
+        std::move(name), setting_type::size, range, std::move(unit), std::move(help),
+        [width, height](const Settings& s) {
+          return width(s) == height(s) ? std::to_string(width(s)) : std::to_string(width(s)) + "x" + std::to_string(height(s));
+        },
+        [width, height](Settings& s, const std::string& text) { std::tie(width(s), height(s)) = *parse_extent(text); });
   }
 
   /// A GLM vector field given as x,y,z.
   template <typename... Members>
   static setting point(std::string name, member_path<Members...> path, setting_range range, std::string unit, std::string help) {
     using value_type = path_value_t<Settings, member_path<Members...>>;
-    setting entry;
-    entry.name = std::move(name);
-    entry.type = setting_type::point;
-    entry.range = range;
-    entry.unit = std::move(unit);
-    entry.help = std::move(help);
-    entry.get = [path](const Settings& s) {
-      std::string text;
-      for (glm::length_t i = 0; i < value_type::length(); ++i) {
-        if (i > 0) text += ',';
-        text += format_real(path(s)[i]);
-      }
-      return text;
-    };
-    entry.set = [path](Settings& s, const std::string& text) {
-      const std::vector<double> point = *parse_point(text);
-      for (glm::length_t i = 0; i < value_type::length(); ++i) path(s)[i] = static_cast<typename value_type::value_type>(point[static_cast<std::size_t>(i)]);
-    };
-    return entry;
+    return described(
+        std::move(name), setting_type::point, range, std::move(unit), std::move(help),
+        [path](const Settings& s) {
+          std::string text;
+          for (glm::length_t i = 0; i < value_type::length(); ++i) {
+            if (i > 0) text += ',';
+            text += format_real(path(s)[i]);
+          }
+          return text;
+        },
+        [path](Settings& s, const std::string& text) {
+          const std::vector<double> point = *parse_point(text);
+          for (glm::length_t i = 0; i < value_type::length(); ++i) path(s)[i] = static_cast<typename value_type::value_type>(point[static_cast<std::size_t>(i)]);
+        });
   }
 
   /// A text field (a name or a file).
   template <typename... Members>
   static setting text(std::string name, member_path<Members...> path, std::string help) {
-    setting entry;
-    entry.name = std::move(name);
-    entry.type = setting_type::text;
-    entry.help = std::move(help);
-    entry.get = [path](const Settings& s) { return std::string(path(s)); };
-    entry.set = [path](Settings& s, const std::string& text) { path(s) = text; };
-    return entry;
+    return described(
+        std::move(name), setting_type::text, setting_range{}, "", std::move(help), [path](const Settings& s) { return std::string(path(s)); },
+        [path](Settings& s, const std::string& text) { path(s) = text; });
   }
 
   /// A value derived from fields that other settings hold (a preset, a radius in other units):
   /// its own get and set.
   static setting custom(std::string name, setting_type type, std::string unit, std::string help, std::function<std::string(const Settings&)> get,
                         std::function<void(Settings&, const std::string&)> set) {
+    return described(std::move(name), type, setting_range{}, std::move(unit), std::move(help), std::move(get), std::move(set));
+  }
+
+ private:
+  /// What every factory above fills: the description and how to read and write the value.
+  static setting described(std::string name, setting_type type, setting_range range, std::string unit, std::string help,
+                           std::function<std::string(const Settings&)> get, std::function<void(Settings&, const std::string&)> set) {
     setting entry;
     entry.name = std::move(name);
     entry.type = type;
+    entry.range = range;
     entry.unit = std::move(unit);
     entry.help = std::move(help);
     entry.get = std::move(get);
