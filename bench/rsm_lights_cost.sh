@@ -1,5 +1,6 @@
 #!/bin/sh
-# The cost of several lights in the RSM techniques (docs/scenes.md, "Lights: the RSM techniques"):
+# The cost of several lights in the RSM and Light Wave techniques (docs/scenes.md, "Lights: the RSM
+# techniques"; RSM faces 256^2, Light Wave at its defaults):
 # render --stats's "every pass" total (wall clock around glFinish per pass on llvmpipe) for light 0,
 # light 1 and both of each two-spot room, and for the room's point light, interleaved over
 # `runs` rounds; prints the least of the rounds per configuration and the ratios
@@ -22,7 +23,8 @@ while [ $run -le "$runs" ]; do
       else
         set -- --scene "$(scene_of $room)" --lights $L
       fi
-      "$vplkit" render --technique "$technique" "$@" --size "$size" --rsm-size 256 --stats "$out/$room-$L-$run.json" --out "$out/$room-$L.png" >/dev/null
+      case $technique in rsm-*) set -- "$@" --rsm-size 256 ;; esac  # Light Wave has no RSM
+      "$vplkit" render --technique "$technique" "$@" --size "$size" --stats "$out/$room-$L-$run.json" --out "$out/$room-$L.png" >/dev/null
       echo "$room $L $run $(frame_ms "$out/$room-$L-$run.json")" >> "$out/runs.txt"
     done
   done
