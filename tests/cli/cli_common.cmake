@@ -49,6 +49,8 @@ function(expect_success name pattern)
 endfunction()
 
 # expect_true(<name> <condition...>): a check of files or values the part computed itself.
+# A macro re-parses its arguments: a regular expression in the condition writes [.] and [(], not
+# "\\." or "\\(", whose backslash that second parse reads as a bad escape (CMP0010).
 macro(expect_true name)
   if(${ARGN})
     message(STATUS "ok ${name}")

@@ -25,7 +25,7 @@ endif()
 # In the user's scene (--scene): a glTF room of bench/scenes (its spot, its camera) with an OBJ
 # object the test writes (a tetrahedron), near a wall and in the open; the Monte Carlo reference
 # of the object's indirect light in the same scene; the refusals.
-set(room "${FUZZ_INPUTS}/../../../bench/scenes/room-a.gltf")
+set(room "${CMAKE_CURRENT_LIST_DIR}/../../bench/scenes/room-a.gltf")
 file(WRITE "${WORK}/tetra.obj" "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n")
 foreach(technique finalgather-polygon finalgather-point envmap)
   expect_success("render --technique ${technique} --scene room-a.gltf" "object tetra .*at \\(-2, 1.2, 1\\).*wrote .*/room-${technique}\\.png"
@@ -44,7 +44,7 @@ expect_failure("final gathering in a scene outside its walls" "outside the room 
 # Every light of the scene: fg-studio-two.gltf's spot and bulb, each with its passes in the table;
 # --lights picks them; --lights none is drawn unlit. An open scene (indirect-shadow, lit by a sun)
 # is refused by the cube-map check, not for its light.
-set(studio_two "${FUZZ_INPUTS}/../../../bench/scenes/fg-studio-two.gltf")
+set(studio_two "${CMAKE_CURRENT_LIST_DIR}/../../bench/scenes/fg-studio-two.gltf")
 expect_success("final gathering with two lights (a spot and a point light): the time per light"
                "light depth light 1 .*cube map light 1 .*direct light light 1 .*wrote .*/two-lights\\.png"
                "${VPLKIT}" render --technique finalgather-polygon --scene "${studio_two}" --object-position 0,1.3,0.6 --object-size 0.4
@@ -66,7 +66,7 @@ expect_failure("final gathering in a scene file that does not exist" "no-room\\.
 # The object as a node of the scene (--object-node) and placed by --object-at: fg-studio.gltf's
 # vase (a 0.16 x 0.26 x 0.16 box, 12 triangles) stands on the desk; moved to the middle of the
 # room, the bottom centre of its box at 0,1.1,0.6, its centre is 0.13 higher.
-set(studio "${FUZZ_INPUTS}/../../../bench/scenes/fg-studio.gltf")
+set(studio "${CMAKE_CURRENT_LIST_DIR}/../../bench/scenes/fg-studio.gltf")
 expect_success("final gathering with a node of the scene as the object, moved by --object-at"
                "object vase \\(12 triangles\\) at \\(0, 1.23, 0.6\\).*wrote .*/studio-vase\\.png"
                "${VPLKIT}" render --technique finalgather-polygon --scene "${studio}" --object-node vase --object-at 0,1.1,0.6 --size 48

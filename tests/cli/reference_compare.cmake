@@ -58,7 +58,7 @@ endif()
 # once (the run itself would take about a day), and the cost printed first.
 execute_process(COMMAND "${VPLKIT}" reference --size 512 --samples 1048576 --max-seconds 10 --out "${H}/day.pfm" RESULT_VARIABLE code ERROR_VARIABLE err)
 expect_true("reference: a day of work against --max-seconds 10 is refused before it starts (exit ${code}: ${err})"
-            code EQUAL 1 AND err MATCHES "^vplkit reference: 262144 pixels x .*: at most 5\\.5e\\+11 rays, estimated [0-9.]+ (h|days) on"
+            code EQUAL 1 AND err MATCHES "^vplkit reference: 262144 pixels x .*: at most 5[.]5e[+]11 rays, estimated [0-9.]+ (h|days) on"
             AND err MATCHES "exceeds --max-seconds 10. nothing is written" AND NOT EXISTS "${H}/day.pfm")
 execute_process(COMMAND "${VPLKIT}" reference --method rsm-brute-force --size 32 --rsm-size 32 --out "${H}/brute.pfm" RESULT_VARIABLE code ERROR_VARIABLE err)
 expect_true("reference: the brute force announces its cost (exit ${code}: ${err})"

@@ -19,7 +19,7 @@ if(XVFB_RUN)
   foreach(case "rsm-alg6;--rsm-size;64;--camera;0.8,1.2,3.5,0,0.9,0;--light;0.2,1.9,0.1,0,0,0"
                "lightwave-accurate;--camera;1,1.8,3,0,0.3,0;--light;0.5,2.2,0.8,0.3,0,0.4"
                "finalgather-polygon;--face-size;32;--camera;0.5,1.1,3.5,0,0.8,0;--light;0.1,1.9,0,0,0,0;--object-position;0.2,0.7,0"
-               "envmap;--scene;${FUZZ_INPUTS}/../../../bench/scenes/room-a.gltf;--face-size;32;--object-position;0.5,1.3,1;--object-size;0.4")
+               "envmap;--scene;${CMAKE_CURRENT_LIST_DIR}/../../bench/scenes/room-a.gltf;--face-size;32;--object-position;0.5,1.3,1;--object-size;0.4")
     list(GET case 0 technique)
     list(SUBLIST case 1 -1 arguments)
     expect_success("render ${technique} from a pose" "wrote" "${VPLKIT}" render --technique ${technique} --size 64 ${arguments} --out "${WORK}/pose-${technique}.png")
