@@ -11,34 +11,22 @@
 // cell it passes through and is an occluder, and every segment that crosses a triangle visits a
 // cell holding the crossing point: a sample behind a closed wall is never visible. Its resolution
 // follows the scene's size (voxel_grid_settings::resolution cells along the longest side), bounded
-// by voxel_grid_settings::max_megabytes (64 MiB by default: the cells grow until the packed grid,
-// half a byte per cell, fits; the build adds two lines of cells) and by 2048 texels per side of the
-// packed texture (GLSL ES 3.00's least GL_MAX_TEXTURE_SIZE).
+// by voxel_grid_settings::max_megabytes (64 MiB by default: the cells grow until the packed grid
+// fits) and by 2048 texels per side of the packed texture (GLSL ES 3.00's least
+// GL_MAX_TEXTURE_SIZE).
 //
-// The distance per cell (voxel_grid_build_distances, after the triangles): the Chebyshev distance
-// in cells to the nearest occupied cell, capped at 15 (voxel_distance_cap); 0 is an occupied cell,
-// so the one field is both the occupancy and the distance. Built by a separable 3-pass transform
-// (along x, then y, then z), linear in the cells (at most 2 x 15 reads per cell per pass), with
-// one line of scratch. Until it runs (and again after a later triangle) every free cell holds 1:
-// the march is then the cell-by-cell DDA, never wrong, only slower.
-//
-// Packing (the CPU grid holds the GPU texture's words): one RGBA32UI texel holds 32 cells along z,
-// a nibble each, z = 8 c + k in component c, bits 4k to 4k + 3; the texel of cell (x, y, z) is
-// (x, y + (z / 32) * cells.y), so the texture is cells.x wide and cells.y * ceil(cells.z / 32)
-// high: 16 bytes per 32 cells, half a byte per cell. GL 3.3 and ES 3.0 read it with texelFetch
-// on a usampler2D.
+// Packing (the CPU grid holds the GPU texture's words): one RGBA32UI texel holds 128 cells along z,
+// z = 32 c + b in component c, bit b; the texel of cell (x, y, z) is (x, y + (z / 128) * cells.y),
+// so the texture is cells.x wide and cells.y * ceil(cells.z / 128) high: 16 bytes per 128 cells.
+// GL 3.3 and ES 3.0 read it with texelFetch on a usampler2D.
 //
 // The march (voxel_march_cells): from the receiver x moved start_offset cell sides along its
 // normal to the sample x_p moved end_offset cell sides along its normal, every cell the segment
-// passes through is judged (6-connected); one occupied cell hides the sample. A point farther
+// passes through is visited (6-connected); one occupied cell hides the sample. A point farther
 // than sqrt(3) cell sides from a plane lies in a cell the plane cannot touch, so with offsets of
 // 2 (the defaults; sqrt(3) plus the growth and a margin) neither the receiver's nor the sample's
 // own (locally flat) surface occludes them. Larger offsets step over walls thinner than the
 // offset near the receiver; smaller ones darken every receiver by its own surface.
-// In a free cell of distance r no occupied cell lies within r - 1 cells, so the march jumps to
-// where the segment leaves that (2r - 1)-cell cube and goes on from the cell the cell-by-cell
-// march would be in there: one loop, the cell-by-cell step being the jump of r = 1. The answers
-// are the cell-by-cell march's exactly (tests/kernels/test_voxel_visibility.cpp).
 // A coarse level (one bit per 4 x 4 x 4 cells, stepped brick by brick through empty space) cut
 // the fetches per march by a quarter on beyond.txt but made llvmpipe's frame slower: its SIMD
 // lanes run every branch of the loop's body, so each step cost both levels' work
@@ -55,7 +43,6 @@
 // GLSL twin: shaders/lib/voxel_visibility.glsl.
 #pragma once
 
-#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -69,16 +56,13 @@
 
 namespace vplkit {
 
-/// Largest voxel_grid_settings::resolution. The packed texture's 2048 texels per side hold about
-/// 250 cells along every axis of a cube (258 x 9 rows of 32 cells exceeds them); flatter scenes
-/// get more along their long sides. Beyond what fits, the cells grow (make_voxel_grid_shape).
+/// Largest voxel_grid_settings::resolution: 512 cells (with the margin 514) keep the packed texture
+/// within 2048 texels per side for any scene's shape.
 inline constexpr int voxel_grid_max_resolution = 512;
 /// The packed texture's largest side (GLSL ES 3.00's least GL_MAX_TEXTURE_SIZE).
 inline constexpr int voxel_grid_max_texture_side = 2048;
-/// Cells per packed texel (RGBA32UI: 4 x 32 bits along z, a nibble per cell).
-inline constexpr int voxel_cells_per_texel = 32;
-/// The largest distance a cell holds (a nibble): the march jumps at most 15 cells at a time.
-inline constexpr int voxel_distance_cap = 15;
+/// Cells per packed texel (RGBA32UI: 4 x 32 bits along z).
+inline constexpr int voxel_cells_per_texel = 128;
 
 /// How the grid is built (CPU only).
 template <typename T>
@@ -150,13 +134,10 @@ inline glm::ivec2 voxel_texture_size(glm::ivec3 cells) {
 }
 
 /// The packed texel holding cell `cell`. GLSL twin: voxel_texel.
-inline glm::ivec2 voxel_texel(glm::ivec3 cell, glm::ivec3 cells) { return glm::ivec2(cell.x, cell.y + (cell.z >> 5) * cells.y); }
+inline glm::ivec2 voxel_texel(glm::ivec3 cell, glm::ivec3 cells) { return glm::ivec2(cell.x, cell.y + (cell.z >> 7) * cells.y); }
 
-/// Cell z's distance in its packed texel (0: occupied). GLSL twin: voxel_distance.
-inline int voxel_distance(const glm::uvec4& texel, int z) { return static_cast<int>((texel[(z >> 3) & 3] >> static_cast<unsigned>((z & 7) * 4)) & 15u); }
-
-/// A packed word with every nonzero distance set to 1 (the cell-by-cell march's grid).
-inline std::uint32_t voxel_unit_distances(std::uint32_t word) { return (word | (word >> 1) | (word >> 2) | (word >> 3)) & 0x11111111u; }
+/// Whether cell z's bit is set in its packed texel. GLSL twin: voxel_bit.
+inline bool voxel_bit(const glm::uvec4& texel, int z) { return ((texel[(z >> 5) & 3] >> static_cast<unsigned>(z & 31)) & 1u) != 0u; }
 
 /// The packed grid's size in bytes.
 inline std::size_t voxel_grid_bytes(glm::ivec3 cells) {
@@ -215,88 +196,33 @@ bool triangle_box_overlap(const glm::vec<3, T>& centre, const glm::vec<3, T>& ha
   return !separated(glm::cross(edges[0], edges[1]));
 }
 
-/// The CPU grid: its shape and the packed texture's texels (row by row, voxel_texture_size), a
-/// distance per cell (0: occupied).
+/// The CPU grid: its shape and the packed texture's texels (row by row, voxel_texture_size).
 struct voxel_grid {
   voxel_grid_shape<float> shape;
   std::vector<glm::uvec4> texels;
   std::size_t occupied_cells = 0;
-  bool distances_built = false;  ///< the distances are the transform's (else every free cell holds 1)
 
-  std::size_t index(glm::ivec3 cell) const {
+  bool occupied(glm::ivec3 cell) const {
     const glm::ivec2 t = voxel_texel(cell, shape.cells);
-    return static_cast<std::size_t>(t.y) * static_cast<std::size_t>(shape.cells.x) + static_cast<std::size_t>(t.x);
-  }
-  int distance(glm::ivec3 cell) const { return voxel_distance(texels[index(cell)], cell.z); }
-  bool occupied(glm::ivec3 cell) const { return distance(cell) == 0; }
-  void set_distance(glm::ivec3 cell, int value) {
-    std::uint32_t& word = texels[index(cell)][(cell.z >> 3) & 3];
-    const unsigned shift = static_cast<unsigned>((cell.z & 7) * 4);
-    word = (word & ~(15u << shift)) | (static_cast<std::uint32_t>(value) << shift);
+    return voxel_bit(texels[static_cast<std::size_t>(t.y) * static_cast<std::size_t>(shape.cells.x) + static_cast<std::size_t>(t.x)], cell.z);
   }
   void mark(glm::ivec3 cell) {
-    // A new occupied cell makes its neighbours' distances too large: back to the unit distances,
-    // always conservative, until the transform runs again.
-    if (distances_built) {
-      for (glm::uvec4& texel : texels)
-        for (int c = 0; c < 4; ++c) texel[c] = voxel_unit_distances(texel[c]);
-      distances_built = false;
-    }
-    occupied_cells += occupied(cell) ? 0u : 1u;
-    set_distance(cell, 0);
+    const glm::ivec2 t = voxel_texel(cell, shape.cells);
+    std::uint32_t& word = texels[static_cast<std::size_t>(t.y) * static_cast<std::size_t>(shape.cells.x) + static_cast<std::size_t>(t.x)][(cell.z >> 5) & 3];
+    const std::uint32_t bit = 1u << static_cast<unsigned>(cell.z & 31);
+    occupied_cells += (word & bit) == 0u ? 1u : 0u;
+    word |= bit;
   }
   std::size_t bytes() const { return texels.size() * sizeof(glm::uvec4); }
 };
 
-/// An empty grid of `shape` (every cell free, distance 1).
+/// An empty grid of `shape`.
 inline voxel_grid make_voxel_grid(const voxel_grid_shape<float>& shape) {
   voxel_grid grid;
   grid.shape = shape;
   const glm::ivec2 size = voxel_texture_size(shape.cells);
-  grid.texels.assign(static_cast<std::size_t>(size.x) * static_cast<std::size_t>(size.y), glm::uvec4(0x11111111u));
+  grid.texels.assign(static_cast<std::size_t>(size.x) * static_cast<std::size_t>(size.y), glm::uvec4(0u));
   return grid;
-}
-
-/// One pass of the distance transform along `axis`, in place, line by line: a cell's new value is
-/// min over the line's cells c' of max(|c - c'|, value(c')), capped at voxel_distance_cap (cells
-/// beyond the grid are free). The first pass reads the occupancy (0 or not), so its values are the
-/// distances along the axis; the next two make them the Chebyshev distances in the plane, then in
-/// the grid (L-infinity is separable this way: the nearest cell within r on every axis).
-inline void voxel_distance_pass(voxel_grid& grid, int axis) {
-  const glm::ivec3 cells = grid.shape.cells;
-  const int length = cells[axis], u = (axis + 1) % 3, v = (axis + 2) % 3;
-  std::vector<int> line(static_cast<std::size_t>(length)), out(static_cast<std::size_t>(length));
-  for (int b = 0; b < cells[v]; ++b)
-    for (int a = 0; a < cells[u]; ++a) {
-      glm::ivec3 cell(0);
-      cell[u] = a;
-      cell[v] = b;
-      for (int i = 0; i < length; ++i) {
-        cell[axis] = i;
-        const int value = grid.distance(cell);
-        line[static_cast<std::size_t>(i)] = axis == 0 ? (value == 0 ? 0 : voxel_distance_cap) : value;
-      }
-      for (int i = 0; i < length; ++i) {
-        // max(|delta|, value) >= |delta|: no cell farther than the best so far can improve on it.
-        int best = line[static_cast<std::size_t>(i)];
-        for (int delta = 1; delta < best; ++delta) {
-          if (i - delta >= 0) best = std::min(best, std::max(delta, line[static_cast<std::size_t>(i - delta)]));
-          if (i + delta < length) best = std::min(best, std::max(delta, line[static_cast<std::size_t>(i + delta)]));
-        }
-        out[static_cast<std::size_t>(i)] = best;
-      }
-      for (int i = 0; i < length; ++i) {
-        cell[axis] = i;
-        grid.set_distance(cell, out[static_cast<std::size_t>(i)]);
-      }
-    }
-}
-
-/// Each cell's Chebyshev distance in cells to the nearest occupied cell, capped at
-/// voxel_distance_cap: the separable transform's three passes, after the last triangle.
-inline void voxel_grid_build_distances(voxel_grid& grid) {
-  for (int axis = 0; axis < 3; ++axis) voxel_distance_pass(grid, axis);
-  grid.distances_built = true;
 }
 
 /// Marks every cell the triangle overlaps (the test in double; each cell grown by 1e-4 of its side).
@@ -324,16 +250,8 @@ inline void voxel_grid_add_triangle(voxel_grid& grid, const glm::vec3& a, const 
 /// (i, j, k) spans [i, i + 1) x [j, j + 1) x [k, k + 1)): a 3D DDA over every cell the segment
 /// passes through, clipped to the grid (outside it is empty). 1 visible, 0 hidden.
 /// `fetch(glm::ivec2 texel) -> glm::uvec4` reads the packed grid. GLSL twin: voxel_march_cells.
-/// The cell-by-cell march is the merge of the three axes' boundary crossings, each at
-/// t = (boundary - u0) / d computed afresh (no running sums), in order of t, ties to the lower
-/// axis. In a free cell of distance r the cube of cells within r - 1 holds nothing: the march
-/// takes the first of the cube's three faces ahead that the segment crosses, and there moves
-/// the cell r cells on that axis and, on the others, across every boundary the merge crosses
-/// first (those before t, or at t on a lower axis): the cell the cell-by-cell march reaches
-/// there, having judged only free cells of the cube on the way. floor(u0 + d t) finds that count
-/// up to a rounding, which one comparison each way with the boundaries' own t settles. With r = 1
-/// the jump is one DDA step. The steps are written in the order the twin computes them, without a
-/// division by a zero direction (infinite steps are a large number instead).
+/// The steps are written in the order the twin computes them, without a division by a zero
+/// direction (infinite steps are a large number instead).
 template <typename T, typename Fetch>
 T voxel_march_cells(Fetch&& fetch, glm::ivec3 cells, const glm::vec<3, T>& u0, const glm::vec<3, T>& u1) {
   const glm::vec<3, T> d = u1 - u0;  // cells per unit of t, t in [0, 1]
@@ -354,47 +272,27 @@ T voxel_march_cells(Fetch&& fetch, glm::ivec3 cells, const glm::vec<3, T>& u0, c
   }
   if (t_enter > t_exit) return T(1);
   glm::ivec3 cell = glm::clamp(glm::ivec3(glm::floor(u0 + d * t_enter)), glm::ivec3(0), cells - 1);
-  glm::ivec3 step(0), ahead(0);  // ahead: 1 where a cell's boundary ahead is its upper one
+  glm::ivec3 step(0);
+  glm::vec<3, T> t_max(far), t_delta(far);
   for (int i = 0; i < 3; ++i) {
     if (std::abs(d[i]) > T(1e-12)) {
       step[i] = d[i] > T(0) ? 1 : -1;
-      ahead[i] = d[i] > T(0) ? 1 : 0;
+      const T boundary = T(cell[i] + (d[i] > T(0) ? 1 : 0));
+      t_max[i] = (boundary - u0[i]) * inverse_d[i];
+      t_delta[i] = std::abs(inverse_d[i]);
     }
   }
   const int steps = cells.x + cells.y + cells.z;
   for (int n = 0; n <= steps; ++n) {
-    const int r = voxel_distance(fetch(voxel_texel(cell, cells)), cell.z);
-    if (r == 0) return T(0);
-    // The free cube's faces ahead, and when the segment crosses each.
-    const glm::ivec3 face = cell + step * (r - 1) + ahead;
-    glm::vec<3, T> t_face(far);
-    for (int i = 0; i < 3; ++i)
-      if (step[i] != 0) t_face[i] = (T(face[i]) - u0[i]) * inverse_d[i];
-    // The face crossed first; ties to the lower axis.
+    if (voxel_bit(fetch(voxel_texel(cell, cells)), cell.z)) return T(0);
+    // The axis whose boundary comes first; ties to the lower axis.
     int axis = 0;
-    if (t_face.y < t_face[axis]) axis = 1;
-    if (t_face.z < t_face[axis]) axis = 2;
-    const T t = t_face[axis];
-    if (t > t_exit) break;
-    glm::ivec3 moved(0);
-    for (int i = 0; i < 3; ++i) {
-      if (step[i] == 0) continue;
-      if (i == axis) {
-        moved[i] = r;
-        continue;
-      }
-      // Boundaries crossed on this axis before the face: at most r - 1 (its own face comes later).
-      const T p = u0[i] + d[i] * t;
-      int k = glm::clamp(step[i] * (static_cast<int>(std::floor(p)) - cell[i]), 0, r - 1);
-      const int next = cell[i] + step[i] * k + ahead[i];
-      const T t_next = (T(next) - u0[i]) * inverse_d[i];
-      const T t_last = (T(next - step[i]) - u0[i]) * inverse_d[i];
-      if (k < r - 1 && (t_next < t || (t_next == t && i < axis))) k += 1;
-      else if (k > 0 && !(t_last < t || (t_last == t && i < axis))) k -= 1;
-      moved[i] = k;
-    }
-    cell += step * moved;
-    if (glm::any(glm::lessThan(cell, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(cell, cells))) break;
+    if (t_max.y < t_max[axis]) axis = 1;
+    if (t_max.z < t_max[axis]) axis = 2;
+    if (t_max[axis] > t_exit) break;
+    cell[axis] += step[axis];
+    if (cell[axis] < 0 || cell[axis] >= cells[axis]) break;
+    t_max[axis] += t_delta[axis];
   }
   return T(1);
 }

@@ -1,7 +1,7 @@
 // GLSL twin of include/vplkit/voxel_visibility.hpp: the march of a conservative voxel occupancy
 // grid from a receiver to a pixel light or a coarse light (a 3D DDA over every cell the segment
-// passes through, jumping across the free cube around a cell of distance r). The grid is the packed
-// RGBA32UI texture of the C++ twin (32 cells along z per texel, a distance nibble each, 0 occupied), read
+// passes through). The grid is the packed RGBA32UI texture of the C++ twin (128 cells along z per
+// texel), read
 // through `uvec4 voxel_fetch(ivec2 texel)`, which the including shader defines (e.g. texelFetch
 // on a usampler2D; the prototype is declared here: Mesa's linker wants every declared function
 // that a compiled function calls defined).
@@ -23,9 +23,9 @@ struct voxel_grid_shape {
   ivec3 cells;
 };
 
-ivec2 voxel_texel(ivec3 cell, ivec3 cells) { return ivec2(cell.x, cell.y + (cell.z >> 5) * cells.y); }
+ivec2 voxel_texel(ivec3 cell, ivec3 cells) { return ivec2(cell.x, cell.y + (cell.z >> 7) * cells.y); }
 
-int voxel_distance(uvec4 texel, int z) { return int((texel[(z >> 3) & 3] >> uint((z & 7) * 4)) & 15u); }
+bool voxel_bit(uvec4 texel, int z) { return ((texel[(z >> 5) & 3] >> uint(z & 31)) & 1u) != 0u; }
 
 float voxel_march_cells(ivec3 cells, vec3 u0, vec3 u1) {
   vec3 d = u1 - u0;
@@ -48,44 +48,26 @@ float voxel_march_cells(ivec3 cells, vec3 u0, vec3 u1) {
   if (t_enter > t_exit) return 1.0;
   ivec3 cell = clamp(ivec3(floor(u0 + d * t_enter)), ivec3(0), cells - 1);
   ivec3 cell_step = ivec3(0);
-  ivec3 ahead = ivec3(0);
+  vec3 t_max = vec3(far_away);
+  vec3 t_delta = vec3(far_away);
   for (int i = 0; i < 3; ++i) {
     if (abs(d[i]) > 1e-12) {
       cell_step[i] = d[i] > 0.0 ? 1 : -1;
-      ahead[i] = d[i] > 0.0 ? 1 : 0;
+      float boundary = float(cell[i] + (d[i] > 0.0 ? 1 : 0));
+      t_max[i] = (boundary - u0[i]) * inverse_d[i];
+      t_delta[i] = abs(inverse_d[i]);
     }
   }
   int steps = cells.x + cells.y + cells.z;
   for (int n = 0; n <= steps; ++n) {
-    int r = voxel_distance(voxel_fetch(voxel_texel(cell, cells)), cell.z);
-    if (r == 0) return 0.0;
-    ivec3 face = cell + cell_step * (r - 1) + ahead;
-    vec3 t_face = vec3(far_away);
-    for (int i = 0; i < 3; ++i)
-      if (cell_step[i] != 0) t_face[i] = (float(face[i]) - u0[i]) * inverse_d[i];
+    if (voxel_bit(voxel_fetch(voxel_texel(cell, cells)), cell.z)) return 0.0;
     int axis = 0;
-    if (t_face.y < t_face[axis]) axis = 1;
-    if (t_face.z < t_face[axis]) axis = 2;
-    float t = t_face[axis];
-    if (t > t_exit) break;
-    ivec3 moved = ivec3(0);
-    for (int i = 0; i < 3; ++i) {
-      if (cell_step[i] == 0) continue;
-      if (i == axis) {
-        moved[i] = r;
-        continue;
-      }
-      float p = u0[i] + d[i] * t;
-      int k = clamp(cell_step[i] * (int(floor(p)) - cell[i]), 0, r - 1);
-      int next = cell[i] + cell_step[i] * k + ahead[i];
-      float t_next = (float(next) - u0[i]) * inverse_d[i];
-      float t_last = (float(next - cell_step[i]) - u0[i]) * inverse_d[i];
-      if (k < r - 1 && (t_next < t || (t_next == t && i < axis))) k += 1;
-      else if (k > 0 && !(t_last < t || (t_last == t && i < axis))) k -= 1;
-      moved[i] = k;
-    }
-    cell += cell_step * moved;
-    if (any(lessThan(cell, ivec3(0))) || any(greaterThanEqual(cell, cells))) break;
+    if (t_max.y < t_max[axis]) axis = 1;
+    if (t_max.z < t_max[axis]) axis = 2;
+    if (t_max[axis] > t_exit) break;
+    cell[axis] += cell_step[axis];
+    if (cell[axis] < 0 || cell[axis] >= cells[axis]) break;
+    t_max[axis] += t_delta[axis];
   }
   return 1.0;
 }

@@ -4,15 +4,11 @@
 // one in the open always is, in any orientation; the grid of random triangles holds every point
 // of every triangle and no cell farther from it than a cell's half diagonal; the
 // march is hidden exactly when the segment meets an occupied cell of a cluttered grid; the
-// distance transform is the capped Chebyshev distance cell by cell; the march's jumps across free
-// cubes answer as the cell-by-cell march for every segment; the coverage's coarse lights are
-// judged by the same grid; the memory bound.
+// coverage's coarse lights are judged by the same grid; the memory bound.
 // The GLSL twin's parity: tests/parity/test_parity_voxel_visibility.cpp.
 #include <doctest/doctest.h>
 
-#include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <random>
 #include <stdexcept>
 #include <vector>
@@ -44,40 +40,6 @@ void add_box(voxel_grid& grid, glm::vec3 low, glm::vec3 high, const glm::mat4& m
     voxel_grid_add_triangle(grid, c[f[0]], c[f[2]], c[f[3]]);
   }
 }
-
-// A grid of 25 small random triangles in 32^3 unit cells (the cluttered grid).
-voxel_grid cluttered_grid(std::mt19937& random) {
-  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-  std::uniform_real_distribution<float> coordinate(1.0f, 31.0f);
-  voxel_grid grid = unit_grid(32);
-  for (int t = 0; t < 25; ++t) {
-    const glm::vec3 a(coordinate(random), coordinate(random), coordinate(random));
-    voxel_grid_add_triangle(grid, a, a + 3.0f * (glm::vec3(unit(random), unit(random), unit(random)) - 0.5f),
-                            a + 3.0f * (glm::vec3(unit(random), unit(random), unit(random)) - 0.5f));
-  }
-  return grid;
-}
-
-// The grid read with every free cell's distance 1: the cell-by-cell march. Counts its fetches.
-struct unit_distance_fetch {
-  const voxel_grid* grid;
-  std::size_t* fetches;
-  glm::uvec4 operator()(glm::ivec2 texel) const {
-    ++*fetches;
-    const glm::uvec4 word = voxel_grid_fetch{grid}(texel);
-    return glm::uvec4(voxel_unit_distances(word.x), voxel_unit_distances(word.y), voxel_unit_distances(word.z), voxel_unit_distances(word.w));
-  }
-};
-
-// The grid as built (the march jumps). Counts its fetches.
-struct counting_fetch {
-  const voxel_grid* grid;
-  std::size_t* fetches;
-  glm::uvec4 operator()(glm::ivec2 texel) const {
-    ++*fetches;
-    return voxel_grid_fetch{grid}(texel);
-  }
-};
 
 // Whether the segment a -> b meets the box [low, high] (slabs, in double).
 bool segment_meets_box(glm::dvec3 a, glm::dvec3 b, glm::dvec3 low, glm::dvec3 high) {
@@ -139,7 +101,6 @@ TEST_CASE("the grid of an axis-aligned box is exactly the shell of cells its fac
 TEST_CASE("the march is exact on an axis-aligned box: hidden exactly when the segment meets the box of its shell cells") {
   voxel_grid grid = unit_grid();
   add_box(grid, glm::vec3(4.3f, 5.5f, 6.2f), glm::vec3(10.6f, 9.4f, 11.8f));
-  voxel_grid_build_distances(grid);
   const glm::dvec3 low(4, 5, 6), high(11, 10, 12);  // the shell's outer cell boundaries
   const voxel_grid_fetch fetch{&grid};
   std::mt19937 random(7);
@@ -181,8 +142,6 @@ TEST_CASE("a sample behind a closed wall is never visible, one in the open alway
       voxel_grid_add_triangle(open, transform_point(m, q[0]), transform_point(m, q[1]), transform_point(m, q[2]));
       voxel_grid_add_triangle(open, transform_point(m, q[0]), transform_point(m, q[2]), transform_point(m, q[3]));
     }
-    voxel_grid_build_distances(room);
-    voxel_grid_build_distances(open);
     const voxel_grid_fetch room_fetch{&room}, open_fetch{&open};
     const glm::vec3 up = transform_direction(m, glm::vec3(0, 0, 1)), east = transform_direction(m, glm::vec3(1, 0, 0));
     for (int i = 0; i < 400; ++i) {
@@ -218,7 +177,6 @@ TEST_CASE("the grid of random triangles holds every point of every triangle and 
     if (t == 10) b = c = a;
     if (t == 11) c = 0.5f * (a + b);
     voxel_grid_add_triangle(grid, a, b, c);
-    voxel_grid_build_distances(grid);  // the distances keep the occupancy
     CAPTURE(t); CAPTURE(a); CAPTURE(b); CAPTURE(c);
     REQUIRE(grid.occupied_cells > 0);
     // Conservative: every point on the triangle lies in an occupied cell.
@@ -246,7 +204,7 @@ TEST_CASE("the grid's shape follows the scene's size and keeps within its memory
   const voxel_grid_shape<float> shape = make_voxel_grid_shape(glm::vec3(-1.0f, 0.0f, -3.0f), glm::vec3(7.0f, 4.0f, 1.0f), settings);
   CHECK(shape.cell_size == doctest::Approx(8.0 / 128.0));
   CHECK(shape.cells == glm::ivec3(130, 66, 66));
-  CHECK(voxel_grid_bytes(shape.cells) == std::size_t(130) * 66 * 3 * 16);  // 66 cells along z: 3 texels of 32
+  CHECK(voxel_grid_bytes(shape.cells) == std::size_t(130) * 66 * 1 * 16);
   // The grid holds the bounds with a margin.
   CHECK(glm::all(glm::lessThan(shape.origin, glm::vec3(-1.0f, 0.0f, -3.0f))));
   CHECK(glm::all(glm::greaterThan(shape.origin + glm::vec3(shape.cells) * shape.cell_size, glm::vec3(7.0f, 4.0f, 1.0f))));
@@ -276,8 +234,6 @@ TEST_CASE("the gather's voxel visibility moves the light's eye space back to the
   const glm::mat4 inverse = glm::inverse(light_view);
   voxel_grid walled = unit_grid(32), empty = unit_grid(32);
   add_box(walled, glm::vec3(15.8f, 2.0f, 2.0f), glm::vec3(16.2f, 30.0f, 30.0f));
-  voxel_grid_build_distances(walled);
-  voxel_grid_build_distances(empty);
   const glm::vec3 x(12.0f, 16.0f, 16.0f), xp(20.0f, 16.0f, 16.0f);
   const gather_receiver<float> receiver{transform_point(light_view, x), transform_direction(light_view, glm::vec3(1, 0, 0)), glm::vec2(0.0f),
                                         glm::uvec2(0)};
@@ -311,8 +267,6 @@ TEST_CASE("a coarse light behind a closed wall is never visible, whatever its no
   const voxel_march_settings<float> march;
   voxel_grid room = unit_grid(64), open = unit_grid(64);
   add_box(room, glm::vec3(22.0f), glm::vec3(42.0f));  // a closed room of zero-thickness quads
-  voxel_grid_build_distances(room);
-  voxel_grid_build_distances(open);
   const glm::mat4 to_cells = voxel_cells_from(room.shape, glm::mat4(1.0f));
   const glm::vec3 up(0, 0, 1);
   int judged = 0;
@@ -339,8 +293,14 @@ TEST_CASE("a coarse light behind a closed wall is never visible, whatever its no
 TEST_CASE("the march is hidden exactly when the segment meets an occupied cell of a cluttered grid, in the grid's cells or the world") {
   // 25 small random triangles in 32^3 cells.
   std::mt19937 random(19);
-  voxel_grid grid = cluttered_grid(random);
-  voxel_grid_build_distances(grid);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::uniform_real_distribution<float> coordinate(1.0f, 31.0f);
+  voxel_grid grid = unit_grid(32);
+  for (int t = 0; t < 25; ++t) {
+    const glm::vec3 a(coordinate(random), coordinate(random), coordinate(random));
+    voxel_grid_add_triangle(grid, a, a + 3.0f * (glm::vec3(unit(random), unit(random), unit(random)) - 0.5f),
+                            a + 3.0f * (glm::vec3(unit(random), unit(random), unit(random)) - 0.5f));
+  }
   std::vector<glm::ivec3> occupied;
   for (int z = 0; z < 32; ++z)
     for (int y = 0; y < 32; ++y)
@@ -375,94 +335,4 @@ TEST_CASE("the march is hidden exactly when the segment meets an occupied cell o
   // Both answers are exercised (measured: 331 hidden of 3 900 judged).
   CHECK(hidden > 200);
   CHECK(visible > 2000);
-}
-
-TEST_CASE("the distance transform gives every cell its Chebyshev distance in cells to the nearest occupied cell, capped at 15") {
-  std::mt19937 random(23);
-  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-  // A grid longer on each axis differently (an axis mixed up in a pass shows), with a few small
-  // triangles far apart, so that both the cap and every distance below it occur.
-  voxel_grid_shape<float> shape;
-  shape.cells = glm::ivec3(41, 23, 70);
-  voxel_grid grid = make_voxel_grid(shape);
-  for (int t = 0; t < 4; ++t) {
-    const glm::vec3 a = glm::vec3(shape.cells) * glm::vec3(unit(random), unit(random), unit(random));
-    voxel_grid_add_triangle(grid, a, a + 2.0f * glm::vec3(unit(random), unit(random), unit(random)), a + 2.0f * glm::vec3(unit(random), 0.0f, unit(random)));
-  }
-  const voxel_grid unbuilt = grid;
-  voxel_grid_build_distances(grid);
-  CHECK(grid.occupied_cells == unbuilt.occupied_cells);
-  std::vector<glm::ivec3> occupied;
-  for (int z = 0; z < shape.cells.z; ++z)
-    for (int y = 0; y < shape.cells.y; ++y)
-      for (int x = 0; x < shape.cells.x; ++x)
-        if (unbuilt.occupied(glm::ivec3(x, y, z))) occupied.push_back(glm::ivec3(x, y, z));
-  REQUIRE(!occupied.empty());
-  std::vector<int> seen(voxel_distance_cap + 1, 0);
-  for (int z = 0; z < shape.cells.z; ++z)
-    for (int y = 0; y < shape.cells.y; ++y)
-      for (int x = 0; x < shape.cells.x; ++x) {
-        int expected = voxel_distance_cap;
-        for (const glm::ivec3& o : occupied)
-          expected = std::min(expected, std::max(std::abs(x - o.x), std::max(std::abs(y - o.y), std::abs(z - o.z))));
-        CAPTURE(x); CAPTURE(y); CAPTURE(z);
-        REQUIRE(grid.distance(glm::ivec3(x, y, z)) == expected);
-        seen[static_cast<std::size_t>(expected)] += 1;
-      }
-  for (int r = 0; r <= voxel_distance_cap; ++r) {
-    CAPTURE(r);
-    CHECK(seen[static_cast<std::size_t>(r)] > 0);
-  }
-  // An empty grid: nothing within 14 cells anywhere.
-  voxel_grid empty = unit_grid(8);
-  voxel_grid_build_distances(empty);
-  CHECK(empty.distance(glm::ivec3(3, 4, 5)) == voxel_distance_cap);
-  // A triangle after the transform: every free cell back to 1 (the cell-by-cell march), never a
-  // distance that would jump over the new cell.
-  const glm::ivec3 far_cell = occupied.front() + glm::ivec3(shape.cells.x / 2, 0, 0);
-  const glm::ivec3 marked(far_cell.x % shape.cells.x, far_cell.y, far_cell.z);
-  const bool was_free = !grid.occupied(marked);
-  voxel_grid_add_triangle(grid, glm::vec3(marked) + 0.5f, glm::vec3(marked) + 0.5f, glm::vec3(marked) + 0.5f);
-  CHECK(grid.occupied(marked));
-  CHECK(grid.occupied_cells == unbuilt.occupied_cells + (was_free ? 1u : 0u));
-  for (int z = 0; z < shape.cells.z; ++z)
-    for (int y = 0; y < shape.cells.y; ++y)
-      for (int x = 0; x < shape.cells.x; ++x) {
-        const glm::ivec3 cell(x, y, z);
-        REQUIRE(grid.distance(cell) == (cell == marked || unbuilt.occupied(cell) ? 0 : 1));
-      }
-}
-
-TEST_CASE("the march's jumps across free cubes give the cell-by-cell march's answer for every segment, with fewer fetches") {
-  std::mt19937 random(29);
-  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-  voxel_grid cluttered = cluttered_grid(random);
-  voxel_grid shell = unit_grid();
-  add_box(shell, glm::vec3(4.3f, 5.5f, 6.2f), glm::vec3(10.6f, 9.4f, 11.8f));
-  for (voxel_grid* grid : {&cluttered, &shell}) {
-    voxel_grid_build_distances(*grid);
-    const float side = static_cast<float>(grid->shape.cells.x);
-    std::size_t jump_fetches = 0, cell_fetches = 0;
-    int hidden = 0, visible = 0;
-    for (int i = 0; i < 20000; ++i) {
-      // Anywhere in and around the grid; a quarter on cell boundaries (integer coordinates) and a
-      // quarter parallel to an axis or two, where the boundaries' crossings tie.
-      glm::vec3 a = (glm::vec3(unit(random), unit(random), unit(random)) * 1.25f - 0.125f) * side;
-      glm::vec3 b = (glm::vec3(unit(random), unit(random), unit(random)) * 1.25f - 0.125f) * side;
-      if (i % 4 == 1) a = glm::floor(a), b = glm::floor(b);
-      if (i % 4 == 2) b[i % 3] = a[i % 3];
-      if (i % 4 == 3) b[i % 3] = a[i % 3], b[(i + 1) % 3] = a[(i + 1) % 3];
-      CAPTURE(a); CAPTURE(b);
-      const float jumped = voxel_segment_visible(counting_fetch{grid, &jump_fetches}, grid->shape, a, b);
-      REQUIRE(jumped == voxel_segment_visible(unit_distance_fetch{grid, &cell_fetches}, grid->shape, a, b));
-      (jumped == 0.0f ? hidden : visible) += 1;
-    }
-    // Measured: hidden 1 483 and 3 651 of 20 000 (the cluttered grid, the shell).
-    CHECK(hidden > 1000);
-    CHECK(visible > 2000);
-    // The jumps are taken: the cell-by-cell march fetches more than twice the cells (measured:
-    // 5.3x on the cluttered grid, 3.8x on the shell).
-    CAPTURE(jump_fetches); CAPTURE(cell_fetches);
-    CHECK(static_cast<double>(cell_fetches) > 2.0 * static_cast<double>(jump_fetches));
-  }
 }

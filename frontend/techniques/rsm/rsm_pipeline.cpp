@@ -135,13 +135,12 @@ bool with_voxels(const rsm_frame_constants& constants) { return constants.techni
 // The gather's texture unit of the voxel grid: after the RSM, the G-buffer and the coarse lights.
 int voxel_unit(const rsm_frame_constants& constants) { return with_coverage(constants) ? 6 : 3; }
 
-// The conservative occupancy grid of every triangle of `geometry` and its distances (vplkit/voxel_visibility.hpp).
+// The conservative occupancy grid of every triangle of `geometry` (vplkit/voxel_visibility.hpp).
 voxel_grid build_voxel_grid(const mesh& geometry, const bounding_box& box, const voxel_grid_settings<float>& settings) {
   voxel_grid grid = make_voxel_grid(make_voxel_grid_shape(box.minimum, box.maximum, settings));
   for (std::size_t i = 0; i + 2 < geometry.indices.size(); i += 3)
     voxel_grid_add_triangle(grid, geometry.vertices[geometry.indices[i]].position, geometry.vertices[geometry.indices[i + 1]].position,
                             geometry.vertices[geometry.indices[i + 2]].position);
-  voxel_grid_build_distances(grid);  // the march jumps across free space
   return grid;
 }
 
