@@ -92,11 +92,14 @@ int reader::texture_of(int index) {
   return cached;
 }
 
-// The TEXCOORD set a texture slot reads: its texCoord, or KHR_texture_transform's.
+// The TEXCOORD set a texture slot reads: its texCoord, or KHR_texture_transform's; -1 for a
+// number outside [0, 7] (refused by the caller; a double beyond int's range must not be cast).
 int reader::texcoord_set_of(const tinygltf::TextureInfo& info, const std::string& where) const {
   const auto transform = info.extensions.find("KHR_texture_transform");
-  if (transform != info.extensions.end() && transform->second.IsObject() && transform->second.Has("texCoord"))
-    return static_cast<int>(number(transform->second.Get("texCoord"), where + " KHR_texture_transform texCoord"));
+  if (transform != info.extensions.end() && transform->second.IsObject() && transform->second.Has("texCoord")) {
+    const double set = number(transform->second.Get("texCoord"), where + " KHR_texture_transform texCoord");
+    return set >= 0.0 && set <= 7.0 ? static_cast<int>(set) : -1;
+  }
   return info.texCoord;
 }
 
