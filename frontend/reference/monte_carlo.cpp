@@ -73,13 +73,16 @@ glm::vec3 one_bounce_irradiance(const ray_scene& bounce_rays, const ray_scene& l
 namespace {
 
 // GL's texture level of detail at a camera ray's hit: where the rays through the next pixel to the
-// right and the next one down meet the hit triangle's plane, in texels of the material's
-// texture; the larger step (GL's isotropic rho) as log2. On a plane this is the difference GL
-// takes across a pixel quad. 0 (level 0) where there is no texture or no usable step.
-float camera_ray_lod(const mesh& geometry, const ray_scene::hit& hit, const glm::vec3 origins[2], const glm::vec3 directions[2]) {
-  const surface_material* material = material_of_triangle(geometry, hit.triangle);
-  if (!material || material->texture < 0) return 0.0f;
-  const texture_level& level = geometry.materials->textures[static_cast<std::size_t>(material->texture)].levels.front();
+// right and the next one down meet the hit triangle's plane, in texels of texture `index` of the
+// mesh's materials, reached through `transform` (a material's texture coordinate for a vertex's:
+// the base colour's or the emission's); the larger step (GL's isotropic rho) as log2. On a plane
+// this is the difference GL takes across a pixel quad. 0 (level 0) where there is no texture
+// (index -1) or no usable step.
+template <typename Transform>
+float camera_ray_lod(const mesh& geometry, const ray_scene::hit& hit, const glm::vec3 origins[2], const glm::vec3 directions[2], int index,
+                     Transform transform) {
+  if (index < 0) return 0.0f;
+  const texture_level& level = geometry.materials->textures[static_cast<std::size_t>(index)].levels.front();
   const vertex& a = geometry.vertices[geometry.indices[3 * hit.triangle]];
   const vertex& b = geometry.vertices[geometry.indices[3 * hit.triangle + 1]];
   const vertex& c = geometry.vertices[geometry.indices[3 * hit.triangle + 2]];
@@ -90,7 +93,7 @@ float camera_ray_lod(const mesh& geometry, const ray_scene::hit& hit, const glm:
     // Barycentrics of p in the triangle's plane.
     const glm::vec3 w = p - a.position;
     const float u = glm::dot(glm::cross(w, e2), plane) / area, v = glm::dot(glm::cross(e1, w), plane) / area;
-    const glm::vec2 uv = material_texture_coordinate(*material, (1.0f - u - v) * a.texcoord + u * b.texcoord + v * c.texcoord);
+    const glm::vec2 uv = transform((1.0f - u - v) * a.texcoord + u * b.texcoord + v * c.texcoord);
     return uv * glm::vec2(static_cast<float>(level.width), static_cast<float>(level.height));
   };
   const glm::vec2 centre = texel_coordinate(hit.position);
@@ -118,12 +121,22 @@ std::optional<one_bounce_pixel> trace_one_bounce_pixel(const ray_scene& rays, co
   const camera_rays::ray ray = primary.at(x, y);
   ray_scene::hit hit = rays.intersect(ray.origin, ray.direction);
   if (!hit.found) return std::nullopt;
-  if (material_of_triangle(source.geometry, hit.triangle)) {
+  // The emission the camera sees: leaving the side the normal faces (as emission.frag draws it);
+  // it is added to the radiance and lights nothing.
+  glm::vec3 emission(0.0f);
+  if (const surface_material* material = material_of_triangle(source.geometry, hit.triangle)) {
     // A textured surface at GL's level of detail: the rays through the next pixel to the right
     // and the next one down (camera_ray_lod).
     const camera_rays::ray right = primary.at(x + 1, y), down = primary.at(x, y + 1);
     const glm::vec3 origins[2] = {right.origin, down.origin}, directions[2] = {right.direction, down.direction};
-    hit.albedo = glm::vec3(surface_albedo_alpha(source.geometry, hit.triangle, hit.barycentric, camera_ray_lod(source.geometry, hit, origins, directions)));
+    const float lod = camera_ray_lod(source.geometry, hit, origins, directions, material->texture,
+                                     [&](glm::vec2 uv) { return material_texture_coordinate(*material, uv); });
+    hit.albedo = glm::vec3(surface_albedo_alpha(source.geometry, hit.triangle, hit.barycentric, lod));
+    if (emits(*material) && glm::dot(hit.normal, ray.direction) < 0.0f) {
+      const float emission_lod = camera_ray_lod(source.geometry, hit, origins, directions, material->emission_texture,
+                                                [&](glm::vec2 uv) { return material_emission_coordinate(*material, uv); });
+      emission = surface_emission(source.geometry, hit.triangle, hit.barycentric, emission_lod);
+    }
   }
   // The surface is lit on the side its normal faces, wherever the camera is: as the GL techniques
   // light it (their G-buffers, RSMs and Light Wave's receivers keep the mesh's normals), and as the
@@ -134,7 +147,7 @@ std::optional<one_bounce_pixel> trace_one_bounce_pixel(const ray_scene& rays, co
   const std::uint32_t key = static_cast<std::uint32_t>(y * width + x);
   const glm::vec3 direct = direct_irradiance(rays, source.lights, irradiance, hit.position, n);
   const glm::vec3 bounce = samples > 0 ? one_bounce_irradiance(rays, source.lights, irradiance, hit.position, n, samples, seed, key) : glm::vec3(0.0f);
-  return one_bounce_pixel{diffuse_radiance(hit.albedo, direct, 1.0f, bounce), bounce, direct, glm::dot(hit.normal, ray.direction) > 0.0f};
+  return one_bounce_pixel{diffuse_radiance(hit.albedo, direct, 1.0f, bounce) + emission, bounce, direct, glm::dot(hit.normal, ray.direction) > 0.0f};
 }
 
 }  // namespace

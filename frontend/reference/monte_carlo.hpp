@@ -39,7 +39,7 @@ glm::vec3 one_bounce_irradiance(const ray_scene& bounce_rays, const ray_scene& l
                                 std::uint32_t seed, std::uint32_t key);
 
 struct one_bounce_images {
-  image radiance;  ///< albedo / pi * (E_direct + E_one_bounce), what the camera sees
+  image radiance;  ///< albedo / pi * (E_direct + E_one_bounce) + the surface's emission (material.hpp), what the camera sees
   image indirect;  ///< E_one_bounce at each pixel's surface
   image direct;    ///< E_direct at each pixel's surface: every light's, each with an exact shadow ray
   /// Pixels whose surface faces away from the camera (the normal points away from the eye). Every
@@ -50,6 +50,8 @@ struct one_bounce_images {
 
 /// The revision of the Monte Carlo reference's results: tools that cache its images key them by it.
 /// 2: the surface the camera sees is lit on its normal's side (1 turned the normal to the camera).
+/// (Emission, added to the radiance since, did not change it: every image without an emissive
+/// material is the same bit for bit, and the studies that cache images have none.)
 inline constexpr int monte_carlo_revision = 2;
 
 /// The one-bounce Monte Carlo reference of a scene seen by its camera (`rays` of its geometry).

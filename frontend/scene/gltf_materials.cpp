@@ -92,17 +92,94 @@ int reader::texture_of(int index) {
   return cached;
 }
 
+// The TEXCOORD set a texture slot reads: its texCoord, or KHR_texture_transform's; -1 for a
+// number outside [0, 7] (refused by the caller; a double beyond int's range must not be cast).
+int reader::texcoord_set_of(const tinygltf::TextureInfo& info, const std::string& where) const {
+  const auto transform = info.extensions.find("KHR_texture_transform");
+  if (transform != info.extensions.end() && transform->second.IsObject() && transform->second.Has("texCoord")) {
+    const double set = number(transform->second.Get("texCoord"), where + " KHR_texture_transform texCoord");
+    return set >= 0.0 && set <= 7.0 ? static_cast<int>(set) : -1;
+  }
+  return info.texCoord;
+}
+
+// A texture slot of a material (baseColorTexture, emissiveTexture) read the one way for both:
+// its image decoded into the library, its sampler, its KHR_texture_transform. `slot` names it in
+// messages; `without` is what a texture without a readable image leaves (a note's consequence).
+reader::texture_slot reader::texture_slot_of(const tinygltf::TextureInfo& info, const std::string& where, const std::string& slot,
+                                             const std::string& without) {
+  texture_slot out;
+  if (info.index < 0) return out;
+  out.texcoord_set = texcoord_set_of(info, where);
+  if (info.index >= static_cast<int>(model_.textures.size())) fail(where + ": " + slot + " names texture " + std::to_string(info.index) + ", which does not exist");
+  const tinygltf::Texture& texture = model_.textures[static_cast<std::size_t>(info.index)];
+  if (texture.source < 0) {
+    std::string in;
+    for (const auto& [extension, value] : texture.extensions) in += (in.empty() ? "" : ", ") + extension;
+    note("texture images given only by " + (in.empty() ? std::string("no source") : in), without);
+  } else if (out.texcoord_set < 0 || out.texcoord_set > 7) {
+    fail(where + ": " + slot + "'s texCoord must be in [0, 7]");
+  } else {
+    out.texture = texture_of(texture.source);
+    out.sampler = sampler_of(texture.sampler);
+  }
+  const auto transform = info.extensions.find("KHR_texture_transform");
+  if (transform != info.extensions.end() && transform->second.IsObject()) {
+    const tinygltf::Value& t = transform->second;
+    const std::string in = where + " " + slot + " KHR_texture_transform";
+    glm::dvec2 offset(0.0), scale(1.0);
+    double rotation = 0.0;
+    for (const auto& [key, target] : {std::pair<const char*, glm::dvec2*>{"offset", &offset}, {"scale", &scale}}) {
+      if (!t.Has(key)) continue;
+      const tinygltf::Value& pair = t.Get(key);
+      if (!pair.IsArray() || pair.ArrayLen() != 2) fail(in + ": " + key + " needs 2 numbers");
+      *target = glm::dvec2(number(pair.Get(0), in + " " + key), number(pair.Get(1), in + " " + key));
+    }
+    if (t.Has("rotation")) rotation = number(t.Get("rotation"), in + " rotation");
+    // The extension's matrix: translation x rotation x scale, the rotation counter-clockwise
+    // in the image (v points down): [cos sin; -sin cos].
+    const double c = std::cos(rotation), s = std::sin(rotation);
+    const glm::dmat2 rotate(glm::dvec2(c, -s), glm::dvec2(s, c));  // columns
+    const glm::dmat2 matrix = rotate * glm::dmat2(glm::dvec2(scale.x, 0.0), glm::dvec2(0.0, scale.y));
+    out.matrix = glm::mat2(matrix);
+    out.offset = glm::vec2(offset);
+    if (!std::isfinite(out.matrix[0][0] + out.matrix[0][1] + out.matrix[1][0] + out.matrix[1][1]) || !std::isfinite(out.offset.x + out.offset.y))
+      fail(in + ": the transform is not finite as floats");
+  }
+  return out;
+}
+
+// emissiveFactor x KHR_materials_emissive_strength, checked: the factor in [0, 1] as glTF
+// specifies it, the strength finite and >= 0, their product within max_emission.
+glm::vec3 reader::emission_of(const tinygltf::Material& source, const std::string& where) const {
+  const std::vector<double>& factor = source.emissiveFactor;
+  if (factor.empty()) return glm::vec3(0.0f);
+  if (factor.size() != 3) fail(where + ": emissiveFactor needs 3 numbers, it has " + std::to_string(factor.size()));
+  const glm::dvec3 emissive(factor[0], factor[1], factor[2]);
+  if (!finite(emissive) || glm::any(glm::lessThan(emissive, glm::dvec3(0.0))) || glm::any(glm::greaterThan(emissive, glm::dvec3(1.0))))
+    fail(where + ": emissiveFactor must be 3 finite numbers in [0, 1], not [" + number_text(factor[0]) + ", " + number_text(factor[1]) + ", " +
+         number_text(factor[2]) + "]");
+  double strength = 1.0;
+  const auto extension = source.extensions.find("KHR_materials_emissive_strength");
+  if (extension != source.extensions.end() && extension->second.IsObject() && extension->second.Has("emissiveStrength")) {
+    const tinygltf::Value& value = extension->second.Get("emissiveStrength");
+    if (!value.IsNumber() || !(value.GetNumberAsDouble() >= 0.0) || !std::isfinite(value.GetNumberAsDouble()))
+      fail(where + ": KHR_materials_emissive_strength's emissiveStrength must be a finite number >= 0" +
+           (value.IsNumber() ? ", not " + number_text(value.GetNumberAsDouble()) : std::string()));
+    strength = value.GetNumberAsDouble();
+  }
+  const glm::dvec3 emission = emissive * strength;
+  if (glm::any(glm::greaterThan(emission, glm::dvec3(max_emission))))
+    fail(where + ": emissiveFactor x emissiveStrength must be at most " + number_text(max_emission) + " per channel (the largest radiance a 16-bit float image holds), not " +
+         number_text(std::max({emission.x, emission.y, emission.z})));
+  return glm::vec3(emission);
+}
+
 reader::material_use reader::material_for(int index) {
   if (index < 0) return {};
   int& cached = material_of_[static_cast<std::size_t>(index)];
+  if (cached != unread) return {cached, texcoord_set_of_[static_cast<std::size_t>(index)]};
   const tinygltf::Material& source = model_.materials[static_cast<std::size_t>(index)];
-  const tinygltf::TextureInfo& base = source.pbrMetallicRoughness.baseColorTexture;
-  // KHR_texture_transform may name another TEXCOORD set.
-  int texcoord_set = base.texCoord;
-  const auto transform = base.extensions.find("KHR_texture_transform");
-  if (transform != base.extensions.end() && transform->second.IsObject() && transform->second.Has("texCoord"))
-    texcoord_set = static_cast<int>(number(transform->second.Get("texCoord"), "material " + std::to_string(index) + " KHR_texture_transform texCoord"));
-  if (cached != unread) return {cached, cached >= 0 && library_.materials[static_cast<std::size_t>(cached)].texture >= 0 ? texcoord_set : -1};
   const std::string where = "material " + std::to_string(index) + (source.name.empty() ? "" : " '" + source.name + "'");
   surface_material made;
   made.name = source.name;
@@ -118,50 +195,35 @@ reader::material_use reader::material_for(int index) {
   } else if (source.alphaMode != "OPAQUE" && source.alphaMode != "BLEND") {
     fail(where + ": alphaMode must be OPAQUE, MASK or BLEND, not '" + source.alphaMode + "'");
   }
-  if (base.index >= 0) {
-    if (base.index >= static_cast<int>(model_.textures.size())) fail(where + ": baseColorTexture names texture " + std::to_string(base.index) + ", which does not exist");
-    const tinygltf::Texture& texture = model_.textures[static_cast<std::size_t>(base.index)];
-    if (texture.source < 0) {
-      std::string in;
-      for (const auto& [extension, value] : texture.extensions) in += (in.empty() ? "" : ", ") + extension;
-      note("texture images given only by " + (in.empty() ? std::string("no source") : in), "those textures are left out: their factor alone is the albedo");
-    } else if (texcoord_set < 0 || texcoord_set > 7) {
-      fail(where + ": baseColorTexture's texCoord must be in [0, 7]");
-    } else {
-      made.texture = texture_of(texture.source);
-      made.sampler = sampler_of(texture.sampler);
+  const texture_slot base = texture_slot_of(source.pbrMetallicRoughness.baseColorTexture, where, "baseColorTexture",
+                                            "those textures are left out: their factor alone is the albedo");
+  made.texture = base.texture;
+  made.sampler = base.sampler;
+  made.texture_matrix = base.matrix;
+  made.texture_offset = base.offset;
+  made.emission = emission_of(source, where);
+  if (emits(made)) {
+    texture_slot emission = texture_slot_of(source.emissiveTexture, where, "emissiveTexture", "those textures are left out: their factor alone is the emission");
+    // A vertex carries one texture coordinate: the emission texture reads the base colour's set
+    // or, without a base colour texture, its own.
+    if (emission.texture >= 0 && made.texture >= 0 && emission.texcoord_set != base.texcoord_set) {
+      note("emissiveTexture on another TEXCOORD set than its baseColorTexture", "those emission textures are left out: their factor alone is the emission");
+      emission.texture = -1;
     }
-    if (transform != base.extensions.end() && transform->second.IsObject()) {
-      const tinygltf::Value& t = transform->second;
-      const std::string in = where + " KHR_texture_transform";
-      glm::dvec2 offset(0.0), scale(1.0);
-      double rotation = 0.0;
-      for (const auto& [key, target] : {std::pair<const char*, glm::dvec2*>{"offset", &offset}, {"scale", &scale}}) {
-        if (!t.Has(key)) continue;
-        const tinygltf::Value& pair = t.Get(key);
-        if (!pair.IsArray() || pair.ArrayLen() != 2) fail(in + ": " + key + " needs 2 numbers");
-        *target = glm::dvec2(number(pair.Get(0), in + " " + key), number(pair.Get(1), in + " " + key));
-      }
-      if (t.Has("rotation")) rotation = number(t.Get("rotation"), in + " rotation");
-      // The extension's matrix: translation x rotation x scale, the rotation counter-clockwise
-      // in the image (v points down): [cos sin; -sin cos].
-      const double c = std::cos(rotation), s = std::sin(rotation);
-      const glm::dmat2 rotate(glm::dvec2(c, -s), glm::dvec2(s, c));  // columns
-      const glm::dmat2 matrix = rotate * glm::dmat2(glm::dvec2(scale.x, 0.0), glm::dvec2(0.0, scale.y));
-      made.texture_matrix = glm::mat2(matrix);
-      made.texture_offset = glm::vec2(offset);
-      if (!std::isfinite(made.texture_matrix[0][0] + made.texture_matrix[0][1] + made.texture_matrix[1][0] + made.texture_matrix[1][1]) ||
-          !std::isfinite(made.texture_offset.x + made.texture_offset.y))
-        fail(in + ": the transform is not finite as floats");
-    }
+    made.emission_texture = emission.texture;
+    made.emission_sampler = emission.sampler;
+    made.emission_texture_matrix = emission.matrix;
+    made.emission_texture_offset = emission.offset;
   }
-  if (made.texture < 0 && !made.alpha_mask) {
-    cached = -1;  // plain: the factor alone, opaque
+  const int texcoord_set = made.texture >= 0 ? base.texcoord_set : made.emission_texture >= 0 ? texcoord_set_of(source.emissiveTexture, where) : -1;
+  texcoord_set_of_[static_cast<std::size_t>(index)] = texcoord_set;
+  if (made.texture < 0 && !made.alpha_mask && !emits(made)) {
+    cached = -1;  // plain: the factor alone, opaque, not emitting
     return {};
   }
   library_.materials.push_back(std::move(made));
   cached = static_cast<int>(library_.materials.size() - 1);
-  return {cached, library_.materials.back().texture >= 0 ? texcoord_set : -1};
+  return {cached, texcoord_set};
 }
 
 }  // namespace vplkit::gltf_detail

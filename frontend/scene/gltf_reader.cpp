@@ -15,7 +15,8 @@ namespace {
 
 // The extensions the reader reads; any other one the file uses or requires is named in a note.
 bool extension_read(const std::string& name) {
-  return name == "KHR_lights_punctual" || name == "KHR_texture_transform" || name == "KHR_draco_mesh_compression";
+  return name == "KHR_lights_punctual" || name == "KHR_texture_transform" || name == "KHR_draco_mesh_compression" ||
+         name == "KHR_materials_emissive_strength";
 }
 
 }  // namespace
@@ -24,6 +25,7 @@ scene reader::read() {
   note_model_features();
   visited_.assign(model_.nodes.size(), false);
   material_of_.assign(model_.materials.size(), unread);
+  texcoord_set_of_.assign(model_.materials.size(), -1);
   texture_of_.assign(model_.images.size(), unread);
   walk(roots());
   if (geometry_.indices.empty())
@@ -65,9 +67,13 @@ void reader::note_model_features() {
   for (const tinygltf::Material& material : model_.materials) {
     if (material.normalTexture.index >= 0) note("normalTexture", "surfaces are shaded with their geometric normals");
     if (material.occlusionTexture.index >= 0) note("occlusionTexture", "the techniques compute their own occlusion");
-    if (material.emissiveTexture.index >= 0) note("emissiveTexture", "surfaces do not emit");
-    if (material.emissiveFactor.size() == 3 && (material.emissiveFactor[0] > 0.0 || material.emissiveFactor[1] > 0.0 || material.emissiveFactor[2] > 0.0))
-      note("emissiveFactor", "surfaces do not emit");
+    // Not a feature left out: emission is drawn (material.hpp), but it lights nothing, and a user
+    // who meant a lamp by it should know.
+    if (material.emissiveFactor.size() == 3 && (material.emissiveFactor[0] > 0.0 || material.emissiveFactor[1] > 0.0 || material.emissiveFactor[2] > 0.0) &&
+        std::find(noted_.begin(), noted_.end(), "emission") == noted_.end()) {
+      noted_.push_back("emission");
+      notes_.push_back(name_ + ": emissive materials are drawn as seen, but they do not light the scene (only its lights do)");
+    }
     if (material.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0)
       note("metallicRoughnessTexture", "surfaces are diffuse: the base colour is their albedo");
     if (material.alphaMode == "BLEND") note("alphaMode BLEND", "blended surfaces are drawn opaque");

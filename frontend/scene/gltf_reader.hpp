@@ -134,6 +134,18 @@ class reader {
   };
 
   material_use material_for(int index);
+  // A material's texture slot as read: the library texture (-1: none), its sampler, its
+  // KHR_texture_transform and the TEXCOORD set it reads.
+  struct texture_slot {
+    int texture = -1;
+    texture_sampler sampler;
+    glm::mat2 matrix{1.0f};
+    glm::vec2 offset{0.0f};
+    int texcoord_set = -1;
+  };
+  int texcoord_set_of(const tinygltf::TextureInfo& info, const std::string& where) const;
+  texture_slot texture_slot_of(const tinygltf::TextureInfo& info, const std::string& where, const std::string& slot, const std::string& without);
+  glm::vec3 emission_of(const tinygltf::Material& source, const std::string& where) const;
 
   // TEXCOORD_<set> of a primitive where it lies in its buffer (normalized unsigned bytes and shorts
   // scaled to [0, 1], as the spec allows), or an empty view when the primitive has none.
@@ -166,6 +178,7 @@ class reader {
   material_library library_;
   std::vector<int> material_of_;  ///< glTF material -> library material (-1 plain, unread not yet)
   std::vector<int> texture_of_;   ///< glTF image -> library texture
+  std::vector<int> texcoord_set_of_;  ///< glTF material -> the TEXCOORD set its textures read (-1: none), once read
   std::map<std::pair<int, std::size_t>, draco_mesh> draco_;  ///< (mesh, primitive) -> its decoded Draco data
   /// Decoded images by the hash of their bytes: (the bytes, the library texture).
   std::unordered_multimap<std::size_t, std::pair<std::string_view, int>> texture_of_bytes_;

@@ -31,11 +31,12 @@
 // inside; an object or open scene gets a three-quarter view, a spot light and a floor, the floor
 // only when the light is placed too); what was placed is a note of the scene.
 // What the file has and vplkit does not read is named once per feature in the scene's notes:
-// other texture slots (normal, occlusion, emissive, metallic-roughness), emissive factors,
-// alphaMode BLEND, vertex colours, morph targets, skins, animations, light ranges, orthographic
-// cameras, points and lines, material extensions, and every extension
-// the file uses or requires other than KHR_lights_punctual, KHR_texture_transform and
-// KHR_draco_mesh_compression.
+// other texture slots (normal, occlusion, metallic-roughness), alphaMode BLEND, vertex colours,
+// morph targets, skins, animations, light ranges, orthographic cameras, points and lines,
+// material extensions, and every extension the file uses or requires other than
+// KHR_lights_punctual, KHR_texture_transform, KHR_draco_mesh_compression and
+// KHR_materials_emissive_strength. Emissive materials (emissiveFactor x emissiveStrength x
+// emissiveTexture) are read and drawn as seen; a note says that they do not light the scene.
 //
 // Every index, count, offset and stride is checked against its buffer before it is read, every
 // number for being finite; a bad file throws vplkit::error naming the file and the problem. Images

@@ -19,7 +19,7 @@ namespace vplkit {
 std::string gltf_text(const scene& source) {
   check_scene(source);
   if (!source.geometry.material_ranges.empty())
-    throw error("scene " + source.name + ": textured and alpha-tested materials are not written as glTF (only colour factors are)");
+    throw error("scene " + source.name + ": textured, alpha-tested and emissive materials are not written as glTF (only colour factors are)");
   tinygltf::Model model;
   model.asset.version = "2.0";
   model.asset.generator = "vplkit export-scene";

@@ -139,6 +139,17 @@ glm::vec2 material_texture_coordinate(const surface_material& material, glm::vec
   return material.texture_matrix * texcoord + material.texture_offset;
 }
 
+glm::vec2 material_emission_coordinate(const surface_material& material, glm::vec2 texcoord) {
+  return material.emission_texture_matrix * texcoord + material.emission_texture_offset;
+}
+
+glm::vec3 material_emission(const material_library& library, const surface_material& material, glm::vec2 texcoord, float lod) {
+  if (!emits(material)) return glm::vec3(0.0f);
+  if (material.emission_texture < 0) return material.emission;
+  const texture& t = library.textures[static_cast<std::size_t>(material.emission_texture)];
+  return material.emission * glm::vec3(sample_texture(t, material.emission_sampler, material_emission_coordinate(material, texcoord), lod));
+}
+
 glm::vec4 sample_texture(const texture& t, const texture_sampler& sampler, glm::vec2 uv, float lod) {
   if (t.levels.empty()) return glm::vec4(1.0f);
   if (!(lod > 0.0f)) return sample_level(t.levels.front(), sampler, uv, sampler.mag);  // NaN: level 0

@@ -1,11 +1,16 @@
 // Surface materials of users' scenes: a base-colour texture with its sampler and texture
-// transform, and an alpha test (glTF's alphaMode MASK), for ranges of a mesh's triangles. What a
-// surface's albedo is, in one place for every reader of it:
+// transform, an alpha test (glTF's alphaMode MASK) and an emission, for ranges of a mesh's
+// triangles. What a surface's albedo and emission are, in one place for every reader of them:
 //
-//   albedo = vertex.albedo (the material's colour factor) x texture.rgb (sRGB decoded)
-//   alpha  = alpha_factor x texture.a; with alpha_mask, a fragment (or a ray's hit) whose alpha
-//            is below alpha_cutoff is not there at all: it is not drawn, casts no shadow, blocks
-//            no ray and reflects no light.
+//   albedo   = vertex.albedo (the material's colour factor) x texture.rgb (sRGB decoded)
+//   alpha    = alpha_factor x texture.a; with alpha_mask, a fragment (or a ray's hit) whose alpha
+//              is below alpha_cutoff is not there at all: it is not drawn, casts no shadow, blocks
+//              no ray and reflects no light.
+//   emission = material.emission (glTF's emissiveFactor x KHR_materials_emissive_strength) x
+//              emission texture.rgb (sRGB decoded, its own sampler and transform, the same texture
+//              coordinate set as the base colour's): radiance leaving the side the surface's normal
+//              faces, added to what the camera sees there. It lights nothing: no technique or
+//              reference takes it as a light (docs/scenes.md, "Emissive materials").
 //
 // Texture coordinates follow glTF: (0, 0) is the image's top-left corner and v grows downwards
 // (the OBJ reader flips its vt's v). The GL passes sample with the sampler's wrap modes and
@@ -73,7 +78,21 @@ struct surface_material {
   float alpha_factor = 1.0f;  ///< baseColorFactor.a
   bool alpha_mask = false;    ///< alphaMode MASK
   float alpha_cutoff = 0.5f;
+  /// Emitted radiance (linear RGB, each in [0, max_emission]) before the emission texture; 0: none.
+  glm::vec3 emission{0.0f};
+  int emission_texture = -1;  ///< into material_library::textures; -1: the factor alone
+  texture_sampler emission_sampler;
+  glm::mat2 emission_texture_matrix{1.0f};  ///< the emission texture's KHR_texture_transform
+  glm::vec2 emission_texture_offset{0.0f};
 };
+
+/// The largest emitted radiance per channel: the largest finite value of an rgba16f render target
+/// (65504, the techniques' default output format) rounded down, so that an emissive pixel of any
+/// technique's image stays finite.
+inline constexpr float max_emission = 6.0e4f;
+
+/// Whether the material emits (a channel of its emission above 0).
+inline bool emits(const surface_material& material) { return material.emission.r > 0.0f || material.emission.g > 0.0f || material.emission.b > 0.0f; }
 
 /// The textures and materials a mesh's material ranges name; shared between copies of a mesh.
 struct material_library {
@@ -118,6 +137,13 @@ glm::vec4 sample_texture(const texture& t, const texture_sampler& sampler, glm::
 
 /// The texture coordinate the material samples at for a vertex coordinate (its transform).
 glm::vec2 material_texture_coordinate(const surface_material& material, glm::vec2 texcoord);
+/// The same for the material's emission texture (its own transform).
+glm::vec2 material_emission_coordinate(const surface_material& material, glm::vec2 texcoord);
+
+/// The emitted radiance of `material` at vertex texture coordinate `texcoord`: its emission times
+/// its emission texture sampled with level of detail `lod` (sample_texture's rules). 0 for a
+/// material that does not emit, whatever its texture.
+glm::vec3 material_emission(const material_library& library, const surface_material& material, glm::vec2 texcoord, float lod);
 
 /// 8-bit sRGB code -> linear value (the table GL's sRGB decode is specified by).
 float srgb8_to_linear(std::uint8_t code);

@@ -69,6 +69,13 @@ bool has_alpha_cutouts(const mesh& geometry) {
   return false;
 }
 
+bool has_emission(const mesh& geometry) {
+  if (!geometry.materials) return false;
+  for (const material_range& range : geometry.material_ranges)
+    if (range.index_count > 0 && range.material < geometry.materials->materials.size() && emits(geometry.materials->materials[range.material])) return true;
+  return false;
+}
+
 void check_materials(const mesh& geometry, const std::string& name) {
   const auto fail = [&](const std::string& what) { throw error(name + ": " + what); };
   if (geometry.material_ranges.empty()) return;
@@ -93,6 +100,15 @@ void check_materials(const mesh& geometry, const std::string& name) {
       fail(where + ": its texture transform is not finite");
     if (!(material.alpha_factor >= 0.0f && material.alpha_factor <= 1.0f) || !(material.alpha_cutoff >= 0.0f && material.alpha_cutoff <= 1.0f))
       fail(where + ": alpha factor and cutoff must be in [0, 1]");
+    const glm::vec3& e = material.emission;
+    if (!(e.r >= 0.0f && e.g >= 0.0f && e.b >= 0.0f && e.r <= max_emission && e.g <= max_emission && e.b <= max_emission))
+      fail(where + ": its emission must be finite and in [0, " + std::to_string(static_cast<int>(max_emission)) + "] per channel");
+    if (material.emission_texture >= static_cast<int>(library.textures.size()) || material.emission_texture < -1)
+      fail(where + " names an emission texture that does not exist");
+    const glm::vec4 emission_matrix(material.emission_texture_matrix[0], material.emission_texture_matrix[1]);
+    if (!finite(glm::vec3(emission_matrix)) || !std::isfinite(emission_matrix.w) || !std::isfinite(material.emission_texture_offset.x) ||
+        !std::isfinite(material.emission_texture_offset.y))
+      fail(where + ": its emission texture transform is not finite");
   }
   for (const texture& t : library.textures) {
     bool consistent = !t.levels.empty();
@@ -129,6 +145,16 @@ glm::vec4 surface_albedo_alpha(const mesh& geometry, std::size_t triangle, glm::
     texel = sample_texture(geometry.materials->textures[static_cast<std::size_t>(material->texture)], material->sampler, uv, lod);
   }
   return glm::vec4(factor * glm::vec3(texel), material->alpha_factor * texel.a);
+}
+
+glm::vec3 surface_emission(const mesh& geometry, std::size_t triangle, glm::vec2 barycentric, float lod) {
+  const surface_material* material = material_of_triangle(geometry, triangle);
+  if (!material || !emits(*material)) return glm::vec3(0.0f);
+  const vertex& a = geometry.vertices[geometry.indices[3 * triangle]];
+  const vertex& b = geometry.vertices[geometry.indices[3 * triangle + 1]];
+  const vertex& c = geometry.vertices[geometry.indices[3 * triangle + 2]];
+  const float u = barycentric.x, v = barycentric.y, w = 1.0f - u - v;
+  return material_emission(*geometry.materials, *material, w * a.texcoord + u * b.texcoord + v * c.texcoord, lod);
 }
 
 bool surface_cut_out(const mesh& geometry, std::size_t triangle, glm::vec2 barycentric, float lod) {

@@ -47,6 +47,10 @@ const surface_material* material_of_triangle(const mesh& geometry, std::size_t t
 /// from GL's), and the material's alpha.
 glm::vec4 surface_albedo_alpha(const mesh& geometry, std::size_t triangle, glm::vec2 barycentric, float lod = 0.0f);
 
+/// Emitted radiance (linear RGB) at the point (1 - u - v) a + u b + v c of triangle `triangle`:
+/// material_emission at the interpolated texture coordinate; 0 for a plain triangle.
+glm::vec3 surface_emission(const mesh& geometry, std::size_t triangle, glm::vec2 barycentric, float lod = 0.0f);
+
 /// Whether the point is cut out: an alpha-tested (MASK) material with alpha below its cutoff.
 bool surface_cut_out(const mesh& geometry, std::size_t triangle, glm::vec2 barycentric, float lod = 0.0f);
 
@@ -135,6 +139,9 @@ void check_materials(const mesh& geometry, const std::string& name);
 /// Whether a material of the mesh is alpha-tested (MASK): the passes that draw it need the alpha
 /// test; a mesh without cut-outs can be drawn by shaders without it (VPLKIT_MATERIAL_NO_ALPHA_TEST).
 bool has_alpha_cutouts(const mesh& geometry);
+/// Whether a material range of the mesh names a material that emits: only then is an emission
+/// pass drawn (a scene without emission pays nothing for it).
+bool has_emission(const mesh& geometry);
 
 /// The scene's light, for code that draws exactly one: throws vplkit::error naming the scene and
 /// `what` ("the RSM pipeline") when it has none or several (choose one with --lights k).

@@ -29,6 +29,16 @@ GLint gl_min_filter(const texture_sampler& sampler) {
   return linear ? GL_LINEAR_MIPMAP_NEAREST : GL_NEAREST_MIPMAP_NEAREST;
 }
 
+gl_sampler make_sampler(const texture_sampler& from) {
+  gl_sampler made(generate_sampler());
+  const GLuint sampler = made.get();
+  glSamplerParameteri(sampler, GL_TEXTURE_WRAP_S, gl_wrap(from.wrap_s));
+  glSamplerParameteri(sampler, GL_TEXTURE_WRAP_T, gl_wrap(from.wrap_t));
+  glSamplerParameteri(sampler, GL_TEXTURE_MAG_FILTER, from.mag == texture_filter::linear ? GL_LINEAR : GL_NEAREST);
+  glSamplerParameteri(sampler, GL_TEXTURE_MIN_FILTER, gl_min_filter(from));
+  return made;
+}
+
 }  // namespace
 
 mesh_buffers::mesh_buffers(const mesh& source, draw_chunking chunking)
@@ -123,12 +133,8 @@ mesh_buffers::mesh_buffers(const mesh& source, draw_chunking chunking)
   }
   glBindTexture(GL_TEXTURE_2D, 0);
   for (const surface_material& material : materials_->materials) {
-    samplers_.emplace_back(generate_sampler());
-    const GLuint sampler = samplers_.back().get();
-    glSamplerParameteri(sampler, GL_TEXTURE_WRAP_S, gl_wrap(material.sampler.wrap_s));
-    glSamplerParameteri(sampler, GL_TEXTURE_WRAP_T, gl_wrap(material.sampler.wrap_t));
-    glSamplerParameteri(sampler, GL_TEXTURE_MAG_FILTER, material.sampler.mag == texture_filter::linear ? GL_LINEAR : GL_NEAREST);
-    glSamplerParameteri(sampler, GL_TEXTURE_MIN_FILTER, gl_min_filter(material.sampler));
+    samplers_.push_back(make_sampler(material.sampler));
+    emission_samplers_.push_back(make_sampler(material.emission_sampler));
   }
   check_gl("making the samplers of " + std::to_string(samplers_.size()) + " materials");
 }
@@ -136,24 +142,66 @@ mesh_buffers::mesh_buffers(const mesh& source, draw_chunking chunking)
 void mesh_buffers::draw(const program& target) const {
   target.use();
   target.set("material_texture", material_texture_unit);
-  glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + material_texture_unit));
   glBindVertexArray(vertex_array_.get());
   set_constant_attributes();
   for (const segment& part : segments_) {
-    const surface_material* material = part.material >= 0 ? &materials_->materials[static_cast<std::size_t>(part.material)] : nullptr;
-    const bool textured = material && material->texture >= 0;
-    target.set("material_textured", textured ? 1 : 0);
-    target.set("material_alpha_factor", material ? material->alpha_factor : 1.0f);
-    target.set("material_alpha_cutoff", material && material->alpha_mask ? material->alpha_cutoff : -1.0f);
-    if (material) {
-      target.set("material_texture_matrix", glm::vec4(material->texture_matrix[0], material->texture_matrix[1]));
-      target.set("material_texture_offset", material->texture_offset);
-    }
-    glBindTexture(GL_TEXTURE_2D, textured ? textures_[static_cast<std::size_t>(material->texture)].get() : 0);
-    glBindSampler(static_cast<GLuint>(material_texture_unit), textured ? samplers_[static_cast<std::size_t>(part.material)].get() : 0);
+    bind_material(target, part.material);
     draw_triangles(part.first_index, part.count);
   }
+  unbind_materials();
+}
+
+bool mesh_buffers::has_emission() const {
+  return std::any_of(segments_.begin(), segments_.end(), [&](const segment& part) {
+    return part.material >= 0 && emits(materials_->materials[static_cast<std::size_t>(part.material)]);
+  });
+}
+
+void mesh_buffers::draw_emissive(const program& target) const {
+  target.use();
+  target.set("material_texture", material_texture_unit);
+  target.set("material_emission_texture", emission_texture_unit);
+  glBindVertexArray(vertex_array_.get());
+  set_constant_attributes();
+  for (const segment& part : segments_) {
+    if (part.material < 0) continue;
+    const surface_material& material = materials_->materials[static_cast<std::size_t>(part.material)];
+    if (!emits(material)) continue;
+    bind_material(target, part.material);
+    const bool textured = material.emission_texture >= 0;
+    target.set("material_emission", material.emission);
+    target.set("material_emission_textured", textured ? 1 : 0);
+    target.set("material_emission_texture_matrix", glm::vec4(material.emission_texture_matrix[0], material.emission_texture_matrix[1]));
+    target.set("material_emission_texture_offset", material.emission_texture_offset);
+    glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + emission_texture_unit));
+    glBindTexture(GL_TEXTURE_2D, textured ? textures_[static_cast<std::size_t>(material.emission_texture)].get() : 0);
+    glBindSampler(static_cast<GLuint>(emission_texture_unit), textured ? emission_samplers_[static_cast<std::size_t>(part.material)].get() : 0);
+    draw_triangles(part.first_index, part.count);
+  }
+  glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + emission_texture_unit));
+  glBindSampler(static_cast<GLuint>(emission_texture_unit), 0);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  unbind_materials();
+}
+
+void mesh_buffers::bind_material(const program& target, int index) const {
+  const surface_material* material = index >= 0 ? &materials_->materials[static_cast<std::size_t>(index)] : nullptr;
+  const bool textured = material && material->texture >= 0;
+  target.set("material_textured", textured ? 1 : 0);
+  target.set("material_alpha_factor", material ? material->alpha_factor : 1.0f);
+  target.set("material_alpha_cutoff", material && material->alpha_mask ? material->alpha_cutoff : -1.0f);
+  if (material) {
+    target.set("material_texture_matrix", glm::vec4(material->texture_matrix[0], material->texture_matrix[1]));
+    target.set("material_texture_offset", material->texture_offset);
+  }
+  glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + material_texture_unit));
+  glBindTexture(GL_TEXTURE_2D, textured ? textures_[static_cast<std::size_t>(material->texture)].get() : 0);
+  glBindSampler(static_cast<GLuint>(material_texture_unit), textured ? samplers_[static_cast<std::size_t>(index)].get() : 0);
+}
+
+void mesh_buffers::unbind_materials() const {
   glBindVertexArray(0);
+  glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + material_texture_unit));
   glBindSampler(static_cast<GLuint>(material_texture_unit), 0);
   glBindTexture(GL_TEXTURE_2D, 0);
   glActiveTexture(GL_TEXTURE0);

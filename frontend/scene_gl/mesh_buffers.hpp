@@ -18,6 +18,8 @@ namespace vplkit {
 /// The texture unit a material's base-colour texture is bound to while a mesh draws (the
 /// pipelines' own textures use the units below it).
 constexpr int material_texture_unit = 8;
+/// The unit of a material's emission texture while draw_emissive draws it.
+constexpr int emission_texture_unit = material_texture_unit + 1;
 
 /// How draw() splits a long run of triangles (one material range, or the plain triangles
 /// between ranges): a run of more than `threshold_triangles` is drawn in chunks of
@@ -38,6 +40,13 @@ class mesh_buffers {
   /// material's uniforms set; the plain triangles between ranges draw untextured and opaque.
   /// Uses `target`.
   void draw(const program& target) const;
+  /// Whether a material range of the mesh emits (frontend/scene/material.hpp).
+  bool has_emission() const;
+  /// Draws the emissive material ranges only, with `target` (an emission pass's program,
+  /// shaders/emission.frag): draw()'s material uniforms and textures, and per range its emission
+  /// (material_emission), emission texture (bound to emission_texture_unit, with its own sampler)
+  /// and its transform.
+  void draw_emissive(const program& target) const;
   /// Every vertex once, as points (for transform feedback over the vertex stage).
   void draw_points() const;
   /// Binds `buffer`, one vec4 of floats per vertex, to attribute `location` of the vertex array
@@ -59,6 +68,10 @@ class mesh_buffers {
   GLsizei vertex_count_;
   /// Sets the constant attributes (albedo, texture coordinate) that this mesh keeps out of its buffer.
   void set_constant_attributes() const;
+  /// Material `index`'s (-1: plain) uniforms, base-colour texture and sampler, for one segment.
+  void bind_material(const program& target, int index) const;
+  /// Unbinds the vertex array and the material's texture and sampler after a draw.
+  void unbind_materials() const;
   /// Draws `count` indices from `first_index` of the bound vertex array: one draw call, or for
   /// more than chunking_.threshold_triangles, chunks of chunking_.chunk_triangles with at most
   /// two in flight.
@@ -73,6 +86,7 @@ class mesh_buffers {
   std::shared_ptr<const material_library> materials_;
   std::vector<gl_texture> textures_;
   std::vector<gl_sampler> samplers_;  ///< one per material
+  std::vector<gl_sampler> emission_samplers_;  ///< one per material, for its emission texture
 };
 
 }  // namespace vplkit

@@ -61,6 +61,21 @@ if(EXISTS "${box}")
   expect_success("BoxTextured renders with its texture" "framed as an object.*scene BoxTextured" "${VPLKIT}" render --scene "${box}" ${small} --out "${WORK}/box.png")
 endif()
 
+# Emissive materials (issue 38 item 4). Khronos' ClearCoatTest (in Debian's assimp test models)
+# labels its spheres with an emissive texture: it renders, the note says emission is drawn and
+# lights nothing, and the frame has an emission pass. A negative emissiveStrength is refused
+# naming the file and the material, exit 1, nothing written.
+set(clear_coat "/usr/share/assimp/models/glTF2/ClearCoat-glTF/ClearCoatTest.gltf")
+if(EXISTS "${clear_coat}")
+  expect_success("ClearCoatTest's emissive labels are drawn" "emissive materials are drawn as seen, but they do not light the scene"
+                 "${VPLKIT}" render --scene "${clear_coat}" ${small} --stats "${WORK}/clear-coat.json" --out "${WORK}/clear-coat.png")
+  file(READ "${WORK}/clear-coat.json" clear_coat_stats)
+  expect_true("ClearCoatTest's frame has an emission pass" "${clear_coat_stats}" MATCHES "\"emission\"")
+endif()
+file(WRITE "${WORK}/dark-lamp.gltf" "{\"asset\": {\"version\": \"2.0\"}, \"nodes\": [{\"mesh\": 0}], \"meshes\": [{\"primitives\": [{\"attributes\": {\"POSITION\": 0}, \"material\": 0}]}], \"materials\": [{\"name\": \"lamp\", \"emissiveFactor\": [1, 1, 1], \"extensions\": {\"KHR_materials_emissive_strength\": {\"emissiveStrength\": -1}}}], \"accessors\": [{\"bufferView\": 0, \"componentType\": 5126, \"count\": 3, \"type\": \"VEC3\", \"min\": [0, 0, 0], \"max\": [1, 1, 0]}], \"bufferViews\": [{\"buffer\": 0, \"byteLength\": 36}], \"buffers\": [{\"byteLength\": 36, \"uri\": \"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA\"}]}")
+expect_failure("a negative emissiveStrength" "dark-lamp\\.gltf: material 0 'lamp': KHR_materials_emissive_strength's emissiveStrength must be a finite number >= 0, not -1"
+               "${WORK}/dark-lamp*.p*" "${VPLKIT}" render --scene "${WORK}/dark-lamp.gltf" ${small} --out "${WORK}/dark-lamp.png")
+
 # --lights (issue 38): bad texts and indices the scene does not have are usage errors, exit code 2
 # exactly, the option and the reason named, nothing written.
 function(expect_usage_error name pattern must_not_exist)

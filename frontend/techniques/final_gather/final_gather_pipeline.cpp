@@ -101,6 +101,7 @@ final_gather_pipeline::final_gather_pipeline(const shader_library& shaders, cons
     shade_program_.set(name, unit++);
   shade_program_.set("resolution", settings_.resolution);
   shade_program_.set("environment_resolution", settings_.environment_resolution);
+  if (has_emission(source.room) || has_emission(source.object)) emission_.emplace(shaders);
   set_pose_uniforms();
   check_gl("setting up the final gathering pipeline");
 }
@@ -108,9 +109,11 @@ final_gather_pipeline::final_gather_pipeline(const shader_library& shaders, cons
 void final_gather_pipeline::set_pose_uniforms() {
   for (const program* target : {&cube_program_, &shade_program_}) target->set("reference_point", scene_.reference_point);
   if (technique_.variant == final_gather_variant::environment_map) environment_program_.set("reference_point", scene_.reference_point);
-  const glm::mat4 camera = camera_projection_matrix(scene_.view, static_cast<float>(settings_.width) / static_cast<float>(settings_.height)) *
-                           camera_view_matrix(scene_.view);
-  gbuffer_program_.set("view_projection", camera);
+  gbuffer_program_.set("view_projection", camera_view_projection());
+}
+
+glm::mat4 final_gather_pipeline::camera_view_projection() const {
+  return camera_projection_matrix(scene_.view, static_cast<float>(settings_.width) / static_cast<float>(settings_.height)) * camera_view_matrix(scene_.view);
 }
 
 void final_gather_pipeline::set_camera(const camera& view) {
@@ -249,6 +252,13 @@ void final_gather_pipeline::draw_passes(bool with_cube) {
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glBindVertexArray(0);
   timer_.end();
+  if (emission_) {
+    // The room's and the object's emitters, on the G-buffer's depth of both.
+    timer_.begin("emission");
+    for (const mesh_buffers* drawn : {&room_, &object_})
+      if (drawn->has_emission()) emission_->draw(*drawn, camera_view_projection(), scene_.view.position, output_.colour(0), gbuffer_.depth());
+    timer_.end();
+  }
   check_gl("final gathering, object " + scene_.name + ", " + technique_.name);
   view_valid_ = true;
   ++view_draws_;

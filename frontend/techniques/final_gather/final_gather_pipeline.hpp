@@ -22,6 +22,7 @@
 #include "frontend/techniques/final_gather/final_gather_scene.hpp"
 #include "frontend/techniques/final_gather/final_gather_settings.hpp"
 #include "frontend/gl/pass_timer.hpp"
+#include "frontend/scene_gl/emission_pass.hpp"
 #include "frontend/scene_gl/mesh_buffers.hpp"
 #include "frontend/gl/render_target.hpp"
 #include "frontend/scene/camera.hpp"
@@ -115,6 +116,7 @@ class final_gather_pipeline final : public pipeline {
   framebuffer direct_;
   framebuffer output_;
   gl_vertex_array empty_vertex_array_;
+  std::optional<emission_pass> emission_;  ///< only when a material of the room or the object emits
   pass_timer timer_;
   bool cube_valid_ = false;
   bool view_valid_ = false;
@@ -122,6 +124,7 @@ class final_gather_pipeline final : public pipeline {
   int view_draws_ = 0;
 
   void set_pose_uniforms();
+  glm::mat4 camera_view_projection() const;
   void draw_passes(bool with_cube);
   /// Light `light`'s uniforms (the faces' and the direct light's) and its depth map(s).
   void draw_light_depth(std::size_t light);

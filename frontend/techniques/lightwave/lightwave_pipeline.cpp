@@ -69,6 +69,7 @@ lightwave_pipeline::lightwave_pipeline(const shader_library& shaders, const scen
 void lightwave_pipeline::set_up(const shader_library& shaders, const scene& source, bool make_shared) {
   kind_ = source.lights[0].kind;
   light_layers_ = kind_ == light_kind::point ? 6 : 1;
+  if (make_shared && has_emission(source.geometry)) emission_.emplace(shaders);
   if (make_shared) {
     shared_->mesh_bytes = static_cast<std::uint64_t>(source.geometry.vertices.size()) * sizeof(vertex) +
                           static_cast<std::uint64_t>(source.geometry.indices.size()) * sizeof(std::uint32_t);
@@ -596,6 +597,11 @@ void lightwave_pipeline::draw_changed() {
   if (!redraw) return;
   draw_main_pass(true);
   for (const auto& other : light_pipelines_) other->draw_main_pass(false);
+  if (emission_) {
+    timer_.begin("emission");
+    emission_->draw(shared_->scene_mesh, camera_view_projection(), scene_.view.position, shared_->target.colour(0), shared_->target.depth());
+    timer_.end();
+  }
 }
 
 std::vector<pass_time> lightwave_pipeline::collect_pass_times() {

@@ -34,6 +34,7 @@
 #include <vplkit/gl/program.hpp>
 
 #include "frontend/gl/pass_timer.hpp"
+#include "frontend/scene_gl/emission_pass.hpp"
 #include "frontend/scene_gl/mesh_buffers.hpp"
 #include "frontend/gl/render_target.hpp"
 #include "frontend/scene/scene.hpp"
@@ -264,6 +265,9 @@ class lightwave_pipeline final : public pipeline {
   gl_texture vpl_texture_;
   gl_texture shadow_maps_;
   gl_framebuffer shadow_framebuffer_;
+  /// The first light's pipeline's, only when a material of the scene emits: drawn once onto the
+  /// sum of every light's main pass.
+  std::optional<emission_pass> emission_;
   glm::ivec2 shadow_size_{0};
   int shadow_layers_ = 1;  ///< allocated: 1 + the maps asked for; drawn: 1 + casters_ (fewer when fewer VPLs light the scene)
   pass_timer timer_;

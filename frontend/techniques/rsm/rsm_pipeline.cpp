@@ -228,6 +228,7 @@ rsm_pipeline::rsm_pipeline(const shader_library& shaders, const scene& source, c
     const glm::ivec2 size = voxel_texture_size(voxels_->shape.cells);
     voxel_texture_.emplace(size.x, size.y, texel_format::rgba32ui, voxels_->texels.data());
   }
+  if (has_emission(source.geometry)) emission_.emplace(shaders);
   load_programs(shaders);
   set_settings_uniforms();
   set_pose_uniforms();
@@ -489,6 +490,12 @@ void rsm_pipeline::draw_passes(bool all_rsms, bool accumulate) {
     // The filter's input: the gather, or (sequences, one light) the gather accumulated over the frames.
     draw_post(accumulate ? accumulate_history() : indirect_targets_[k], k);
     glBindVertexArray(0);
+  }
+  if (emission_) {
+    // Onto the sum of the views, on the G-buffer's depth of the view (every view's is the same).
+    timer_.begin("emission");
+    emission_->draw(mesh_, constants_.camera_view_projection, scene_.view.position, post_target_.colour(0), gbuffer_target_.depth());
+    timer_.end();
   }
   check_gl("rendering scene " + scene_.name + " with " + technique.name);
   view_valid_ = true;

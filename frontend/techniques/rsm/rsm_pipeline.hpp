@@ -25,6 +25,7 @@
 
 #include "frontend/techniques/rsm/rsm_settings.hpp"
 #include "frontend/gl/pass_timer.hpp"
+#include "frontend/scene_gl/emission_pass.hpp"
 #include "frontend/scene_gl/mesh_buffers.hpp"
 #include "frontend/gl/render_target.hpp"
 #include "frontend/scene/camera.hpp"
@@ -245,6 +246,7 @@ class rsm_pipeline final : public pipeline {
   framebuffer blur_y_target_;  ///< blur_y.frag's red, green and blue planes (1 x 1 unless quad_blur)
   framebuffer post_target_;
   gl_vertex_array empty_vertex_array_;
+  std::optional<emission_pass> emission_;  ///< only when a material of the scene emits
   pass_timer timer_;
   std::vector<char> rsm_valid_;  ///< per view: its RSM matches its light
   bool view_valid_ = false;  ///< the G-buffer to post filter match the camera and the RSM

@@ -685,3 +685,108 @@ TEST_CASE("a glTF with 9 lights reads; check_scene and the writer refuse it nami
   many.lights.pop_back();
   check_same_lights(parse_gltf(gltf_text(many), false, "eight-back.gltf", {}).lights, many.lights);
 }
+
+namespace {
+
+// The textured triangle of textured_gltf (uv.bin) with one material given as JSON.
+std::string emissive_gltf(const std::string& material, const std::string& textures = "") {
+  std::string text = R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],)"
+                     R"( "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1, "TEXCOORD_1": 1}, "material": 0}]}], "materials": [)" +
+                     material + "],";
+  if (!textures.empty()) text += textures + ",";
+  return text + R"( "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},)"
+                R"( {"bufferView": 1, "componentType": 5126, "count": 3, "type": "VEC2"}], "bufferViews": [{"buffer": 0, "byteLength": 36},)"
+                R"( {"buffer": 0, "byteOffset": 36, "byteLength": 24}], "buffers": [{"byteLength": 60, "uri": "uv.bin"}]})";
+}
+
+struct emissive_folder : gltf_folder {
+  emissive_folder() {
+    const float uv_bin[15] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 1};
+    std::ofstream(root / "scene" / "uv.bin", std::ios::binary).write(reinterpret_cast<const char*>(uv_bin), sizeof uv_bin);
+    write_png(root / "scene" / "glow.png", 4, 4, 200);
+    write_png(root / "scene" / "base.png", 4, 4, 100);
+  }
+};
+
+}  // namespace
+
+TEST_CASE("emissive materials: emission = emissiveFactor x KHR_materials_emissive_strength, its texture with its own sampler, set and transform") {
+  const emissive_folder folder;
+  const auto material_of = [&](const std::string& name, const std::string& material, const std::string& textures = "") {
+    const scene loaded = load_gltf(folder.write(name, emissive_gltf(material, textures)));
+    REQUIRE(loaded.geometry.materials != nullptr);
+    REQUIRE(loaded.geometry.materials->materials.size() == 1);
+    CHECK(has_emission(loaded.geometry));
+    return std::make_pair(loaded.geometry.materials->materials.front(), loaded);
+  };
+  // The factor alone: an untextured, opaque material that is kept for its emission.
+  const auto [plain, plain_scene] = material_of("factor.gltf", R"({"emissiveFactor": [0.25, 0.5, 1]})");
+  check_close(plain.emission, {0.25f, 0.5f, 1.0f}, 1e-6f);
+  CHECK(plain.emission_texture == -1);
+  CHECK(plain.texture == -1);
+  // The strength multiplies the factor (both ways of writing the number).
+  const auto [strong, strong_scene] =
+      material_of("strength.gltf", R"({"emissiveFactor": [0.25, 0.5, 1], "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 40}}})");
+  check_close(strong.emission, {10.0f, 20.0f, 40.0f}, 1e-6f);
+  // A note says that it is drawn and lights nothing; none of the old "not read" lines.
+  bool drawn_note = false;
+  for (const std::string& note : strong_scene.notes) {
+    CHECK(note.find("not read (surfaces do not emit)") == std::string::npos);
+    CHECK(note.find("KHR_materials_emissive_strength") == std::string::npos);
+    drawn_note = drawn_note || note.find("emissive materials are drawn as seen, but they do not light the scene") != std::string::npos;
+  }
+  CHECK(drawn_note);
+  // The emissive texture: its own sampler (nearest), TEXCOORD_1 through KHR_texture_transform, scaled by 2.
+  const std::string textures = R"("textures": [{"source": 0, "sampler": 0}, {"source": 1}], "samplers": [{"magFilter": 9728, "minFilter": 9728}],)"
+                               R"( "images": [{"uri": "glow.png"}, {"uri": "base.png"}])";
+  const auto [glowing, glowing_scene] = material_of(
+      "texture.gltf",
+      R"({"emissiveFactor": [1, 0.5, 0.25], "emissiveTexture": {"index": 0, "extensions": {"KHR_texture_transform": {"texCoord": 1, "scale": [2, 2]}}}})",
+      textures);
+  REQUIRE(glowing.emission_texture >= 0);
+  CHECK(glowing.emission_sampler.mag == texture_filter::nearest);
+  CHECK(glowing.emission_texture_matrix[0][0] == doctest::Approx(2.0));
+  CHECK(glowing.emission_texture_matrix[1][1] == doctest::Approx(2.0));
+  // The closed form at any point of the triangle: factor x the grey's linear value.
+  const glm::vec3 seen = surface_emission(glowing_scene.geometry, 0, {0.25f, 0.25f});
+  check_close(seen, glm::vec3(1.0f, 0.5f, 0.25f) * srgb8_to_linear(200), 1e-5f);
+  // Beside a base colour texture on another set, the emission texture is left out with a note;
+  // on the same set it is kept.
+  const auto [apart, apart_scene] = material_of(
+      "apart.gltf", R"({"pbrMetallicRoughness": {"baseColorTexture": {"index": 1}}, "emissiveFactor": [1, 1, 1], "emissiveTexture": {"index": 0, "texCoord": 1}})",
+      textures);
+  CHECK(apart.emission_texture == -1);
+  CHECK(apart.texture >= 0);
+  CHECK(std::any_of(apart_scene.notes.begin(), apart_scene.notes.end(),
+                    [](const std::string& note) { return note.find("emissiveTexture on another TEXCOORD set") != std::string::npos; }));
+  const auto [together, together_scene] = material_of(
+      "together.gltf", R"({"pbrMetallicRoughness": {"baseColorTexture": {"index": 1}}, "emissiveFactor": [1, 1, 1], "emissiveTexture": {"index": 0}})", textures);
+  CHECK(together.emission_texture >= 0);
+  CHECK(together.texture >= 0);
+  // A zero factor with a texture does not emit: no emission pass is needed.
+  const scene dark = load_gltf(folder.write("dark.gltf", emissive_gltf(R"({"emissiveTexture": {"index": 0}})", textures)));
+  CHECK_FALSE(has_emission(dark.geometry));
+}
+
+TEST_CASE("emissive materials: a negative, too large or non-finite factor or strength is refused naming the file and the material") {
+  const emissive_folder folder;
+  const auto refused = [&](const std::string& material) { return load_error(folder.write("bad.gltf", emissive_gltf(material))); };
+  const auto strength = [](const std::string& value) {
+    return R"({"name": "lamp", "emissiveFactor": [1, 1, 1], "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": )" + value + "}}}";
+  };
+  const std::string factor_range = "bad.gltf: material 0 'lamp': emissiveFactor must be 3 finite numbers in [0, 1]";
+  CHECK(refused(R"({"name": "lamp", "emissiveFactor": [-0.5, 0, 0]})").find(factor_range + ", not [-0.5, 0, 0]") != std::string::npos);
+  CHECK(refused(R"({"name": "lamp", "emissiveFactor": [2, 0, 0]})").find(factor_range) != std::string::npos);
+  CHECK(refused(R"({"name": "lamp", "emissiveFactor": [1e400, 0, 0]})").find("bad.gltf") != std::string::npos);  // JSON's overflow: named, whoever refuses it
+  const std::string two = refused(R"({"name": "lamp", "emissiveFactor": [1, 0]})");  // tinygltf's own check: named, with the file
+  CHECK(two.find("bad.gltf") != std::string::npos);
+  CHECK(two.find("emissiveFactor") != std::string::npos);
+  const std::string strength_range = "bad.gltf: material 0 'lamp': KHR_materials_emissive_strength's emissiveStrength must be a finite number >= 0";
+  CHECK(refused(strength("-1")).find(strength_range + ", not -1") != std::string::npos);
+  CHECK(refused(strength("\"bright\"")).find(strength_range) != std::string::npos);
+  CHECK(refused(strength("1e300")).find("bad.gltf: material 0 'lamp': emissiveFactor x emissiveStrength must be at most 60000 per channel") != std::string::npos);
+  CHECK(refused(strength("1e400")).find("bad.gltf") != std::string::npos);
+  // The largest allowed emission loads; a strength of 0 loads and does not emit.
+  CHECK(load_gltf(folder.write("max.gltf", emissive_gltf(strength("60000")))).geometry.materials->materials.front().emission.r == 60000.0f);
+  CHECK_FALSE(has_emission(load_gltf(folder.write("off.gltf", emissive_gltf(strength("0")))).geometry));
+}
