@@ -4,6 +4,8 @@
 // test (test_parity_form_factor.cpp); this one catches a twin whose cube-map geometry (faces,
 // corners, the corner distances read across face edges), loop or sum differs. It runs on every
 // target (tests/parity/targets.hpp): the cube map is a kernel_table, a texture or a storage buffer.
+// And the small map's texels from a full one (final_gather_downsample.hpp against
+// shaders/lib/final_gather_downsample.glsl): the solid-angle weights and the block loops.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -13,6 +15,7 @@
 #include <vector>
 
 #include <vplkit/final_gather.hpp>
+#include <vplkit/final_gather_downsample.hpp>
 
 #include <vplkit/parity/doctest.hpp>
 
@@ -116,6 +119,47 @@ TEST_CASE("parity: final_gather_irradiance with the polygon and the point form f
       const float relative = static_cast<float>(2.0 * terms * 0x1p-24 + 4e-6);
       require_parity(compare(name, gpu.floats[0], cpu, inputs,
                              {1e-6f, relative, 16, 0.0, "form factors of corners a few ulp apart, 2 N roundings of a sum of N positive terms"}, 3));
+    }
+  }
+}
+
+TEST_CASE("parity: cube_downsample_texel (the small map's solid-angle-weighted means), on every target") {
+  // A full map of S = 24 with random [radiance | distance] per texel, so that a wrong weight,
+  // block or face shows; every texel of the small map at M = 3 and M = 4 (blocks of 8 and 6).
+  const int face_size = 24;
+  std::vector<glm::vec4> full(static_cast<std::size_t>(6 * face_size * face_size));
+  std::mt19937 random(45);
+  std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+  for (glm::vec4& texel : full) texel = glm::vec4(uniform(random), uniform(random), 4.0f * uniform(random), 0.5f + 3.0f * uniform(random));
+  const auto fetch = [&](int face, int i, int j) { return full[static_cast<std::size_t>(j * 6 * face_size + face * face_size + i)]; };
+  kernel_resources resources;
+  resources.tables = {{"full", 6 * face_size, face_size, full}};
+  for (int m : {3, 4}) {
+    kernel_inputs inputs = grid_of(6 * m, m, 1);
+    std::vector<glm::vec4> cpu(inputs.size());
+    for (int j = 0; j < m; ++j)
+      for (int column = 0; column < 6 * m; ++column) {
+        const std::size_t k = static_cast<std::size_t>(j * 6 * m + column);
+        inputs.floats[0][k] = glm::vec4(static_cast<float>(column / m), static_cast<float>(column % m), static_cast<float>(j), 0.0f);
+        cpu[k] = cube_downsample_texel<float>(column / m, column % m, j, face_size, m, fetch);
+      }
+    for (const testing::target_run& run : testing::every_target()) {
+      const std::string name = "cube_downsample_texel (M = " + std::to_string(m) + ", " + run.name() + ")";
+      CAPTURE(name);
+      if (!testing::target_runs(run.where)) continue;
+      kernel_source source;
+      source.name = name;
+      source.includes = {"lib/final_gather_downsample.glsl"};
+      source.declarations = "vec4 full_cube_fetch(int face, int i, int j) { return full(ivec2(face * " + std::to_string(face_size) + " + i, j)); }\n";
+      source.body = "ivec3 t = ivec3(fin0.xyz); fout0 = cube_downsample_texel(t.x, t.y, t.z, " + std::to_string(face_size) + ", " + std::to_string(m) + ");";
+      source.float_outputs = 1;
+      const kernel_outputs gpu = run.run(source, inputs, run.where, resources);
+      // Each weight is a few roundings (GLSL's division and square root need not be correctly
+      // rounded: a few ulp, 1e-6 relative at most); the block's b^2 positive terms are summed in
+      // the same order on both sides, which part by at most 2 b^2 roundings: 2 b^2 2^-24 + 2e-6.
+      const int block = face_size / m;
+      const float relative = static_cast<float>(2.0 * block * block * 0x1p-24 + 2e-6);
+      require_parity(compare(name, gpu.floats[0], cpu, inputs, {1e-6f, relative, 16, 0.0, "weights a few ulp apart, 2 b^2 roundings of a sum of b^2 positive terms"}, 3));
     }
   }
 }
