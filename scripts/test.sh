@@ -1,12 +1,17 @@
 #!/usr/bin/env bash
-# README command 2: set up, build, and run the whole test suite:
-#   1. the Release build (GCC), both tiers of tests (ctest -L fast, then -L slow);
+# README command 2: set up, build, and run the whole test suite, every test at least once:
+#   1. the Release build (GCC): of the fast tier, the CPU-only part (the kernels' tests, `kernel:`)
+#      and what the sanitizer build does not build (the benchmarks' tools, `bench:`); then the
+#      whole slow tier;
 #   2. the sanitizer build (clang, -fsanitize=address,undefined,float-cast-overflow, with
-#      libFuzzer coverage), what its fast tier runs (target vplkit_fast_tier), its fast tier;
+#      libFuzzer coverage), what its fast tier runs (target vplkit_fast_tier), its whole fast tier;
 #   3. each fuzz target for FUZZ_SECONDS (default 10) in that same build (scripts/fuzz.sh).
+# So the C++ kernels are tested under both compilers, and the GL, command-line and consumer tests
+# of the fast tier run once, under the sanitizers, not twice: CI (2 cores) must stay under 15
+# minutes (docs/development.md, "CI time").
 # Ends with a table of where the time went: wall and CPU seconds per step.
 #   scripts/test.sh          everything (what CI runs, .ci/run)
-#   scripts/test.sh --fast   the developer's loop: the Release build and its fast tier only
+#   scripts/test.sh --fast   the developer's loop: the Release build and its whole fast tier only
 # Tests run headless (EGL; the parity tests also under OSMesa in the Release build's slow tier;
 # the sanitizer build has no OSMesa); the window tests run under xvfb-run. Parallel tests share
 # the cores: each test process gets cores / jobs threads for llvmpipe and Embree.
@@ -68,9 +73,12 @@ table() {
   echo "(CPU seconds: user + system of every process of the step; on $jobs idle cores a step takes"
   echo " at least CPU seconds / $jobs)"
 }
-# tests <build folder> <label> : ctest of one tier, the tests side by side on every core.
+# tests <build folder> <label> [ctest options...]: ctest of one tier, the tests side by side on
+# every core.
 tests() {
-  (cd "$1" && ctest --output-on-failure -j "$jobs" -L "^$2\$")
+  local folder=$1 label=$2
+  shift 2
+  (cd "$folder" && ctest --output-on-failure -j "$jobs" -L "^$label\$" "$@")
 }
 
 # Each test process's threads (LP_NUM_THREADS for llvmpipe, VPLKIT_THREADS for Embree and the
@@ -78,11 +86,13 @@ tests() {
 threads=(-DVPLKIT_TEST_THREADS=$threads_per_test)
 timed "setup: Debian packages, npm meshes" scripts/setup.sh --no-build
 timed "build: Release (GCC), tests and benchmarks" scripts/setup.sh --no-meshes "${threads[@]}"
-timed "tests: Release, fast tier" tests build fast
 if [ "$fast" = yes ]; then
+  timed "tests: Release, fast tier" tests build fast
   table
   exit 0
 fi
+# The rest of the fast tier runs in the sanitizer build, below.
+timed "tests: Release, fast tier's kernel and benchmark tests" tests build fast -R '^(kernel|bench): '
 timed "tests: Release, slow tier" tests build slow
 # The sanitizer build makes what its fast tier runs (tests/CMakeLists.txt, vplkit_fast_tier): not
 # the slow tier's executables, which it does not run; scripts/fuzz.sh links the fuzz executables.
