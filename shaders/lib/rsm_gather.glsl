@@ -46,6 +46,8 @@ float rsm_voxel_visibility(vec3 x, vec3 n, vec3 xp, vec3 np);
 coarse_light rsm_coarse_fetch(ivec2 block);
 #if VPLKIT_VISIBILITY == 8
 float rsm_voxel_coarse_visibility(vec3 x, vec3 n, vec3 xc, vec3 nc);
+#elif VPLKIT_VISIBILITY != 0 && VPLKIT_VISIBILITY != 2
+float rsm_depth_coarse_visibility(vec3 x, vec3 xc);
 #endif
 #endif
 
@@ -167,6 +169,9 @@ vec3 gather_rsm(gather_receiver receiver, rsm_gather_settings settings) {
 #if VPLKIT_VISIBILITY == 8
       coverage += rsm_voxel_coarse_visibility(receiver.position, receiver.normal, light.position, light.normal) *
                   coarse_light_irradiance(receiver.position, receiver.normal, light, settings.irradiance);
+#elif VPLKIT_VISIBILITY != 0 && VPLKIT_VISIBILITY != 2
+      vec3 e = coarse_light_irradiance(receiver.position, receiver.normal, light, settings.irradiance);
+      if (e.x + e.y + e.z > 0.0) coverage += rsm_depth_coarse_visibility(receiver.position, light.position) * e;
 #else
       coverage += coarse_light_irradiance(receiver.position, receiver.normal, light, settings.irradiance);
 #endif

@@ -478,10 +478,15 @@ void rsm_pipeline::draw_passes(bool all_rsms, bool accumulate) {
   // radiance and filtered indirect light to the ones before (the filter is linear in its input
   // for the fixed G-buffer guides, so the sum of the filtered images is the filtered sum). One
   // spot or sun draws exactly what it always drew.
+  for (std::size_t k = 0; k < views_.size(); ++k) {  // PROTO: every RSM first
+    if (!(all_rsms || !rsm_valid_[k])) continue;
+    bind_view(k);
+    glEnable(GL_DEPTH_TEST);
+    draw_rsm(k);
+  }
   for (std::size_t k = 0; k < views_.size(); ++k) {  // k: the light view
     bind_view(k);
     glEnable(GL_DEPTH_TEST);
-    if (all_rsms || !rsm_valid_[k]) draw_rsm(k);
     draw_gbuffer(k);
     glDisable(GL_DEPTH_TEST);
     glBindVertexArray(empty_vertex_array_.get());
@@ -542,6 +547,20 @@ void rsm_pipeline::draw_gather(std::size_t view) {
   if (with_coverage(constants_))
     for (int i = 0; i < 3; ++i) coarse_targets_[view].colour(static_cast<std::size_t>(i)).bind(3 + i);
   if (with_voxels(constants_)) voxel_texture_->bind(voxel_unit(constants_));
+  {  // PROTO: the cube's faces for the coarse lights' visibility
+    const rsm_frame_constants& here = views_[view];
+    int faces = 0;
+    for (std::size_t v = 0; v < views_.size(); ++v)
+      if (here.face >= 0 && views_[v].light_index == here.light_index && views_[v].face >= 0) {
+        const int g = views_[v].face;
+        rsm_targets_[v].colour(0).bind(8 + g);
+        gather_program_.set("rsm_face" + std::to_string(g), 8 + g);
+        gather_program_.set("face_from_light[" + std::to_string(g) + "]", views_[v].light.view * glm::inverse(here.light.view));
+        ++faces;
+      }
+    gather_program_.set("cube_faces", faces == 6 ? 1 : 0);
+    gather_program_.set("cube_from_light", glm::inverse(here.light.view));
+  }
   gather_program_.use();
   glDrawArrays(GL_TRIANGLES, 0, 3);
   timer_.end();
