@@ -55,55 +55,29 @@ float rsm_voxel_coarse_visibility(vec3 x, vec3 n, vec3 xc, vec3 nc) {
 #endif
 #endif
 #if VPLKIT_RSM_COVERAGE && VPLKIT_VISIBILITY != 0 && VPLKIT_VISIBILITY != 8 && VPLKIT_VISIBILITY != 2
-#define PROTO_SLAB 0.25
-#ifndef PROTO_K
-#define PROTO_K 4
-#endif
-#ifndef PROTO_THICK
-#define PROTO_THICK 0.2
-#endif
+#include "lib/rsm_coarse_visibility.glsl"
+// PROTOTYPE (issue 38): a point light's coarse lights against its six depth maps
+// (lib/rsm_coarse_visibility.glsl); a spot's or a sun's stay unoccluded (cube_faces 0).
 uniform int cube_faces;
-uniform mat4 cube_from_light;
-uniform mat4 face_from_light[6];
+uniform cube_depth_frames cube_frames;
 uniform usampler2D rsm_face0;
 uniform usampler2D rsm_face1;
 uniform usampler2D rsm_face2;
 uniform usampler2D rsm_face3;
 uniform usampler2D rsm_face4;
 uniform usampler2D rsm_face5;
-float face_depth(int g, ivec2 t) {
-  if (g == 0) return uintBitsToFloat(texelFetch(rsm_face0, t, 0).x);
-  if (g == 1) return uintBitsToFloat(texelFetch(rsm_face1, t, 0).x);
-  if (g == 2) return uintBitsToFloat(texelFetch(rsm_face2, t, 0).x);
-  if (g == 3) return uintBitsToFloat(texelFetch(rsm_face3, t, 0).x);
-  if (g == 4) return uintBitsToFloat(texelFetch(rsm_face4, t, 0).x);
-  return uintBitsToFloat(texelFetch(rsm_face5, t, 0).x);
-}
-bool point_hidden(vec3 p, int g) {
-  if (unprojection.perspective != 0 && !(p.z < 0.0)) return false;
-  vec2 ray = unprojection.perspective != 0 ? p.xy / -p.z : p.xy;
-  ivec2 texel = ivec2(floor((ray - unprojection.ray_origin) / unprojection.ray_step + 0.5));
-  if (texel.x < 0 || texel.y < 0 || texel.x >= settings.rsm_size.x || texel.y >= settings.rsm_size.y) return false;
-  float z = g < 0 ? uintBitsToFloat(texelFetch(rsm_packed, texel, 0).x) : face_depth(g, texel);
-  if (!(z < 0.0)) return false;
-#ifdef PROTO_SLAB
-  return -p.z > -z * (1.0 + 0.01) && -p.z < -z * (1.0 + PROTO_SLAB);
-#else
-  return -p.z > -z * (1.0 + PROTO_THICK);
-#endif
+// GLSL 3.30 indexes sampler arrays with constants only: one sampler per face.
+float rsm_face_depth(int face, ivec2 texel) {
+  if (face == 0) return uintBitsToFloat(texelFetch(rsm_face0, texel, 0).x);
+  if (face == 1) return uintBitsToFloat(texelFetch(rsm_face1, texel, 0).x);
+  if (face == 2) return uintBitsToFloat(texelFetch(rsm_face2, texel, 0).x);
+  if (face == 3) return uintBitsToFloat(texelFetch(rsm_face3, texel, 0).x);
+  if (face == 4) return uintBitsToFloat(texelFetch(rsm_face4, texel, 0).x);
+  return uintBitsToFloat(texelFetch(rsm_face5, texel, 0).x);
 }
 float rsm_depth_coarse_visibility(vec3 x, vec3 xc) {
-  if (cube_faces == 0) return 1.0;  // a spot's or a sun's map: measured no better (Cornell box, living-room 5, thin-walls 5 worse for Alg. 3/6)
-  for (int i = 0; i < PROTO_K; ++i) {
-    float t = (float(i) + 0.5) / float(PROTO_K);
-    t = 0.1 + 0.8 * t;
-    vec3 p = mix(xc, x, t);
-    vec3 d = transform_direction(cube_from_light, p);  // the world's axes: the cube's
-    vec3 a = abs(d);
-    int g = a.x >= a.y && a.x >= a.z ? (d.x > 0.0 ? 0 : 1) : a.y >= a.z ? (d.y > 0.0 ? 2 : 3) : (d.z > 0.0 ? 4 : 5);
-    if (point_hidden(transform_point(face_from_light[g], p), g)) return 0.0;
-  }
-  return 1.0;
+  if (cube_faces == 0) return 1.0;
+  return coarse_light_cube_visibility(x, xc, cube_frames, unprojection, settings.rsm_size);
 }
 #endif
 

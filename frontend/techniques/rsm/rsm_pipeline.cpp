@@ -547,7 +547,9 @@ void rsm_pipeline::draw_gather(std::size_t view) {
   if (with_coverage(constants_))
     for (int i = 0; i < 3; ++i) coarse_targets_[view].colour(static_cast<std::size_t>(i)).bind(3 + i);
   if (with_voxels(constants_)) voxel_texture_->bind(voxel_unit(constants_));
-  {  // PROTO: the cube's faces for the coarse lights' visibility
+  const rsm_visibility seen = constants_.technique.visibility;
+  if (with_coverage(constants_) && (seen == rsm_visibility::alg3 || seen == rsm_visibility::alg6 || seen == rsm_visibility::alg6_ray)) {
+    // PROTO: the cube's faces for the coarse lights' visibility (lib/rsm_coarse_visibility.glsl)
     const rsm_frame_constants& here = views_[view];
     int faces = 0;
     for (std::size_t v = 0; v < views_.size(); ++v)
@@ -555,11 +557,11 @@ void rsm_pipeline::draw_gather(std::size_t view) {
         const int g = views_[v].face;
         rsm_targets_[v].colour(0).bind(8 + g);
         gather_program_.set("rsm_face" + std::to_string(g), 8 + g);
-        gather_program_.set("face_from_light[" + std::to_string(g) + "]", views_[v].light.view * glm::inverse(here.light.view));
+        gather_program_.set("cube_frames.face_from_light[" + std::to_string(g) + "]", views_[v].light.view * glm::inverse(here.light.view));
         ++faces;
       }
     gather_program_.set("cube_faces", faces == 6 ? 1 : 0);
-    gather_program_.set("cube_from_light", glm::inverse(here.light.view));
+    gather_program_.set("cube_frames.cube_from_light", glm::inverse(here.light.view));
   }
   gather_program_.use();
   glDrawArrays(GL_TRIANGLES, 0, 3);
