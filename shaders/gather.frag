@@ -56,8 +56,9 @@ float rsm_voxel_coarse_visibility(vec3 x, vec3 n, vec3 xc, vec3 nc) {
 #endif
 #if VPLKIT_RSM_COVERAGE && VPLKIT_VISIBILITY != 0 && VPLKIT_VISIBILITY != 8 && VPLKIT_VISIBILITY != 2
 #include "lib/rsm_coarse_visibility.glsl"
-// PROTOTYPE (issue 38): a point light's coarse lights against its six depth maps
-// (lib/rsm_coarse_visibility.glsl); a spot's or a sun's stay unoccluded (cube_faces 0).
+// A point light's coarse lights against its six depth maps (lib/rsm_coarse_visibility.glsl;
+// rsm_pipeline's coarse_cube_of sets them); a spot's or a sun's stay unoccluded (cube_faces 0).
+// The C++ twin: the coarse visibility rsm_cpu_mirror.cpp gives gather_rsm.
 uniform int cube_faces;
 uniform cube_depth_frames cube_frames;
 uniform usampler2D rsm_face0;

@@ -1,5 +1,5 @@
-// PROTOTYPE (issue 38, branch i38-coarse-proto): a point light's coarse lights (rsm_coverage.hpp)
-// hidden by the light's own depth maps, the six faces of its cube of RSMs.
+// A point light's coarse lights (rsm_coverage.hpp) hidden by the light's own depth maps, the six
+// faces of its cube of RSMs.
 //
 // The coverage adds its coarse lights without visibility, and a point light's indirect light
 // rides mostly on them (78 % in docs/scenes.md's workshop corner), so the lit side of a partition
@@ -19,6 +19,8 @@
 // A spot's or a sun's single map does not see the segment's part outside its frustum (measured no
 // better, docs/scenes.md): the gather uses this for point lights only.
 //
+// Used by gather_rsm's coarse visibility for Alg. 3/6/alg6_ray (rsm_gather.hpp; the CPU mirror
+// fills it from the six faces' RSMs) and by gather.frag's rsm_depth_coarse_visibility; errata RSMV-14.
 // GLSL twin: shaders/lib/rsm_coarse_visibility.glsl.
 #pragma once
 

@@ -1,4 +1,4 @@
-// PROTOTYPE (issue 38, branch i38-coarse-proto). GLSL twin of include/vplkit/rsm_coarse_visibility.hpp:
+// GLSL twin of include/vplkit/rsm_coarse_visibility.hpp:
 // a point light's coarse lights hidden by the light's six depth maps (see the C++ twin for why).
 // The including shader defines `float rsm_face_depth(int face, ivec2 texel)`: face's stored
 // eye-space z (< 0: a surface; >= 0: none).

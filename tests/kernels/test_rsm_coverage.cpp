@@ -133,7 +133,7 @@ TEST_CASE("validate_coverage_blocks: 0 (off) to 64") {
   CHECK(validate_coverage_blocks(65) != nullptr);
 }
 
-// PROTOTYPE (issue 38): a point light's coarse lights against its six depth maps
+// Issue 38: a point light's coarse lights against its six depth maps
 // (include/vplkit/rsm_coarse_visibility.hpp). The light sits at the origin of a cube of 64^2 faces;
 // the scene is one axis-aligned wall, its depth maps computed in closed form per texel.
 #include <vplkit/rsm_coarse_visibility.hpp>

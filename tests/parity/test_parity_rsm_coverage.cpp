@@ -110,7 +110,7 @@ TEST_CASE("parity: reduce_rsm_block over a packed RSM, 8 x 8 blocks of 64^2 texe
   }
 }
 
-// PROTOTYPE (issue 38): include/vplkit/rsm_coarse_visibility.hpp against lib/rsm_coarse_visibility.glsl.
+// Issue 38: include/vplkit/rsm_coarse_visibility.hpp against lib/rsm_coarse_visibility.glsl.
 #include <vplkit/rsm_coarse_visibility.hpp>
 
 #include <glm/gtc/matrix_transform.hpp>
