@@ -285,7 +285,32 @@ struct judges_coarse_lights<Visibility, T,
                             std::void_t<decltype(std::declval<Visibility&>().coarse(std::declval<const gather_receiver<T>&>(), std::declval<const coarse_light<T>&>()))>>
     : std::true_type {};
 
+/// The micro linear buffer's visibility with the coverage's coarse lights judged by
+/// `segment_visible(x, x_c) -> T` (both in the light's eye space): a point light's
+/// coarse_light_cube_visibility over its six depth maps (vplkit/rsm_coarse_visibility.hpp).
+template <rsm_visibility Visibility, typename T, typename CoarseVisibility>
+struct micro_linear_buffer_with_coarse : micro_linear_buffer_visibility<Visibility, T> {
+  CoarseVisibility segment_visible;
+  T coarse(const gather_receiver<T>& receiver, const coarse_light<T>& light) { return segment_visible(receiver.position, light.position); }
+};
+
 }  // namespace detail
+
+/// The coarse-light visibility of a gather that leaves the coverage's coarse lights unoccluded,
+/// as the thesis's coverage does (a spot's, a sun's, or a point light's without its six faces).
+struct unoccluded_coarse_lights {
+  template <typename T>
+  T operator()(const glm::vec<3, T>&, const glm::vec<3, T>&) const {
+    return T(1);
+  }
+};
+
+/// Whether gather_rsm with `visibility` judges the coarse lights by a coarse visibility: Alg. 3,
+/// Alg. 6 and alg6_ray (GLSL: VPLKIT_VISIBILITY 3, 6, 7 with coverage). none and Alg. 2 are left
+/// as the thesis has them; rsm-voxel judges them by its own grid.
+constexpr bool judges_coarse_lights_by_segment(rsm_visibility visibility) {
+  return visibility == rsm_visibility::alg3 || visibility == rsm_visibility::alg6 || visibility == rsm_visibility::alg6_ray;
+}
 
 /// The gather with the visibility of each sample supplied by `visibility`, an object with
 /// `begin_path()` (called before every path of the radial pattern, once for the disk pattern)
@@ -296,7 +321,8 @@ struct judges_coarse_lights<Visibility, T,
 /// same samples with exact visibility. `coarse_fetch(glm::ivec2 block) -> coarse_light<T>` reads the
 /// coarse lights (rsm_coverage.hpp) when settings.coverage_blocks > 0; no_coarse_lights{}: none.
 /// A visibility with a member `coarse(receiver, coarse_light)` judges the coarse lights too
-/// (voxel_rsm_visibility); the others leave them unoccluded, as the thesis's coverage does.
+/// (voxel_rsm_visibility; gather_rsm's Alg. 3/6/alg6_ray given a coarse visibility); the others
+/// leave them unoccluded, as the thesis's coverage does.
 /// C++ only: the GLSL twin selects its visibility by define.
 template <rsm_pattern Pattern, typename T, typename Fetch, typename CoarseFetch, typename Visibility>
 glm::vec<3, T> gather_rsm_with(const gather_receiver<T>& receiver, Fetch&& fetch, CoarseFetch&& coarse_fetch, const rsm_gather_settings<T>& settings,
@@ -361,10 +387,14 @@ glm::vec<3, T> gather_rsm_with(const gather_receiver<T>& receiver, Fetch&& fetch
           if (!(glm::dot(offset, offset) > reach * reach)) continue;
         }
         const coarse_light<T> light = coarse_fetch(glm::ivec2(x, y));
-        if constexpr (detail::judges_coarse_lights<std::decay_t<Visibility>, T>::value)
-          coverage += visibility.coarse(receiver, light) * coarse_light_irradiance(receiver.position, receiver.normal, light, settings.irradiance);
-        else
+        if constexpr (detail::judges_coarse_lights<std::decay_t<Visibility>, T>::value) {
+          // A coarse light that lights nothing here is not judged: the cube's segment test and the
+          // voxel march cost more than Eq. 3.2.
+          const glm::vec<3, T> e = coarse_light_irradiance(receiver.position, receiver.normal, light, settings.irradiance);
+          if (e.x + e.y + e.z > T(0)) coverage += visibility.coarse(receiver, light) * e;
+        } else {
           coverage += coarse_light_irradiance(receiver.position, receiver.normal, light, settings.irradiance);
+        }
       }
     irradiance += coverage * T(stride * stride);
   } else {
@@ -382,8 +412,13 @@ glm::vec<3, T> gather_rsm_with(const gather_receiver<T>& receiver, Fetch&& fetch
 /// The gather: irradiance at the receiver, with coverage when settings.coverage_blocks > 0
 /// (`coarse_fetch(glm::ivec2 block) -> coarse_light<T>`, e.g. reduce_rsm_block's results).
 /// Visibility needs the radial pattern (its samples lie on paths); the disk pattern has none.
-template <rsm_pattern Pattern, rsm_visibility Visibility, typename T, typename Fetch, typename CoarseFetch>
-glm::vec<3, T> gather_rsm(const gather_receiver<T>& receiver, Fetch&& fetch, CoarseFetch&& coarse_fetch, const rsm_gather_settings<T>& settings) {
+/// For Alg. 3, 6 and alg6_ray (judges_coarse_lights_by_segment) the coarse lights are weighted by
+/// `coarse_visibility(x, x_c) -> T` (receiver and coarse light in the light's eye space; GLSL:
+/// gather.frag's rsm_depth_coarse_visibility): a point light's coarse_light_cube_visibility, or
+/// unoccluded_coarse_lights{}.
+template <rsm_pattern Pattern, rsm_visibility Visibility, typename T, typename Fetch, typename CoarseFetch, typename CoarseVisibility>
+glm::vec<3, T> gather_rsm(const gather_receiver<T>& receiver, Fetch&& fetch, CoarseFetch&& coarse_fetch, CoarseVisibility&& coarse_visibility,
+                          const rsm_gather_settings<T>& settings) {
   static_assert(Pattern == rsm_pattern::radial || Visibility == rsm_visibility::none,
                 "the disk pattern has no paths: visibility needs rsm_pattern::radial");
   static_assert(Visibility != rsm_visibility::voxel, "the voxel visibility needs its grid: gather_rsm_with with voxel_rsm_visibility (voxel_visibility.hpp)");
@@ -393,7 +428,19 @@ glm::vec<3, T> gather_rsm(const gather_receiver<T>& receiver, Fetch&& fetch, Coa
     if (receiver.position.z < T(0)) visibility.up = detail::towards_light(receiver, settings);
     visibility.min_distance = T(settings.irradiance.min_distance);
   }
-  return gather_rsm_with<Pattern>(receiver, fetch, coarse_fetch, settings, visibility);
+  if constexpr (judges_coarse_lights_by_segment(Visibility)) {
+    detail::micro_linear_buffer_with_coarse<Visibility, T, std::decay_t<CoarseVisibility>> judged{visibility, coarse_visibility};
+    return gather_rsm_with<Pattern>(receiver, fetch, coarse_fetch, settings, judged);
+  } else {
+    (void)coarse_visibility;
+    return gather_rsm_with<Pattern>(receiver, fetch, coarse_fetch, settings, visibility);
+  }
+}
+
+/// The gather with the coverage's coarse lights unoccluded (unoccluded_coarse_lights).
+template <rsm_pattern Pattern, rsm_visibility Visibility, typename T, typename Fetch, typename CoarseFetch>
+glm::vec<3, T> gather_rsm(const gather_receiver<T>& receiver, Fetch&& fetch, CoarseFetch&& coarse_fetch, const rsm_gather_settings<T>& settings) {
+  return gather_rsm<Pattern, Visibility>(receiver, fetch, coarse_fetch, unoccluded_coarse_lights{}, settings);
 }
 
 /// The gather of the pattern alone (no coverage, whatever settings.coverage_blocks says).

@@ -132,3 +132,85 @@ TEST_CASE("validate_coverage_blocks: 0 (off) to 64") {
   CHECK(validate_coverage_blocks(-1) != nullptr);
   CHECK(validate_coverage_blocks(65) != nullptr);
 }
+
+// Issue 38: a point light's coarse lights against its six depth maps
+// (include/vplkit/rsm_coarse_visibility.hpp). The light sits at the origin of a cube of 64^2 faces;
+// the scene is one axis-aligned wall, its depth maps computed in closed form per texel.
+#include <vplkit/rsm_coarse_visibility.hpp>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace {
+
+glm::mat4 face_view(int face) { return glm::lookAt(glm::vec3(0.0f), cube_face_axis<float>(face), cube_face_up<float>(face)); }
+
+// The wall: the plane {p[axis] = at} (at > 0), within `half` of 0 on the other two axes.
+struct wall_depths {
+  int axis = 0;
+  float at = 1.0f;
+  float half = 1e30f;
+  rsm_unprojection<float> unprojection = make_rsm_unprojection<float>(1.0f, true, glm::ivec2(64));
+  float operator()(int face, glm::ivec2 texel) const {
+    const glm::vec2 ray = unprojection.ray_origin + glm::vec2(texel) * unprojection.ray_step;
+    const glm::vec3 d = glm::mat3(glm::inverse(face_view(face))) * glm::vec3(ray, -1.0f);  // world, per unit of eye depth
+    if (!(d[axis] > 0.0f)) return 0.0f;
+    const float s = at / d[axis];
+    for (int other = 0; other < 3; ++other)
+      if (other != axis && !(std::abs(d[other] * s) < half)) return 0.0f;
+    return -s;  // the eye-space z of the hit
+  }
+};
+
+// The coarse light and the receiver (world) seen from gathering face `face`: its eye space.
+float cube_visibility(glm::vec3 receiver, glm::vec3 coarse, const wall_depths& wall, int face) {
+  const glm::mat4 view = face_view(face), light_from_view = glm::inverse(view);
+  cube_depth_frames<float> frames;
+  frames.cube_from_light = light_from_view;
+  for (int g = 0; g < 6; ++g) frames.face_from_light[static_cast<std::size_t>(g)] = face_view(g) * light_from_view;
+  return coarse_light_cube_visibility(transform_point(view, receiver), transform_point(view, coarse), frames, wall.unprojection, glm::ivec2(64), wall);
+}
+
+}  // namespace
+
+TEST_CASE("coarse_light_cube_visibility: a coarse light behind a closed wall the light sees is hidden, from every gathering face") {
+  // The wall x = 1 (face +x sees it everywhere); coarse lights in front of it, receivers behind,
+  // the segments short enough that a sample falls within the slab behind it.
+  const wall_depths wall{0, 1.0f};
+  for (int face = 0; face < 6; ++face)
+    for (glm::vec3 coarse : {glm::vec3(0.5f, 0.1f, 0.05f), glm::vec3(0.7f, -0.3f, 0.2f), glm::vec3(0.6f, 0.4f, -0.4f)})
+      for (glm::vec3 receiver : {glm::vec3(1.3f, -0.1f, 0.1f), glm::vec3(1.5f, 0.2f, -0.3f), glm::vec3(1.4f, -0.4f, 0.3f)}) {
+        CAPTURE(face);
+        CHECK(cube_visibility(receiver, coarse, wall, face) == 0.0f);
+      }
+  // The same through a ceiling y = 1.5, seen by face +y.
+  const wall_depths ceiling{1, 1.5f};
+  CHECK(cube_visibility(glm::vec3(0.3f, 1.9f, 0.2f), glm::vec3(0.2f, 1.2f, -0.1f), ceiling, 4) == 0.0f);
+}
+
+TEST_CASE("coarse_light_cube_visibility: a coarse light in the open always counts") {
+  // No surface at all, a wall beyond both ends, a wall behind the light.
+  const wall_depths none{0, 1.0f, 0.0f};  // half 0: the wall is nowhere
+  const wall_depths beyond{0, 3.0f};
+  const wall_depths behind{2, 0.5f};  // the plane z = 0.5, the segments at z < 0
+  for (int face = 0; face < 6; ++face)
+    for (glm::vec3 coarse : {glm::vec3(0.5f, 0.1f, -0.05f), glm::vec3(-0.7f, -0.3f, -0.2f), glm::vec3(0.6f, 0.9f, -0.4f)})
+      for (glm::vec3 receiver : {glm::vec3(1.3f, -0.1f, -0.1f), glm::vec3(-1.5f, 0.2f, -0.3f), glm::vec3(0.4f, -0.8f, -0.3f)}) {
+        CAPTURE(face);
+        CHECK(cube_visibility(receiver, coarse, none, face) == 1.0f);
+        CHECK(cube_visibility(receiver, coarse, beyond, face) == 1.0f);
+        CHECK(cube_visibility(receiver, coarse, behind, face) == 1.0f);
+      }
+}
+
+TEST_CASE("coarse_light_cube_visibility: a receiver deep in the light's shadow still sees a coarse light beside the occluder") {
+  // The wall x = 1 within |y|, |z| < 0.5 shadows the receiver at (2.5, 0, 0); the coarse light at
+  // (2, 0, 1.5) is lit (its ray passes the wall's edge) and sees the receiver directly. Every
+  // sample lies far behind the wall's depth, beyond the slab: "behind by more than a thickness"
+  // would hide it, the slab does not.
+  const wall_depths wall{0, 1.0f, 0.5f};
+  CHECK(wall(0, glm::ivec2(32, 32)) < 0.0f);  // the receiver's direction sees the wall
+  for (int face = 0; face < 6; ++face) {
+    CAPTURE(face);
+    CHECK(cube_visibility(glm::vec3(2.5f, 0.0f, 0.0f), glm::vec3(2.0f, 0.0f, 1.5f), wall, face) == 1.0f);
+  }
+}

@@ -130,6 +130,56 @@ TEST_CASE("with coverage a receiver behind the light gets the light of the whole
   }
 }
 
+namespace {
+
+// The coverage of `coarse` with the lights on one side (x_c.x > 0, light eye space) dark.
+struct coverage_without_right_half {
+  const coverage_of& coarse;
+  coarse_light<double> operator()(glm::ivec2 block) const {
+    coarse_light<double> light = coarse(block);
+    if (light.position.x > 0.0) light.flux = glm::dvec3(0.0);
+    return light;
+  }
+};
+
+template <rsm_visibility Visibility>
+void check_coarse_visibility_taken(bool judged) {
+  const synthetic_rsm floor;
+  const coverage_of coarse(floor);
+  rsm_gather_settings<double> settings = gather_settings();
+  settings.coverage_blocks = coarse.blocks;
+  const gather_receiver<double> above = receiver_at({-1.5, light_height + 0.2, 2.0}, glm::uvec2(1, 1));
+  REQUIRE(!(above.position.z < 0.0));  // the coverage alone
+  int calls = 0;
+  // Hides the coarse lights right of the light, and sees exactly the receiver's and the light's positions.
+  const auto right_half_hidden = [&](const glm::dvec3& x, const glm::dvec3& x_c) {
+    ++calls;
+    CHECK(x == above.position);
+    return x_c.x > 0.0 ? 0.0 : 1.0;
+  };
+  const glm::dvec3 seen = gather_rsm<rsm_pattern::radial, Visibility>(above, floor, coarse, right_half_hidden, settings);
+  const glm::dvec3 open = gather_rsm<rsm_pattern::radial, Visibility>(above, floor, coarse, settings);
+  const glm::dvec3 left_only = gather_rsm<rsm_pattern::radial, Visibility>(above, floor, coverage_without_right_half{coarse}, settings);
+  REQUIRE(left_only.x < 0.9 * open.x);  // the hidden half carries light here
+  if (judged) {
+    CHECK(calls > 0);
+    CHECK(seen.x == doctest::Approx(left_only.x).epsilon(1e-12));
+  } else {
+    CHECK(calls == 0);
+    CHECK(seen == open);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("gather_rsm's coarse visibility weighs the coarse lights for Alg. 3, 6 and alg6_ray; none and Alg. 2 leave them unoccluded") {
+  check_coarse_visibility_taken<rsm_visibility::alg3>(true);
+  check_coarse_visibility_taken<rsm_visibility::alg6>(true);
+  check_coarse_visibility_taken<rsm_visibility::alg6_ray>(true);
+  check_coarse_visibility_taken<rsm_visibility::alg2>(false);
+  check_coarse_visibility_taken<rsm_visibility::none>(false);
+}
+
 TEST_CASE("the coverage interleaved over s x s pixels: the tile's mean is the whole coverage, each pixel a part of it") {
   // A receiver behind the light (the coverage alone) at every pixel of an s x s tile: each gathers
   // the blocks of its lattice times s^2, and the s^2 of them together every block once.

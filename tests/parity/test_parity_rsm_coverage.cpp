@@ -109,3 +109,104 @@ TEST_CASE("parity: reduce_rsm_block over a packed RSM, 8 x 8 blocks of 64^2 texe
                            {1e-5f, 1e-5f, 16, 0.0, "~50-term weighted sums; the extent a difference of two"}, 4));
   }
 }
+
+// Issue 38: include/vplkit/rsm_coarse_visibility.hpp against lib/rsm_coarse_visibility.glsl.
+#include <vplkit/rsm_coarse_visibility.hpp>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace {
+
+glm::mat4 cube_face_view(int face) { return glm::lookAt(glm::vec3(0.0f), cube_face_axis<float>(face), cube_face_up<float>(face)); }
+
+// A room around the light at the origin (walls at x = -2.5 and 2, y = -1.9 and 1, z = +-2.2) with a
+// partition x = 0.8, |y| < 0.5 and |z| < 0.6: the eye-space z of the nearest surface along each
+// texel's centre ray of each face.
+float room_depth(int face, glm::ivec2 texel, const rsm_unprojection<float>& unprojection) {
+  const glm::vec2 ray = unprojection.ray_origin + glm::vec2(texel) * unprojection.ray_step;
+  const glm::vec3 d = glm::mat3(glm::inverse(cube_face_view(face))) * glm::vec3(ray, -1.0f);
+  float nearest = 1e30f;
+  const glm::vec3 low(-2.5f, -1.9f, -2.2f), high(2.0f, 1.0f, 2.2f);
+  for (int axis = 0; axis < 3; ++axis)
+    if (d[axis] != 0.0f) nearest = std::min(nearest, ((d[axis] > 0.0f ? high : low)[axis]) / d[axis]);
+  if (d.x > 0.0f) {
+    const float s = 0.8f / d.x;
+    if (std::abs(d.y * s) < 0.5f && std::abs(d.z * s) < 0.6f) nearest = std::min(nearest, s);
+  }
+  return -nearest;
+}
+
+}  // namespace
+
+TEST_CASE("parity: coarse_light_cube_visibility in a room with a partition, from two gathering faces, on every target") {
+  constexpr int size = 64;
+  const rsm_unprojection<float> light = make_rsm_unprojection(1.0f, true, glm::ivec2(size));
+  // The six faces' depths stacked (face g in rows 64 g to 64 g + 63), the depth in the first word.
+  std::vector<glm::uvec4> depths(static_cast<std::size_t>(size * size * 6));
+  std::vector<float> depth_values(depths.size());
+  for (int face = 0; face < 6; ++face)
+    for (int y = 0; y < size; ++y)
+      for (int x = 0; x < size; ++x) {
+        const std::size_t i = static_cast<std::size_t>((face * size + y) * size + x);
+        depth_values[i] = room_depth(face, glm::ivec2(x, y), light);
+        depths[i] = glm::uvec4(float_bits(depth_values[i]), 0u, 0u, 0u);
+      }
+  const auto face_depth = [&](int face, glm::ivec2 t) { return depth_values[static_cast<std::size_t>((face * size + t.y) * size + t.x)]; };
+  std::mt19937 random(37);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  const auto in_room = [&] { return glm::vec3(-2.4f + 4.3f * unit(random), -1.8f + 2.7f * unit(random), -2.1f + 4.2f * unit(random)); };
+  for (int gathering : {0, 3}) {
+    CAPTURE(gathering);
+    const glm::mat4 view = cube_face_view(gathering), light_from_view = glm::inverse(view);
+    cube_depth_frames<float> frames;
+    frames.cube_from_light = light_from_view;
+    for (int g = 0; g < 6; ++g) frames.face_from_light[static_cast<std::size_t>(g)] = cube_face_view(g) * light_from_view;
+    // The frames as a uint table: row m is matrix m (0: cube_from_light, 1 + g: face g), a column per texel.
+    std::vector<glm::uvec4> frame_bits;
+    for (int m = 0; m < 7; ++m)
+      for (int c = 0; c < 4; ++c) {
+        const glm::vec4 column = m == 0 ? frames.cube_from_light[c] : frames.face_from_light[static_cast<std::size_t>(m - 1)][c];
+        frame_bits.push_back(glm::uvec4(float_bits(column.x), float_bits(column.y), float_bits(column.z), float_bits(column.w)));
+      }
+    kernel_inputs inputs = grid_of(64, 64, 2);
+    std::vector<glm::vec4> cpu(inputs.size());
+    int hidden = 0;
+    for (std::size_t i = 0; i < inputs.size(); ++i) {
+      const glm::vec3 x = transform_point(view, in_room()), x_c = transform_point(view, in_room());
+      inputs.floats[0][i] = glm::vec4(x, 0.0f);
+      inputs.floats[1][i] = glm::vec4(x_c, 0.0f);
+      cpu[i] = glm::vec4(coarse_light_cube_visibility(x, x_c, frames, light, glm::ivec2(size), face_depth), 0.0f, 0.0f, 0.0f);
+      hidden += cpu[i].x == 0.0f;
+    }
+    // Both answers occur (160 to 185 of 4096 hidden: the partition): the test compares decisions, not one constant.
+    CHECK(hidden > 100);
+    CHECK(hidden < 4096 - 100);
+    kernel_source source;
+    source.includes = {"lib/rsm_coarse_visibility.glsl"};
+    source.declarations =
+        "float rsm_face_depth(int face, ivec2 t) { return uintBitsToFloat(faces(ivec2(t.x, t.y + 64 * face)).x); }\n"
+        "mat4 frame_matrix(int m) {\n"
+        "  return mat4(uintBitsToFloat(frames(ivec2(0, m))), uintBitsToFloat(frames(ivec2(1, m))), uintBitsToFloat(frames(ivec2(2, m))),\n"
+        "              uintBitsToFloat(frames(ivec2(3, m))));\n"
+        "}\n";
+    source.body =
+        "cube_depth_frames f;\n"
+        "f.cube_from_light = frame_matrix(0);\n"
+        "for (int g = 0; g < 6; ++g) f.face_from_light[g] = frame_matrix(g + 1);\n"
+        "fout0 = vec4(coarse_light_cube_visibility(fin0.xyz, fin1.xyz, f, light, ivec2(64)), 0.0, 0.0, 0.0);";
+    source.float_outputs = 1;
+    kernel_resources resources;
+    resources.uint_tables = {{"faces", size, size * 6, depths}, {"frames", 4, 7, frame_bits}};
+    resources.blocks = {settings_block("light", light)};
+    for (const testing::target_run& run : testing::every_target()) {
+      const std::string target = run.name();
+      CAPTURE(target);
+      if (!testing::target_runs(run.where)) continue;
+      source.name = "coarse_light_cube_visibility (" + target + ")";
+      const kernel_outputs gpu = run.run(source, inputs, run.where, resources);
+      // 0 or 1 from texel floors and slab comparisons: a point within a rounding of a texel's edge
+      // or of the slab's bounds may flip (FMA contraction on llvmpipe).
+      require_parity(compare(source.name, gpu.floats[0], cpu, inputs, {0.0f, 0.0f, 0, 0.002, "decisions that flip on near-ties"}, 3));
+    }
+  }
+}

@@ -97,9 +97,12 @@ std::vector<glm::vec4> gather_on_cpu(const kernel_inputs& inputs, const float_rs
                                      const rsm_gather_settings<float>& settings) {
   std::vector<glm::vec4> out(inputs.size());
   const auto coarse_fetch = [&](glm::ivec2 b) { return coarse[static_cast<std::size_t>(b.y * coverage_blocks + b.x)]; };
+  // The shader's rsm_depth_coarse_visibility (below): a half-space stand-in for the cube's test,
+  // an exact decision on both sides, so that the twins' use of it (Alg. 3/6/alg6_ray) is compared.
+  const auto coarse_visibility = [](const glm::vec3& x, const glm::vec3& x_c) { return x_c.x > x.x ? 0.0f : 1.0f; };
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     const gather_receiver<float> receiver = receiver_of(inputs, i);
-    const glm::vec3 e = coverage ? gather_rsm<Pattern, Visibility>(receiver, rsm, coarse_fetch, settings)
+    const glm::vec3 e = coverage ? gather_rsm<Pattern, Visibility>(receiver, rsm, coarse_fetch, coarse_visibility, settings)
                                  : gather_rsm<Pattern, Visibility>(receiver, rsm, settings);
     out[i] = glm::vec4(e, 0.0f);
   }
@@ -218,6 +221,9 @@ TEST_CASE("parity: gather_rsm for every pattern and visibility, with and without
           "  vec4 a = coarse_a(b);\n"
           "  return coarse_light(a.xyz, coarse_b(b).xyz, coarse_c(b).xyz, a.w);\n"
           "}\n"
+          "#if VPLKIT_VISIBILITY != 0 && VPLKIT_VISIBILITY != 2 && VPLKIT_VISIBILITY != 8\n"
+          "float rsm_depth_coarse_visibility(vec3 x, vec3 xc) { return xc.x > x.x ? 0.0 : 1.0; }\n"
+          "#endif\n"
           "#endif\n";
       source.body = "fout0 = vec4(gather_rsm(gather_receiver(fin0.xyz, fin1.xyz, fin2.xy, uin0.xy), settings), 0.0);";
       source.float_outputs = 1;

@@ -5,9 +5,11 @@
 
 #include <algorithm>
 #include <array>
+#include <string>
 #include <vector>
 
 #include <vplkit/cube_map.hpp>
+#include <vplkit/rsm_coarse_visibility.hpp>
 #include <vplkit/direct_light.hpp>
 #include <vplkit/shading.hpp>
 #include <vplkit/transform.hpp>
@@ -22,6 +24,7 @@ struct gather_inputs {
   const std::vector<coarse_light<float>>& coarse;
   int blocks;
   const voxel_grid* voxels;  ///< rsm-voxel's grid (null otherwise)
+  const cube_face_rsms* cube;  ///< a point light's six RSMs for the coarse lights' visibility (null: unoccluded)
 };
 
 template <rsm_pattern Pattern, rsm_visibility Visibility>
@@ -40,7 +43,16 @@ glm::vec3 gather_variant(const gather_receiver<float>& receiver, const gather_in
     return gather_rsm_with<Pattern>(receiver, fetch, coarse_fetch, constants.gather, visibility);
   } else {
     if (in.coarse.empty()) return gather_rsm<Pattern, Visibility>(receiver, fetch, constants.gather);
-    return gather_rsm<Pattern, Visibility>(receiver, fetch, coarse_fetch, constants.gather);
+    if (!in.cube) return gather_rsm<Pattern, Visibility>(receiver, fetch, coarse_fetch, constants.gather);
+    // gather.frag's rsm_face_depth: the packed texel's first word, the eye-space depth's bits.
+    const auto face_depth = [&](int face, glm::ivec2 texel) {
+      const packed_rsm& rsm = in.cube->faces[static_cast<std::size_t>(face)];
+      return float_from_bits(rsm.texels[static_cast<std::size_t>(texel.y) * static_cast<std::size_t>(rsm.width) + static_cast<std::size_t>(texel.x)].x);
+    };
+    const auto coarse_visibility = [&](const glm::vec3& x, const glm::vec3& x_c) {
+      return coarse_light_cube_visibility(x, x_c, in.cube->frames, constants.unprojection, constants.gather.rsm_size, face_depth);
+    };
+    return gather_rsm<Pattern, Visibility>(receiver, fetch, coarse_fetch, coarse_visibility, constants.gather);
   }
 }
 
@@ -121,7 +133,16 @@ std::vector<coarse_light<float>> coarse_lights_of(const rsm_pass_buffers& buffer
   return lights;
 }
 
-image cpu_gather_pass(const rsm_pass_buffers& buffers, const rsm_frame_constants& constants, int threads) {
+std::optional<cube_face_rsms> read_cube_faces(const rsm_pipeline& pipeline, std::size_t view) {
+  const std::optional<coarse_cube_views> cube = pipeline.coarse_cube(view);
+  if (!cube) return std::nullopt;
+  cube_face_rsms out;
+  out.frames = cube->frames;
+  for (std::size_t g = 0; g < 6; ++g) out.faces[g] = pipeline.read_buffers(cube->view_of_face[g]).rsm;
+  return out;
+}
+
+image cpu_gather_pass(const rsm_pass_buffers& buffers, const rsm_frame_constants& constants, int threads, const cube_face_rsms* cube) {
   image out;
   out.width = constants.indirect_size.x;
   out.height = constants.indirect_size.y;
@@ -129,7 +150,10 @@ image cpu_gather_pass(const rsm_pass_buffers& buffers, const rsm_frame_constants
   const std::vector<rsm_texel<float>> rsm = unpack_rsm(buffers, constants);
   const std::vector<coarse_light<float>> coarse = coarse_lights_of(buffers);
   if (constants.technique.visibility == rsm_visibility::voxel && !buffers.voxels) throw error("cpu_gather_pass: rsm-voxel's buffers hold no voxel grid");
-  const gather_inputs in{rsm, buffers.rsm.width, coarse, buffers.coarse[0].width, buffers.voxels.get()};
+  for (std::size_t g = 0; cube && g < 6; ++g)
+    if (cube->faces[g].width != constants.gather.rsm_size.x || cube->faces[g].height != constants.gather.rsm_size.y)
+      throw error("cpu_gather_pass: cube face " + std::to_string(g) + "'s RSM is not the gather's size");
+  const gather_inputs in{rsm, buffers.rsm.width, coarse, buffers.coarse[0].width, buffers.voxels.get(), cube};
   parallel_tiles(out.width, out.height, threads, [&](int x, int y) {
     const glm::ivec2 texel(x, y);
     const std::optional<gather_receiver<float>> receiver = gather_receiver_at(texel, buffers, constants);

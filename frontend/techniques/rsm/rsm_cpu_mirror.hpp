@@ -33,9 +33,20 @@ std::array<image, 3> cpu_coarse_pass(const rsm_pass_buffers& buffers, const rsm_
 /// empty without coverage.
 std::vector<coarse_light<float>> coarse_lights_of(const rsm_pass_buffers& buffers);
 
+/// A point light's six RSMs read back for one view's coarse-light visibility (rsm_pipeline::coarse_cube).
+struct cube_face_rsms {
+  cube_depth_frames<float> frames;
+  std::array<packed_rsm, 6> faces;
+};
+
+/// The cube view `view`'s gather reads (rsm_pipeline::coarse_cube), read back; nothing when it reads none.
+std::optional<cube_face_rsms> read_cube_faces(const rsm_pipeline& pipeline, std::size_t view);
+
 /// Pass 3 on the CPU: [irradiance | camera depth] at the indirect buffer's resolution, with the
-/// coverage's coarse lights read back in `buffers`.
-image cpu_gather_pass(const rsm_pass_buffers& buffers, const rsm_frame_constants& constants, int threads);
+/// coverage's coarse lights read back in `buffers`; with `cube` (read_cube_faces), Alg. 3, 6 and
+/// alg6_ray weigh the coarse lights by coarse_light_cube_visibility over its faces, as gather.frag
+/// does; without it they stay unoccluded.
+image cpu_gather_pass(const rsm_pass_buffers& buffers, const rsm_frame_constants& constants, int threads, const cube_face_rsms* cube = nullptr);
 
 /// Pass 3b on the CPU (temporal accumulation, rsm_pipeline::render_next): `indirect` (this frame's
 /// gather) blended with `history` (the previous accumulated buffer) as temporal.frag does, with

@@ -121,6 +121,28 @@ std::vector<rsm_frame_constants> make_view_constants(const scene& source, const 
   return views;
 }
 
+std::optional<coarse_cube_views> coarse_cube_of(const std::vector<rsm_frame_constants>& views, std::size_t view) {
+  const rsm_frame_constants& here = views.at(view);
+  if (!(here.technique.indirect && here.gather.coverage_blocks > 0) || !judges_coarse_lights_by_segment(here.technique.visibility) || here.face < 0)
+    return std::nullopt;
+  coarse_cube_views cube;
+  // Points in the gathering face's eye space: to the cube's (world) axes by the inverse view's
+  // rotation (transform_direction), to face g's eye space by g's view after the inverse.
+  const glm::mat4 world_from_here = glm::inverse(here.light.view);
+  cube.frames.cube_from_light = world_from_here;
+  std::array<bool, 6> found{};
+  for (std::size_t v = 0; v < views.size(); ++v)
+    if (views[v].light_index == here.light_index && views[v].face >= 0 && views[v].face < 6) {
+      const std::size_t g = static_cast<std::size_t>(views[v].face);
+      found[g] = true;
+      cube.view_of_face[g] = v;
+      cube.frames.face_from_light[g] = views[v].light.view * world_from_here;
+    }
+  for (bool present : found)
+    if (!present) return std::nullopt;
+  return cube;
+}
+
 namespace {
 
 const char* flag(bool value) { return value ? "1" : "0"; }
@@ -479,10 +501,16 @@ void rsm_pipeline::draw_passes(bool all_rsms, bool accumulate) {
   // radiance and filtered indirect light to the ones before (the filter is linear in its input
   // for the fixed G-buffer guides, so the sum of the filtered images is the filtered sum). One
   // spot or sun draws exactly what it always drew.
+  // Every RSM first: a point light's gather reads all six of its faces' depths (coarse_cube_of).
+  for (std::size_t k = 0; k < views_.size(); ++k) {
+    if (!(all_rsms || !rsm_valid_[k])) continue;
+    bind_view(k);
+    glEnable(GL_DEPTH_TEST);
+    draw_rsm(k);
+  }
   for (std::size_t k = 0; k < views_.size(); ++k) {  // k: the light view
     bind_view(k);
     glEnable(GL_DEPTH_TEST);
-    if (all_rsms || !rsm_valid_[k]) draw_rsm(k);
     draw_gbuffer(k);
     glDisable(GL_DEPTH_TEST);
     glBindVertexArray(empty_vertex_array_.get());
@@ -549,6 +577,20 @@ void rsm_pipeline::draw_gather(std::size_t view) {
   if (with_coverage(constants_))
     for (int i = 0; i < 3; ++i) coarse_targets_[view].colour(static_cast<std::size_t>(i)).bind(3 + i);
   if (with_voxels(constants_)) voxel_texture_->bind(voxel_unit(constants_));
+  if (with_coverage(constants_) && judges_coarse_lights_by_segment(constants_.technique.visibility)) {
+    // The coarse lights' visibility (lib/rsm_coarse_visibility.glsl): a point light's six depth
+    // maps on units 8..13, or cube_faces 0 (unoccluded).
+    const std::optional<coarse_cube_views> cube = coarse_cube_of(views_, view);
+    if (cube)
+      for (int g = 0; g < 6; ++g) {
+        const std::size_t face = static_cast<std::size_t>(g);
+        rsm_targets_[cube->view_of_face[face]].colour(0).bind(8 + g);
+        gather_program_.set("rsm_face" + std::to_string(g), 8 + g);
+        gather_program_.set("cube_frames.face_from_light[" + std::to_string(g) + "]", cube->frames.face_from_light[face]);
+      }
+    gather_program_.set("cube_faces", cube ? 1 : 0);
+    if (cube) gather_program_.set("cube_frames.cube_from_light", cube->frames.cube_from_light);
+  }
   gather_program_.use();
   glDrawArrays(GL_TRIANGLES, 0, 3);
   timer_.end();

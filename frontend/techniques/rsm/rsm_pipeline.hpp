@@ -7,6 +7,7 @@
 // pattern without visibility or with Alg. 2, 3 or 6.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <optional>
 #include <string>
@@ -16,6 +17,7 @@
 
 #include <vplkit/bilateral.hpp>
 #include <vplkit/irradiance.hpp>
+#include <vplkit/rsm_coarse_visibility.hpp>
 #include <vplkit/rsm_gather.hpp>
 #include <vplkit/rsm_packing.hpp>
 #include <vplkit/shadow.hpp>
@@ -80,6 +82,19 @@ rsm_frame_constants make_frame_constants(const scene& source, const bounding_box
 /// faces 0..5). Throws for a scene without lights or with more than max_scene_lights.
 std::vector<rsm_frame_constants> make_view_constants(const scene& source, const bounding_box& box, std::size_t triangles,
                                                      const rsm_pipeline_settings& settings);
+
+/// A point light's cube for the coarse lights' visibility of one of its views (gather.frag's
+/// cube_frames and rsm_face0..5): the frames from the gathering face's eye space, and which view
+/// draws each face.
+struct coarse_cube_views {
+  cube_depth_frames<float> frames;
+  std::array<std::size_t, 6> view_of_face{};
+};
+/// The cube of view `view` of `views` when its gather judges the coverage's coarse lights against
+/// the light's six depth maps: coverage on, Alg. 3, 6 or alg6_ray (judges_coarse_lights_by_segment),
+/// a point light's face with all six faces among `views`. Nothing otherwise (a spot's or a sun's
+/// coarse lights stay unoccluded: its one map does not see the segment outside its frustum).
+std::optional<coarse_cube_views> coarse_cube_of(const std::vector<rsm_frame_constants>& views, std::size_t view);
 
 /// The RSM as the GPU stores it: one packed texel per pixel light (vplkit/rsm_packing.hpp), rows
 /// bottom-up; all bits 0 where nothing was rendered.
@@ -180,6 +195,8 @@ class rsm_pipeline final : public pipeline {
   /// gather; the G-buffer is the last view's (its positions and normals are every view's, its
   /// shadow density the last view's).
   rsm_pass_buffers read_buffers(std::size_t view = 0) const;
+  /// The cube whose depth maps view `view`'s gather reads for the coarse lights (coarse_cube_of).
+  std::optional<coarse_cube_views> coarse_cube(std::size_t view) const { return coarse_cube_of(views_, view); }
   /// The final radiance texture of the last frame.
   const texture_2d& output() const override { return post_target_.colour(0); }
   /// The filtered indirect irradiance of the last frame at the image's size (black for direct light).

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <string>
 
 #include <glm/gtc/constants.hpp>
 
@@ -301,10 +303,105 @@ TEST_CASE("RSM pipeline, a point light: each cube face's RSM holds point_light_t
     // Five faces see the floor; the +y face sees nothing (no surface above the light).
     if (lit > 0) ++faces_with_light;
     CHECK(matching == lit);
-    // The gather of this face against the CPU mirror on the same buffers.
-    const image gathered = cpu_gather_pass(buffers, constants, 2);
+    // The gather of this face against the CPU mirror on the same buffers (with the cube's depth
+    // maps for the coarse lights, as gather.frag reads them).
+    const std::optional<cube_face_rsms> cube = read_cube_faces(pipeline, v);
+    REQUIRE(cube);
+    const image gathered = cpu_gather_pass(buffers, constants, 2, &*cube);
     require_parity(compare("point light face gather", buffers.indirect.texels, gathered.texels, coordinates_of(gathered),
                            {1e-7f, 4e-6f, 16, 0.0, "150 terms of a few-ulp Eq. 3.2; same samples"}));
   }
   CHECK(faces_with_light == 5);
+}
+
+namespace {
+
+// A room cut by a partition (x in [-0.1, 0.1], 2 high, wall to wall) with a point light 1.4 before
+// it: the back wall (x = -3) and the floor on the light's side are lit; the floor and the far wall
+// (x = 1.5) behind the partition see the lit back wall only through the partition. The camera
+// stands behind the partition, looking at the floor and the far wall there and over the partition
+// at the lit side.
+scene partition_room() {
+  scene s;
+  s.name = "partition-point";
+  const glm::vec3 albedo(0.6f);
+  add_quad(s.geometry, {-3, 0, 3}, {1.5f, 0, 3}, {1.5f, 0, -3}, {-3, 0, -3}, {0, 1, 0}, albedo);
+  add_quad(s.geometry, {-3, 0, 3}, {-3, 0, -3}, {-3, 3, -3}, {-3, 3, 3}, {1, 0, 0}, albedo);
+  add_quad(s.geometry, {1.5f, 0, -3}, {1.5f, 0, 3}, {1.5f, 3, 3}, {1.5f, 3, -3}, {-1, 0, 0}, albedo);
+  add_box(s.geometry, {0.0f, 1.0f, 0.0f}, {0.2f, 2.0f, 6.0f}, 0.0f, albedo);
+  s.view.position = {1.3f, 2.8f, 2.5f};
+  s.view.target = {0.2f, 0.4f, -0.6f};
+  s.view.vertical_fov_degrees = 75.0f;
+  scene_light light;
+  light.kind = light_kind::point;
+  light.point.position = {-1.5f, 1.0f, 0.0f};
+  light.point.intensity = {3.0f, 3.0f, 3.0f};
+  s.lights = {light};
+  return s;
+}
+
+struct region_sums {
+  double behind = 0.0, before = 0.0;  // red irradiance summed over the receivers behind / before the partition
+};
+
+// Sums `gathered` (an indirect-buffer image) over the receivers on each side of the partition.
+region_sums sum_by_side(const image& gathered, const rsm_pass_buffers& buffers, const rsm_frame_constants& constants) {
+  region_sums sums;
+  for (int y = 0; y < gathered.height; ++y)
+    for (int x = 0; x < gathered.width; ++x) {
+      const glm::vec4 position_depth = buffers.gbuffer[0].at(gbuffer_texel_of(glm::ivec2(x, y), constants));
+      if (!(position_depth.w < 0.0f)) continue;
+      const double value = static_cast<double>(gathered.at(x, y).r);
+      REQUIRE(std::isfinite(value));
+      if (position_depth.x > 0.15f) sums.behind += value;
+      else if (position_depth.x < -0.15f) sums.before += value;
+    }
+  return sums;
+}
+
+}  // namespace
+
+TEST_CASE("RSM pipeline, a point light before a partition: the coarse lights are hidden behind it, on the GPU as in the CPU mirror") {
+  const scene source = partition_room();
+  for (const char* technique : {"rsm-alg3", "rsm-alg6", "rsm-alg6-ray"}) {
+    CAPTURE(technique);
+    rsm_pipeline_settings settings = small_settings(technique);
+    REQUIRE(settings.coverage_blocks > 0);
+    rsm_pipeline pipeline(test_shaders(), source, settings);
+    REQUIRE(pipeline.view_count() == 6);
+    pipeline.render();
+    region_sums gpu, judged, unjudged;
+    for (std::size_t v = 0; v < pipeline.view_count(); ++v) {
+      CAPTURE(v);
+      const rsm_pass_buffers buffers = pipeline.read_buffers(v);
+      const rsm_frame_constants& constants = pipeline.constants(v);
+      const std::optional<cube_face_rsms> cube = read_cube_faces(pipeline, v);
+      REQUIRE(cube);
+      const image with_cube = cpu_gather_pass(buffers, constants, 2, &*cube);
+      require_parity(compare("point light gather with the cube's coarse visibility", buffers.indirect.texels, with_cube.texels, coordinates_of(with_cube),
+                             {1e-7f, 4e-6f, 16, 0.0, "150 terms of a few-ulp Eq. 3.2; same samples, same segment tests"}));
+      const image without = cpu_gather_pass(buffers, constants, 2);
+      const region_sums g = sum_by_side(buffers.indirect, buffers, constants), j = sum_by_side(with_cube, buffers, constants),
+                        u = sum_by_side(without, buffers, constants);
+      gpu.behind += g.behind, gpu.before += g.before;
+      judged.behind += j.behind, judged.before += j.before;
+      unjudged.behind += u.behind, unjudged.before += u.before;
+    }
+    CAPTURE(gpu.behind);
+    CAPTURE(judged.behind);
+    CAPTURE(unjudged.behind);
+    CAPTURE(judged.before);
+    CAPTURE(unjudged.before);
+    const std::string measured = std::string(technique) + ": behind the partition " + std::to_string(judged.behind / unjudged.behind) + " of the gather without the cube, before it " +
+            std::to_string(judged.before / unjudged.before) + ", the GPU's behind it " + std::to_string(gpu.behind / unjudged.behind);
+    MESSAGE(measured);
+    REQUIRE(unjudged.behind > 0.0);
+    REQUIRE(unjudged.before > 0.0);
+    // Behind the partition the coarse lights of the lit back wall are hidden: darker, on the GPU
+    // (gather.frag) and in the C++ gather alike.
+    CHECK(judged.behind < 0.8 * unjudged.behind);
+    CHECK(gpu.behind < 0.8 * unjudged.behind);
+    // Before it the segments run in the open: nearly all of the light stays.
+    CHECK(judged.before > 0.9 * unjudged.before);
+  }
 }
