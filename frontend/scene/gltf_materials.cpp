@@ -110,7 +110,7 @@ reader::texture_slot reader::texture_slot_of(const tinygltf::TextureInfo& info, 
                                              const std::string& without) {
   texture_slot out;
   if (info.index < 0) return out;
-  out.texcoord_set = texcoord_set_of(info, where);
+  out.texcoord_set = texcoord_set_of(info, where + " " + slot);  // the message names the slot
   if (info.index >= static_cast<int>(model_.textures.size())) fail(where + ": " + slot + " names texture " + std::to_string(info.index) + ", which does not exist");
   const tinygltf::Texture& texture = model_.textures[static_cast<std::size_t>(info.index)];
   if (texture.source < 0) {
@@ -215,7 +215,7 @@ reader::material_use reader::material_for(int index) {
     made.emission_texture_matrix = emission.matrix;
     made.emission_texture_offset = emission.offset;
   }
-  const int texcoord_set = made.texture >= 0 ? base.texcoord_set : made.emission_texture >= 0 ? texcoord_set_of(source.emissiveTexture, where) : -1;
+  const int texcoord_set = made.texture >= 0 ? base.texcoord_set : made.emission_texture >= 0 ? texcoord_set_of(source.emissiveTexture, where + " emissiveTexture") : -1;
   texcoord_set_of_[static_cast<std::size_t>(index)] = texcoord_set;
   if (made.texture < 0 && !made.alpha_mask && !emits(made)) {
     cached = -1;  // plain: the factor alone, opaque, not emitting

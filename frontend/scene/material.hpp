@@ -87,8 +87,8 @@ struct surface_material {
 };
 
 /// The largest emitted radiance per channel: the largest finite value of an rgba16f render target
-/// (65504, the techniques' default output format) rounded down, so that an emissive pixel of any
-/// technique's image stays finite.
+/// (65504, the techniques' default output format) rounded down, so that the emission alone stays
+/// finite in any technique's image (the reflected light added to it is not bounded here).
 inline constexpr float max_emission = 6.0e4f;
 
 /// Whether the material emits (a channel of its emission above 0).

@@ -16,7 +16,8 @@
 namespace vplkit {
 
 /// The texture unit a material's base-colour texture is bound to while a mesh draws (the
-/// pipelines' own textures use the units below it).
+/// pipelines' own textures for mesh passes use the units below it; full-screen passes, which draw
+/// no mesh, may use it and above: the RSM gather binds a point light's six face RSMs to 8..13).
 constexpr int material_texture_unit = 8;
 /// The unit of a material's emission texture while draw_emissive draws it.
 constexpr int emission_texture_unit = material_texture_unit + 1;

@@ -786,6 +786,12 @@ TEST_CASE("emissive materials: a negative, too large or non-finite factor or str
   CHECK(refused(strength("\"bright\"")).find(strength_range) != std::string::npos);
   CHECK(refused(strength("1e300")).find("bad.gltf: material 0 'lamp': emissiveFactor x emissiveStrength must be at most 60000 per channel") != std::string::npos);
   CHECK(refused(strength("1e400")).find("bad.gltf") != std::string::npos);
+  // A texture slot's bad KHR_texture_transform texCoord names the slot it is in.
+  const std::string textures = R"("textures": [{"source": 0}], "images": [{"uri": "glow.png"}])";
+  const std::string tex_coord = load_error(folder.write(
+      "bad.gltf", emissive_gltf(R"({"name": "lamp", "emissiveFactor": [1, 1, 1], "emissiveTexture": {"index": 0, "extensions": {"KHR_texture_transform": {"texCoord": "one"}}}})",
+                                textures)));
+  CHECK(tex_coord.find("bad.gltf: material 0 'lamp' emissiveTexture KHR_texture_transform texCoord must be a finite number") != std::string::npos);
   // The largest allowed emission loads; a strength of 0 loads and does not emit.
   CHECK(load_gltf(folder.write("max.gltf", emissive_gltf(strength("60000")))).geometry.materials->materials.front().emission.r == 60000.0f);
   CHECK_FALSE(has_emission(load_gltf(folder.write("off.gltf", emissive_gltf(strength("0")))).geometry));

@@ -398,10 +398,12 @@ TEST_CASE("RSM pipeline, a point light before a partition: the coarse lights are
     REQUIRE(unjudged.behind > 0.0);
     REQUIRE(unjudged.before > 0.0);
     // Behind the partition the coarse lights of the lit back wall are hidden: darker, on the GPU
-    // (gather.frag) and in the C++ gather alike.
+    // (gather.frag) and in the C++ gather alike. Measured 0.721 for all three (llvmpipe); 0.8
+    // leaves room for a changed sample count or slab, not for a test that hides nothing.
     CHECK(judged.behind < 0.8 * unjudged.behind);
     CHECK(gpu.behind < 0.8 * unjudged.behind);
-    // Before it the segments run in the open: nearly all of the light stays.
-    CHECK(judged.before > 0.9 * unjudged.before);
+    // Before it the segments run in the open: the light stays (measured 0.999994), so a test that
+    // hid 1 % of the open segments' light would show.
+    CHECK(judged.before > 0.99 * unjudged.before);
   }
 }
