@@ -16,7 +16,7 @@
 //
 // The weight is direct_light.hpp's perspective_texel_solid_angle of the face's 90-degree view,
 // at the texel's centre (the midpoint rule: the weights of the six faces sum to 4 pi within 4e-6
-// at S = 256).
+// relative at S = 256, 1.5e-2 at S = 4).
 // The distance is averaged with the same weights: the quad's distance is the mean over the solid
 // angle it stands for.
 //
