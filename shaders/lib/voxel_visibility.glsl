@@ -15,6 +15,7 @@ uvec4 voxel_fetch(ivec2 texel);
 struct voxel_march_settings {
   float start_offset;
   float end_offset;
+  int group;
 };
 
 struct voxel_grid_shape {
