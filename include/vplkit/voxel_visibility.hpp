@@ -32,6 +32,12 @@
 // lanes run every branch of the loop's body, so each step cost both levels' work
 // (docs/rsm-study.md, "Beyond one RSM": "Where the time goes").
 //
+// One march per group (voxel_march_settings::group): llvmpipe's frame pays for every march that any
+// lane of a SIMD group runs, as long as the group's longest, not for the cells fetched. So the
+// samples of a path share one march per run of `group` (rsm_sample_group in rsm_gather.hpp), to
+// the run's member that lights the receiver most; a run all visible or all hidden gets the
+// per-sample answer (docs/rsm-study.md, "Where the time goes": the frame against the run's length).
+//
 // In the gather (voxel_rsm_visibility, the Visibility of gather_rsm_with): the receiver, the pixel
 // lights and the coverage's coarse lights are in the light's eye space; one affine matrix
 // (voxel_cells_from) takes them to the grid's cells, so a sample costs two point transforms. A
@@ -94,7 +100,7 @@ template <typename T>
 struct voxel_march_settings {
   T start_offset = T(2);  ///< cell sides along the receiver's normal
   T end_offset = T(2);    ///< cell sides along the sample's normal
-  int group = 5;          ///< samples of a path per march (rsm_sample_group; docs/rsm-study.md, "Where the time goes"); 1: every sample its own
+  int group = 2;          ///< samples of a path per march (rsm_sample_group; docs/rsm-study.md, "Where the time goes"); 1: every sample its own
 };
 
 template <typename T>
