@@ -96,8 +96,10 @@ struct rsm_sample_group {
   vec3 normal;
 };
 
+// The C++ twin is rsm_sample_group's default value, rsm_sample_group<T>{}.
 rsm_sample_group rsm_sample_group_empty() { return rsm_sample_group(vec3(0.0), 0.0, vec3(0.0), vec3(0.0)); }
 
+// The C++ twin is rsm_sample_group::add.
 void rsm_sample_group_add(inout rsm_sample_group group, vec3 weighted, rsm_texel light) {
   group.sum += weighted;
   float size = weighted.x + weighted.y + weighted.z;
