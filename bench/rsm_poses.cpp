@@ -229,6 +229,7 @@ march_counts count_voxel_marches(const rsm_pipeline& pipeline) {
     std::size_t& fetches;
     march_counts& counts;
     void begin_path() {}
+    int samples_per_march() const { return march.samples_per_march(); }  // the gather groups the samples as the pipeline's does
     float count(std::size_t before, float seen) {  // before: the fetches before the call (read first: argument order is unspecified)
       if (fetches > before) {
         counts.marches += 1.0;
@@ -320,6 +321,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, voxel_grid_max_resolution))->capture_default_str();
   app.add_option("--voxel-offset", voxel_march.start_offset, "voxel mode: rsm-voxel's start and end offsets (cells)")
       ->check(CLI::Range(0.0, 16.0))->capture_default_str();
+  app.add_option("--voxel-group", voxel_march.group, "voxel mode: rsm-voxel's samples of a path per march")
+      ->check(CLI::Range(1, voxel_max_group))->capture_default_str();
   app.add_option("--timing-size", timing_size, "timing mode: image side (the RSM: --rsm-size)")->check(CLI::Range(16, 4096))->capture_default_str();
   CLI11_PARSE(app, argc, argv);
   if (coverage_blocks == 0 && flicker == 0) {
@@ -334,7 +337,7 @@ int main(int argc, char** argv) {
     auto context = create_headless_context();
     const shader_library shaders(default_shader_dir());
     const int threads = hardware_threads();
-    if (timing > 0) {
+    if (timing > 0 && !voxel) {  // voxel mode reads --timing as its own repeat count
       // Timing mode: the cost of the coverage, the default technique with and without it, frames
       // interleaved (A B A B ...), wall clock around glFinish, median.
       std::ostringstream md;
@@ -397,6 +400,7 @@ int main(int argc, char** argv) {
         voxel_settings.technique = "rsm-voxel";
         voxel_settings.voxel_grid = grid_settings;
         voxel_settings.voxel_march.start_offset = voxel_settings.voxel_march.end_offset = voxel_march.start_offset;
+        voxel_settings.voxel_march.group = voxel_march.group;
         const technique_errors radial = measure_technique(shaders, source, radial_settings, reference, seeds);
         const technique_errors voxels = measure_technique(shaders, source, voxel_settings, reference, seeds);
         // rsm-alg6 (the thesis's visibility) timed beside them: the cost is also stated against it.
@@ -444,7 +448,7 @@ int main(int argc, char** argv) {
       md << "# rsm-voxel on " << poses << "\n\n" << counted << " frames, " << size << "^2 image, RSM " << rsm_size << "^2, brute force at every "
          << stride << "th receiver per axis, seeds 1-" << seeds << ", Monte Carlo " << mc_samples << " bounce rays per pixel, "
          << describe_coverage(coverage_blocks, coverage_interleave) << ", the grid " << grid_settings.resolution << " cells along the scene's longest side, "
-         << "offsets " << fixed(voxel_march.start_offset, 2) << " cells; frame cost: wall clock around glFinish, median of "
+         << "offsets " << fixed(voxel_march.start_offset, 2) << " cells, " << voxel_march.group << " samples of a path per march; frame cost: wall clock around glFinish, median of "
          << repeat << ", rsm-radial, rsm-voxel and rsm-alg6 interleaved; the grid's build (CPU, once per scene) apart; on:\n\n```\n" << describe_current_context()
          << "\n```\n\n| target | frames met | min / median / max |\n|---|---:|---:|\n"
          << "| filtered indirect / Monte Carlo in [0.85, 1.15] | " << image_met << " / " << counted << " | " << image_ratios.describe(2) << " |\n"

@@ -48,6 +48,8 @@ coarse_light rsm_coarse_fetch(ivec2 block) {
 uvec4 voxel_fetch(ivec2 texel) { return texelFetch(voxel_packed, texel, 0); }
 // The C++ twins are voxel_rsm_visibility's operator() and coarse(): from the light's eye space to the grid's cells.
 float rsm_voxel_visibility(vec3 x, vec3 n, vec3 xp, vec3 np) { return voxel_light_visible(voxel_shape, voxel_march, voxel_from_light, x, n, xp, np); }
+// voxel_rsm_visibility's samples_per_march: the samples of a path that share one march.
+int rsm_voxel_group() { return voxel_march.group; }
 #if VPLKIT_RSM_COVERAGE
 float rsm_voxel_coarse_visibility(vec3 x, vec3 n, vec3 xc, vec3 nc) {
   return voxel_coarse_light_visible(voxel_shape, voxel_march, voxel_from_light, x, n, xc, nc);

@@ -238,6 +238,26 @@ rsm_gather_settings<T> default_rsm_gather_settings(glm::ivec2 rsm_size) {
 /// The coarse-light fetch of a gather without coverage.
 struct no_coarse_lights {};
 
+/// Consecutive samples of a path that share one visibility call (rsm-voxel's
+/// voxel_march_settings::group): the sum of their weighted irradiances, and the pixel light of the
+/// largest, the one the group is judged by. So a group whose members are all visible or all hidden
+/// gets the per-sample answer exactly, and a group wholly behind a wall stays dark. GLSL twin:
+/// struct rsm_sample_group in lib/rsm_gather.glsl.
+template <typename T>
+struct rsm_sample_group {
+  glm::vec<3, T> sum{T(0)};
+  T best = T(0);          ///< the largest member's weighted irradiance, summed over the channels; 0: none lights the receiver
+  rsm_texel<T> light{};   ///< that member
+  void add(const glm::vec<3, T>& weighted, const rsm_texel<T>& member) {
+    sum += weighted;
+    const T size = weighted.x + weighted.y + weighted.z;
+    if (size > best) {
+      best = size;
+      light = member;
+    }
+  }
+};
+
 namespace detail {
 
 /// alg6_ray's `up` for a receiver: the unit direction from it towards the light (see
@@ -285,6 +305,13 @@ struct judges_coarse_lights<Visibility, T,
                             std::void_t<decltype(std::declval<Visibility&>().coarse(std::declval<const gather_receiver<T>&>(), std::declval<const coarse_light<T>&>()))>>
     : std::true_type {};
 
+/// Whether a gather_rsm_with Visibility judges groups of consecutive samples of a path by one call
+/// (rsm_sample_group): a member `int samples_per_march() const` (voxel_rsm_visibility's).
+template <typename Visibility, typename = void>
+struct groups_samples : std::false_type {};
+template <typename Visibility>
+struct groups_samples<Visibility, std::void_t<decltype(std::declval<const Visibility&>().samples_per_march())>> : std::true_type {};
+
 /// The micro linear buffer's visibility with the coverage's coarse lights judged by
 /// `segment_visible(x, x_c) -> T` (both in the light's eye space): a point light's
 /// coarse_light_cube_visibility over its six depth maps (vplkit/rsm_coarse_visibility.hpp).
@@ -322,27 +349,40 @@ constexpr bool judges_coarse_lights_by_segment(rsm_visibility visibility) {
 /// coarse lights (rsm_coverage.hpp) when settings.coverage_blocks > 0; no_coarse_lights{}: none.
 /// A visibility with a member `coarse(receiver, coarse_light)` judges the coarse lights too
 /// (voxel_rsm_visibility; gather_rsm's Alg. 3/6/alg6_ray given a coarse visibility); the others
-/// leave them unoccluded, as the thesis's coverage does.
+/// leave them unoccluded, as the thesis's coverage does. A visibility with a member
+/// `samples_per_march()` (voxel_rsm_visibility) is called once per group of that many consecutive
+/// samples of a path (the last group of a path may be shorter), for the group's largest member
+/// (rsm_sample_group), and its answer weighs the whole group: the march is what rsm-voxel's frame
+/// pays for (docs/rsm-study.md, "Where the time goes").
 /// C++ only: the GLSL twin selects its visibility by define.
 template <rsm_pattern Pattern, typename T, typename Fetch, typename CoarseFetch, typename Visibility>
 glm::vec<3, T> gather_rsm_with(const gather_receiver<T>& receiver, Fetch&& fetch, CoarseFetch&& coarse_fetch, const rsm_gather_settings<T>& settings,
                                Visibility&& visibility) {
   constexpr bool with_coverage = !std::is_same_v<std::decay_t<CoarseFetch>, no_coarse_lights>;
+  constexpr bool grouped = detail::groups_samples<std::decay_t<Visibility>>::value;
+  static_assert(!grouped || Pattern == rsm_pattern::radial, "a grouping visibility groups the samples of a path: it needs rsm_pattern::radial");
   glm::vec<3, T> irradiance(0);
   const bool in_front = receiver.position.z < T(0);
   // The pattern's outer radius for this receiver, in texels.
   T reach = settings.disk.max_radius;
   if (in_front) {
     // One sample: fetch, visibility, Eq. 3.2, accumulate (Alg. 1 lines 9-16, Alg. 5 lines 9-15).
+    // A grouping visibility: the sample joins its group instead, judged when the group is complete.
+    rsm_sample_group<T> group;
     auto accumulate = [&](const pattern_sample<T>& s) {
       const glm::ivec2 texel = glm::ivec2(glm::floor(receiver.rsm_coordinate + s.offset));
       if (texel.x < 0 || texel.y < 0 || texel.x >= settings.rsm_size.x || texel.y >= settings.rsm_size.y) return;
       const rsm_texel<T> light = fetch(texel);
       if (!(light.position.z < T(0))) return;
-      const T seen = visibility(receiver, light);
-      const glm::vec<3, T> e = pixel_light_irradiance(receiver.position, receiver.normal, light.position, light.normal,
-                                                      light.flux, settings.irradiance);
-      irradiance += (seen * s.weight) * e;
+      if constexpr (grouped) {
+        group.add(s.weight * pixel_light_irradiance(receiver.position, receiver.normal, light.position, light.normal, light.flux, settings.irradiance),
+                  light);
+      } else {
+        const T seen = visibility(receiver, light);
+        const glm::vec<3, T> e = pixel_light_irradiance(receiver.position, receiver.normal, light.position, light.normal,
+                                                        light.flux, settings.irradiance);
+        irradiance += (seen * s.weight) * e;
+      }
     };
     // How far the projection lies outside the RSM: the pattern runs only when it can land on it.
     const glm::vec<2, T> size(settings.rsm_size);
@@ -352,12 +392,21 @@ glm::vec<3, T> gather_rsm_with(const gather_receiver<T>& receiver, Fetch&& fetch
       const radial_pixel<T> pixel = radial_pattern_pixel(receiver.pixel, settings.radial);
       reach = pixel.scale * settings.radial.max_radius;
       if (outside_squared <= (reach + T(1)) * (reach + T(1))) {
+        int group_size = 1;
+        if constexpr (grouped) group_size = glm::max(visibility.samples_per_march(), 1);
         for (int path = 0; path < settings.radial.paths; ++path) {
           visibility.begin_path();
           T ring_inner_radius = settings.radial.min_radius;
           for (int sample_index = 0; sample_index < settings.radial.samples_per_path; ++sample_index) {
             accumulate(radial_pattern_sample(path, sample_index, ring_inner_radius, pixel, settings.radial));
             ring_inner_radius *= settings.radial.ring_ratio;
+            if constexpr (grouped) {
+              // The group's one call, for its largest member; a group that lights nothing is not judged.
+              if ((sample_index + 1) % group_size == 0 || sample_index + 1 == settings.radial.samples_per_path) {
+                if (group.best > T(0)) irradiance += visibility(receiver, group.light) * group.sum;
+                group = rsm_sample_group<T>{};
+              }
+            }
           }
         }
       }

@@ -32,6 +32,12 @@
 // lanes run every branch of the loop's body, so each step cost both levels' work
 // (docs/rsm-study.md, "Beyond one RSM": "Where the time goes").
 //
+// One march per group (voxel_march_settings::group): llvmpipe's frame pays for every march that any
+// lane of a SIMD group runs, as long as the group's longest, not for the cells fetched. So the
+// samples of a path share one march per run of `group` (rsm_sample_group in rsm_gather.hpp), to
+// the run's member that lights the receiver most; a run all visible or all hidden gets the
+// per-sample answer (docs/rsm-study.md, "Where the time goes": the frame against the run's length).
+//
 // In the gather (voxel_rsm_visibility, the Visibility of gather_rsm_with): the receiver, the pixel
 // lights and the coverage's coarse lights are in the light's eye space; one affine matrix
 // (voxel_cells_from) takes them to the grid's cells, so a sample costs two point transforms. A
@@ -59,6 +65,9 @@ namespace vplkit {
 /// Largest voxel_grid_settings::resolution: 512 cells (with the margin 514) keep the packed texture
 /// within 2048 texels per side for any scene's shape.
 inline constexpr int voxel_grid_max_resolution = 512;
+/// The most samples of a path that share one march (voxel_march_settings::group): a path holds at
+/// most 256 (radial_pattern_settings::samples_per_path).
+inline constexpr int voxel_max_group = 256;
 /// The packed texture's largest side (GLSL ES 3.00's least GL_MAX_TEXTURE_SIZE).
 inline constexpr int voxel_grid_max_texture_side = 2048;
 /// Cells per packed texel (RGBA32UI: 4 x 32 bits along z).
@@ -85,11 +94,13 @@ struct settings_description<voxel_grid_settings<T>> {
   static setting_problem rules(const S& settings) { return schema::no_rules(settings); }
 };
 
-/// The march's offsets. GLSL twin: struct voxel_march_settings.
+/// The march's offsets, and how many consecutive samples of a path share one march. GLSL twin:
+/// struct voxel_march_settings.
 template <typename T>
 struct voxel_march_settings {
   T start_offset = T(2);  ///< cell sides along the receiver's normal
   T end_offset = T(2);    ///< cell sides along the sample's normal
+  int group = 2;          ///< samples of a path per march (rsm_sample_group; docs/rsm-study.md, "Where the time goes"); 1: every sample its own
 };
 
 template <typename T>
@@ -101,7 +112,9 @@ struct settings_description<voxel_march_settings<T>> {
     return std::make_tuple(schema::field(&S::start_offset, "start_offset", schema::closed_range(0, 16), "cells",
                                  "the voxel march starts this far along the receiver's normal (> 1.74: its own surface does not occlude it)"),
                            schema::field(&S::end_offset, "end_offset", schema::closed_range(0, 16), "cells",
-                                 "the voxel march ends this far along the sample's normal (> 1.74: its own surface does not occlude it)"));
+                                 "the voxel march ends this far along the sample's normal (> 1.74: its own surface does not occlude it)"),
+                           schema::field(&S::group, "group", schema::closed_range(1, voxel_max_group), "samples",
+                                 "consecutive samples of a path that share one voxel march, to their largest member; 1: a march per sample"));
   }
   static setting_problem rules(const S& settings) { return schema::no_rules(settings); }
 };
@@ -365,6 +378,8 @@ struct voxel_rsm_visibility {
   voxel_march_settings<T> settings;
   glm::mat<4, 4, T> light_to_cells;
   void begin_path() {}
+  /// gather_rsm_with calls the march once per this many samples of a path (rsm_sample_group).
+  int samples_per_march() const { return settings.group; }
   T operator()(const gather_receiver<T>& receiver, const rsm_texel<T>& light) {
     return voxel_light_visible(fetch, shape, settings, light_to_cells, receiver.position, receiver.normal, light.position, light.normal);
   }

@@ -44,6 +44,7 @@
 rsm_texel rsm_fetch(ivec2 texel);
 #if VPLKIT_VISIBILITY == 8
 float rsm_voxel_visibility(vec3 x, vec3 n, vec3 xp, vec3 np);
+int rsm_voxel_group();
 #endif
 #if VPLKIT_RSM_COVERAGE
 coarse_light rsm_coarse_fetch(ivec2 block);
@@ -85,18 +86,41 @@ vec3 towards_light(gather_receiver receiver, rsm_gather_settings settings) {
                                    receiver.position.z * receiver.position.z);
 }
 
+// Consecutive samples of a path that share one visibility (rsm-voxel's voxel_march_settings::group):
+// the sum of their weighted irradiances and the largest one's pixel light, the one the group is
+// marched to. C++ twin: rsm_sample_group.
+struct rsm_sample_group {
+  vec3 sum;
+  float best;
+  vec3 position;
+  vec3 normal;
+};
+
+// The C++ twin is rsm_sample_group's default value, rsm_sample_group<T>{}.
+rsm_sample_group rsm_sample_group_empty() { return rsm_sample_group(vec3(0.0), 0.0, vec3(0.0), vec3(0.0)); }
+
+// The C++ twin is rsm_sample_group::add.
+void rsm_sample_group_add(inout rsm_sample_group group, vec3 weighted, rsm_texel light) {
+  group.sum += weighted;
+  float size = weighted.x + weighted.y + weighted.z;
+  if (size > group.best) {
+    group.best = size;
+    group.position = light.position;
+    group.normal = light.normal;
+  }
+}
+
 // The C++ twin is the lambda `accumulate` inside gather_rsm (a function here: GLSL has no lambdas),
-// with the visibility object's operator().
+// with the visibility object's operator(); rsm-voxel adds the sample to its group instead (the
+// march is the group's, in gather_rsm).
 void rsm_gather_accumulate(gather_receiver receiver, pattern_sample s, rsm_gather_settings settings, vec3 up,
-                           inout micro_linear_buffer linear_buffer, inout vec3 irradiance) {
+                           inout micro_linear_buffer linear_buffer, inout rsm_sample_group group, inout vec3 irradiance) {
   ivec2 texel = ivec2(floor(receiver.rsm_coordinate + s.offset));
   if (texel.x < 0 || texel.y < 0 || texel.x >= settings.rsm_size.x || texel.y >= settings.rsm_size.y) return;
   rsm_texel light = rsm_fetch(texel);
   if (!(light.position.z < 0.0)) return;
   float visibility = 1.0;
-#if VPLKIT_VISIBILITY == 8
-  visibility = rsm_voxel_visibility(receiver.position, receiver.normal, light.position, light.normal);
-#elif VPLKIT_VISIBILITY == 7
+#if VPLKIT_VISIBILITY == 7
   if (alg6_ray_in_front(receiver.position, receiver.normal, light.position, settings.irradiance.min_distance))
     visibility = clamp(micro_linear_buffer_alg6_ray(linear_buffer, elevation_bucket_about(receiver.position, light.position, up, settings.slots),
                                                     receiver.position, light.position, light.normal),
@@ -113,7 +137,11 @@ void rsm_gather_accumulate(gather_receiver receiver, pattern_sample s, rsm_gathe
 #endif
   vec3 e = pixel_light_irradiance(receiver.position, receiver.normal, light.position, light.normal, light.flux,
                                   settings.irradiance);
+#if VPLKIT_VISIBILITY == 8
+  rsm_sample_group_add(group, s.weight * e, light);
+#else
   irradiance += (visibility * s.weight) * e;
+#endif
 }
 
 vec3 gather_rsm(gather_receiver receiver, rsm_gather_settings settings) {
@@ -122,6 +150,7 @@ vec3 gather_rsm(gather_receiver receiver, rsm_gather_settings settings) {
   float reach = settings.disk.max_radius;
   if (in_front) {
     micro_linear_buffer linear_buffer;
+    rsm_sample_group group = rsm_sample_group_empty();
 #if VPLKIT_VISIBILITY == 7
     vec3 up = towards_light(receiver, settings);
 #else
@@ -134,13 +163,23 @@ vec3 gather_rsm(gather_receiver receiver, rsm_gather_settings settings) {
     radial_pixel pixel = radial_pattern_pixel(receiver.pixel, settings.radial);
     reach = pixel.scale * settings.radial.max_radius;
     if (outside_squared <= (reach + 1.0) * (reach + 1.0)) {
+#if VPLKIT_VISIBILITY == 8
+      int group_size = max(rsm_voxel_group(), 1);
+#endif
       for (int path = 0; path < settings.radial.paths; ++path) {
         micro_linear_buffer_reset(linear_buffer, settings.slots.count);
         float ring_inner_radius = settings.radial.min_radius;
         for (int sample_index = 0; sample_index < settings.radial.samples_per_path; ++sample_index) {
           rsm_gather_accumulate(receiver, radial_pattern_sample(path, sample_index, ring_inner_radius, pixel, settings.radial),
-                                settings, up, linear_buffer, irradiance);
+                                settings, up, linear_buffer, group, irradiance);
           ring_inner_radius *= settings.radial.ring_ratio;
+#if VPLKIT_VISIBILITY == 8
+          // The group's one march, to its largest member (see the C++ twin).
+          if ((sample_index + 1) % group_size == 0 || sample_index + 1 == settings.radial.samples_per_path) {
+            if (group.best > 0.0) irradiance += rsm_voxel_visibility(receiver.position, receiver.normal, group.position, group.normal) * group.sum;
+            group = rsm_sample_group_empty();
+          }
+#endif
         }
       }
     }
@@ -149,7 +188,7 @@ vec3 gather_rsm(gather_receiver receiver, rsm_gather_settings settings) {
       micro_linear_buffer_reset(linear_buffer, settings.slots.count);  // unused without paths, but defined
       vec2 shift = rsm_disk_pixel_shift(receiver.pixel, settings.disk);
       for (int sample_index = 0; sample_index < settings.disk.samples; ++sample_index)
-        rsm_gather_accumulate(receiver, rsm_disk_sample(sample_index, shift, settings.disk), settings, up, linear_buffer, irradiance);
+        rsm_gather_accumulate(receiver, rsm_disk_sample(sample_index, shift, settings.disk), settings, up, linear_buffer, group, irradiance);
     }
 #endif
     if (!(outside_squared > 0.0)) return irradiance * 0.318309886183790671538;  // on the map: the pattern alone

@@ -5,6 +5,8 @@
 // through `uvec4 voxel_fetch(ivec2 texel)`, which the including shader defines (e.g. texelFetch
 // on a usampler2D; the prototype is declared here: Mesa's linker wants every declared function
 // that a compiled function calls defined).
+// The gather's runs of samples that share one march (voxel_march_settings::group) are
+// lib/rsm_gather.glsl's rsm_sample_group.
 #ifndef VPLKIT_VOXEL_VISIBILITY_GLSL
 #define VPLKIT_VOXEL_VISIBILITY_GLSL
 
@@ -15,6 +17,7 @@ uvec4 voxel_fetch(ivec2 texel);
 struct voxel_march_settings {
   float start_offset;
   float end_offset;
+  int group;
 };
 
 struct voxel_grid_shape {

@@ -336,3 +336,144 @@ TEST_CASE("the march is hidden exactly when the segment meets an occupied cell o
   CHECK(hidden > 200);
   CHECK(visible > 2000);
 }
+
+namespace {
+
+// One march per group (voxel_march_settings::group): a receiver on a floor under a ceiling of
+// pixel lights facing down, in a light's eye space that is the world (an orthographic RSM of 64^2
+// texels, texel (i, j) the light at (i + 0.5, j + 0.5, -20)); the grid spans z in [-64, 0].
+struct ceiling_scene {
+  voxel_grid grid;
+  rsm_gather_settings<float> settings;
+  gather_receiver<float> receiver{glm::vec3(32.3f, 31.7f, -50.0f), glm::vec3(0, 0, 1), glm::vec2(32.3f, 31.7f), glm::uvec2(5, 9)};
+  rsm_texel<float> operator()(glm::ivec2 t) const {
+    // The flux varies from texel to texel, so that a group's largest member is not its first.
+    const float flux = 1.0f + static_cast<float>((t.x * 7 + t.y * 13) % 5);
+    return {glm::vec3(static_cast<float>(t.x) + 0.5f, static_cast<float>(t.y) + 0.5f, -20.0f), glm::vec3(0, 0, -1), glm::vec3(flux, 0.5f * flux, 1.0f)};
+  }
+  ceiling_scene() {
+    voxel_grid_shape<float> shape;
+    shape.origin = glm::vec3(0.0f, 0.0f, -64.0f);
+    shape.cell_size = 1.0f;
+    shape.cells = glm::ivec3(64);
+    grid = make_voxel_grid(shape);
+    radial_pattern_settings<float> radial;
+    radial.paths = 20;
+    radial.samples_per_path = 15;
+    settings = make_rsm_gather_settings(radial, disk_pattern_settings<float>{}, 0.375f, 8, glm::ivec2(64));  // 24 texels
+  }
+  voxel_rsm_visibility<float, voxel_grid_fetch> march(int group) const {
+    voxel_march_settings<float> march;
+    march.group = group;
+    return {voxel_grid_fetch{&grid}, grid.shape, march, voxel_cells_from(grid.shape, glm::mat4(1.0f))};
+  }
+};
+
+// The same march called for every sample: a Visibility without samples_per_march.
+struct per_sample_march {
+  voxel_rsm_visibility<float, voxel_grid_fetch> march;
+  int calls = 0;
+  void begin_path() {}
+  float operator()(const gather_receiver<float>& receiver, const rsm_texel<float>& light) {
+    ++calls;
+    return march(receiver, light);
+  }
+};
+
+// The grouping march, its calls counted.
+struct counted_group_march {
+  voxel_rsm_visibility<float, voxel_grid_fetch> march;
+  int calls = 0;
+  void begin_path() {}
+  int samples_per_march() const { return march.samples_per_march(); }
+  float operator()(const gather_receiver<float>& receiver, const rsm_texel<float>& light) {
+    ++calls;
+    return march(receiver, light);
+  }
+};
+
+bool close_to(const glm::vec3& a, const glm::vec3& b) {
+  return glm::all(glm::lessThanEqual(glm::abs(a - b), 1e-5f * glm::max(glm::abs(a), glm::abs(b)) + 1e-12f));
+}
+
+}  // namespace
+
+TEST_CASE("one march per group: a group all visible or all hidden gets the per-sample answer, a mixed one its largest member's") {
+  ceiling_scene open, closed, roofed;
+  // A closed room of zero-thickness quads around the receiver, under the ceiling (z = -30).
+  add_box(closed.grid, glm::vec3(22.0f, 22.0f, -56.0f), glm::vec3(42.0f, 42.0f, -30.0f));
+  // A roof over part of the floor (x >= 34): the receiver sees some of the ceiling, not all.
+  add_box(roofed.grid, glm::vec3(34.0f, 0.5f, -35.2f), glm::vec3(63.5f, 63.5f, -34.8f));
+  const ceiling_scene* scenes[] = {&open, &closed, &roofed};
+  for (const ceiling_scene* scene : scenes) {
+    per_sample_march each{scene->march(1)};
+    const glm::vec3 per_sample = gather_rsm_with<rsm_pattern::radial>(scene->receiver, *scene, scene->settings, each);
+    // Group 1 is the per-sample gather bit for bit (a verdict of 0 or 1 times the same product),
+    // with the marches of the samples that light the receiver only.
+    counted_group_march one{scene->march(1)};
+    CHECK(gather_rsm_with<rsm_pattern::radial>(scene->receiver, *scene, scene->settings, one) == per_sample);
+    CHECK(one.calls <= each.calls);
+    for (int group : {2, 3, 5, 8, 15, 40}) {
+      CAPTURE(group);
+      counted_group_march grouped{scene->march(group)};
+      const glm::vec3 e = gather_rsm_with<rsm_pattern::radial>(scene->receiver, *scene, scene->settings, grouped);
+      // At most one march per group: P ceil(S / group).
+      CHECK(grouped.calls <= scene->settings.radial.paths * ((scene->settings.radial.samples_per_path + group - 1) / group));
+      if (scene == &open) CHECK(close_to(e, per_sample));  // every group visible: the per-sample answer (summed in groups)
+      if (scene == &closed) CHECK(e == glm::vec3(0.0f));   // every light behind the closed room's walls: still dark
+    }
+  }
+  CHECK(gather_rsm_with<rsm_pattern::radial>(open.receiver, open, open.settings, per_sample_march{open.march(1)}).x > 0.0f);
+
+  // The roofed floor, group by group from the definition: the samples of a path in runs of
+  // `group`, each run weighted by one verdict, the march to its member of largest weighted
+  // irradiance (the sum of the channels); uniform runs must get the per-sample answer.
+  const ceiling_scene& s = roofed;
+  const radial_pattern_constants<float>& constants = s.settings.radial;
+  const voxel_march_settings<float> march;
+  const glm::mat4 to_cells = voxel_cells_from(s.grid.shape, glm::mat4(1.0f));
+  for (int group : {2, 5, 8}) {
+    CAPTURE(group);
+    glm::vec3 expected(0.0f);
+    int uniform = 0, mixed = 0;
+    for (int path = 0; path < constants.paths; ++path)
+      for (int first = 0; first < constants.samples_per_path; first += group) {
+        glm::vec3 sum(0.0f);
+        float best = 0.0f;
+        rsm_texel<float> largest{};
+        int seen = 0, hidden = 0;
+        for (int k = first; k < glm::min(first + group, constants.samples_per_path); ++k) {
+          const pattern_sample<float> sample = radial_pattern_sample(path, k, s.receiver.pixel, constants);
+          const glm::ivec2 texel = glm::ivec2(glm::floor(s.receiver.rsm_coordinate + sample.offset));
+          if (texel.x < 0 || texel.y < 0 || texel.x >= 64 || texel.y >= 64) continue;
+          const rsm_texel<float> light = s(texel);
+          const glm::vec3 weighted = sample.weight * pixel_light_irradiance(s.receiver.position, s.receiver.normal, light.position, light.normal, light.flux,
+                                                                            s.settings.irradiance);
+          sum += weighted;
+          if (weighted.x + weighted.y + weighted.z > best) {
+            best = weighted.x + weighted.y + weighted.z;
+            largest = light;
+          }
+          ++seen;
+          hidden += voxel_light_visible(voxel_grid_fetch{&s.grid}, s.grid.shape, march, to_cells, s.receiver.position, s.receiver.normal, light.position,
+                                        light.normal) == 0.0f;
+        }
+        if (!(best > 0.0f)) continue;
+        const float verdict = voxel_light_visible(voxel_grid_fetch{&s.grid}, s.grid.shape, march, to_cells, s.receiver.position, s.receiver.normal,
+                                                  largest.position, largest.normal);
+        if (hidden == 0 || hidden == seen) {
+          ++uniform;
+          CHECK(verdict == (hidden == 0 ? 1.0f : 0.0f));
+        } else {
+          ++mixed;
+        }
+        expected += verdict * sum;
+      }
+    voxel_rsm_visibility<float, voxel_grid_fetch> grouped = s.march(group);
+    const glm::vec3 e = gather_rsm_with<rsm_pattern::radial>(s.receiver, s, s.settings, grouped);
+    CHECK(close_to(e * 3.14159265358979f, expected));
+    // The roof splits some runs: both kinds are exercised.
+    CHECK(uniform > 10);
+    CHECK(mixed > 0);
+  }
+}

@@ -208,6 +208,9 @@ std::vector<entry> coverage_voxel_history_settings() {
       entry::number("voxel-end-offset", path_of(&S::voxel_march, &V::end_offset))
           .read_by(voxel, "rsm-voxel")
           .feeds("gather.frag", "voxel_march", voxel_march, &V::end_offset),
+      entry::number("voxel-group", path_of(&S::voxel_march, &V::group))
+          .read_by(voxel, "rsm-voxel")
+          .feeds("gather.frag", "voxel_march", voxel_march, &V::group),
       // Below 1 the frames blend with a history: the temporal program and the history targets.
       entry::number("temporal-blend", path_of(&S::temporal, &temporal_settings<float>::blend))
           .read_by(gathers, gathering)
