@@ -54,7 +54,7 @@ float rsm_voxel_coarse_visibility(vec3 x, vec3 n, vec3 xc, vec3 nc) {
 }
 #endif
 #endif
-#if VPLKIT_RSM_COVERAGE && VPLKIT_VISIBILITY != 0 && VPLKIT_VISIBILITY != 8 && VPLKIT_VISIBILITY != 2
+#if VPLKIT_RSM_COVERAGE && VPLKIT_VISIBILITY != 8
 #include "lib/rsm_coarse_visibility.glsl"
 // A point light's coarse lights against its six depth maps (lib/rsm_coarse_visibility.glsl;
 // rsm_pipeline's coarse_cube_of sets them); a spot's or a sun's stay unoccluded (cube_faces 0).

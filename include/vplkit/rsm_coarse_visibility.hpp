@@ -19,8 +19,9 @@
 // A spot's or a sun's single map does not see the segment's part outside its frustum (measured no
 // better, docs/scenes.md): the gather uses this for point lights only.
 //
-// Used by gather_rsm's coarse visibility for Alg. 3/6/alg6_ray (rsm_gather.hpp; the CPU mirror
-// fills it from the six faces' RSMs) and by gather.frag's rsm_depth_coarse_visibility; errata RSMV-14.
+// Used by gather_rsm's coarse visibility for every visibility but the voxel grid's (rsm_gather.hpp;
+// the CPU mirror fills it from the six faces' RSMs) and by gather.frag's
+// rsm_depth_coarse_visibility; errata RSMV-14.
 // GLSL twin: shaders/lib/rsm_coarse_visibility.glsl.
 #pragma once
 

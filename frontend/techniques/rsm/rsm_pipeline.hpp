@@ -91,7 +91,7 @@ struct coarse_cube_views {
   std::array<std::size_t, 6> view_of_face{};
 };
 /// The cube of view `view` of `views` when its gather judges the coverage's coarse lights against
-/// the light's six depth maps: coverage on, Alg. 3, 6 or alg6_ray (judges_coarse_lights_by_segment),
+/// the light's six depth maps: coverage on, any technique but rsm-voxel (judges_coarse_lights_by_segment),
 /// a point light's face with all six faces among `views`. Nothing otherwise (a spot's or a sun's
 /// coarse lights stay unoccluded: its one map does not see the segment outside its frustum).
 std::optional<coarse_cube_views> coarse_cube_of(const std::vector<rsm_frame_constants>& views, std::size_t view);
