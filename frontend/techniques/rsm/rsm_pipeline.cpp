@@ -127,16 +127,15 @@ std::optional<coarse_cube_views> coarse_cube_of(const std::vector<rsm_frame_cons
     return std::nullopt;
   coarse_cube_views cube;
   // Points in the gathering face's eye space: to the cube's (world) axes by the inverse view's
-  // rotation (transform_direction), to face g's eye space by g's view after the inverse.
-  const glm::mat4 world_from_here = glm::inverse(here.light.view);
-  cube.frames.cube_from_light = world_from_here;
+  // rotation (transform_direction); each face's eye space from there is the kernel's
+  // cube_face_eye, the convention make_light_frustum renders the faces with.
+  cube.frames.cube_from_light = glm::inverse(here.light.view);
   std::array<bool, 6> found{};
   for (std::size_t v = 0; v < views.size(); ++v)
     if (views[v].light_index == here.light_index && views[v].face >= 0 && views[v].face < 6) {
       const std::size_t g = static_cast<std::size_t>(views[v].face);
       found[g] = true;
       cube.view_of_face[g] = v;
-      cube.frames.face_from_light[g] = views[v].light.view * world_from_here;
     }
   for (bool present : found)
     if (!present) return std::nullopt;
@@ -608,8 +607,6 @@ void rsm_pipeline::draw_gather(std::size_t view) {
     if (cube) {
       glActiveTexture(GL_TEXTURE0 + 8);
       glBindTexture(GL_TEXTURE_2D_ARRAY, cube_depths_.at(views_[view].light_index).get());
-      for (std::size_t g = 0; g < 6; ++g)
-        gather_program_.set("cube_frames.face_from_light[" + std::to_string(g) + "]", cube->frames.face_from_light[g]);
       gather_program_.set("cube_frames.cube_from_light", cube->frames.cube_from_light);
     }
     gather_program_.set("cube_faces", cube ? 1 : 0);

@@ -84,8 +84,8 @@ std::vector<rsm_frame_constants> make_view_constants(const scene& source, const 
                                                      const rsm_pipeline_settings& settings);
 
 /// A point light's cube for the coarse lights' visibility of one of its views (gather.frag's
-/// cube_frames and rsm_face_depths' layers): the frames from the gathering face's eye space, and
-/// which view draws each face.
+/// cube_frames and rsm_face_depths' layers): the rotation from the gathering face's eye space to
+/// the cube's axes, and which view draws each face.
 struct coarse_cube_views {
   cube_depth_frames<float> frames;
   std::array<std::size_t, 6> view_of_face{};
