@@ -56,28 +56,18 @@ float rsm_voxel_coarse_visibility(vec3 x, vec3 n, vec3 xc, vec3 nc) {
 }
 #endif
 #endif
-#if VPLKIT_RSM_COVERAGE && VPLKIT_VISIBILITY != 0 && VPLKIT_VISIBILITY != 8 && VPLKIT_VISIBILITY != 2
+#if VPLKIT_RSM_COVERAGE && VPLKIT_VISIBILITY != 8
 #include "lib/rsm_coarse_visibility.glsl"
 // A point light's coarse lights against its six depth maps (lib/rsm_coarse_visibility.glsl;
 // rsm_pipeline's coarse_cube_of sets them); a spot's or a sun's stay unoccluded (cube_faces 0).
 // The C++ twin: the coarse visibility rsm_cpu_mirror.cpp gives gather_rsm.
 uniform int cube_faces;
 uniform cube_depth_frames cube_frames;
-uniform usampler2D rsm_face0;
-uniform usampler2D rsm_face1;
-uniform usampler2D rsm_face2;
-uniform usampler2D rsm_face3;
-uniform usampler2D rsm_face4;
-uniform usampler2D rsm_face5;
-// GLSL 3.30 indexes sampler arrays with constants only: one sampler per face.
-float rsm_face_depth(int face, ivec2 texel) {
-  if (face == 0) return uintBitsToFloat(texelFetch(rsm_face0, texel, 0).x);
-  if (face == 1) return uintBitsToFloat(texelFetch(rsm_face1, texel, 0).x);
-  if (face == 2) return uintBitsToFloat(texelFetch(rsm_face2, texel, 0).x);
-  if (face == 3) return uintBitsToFloat(texelFetch(rsm_face3, texel, 0).x);
-  if (face == 4) return uintBitsToFloat(texelFetch(rsm_face4, texel, 0).x);
-  return uintBitsToFloat(texelFetch(rsm_face5, texel, 0).x);
-}
+// The six faces' eye-space depths, one layer each (rsm_pipeline copies each face's RSM's first
+// word there): one fetch, where six samplers (GLSL 3.30 indexes sampler arrays with constants
+// only) needed an if chain that llvmpipe runs under masks for every lane.
+uniform usampler2DArray rsm_face_depths;
+float rsm_face_depth(int face, ivec2 texel) { return uintBitsToFloat(texelFetch(rsm_face_depths, ivec3(texel, face), 0).x); }
 float rsm_depth_coarse_visibility(vec3 x, vec3 xc) {
   if (cube_faces == 0) return 1.0;
   return coarse_light_cube_visibility(x, xc, cube_frames, unprojection, settings.rsm_size);

@@ -16,15 +16,18 @@
 // Each point is looked up in the face its direction falls in (cube_face_of), every face being
 // symmetric with a 90-degree field of view (the gathering face's unprojection serves them all);
 // `face_depth(face, texel)` returns that face's stored eye-space z (< 0: a surface; >= 0: none).
+// The point's eye coordinates in that face are a sign-and-swap of its light-centred direction
+// (cube_face_eye), not a product with the face's view matrix: picking that matrix per point (a
+// dynamically indexed uniform array, a per-lane gather on llvmpipe) was most of the test's cost
+// (docs/scenes.md).
 // A spot's or a sun's single map does not see the segment's part outside its frustum (measured no
 // better, docs/scenes.md): the gather uses this for point lights only.
 //
-// Used by gather_rsm's coarse visibility for Alg. 3/6/alg6_ray (rsm_gather.hpp; the CPU mirror
-// fills it from the six faces' RSMs) and by gather.frag's rsm_depth_coarse_visibility; errata RSMV-14.
+// Used by gather_rsm's coarse visibility for every visibility but the voxel grid's (rsm_gather.hpp;
+// the CPU mirror fills it from the six faces' RSMs) and by gather.frag's
+// rsm_depth_coarse_visibility; errata RSMV-14.
 // GLSL twin: shaders/lib/rsm_coarse_visibility.glsl.
 #pragma once
-
-#include <array>
 
 #include <glm/glm.hpp>
 
@@ -40,12 +43,32 @@ inline constexpr float coarse_visibility_slab_near = 0.01f;
 inline constexpr float coarse_visibility_slab_far = 0.25f;
 
 /// The gathering face's eye space to the cube's axes (the world's, rotated; the light at the
-/// origin) and to every face's eye space.
+/// origin). Every face's eye space follows from the cube's axes by cube_face_eye.
 template <typename T>
 struct cube_depth_frames {
   glm::mat<4, 4, T> cube_from_light{T(1)};
-  std::array<glm::mat<4, 4, T>, 6> face_from_light{};
 };
+
+/// Direction `d` from the light (the cube's axes) in the eye space of the face it falls in, and
+/// that face (`face`, cube_face_of's, ties included). Face g is glm::lookAt(0, cube_face_axis(g),
+/// cube_face_up(g)) (rsm_pipeline's make_light_frustum): eye x along cross(axis, up), y along up,
+/// z along -axis, so z = -|major component| and x, y are the other two components, signed per
+/// face (OpenGL's cube map table: +x (-dz, -dy), -x (dz, -dy), +y (dx, dz), -y (dx, -dz),
+/// +z (dx, -dy), -z (-dx, -dy)). Selects and negations only, no matrix.
+template <typename T>
+glm::vec<3, T> cube_face_eye(const glm::vec<3, T>& d, int& face) {
+  const glm::vec<3, T> a = glm::abs(d);
+  const bool on_x = a.x >= a.y && a.x >= a.z;
+  const bool on_y = !on_x && a.y >= a.z;
+  const bool on_z = !on_x && !on_y;
+  const bool positive = on_x ? d.x >= T(0) : (on_y ? d.y >= T(0) : d.z >= T(0));
+  face = (on_x ? 0 : (on_y ? 2 : 4)) + (positive ? 0 : 1);
+  const T sgn = positive ? T(1) : T(-1);
+  const T x = on_x ? -sgn * d.z : (on_z ? sgn * d.x : d.x);
+  const T y = on_y ? sgn * d.z : -d.y;
+  const T z = on_x ? -a.x : (on_y ? -a.y : -a.z);
+  return glm::vec<3, T>(x, y, z);
+}
 
 /// Whether eye-space point q of face `face` lies in the slab behind the surface that face sees
 /// along q's ray.
@@ -65,12 +88,14 @@ bool behind_seen_surface(const glm::vec<3, T>& q, int face, const rsm_unprojecti
 template <typename T, typename FaceDepth>
 T coarse_light_cube_visibility(const glm::vec<3, T>& x, const glm::vec<3, T>& x_c, const cube_depth_frames<T>& frames,
                                const rsm_unprojection<T>& unprojection, glm::ivec2 rsm_size, FaceDepth&& face_depth) {
+  // The segment's ends on the cube's axes once: the rotation is linear, so its points follow.
+  const glm::vec<3, T> c = transform_direction(frames.cube_from_light, x_c);
+  const glm::vec<3, T> r = transform_direction(frames.cube_from_light, x);
   for (int i = 0; i < coarse_visibility_samples; ++i) {
     const T t = T(0.1) + T(0.8) * ((T(i) + T(0.5)) / T(coarse_visibility_samples));
-    const glm::vec<3, T> p = x_c + t * (x - x_c);
-    const int face = cube_face_of(transform_direction(frames.cube_from_light, p));
-    if (behind_seen_surface(transform_point(frames.face_from_light[static_cast<std::size_t>(face)], p), face, unprojection, rsm_size, face_depth))
-      return T(0);
+    int face = 0;
+    const glm::vec<3, T> q = cube_face_eye(c + t * (r - c), face);
+    if (behind_seen_surface(q, face, unprojection, rsm_size, face_depth)) return T(0);
   }
   return T(1);
 }

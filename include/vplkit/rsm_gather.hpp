@@ -332,12 +332,13 @@ struct unoccluded_coarse_lights {
   }
 };
 
-/// Whether gather_rsm with `visibility` judges the coarse lights by a coarse visibility: Alg. 3,
-/// Alg. 6 and alg6_ray (GLSL: VPLKIT_VISIBILITY 3, 6, 7 with coverage). none and Alg. 2 are left
-/// as the thesis has them; rsm-voxel judges them by its own grid.
-constexpr bool judges_coarse_lights_by_segment(rsm_visibility visibility) {
-  return visibility == rsm_visibility::alg3 || visibility == rsm_visibility::alg6 || visibility == rsm_visibility::alg6_ray;
-}
+/// Whether gather_rsm with `visibility` judges the coarse lights by a coarse visibility: every
+/// visibility but the voxel grid's, which judges them by its own march (GLSL: VPLKIT_VISIBILITY
+/// other than 8, with coverage). The coarse lights are vplkit's coverage, not the thesis's pattern
+/// (errata RSMV-10, RSMV-14), so their visibility does not depend on which of the thesis's
+/// visibilities the pattern's samples get: without it the lit side of a partition lit the floor
+/// behind it for rsm-original and rsm-radial too (docs/scenes.md, workshop corner +17.8 %).
+constexpr bool judges_coarse_lights_by_segment(rsm_visibility visibility) { return visibility != rsm_visibility::voxel; }
 
 /// The gather with the visibility of each sample supplied by `visibility`, an object with
 /// `begin_path()` (called before every path of the radial pattern, once for the disk pattern)
@@ -461,10 +462,10 @@ glm::vec<3, T> gather_rsm_with(const gather_receiver<T>& receiver, Fetch&& fetch
 /// The gather: irradiance at the receiver, with coverage when settings.coverage_blocks > 0
 /// (`coarse_fetch(glm::ivec2 block) -> coarse_light<T>`, e.g. reduce_rsm_block's results).
 /// Visibility needs the radial pattern (its samples lie on paths); the disk pattern has none.
-/// For Alg. 3, 6 and alg6_ray (judges_coarse_lights_by_segment) the coarse lights are weighted by
-/// `coarse_visibility(x, x_c) -> T` (receiver and coarse light in the light's eye space; GLSL:
-/// gather.frag's rsm_depth_coarse_visibility): a point light's coarse_light_cube_visibility, or
-/// unoccluded_coarse_lights{}.
+/// The coarse lights are weighted by `coarse_visibility(x, x_c) -> T` (receiver and coarse light in
+/// the light's eye space; GLSL: gather.frag's rsm_depth_coarse_visibility), whatever the pattern
+/// and the visibility (judges_coarse_lights_by_segment): a point light's
+/// coarse_light_cube_visibility, or unoccluded_coarse_lights{}.
 template <rsm_pattern Pattern, rsm_visibility Visibility, typename T, typename Fetch, typename CoarseFetch, typename CoarseVisibility>
 glm::vec<3, T> gather_rsm(const gather_receiver<T>& receiver, Fetch&& fetch, CoarseFetch&& coarse_fetch, CoarseVisibility&& coarse_visibility,
                           const rsm_gather_settings<T>& settings) {
@@ -477,13 +478,9 @@ glm::vec<3, T> gather_rsm(const gather_receiver<T>& receiver, Fetch&& fetch, Coa
     if (receiver.position.z < T(0)) visibility.up = detail::towards_light(receiver, settings);
     visibility.min_distance = T(settings.irradiance.min_distance);
   }
-  if constexpr (judges_coarse_lights_by_segment(Visibility)) {
-    detail::micro_linear_buffer_with_coarse<Visibility, T, std::decay_t<CoarseVisibility>> judged{visibility, coarse_visibility};
-    return gather_rsm_with<Pattern>(receiver, fetch, coarse_fetch, settings, judged);
-  } else {
-    (void)coarse_visibility;
-    return gather_rsm_with<Pattern>(receiver, fetch, coarse_fetch, settings, visibility);
-  }
+  static_assert(judges_coarse_lights_by_segment(Visibility));
+  detail::micro_linear_buffer_with_coarse<Visibility, T, std::decay_t<CoarseVisibility>> judged{visibility, coarse_visibility};
+  return gather_rsm_with<Pattern>(receiver, fetch, coarse_fetch, settings, judged);
 }
 
 /// The gather with the coverage's coarse lights unoccluded (unoccluded_coarse_lights).

@@ -15,8 +15,21 @@
 
 struct cube_depth_frames {
   mat4 cube_from_light;
-  mat4 face_from_light[6];
 };
+
+vec3 cube_face_eye(vec3 d, out int face) {
+  vec3 a = abs(d);
+  bool on_x = a.x >= a.y && a.x >= a.z;
+  bool on_y = !on_x && a.y >= a.z;
+  bool on_z = !on_x && !on_y;
+  bool positive = on_x ? d.x >= 0.0 : (on_y ? d.y >= 0.0 : d.z >= 0.0);
+  face = (on_x ? 0 : (on_y ? 2 : 4)) + (positive ? 0 : 1);
+  float sgn = positive ? 1.0 : -1.0;
+  float x = on_x ? -sgn * d.z : (on_z ? sgn * d.x : d.x);
+  float y = on_y ? sgn * d.z : -d.y;
+  float z = on_x ? -a.x : (on_y ? -a.y : -a.z);
+  return vec3(x, y, z);
+}
 
 float rsm_face_depth(int face, ivec2 texel);
 
@@ -31,11 +44,13 @@ bool behind_seen_surface(vec3 q, int face, rsm_unprojection unprojection, ivec2 
 }
 
 float coarse_light_cube_visibility(vec3 x, vec3 x_c, cube_depth_frames frames, rsm_unprojection unprojection, ivec2 rsm_size) {
+  vec3 c = transform_direction(frames.cube_from_light, x_c);
+  vec3 r = transform_direction(frames.cube_from_light, x);
   for (int i = 0; i < VPLKIT_COARSE_VISIBILITY_SAMPLES; ++i) {
     float t = 0.1 + 0.8 * ((float(i) + 0.5) / float(VPLKIT_COARSE_VISIBILITY_SAMPLES));
-    vec3 p = x_c + t * (x - x_c);
-    int face = cube_face_of(transform_direction(frames.cube_from_light, p));
-    if (behind_seen_surface(transform_point(frames.face_from_light[face], p), face, unprojection, rsm_size)) return 0.0;
+    int face = 0;
+    vec3 q = cube_face_eye(c + t * (r - c), face);
+    if (behind_seen_surface(q, face, unprojection, rsm_size)) return 0.0;
   }
   return 1.0;
 }

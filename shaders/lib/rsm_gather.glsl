@@ -7,10 +7,11 @@
 //                       `float rsm_voxel_visibility(vec3 x, vec3 n, vec3 xp, vec3 np)` and, with
 //                       coverage, `float rsm_voxel_coarse_visibility(vec3 x, vec3 n, vec3 xc, vec3 nc)`
 //                       for the coarse lights (light eye space; the C++ gather given
-//                       vplkit/voxel_visibility.hpp's voxel_rsm_visibility); with coverage, 3, 6
-//                       and 7 weigh the coarse lights by `float rsm_depth_coarse_visibility(vec3 x,
-//                       vec3 xc)` (a point light's lib/rsm_coarse_visibility.glsl, or 1; the C++
-//                       gather_rsm given a coarse visibility)
+//                       vplkit/voxel_visibility.hpp's voxel_rsm_visibility); with coverage, every
+//                       other value (and the disk pattern) weighs the coarse lights by `float
+//                       rsm_depth_coarse_visibility(vec3 x, vec3 xc)` (a point light's
+//                       lib/rsm_coarse_visibility.glsl, or 1; the C++ gather_rsm given a coarse
+//                       visibility)
 //   VPLKIT_SLOT_COUNT   (optional) settings.slots.count, as a constant: see lib/micro_linear_buffer.glsl
 //   VPLKIT_RSM_COVERAGE (optional) 1: the coverage of vplkit/rsm_coverage.hpp, reading the coarse
 //                       lights through `coarse_light rsm_coarse_fetch(ivec2 block)` (the C++
@@ -50,7 +51,7 @@ int rsm_voxel_group();
 coarse_light rsm_coarse_fetch(ivec2 block);
 #if VPLKIT_VISIBILITY == 8
 float rsm_voxel_coarse_visibility(vec3 x, vec3 n, vec3 xc, vec3 nc);
-#elif VPLKIT_VISIBILITY != 0 && VPLKIT_VISIBILITY != 2
+#else
 float rsm_depth_coarse_visibility(vec3 x, vec3 xc);
 #endif
 #endif
@@ -212,11 +213,9 @@ vec3 gather_rsm(gather_receiver receiver, rsm_gather_settings settings) {
       // A coarse light that lights nothing here is not judged (see the C++ twin).
       vec3 e = coarse_light_irradiance(receiver.position, receiver.normal, light, settings.irradiance);
       if (e.x + e.y + e.z > 0.0) coverage += rsm_voxel_coarse_visibility(receiver.position, receiver.normal, light.position, light.normal) * e;
-#elif VPLKIT_VISIBILITY != 0 && VPLKIT_VISIBILITY != 2
+#else
       vec3 e = coarse_light_irradiance(receiver.position, receiver.normal, light, settings.irradiance);
       if (e.x + e.y + e.z > 0.0) coverage += rsm_depth_coarse_visibility(receiver.position, light.position) * e;
-#else
-      coverage += coarse_light_irradiance(receiver.position, receiver.normal, light, settings.irradiance);
 #endif
     }
   irradiance += coverage * float(stride * stride);

@@ -4,7 +4,9 @@
 // it. The gather's use of them is tested in test_rsm_gather.cpp.
 #include <doctest/doctest.h>
 
+#include <array>
 #include <cmath>
+#include <random>
 #include <vector>
 
 #include <vplkit/rsm_coverage.hpp>
@@ -166,7 +168,6 @@ float cube_visibility(glm::vec3 receiver, glm::vec3 coarse, const wall_depths& w
   const glm::mat4 view = face_view(face), light_from_view = glm::inverse(view);
   cube_depth_frames<float> frames;
   frames.cube_from_light = light_from_view;
-  for (int g = 0; g < 6; ++g) frames.face_from_light[static_cast<std::size_t>(g)] = face_view(g) * light_from_view;
   return coarse_light_cube_visibility(transform_point(view, receiver), transform_point(view, coarse), frames, wall.unprojection, glm::ivec2(64), wall);
 }
 
@@ -213,4 +214,66 @@ TEST_CASE("coarse_light_cube_visibility: a receiver deep in the light's shadow s
     CAPTURE(face);
     CHECK(cube_visibility(glm::vec3(2.5f, 0.0f, 0.0f), glm::vec3(2.0f, 0.0f, 1.5f), wall, face) == 1.0f);
   }
+}
+
+TEST_CASE("cube_face_eye: the sign-and-swap finds the face and texel that the faces' view-projections render") {
+  // The faces as make_light_frustum renders a point light's (rsm_pipeline.cpp): lookAt along
+  // cube_face_axis with cube_face_up from a light off the origin, a 90-degree perspective. Every
+  // random point is projected by the matrices; the face whose clip volume holds it must be
+  // cube_face_eye's (or, within a texel of a face's edge, a neighbour that holds it too), the
+  // texel the same within one at the edges, and -z the eye depth the face stores (its clip w).
+  constexpr int size = 256;
+  const glm::vec3 position(0.3f, 1.7f, -0.4f);
+  std::array<glm::mat4, 6> views{}, view_projections{};
+  for (int g = 0; g < 6; ++g) {
+    views[static_cast<std::size_t>(g)] = glm::lookAt(position, position + cube_face_axis<float>(g), cube_face_up<float>(g));
+    view_projections[static_cast<std::size_t>(g)] = glm::perspective(glm::radians(90.0f), 1.0f, 0.05f, 20.0f) * views[static_cast<std::size_t>(g)];
+  }
+  const rsm_unprojection<float> unprojection = make_rsm_unprojection<float>(1.0f, true, glm::ivec2(size));
+  std::mt19937 random(38);
+  std::uniform_real_distribution<float> coordinate(-4.0f, 4.0f);
+  std::array<int, 6> per_face{};
+  int exact_texels = 0;
+  constexpr int points = 20000;
+  for (int i = 0; i < points; ++i) {
+    const glm::vec3 p = position + glm::vec3(coordinate(random), coordinate(random), coordinate(random));
+    if (glm::length(p - position) < 0.1f) continue;
+    int face = -1;
+    const glm::vec3 q = cube_face_eye(p - position, face);
+    REQUIRE(face >= 0);
+    REQUIRE(face < 6);
+    CHECK(face == cube_face_of(p - position));
+    ++per_face[static_cast<std::size_t>(face)];
+    const glm::vec4 clip = view_projections[static_cast<std::size_t>(face)] * glm::vec4(p, 1.0f);
+    const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+    CAPTURE(face);
+    CAPTURE(p);
+    // The face the kernel picks sees the point: inside its frustum, up to a texel's rounding.
+    CHECK(clip.w > 0.0f);
+    CHECK(std::abs(ndc.x) <= 1.0f + 1.0f / size);
+    CHECK(std::abs(ndc.y) <= 1.0f + 1.0f / size);
+    // The eye coordinates are the face's view, the depth the face stores.
+    const glm::vec3 eye = glm::vec3(views[static_cast<std::size_t>(face)] * glm::vec4(p, 1.0f));
+    CHECK(std::abs(q.x - eye.x) <= 1e-5f * (1.0f + std::abs(eye.z)));
+    CHECK(std::abs(q.y - eye.y) <= 1e-5f * (1.0f + std::abs(eye.z)));
+    CHECK(std::abs(q.z - eye.z) <= 1e-5f * (1.0f + std::abs(eye.z)));
+    CHECK(std::abs(-q.z - clip.w) <= 1e-5f * clip.w);
+    // The texel: the kernel's (behind_seen_surface's floor of the ray) against the rasterizer's
+    // (the NDC's viewport position), within one.
+    const glm::vec2 ray = glm::vec2(q.x, q.y) / -q.z;
+    const glm::ivec2 texel = glm::ivec2(glm::floor((ray - unprojection.ray_origin) / unprojection.ray_step + 0.5f));
+    const glm::ivec2 raster = glm::clamp(glm::ivec2(glm::floor((ndc * 0.5f + 0.5f) * float(size))), glm::ivec2(0), glm::ivec2(size - 1));
+    CHECK(std::abs(texel.x - raster.x) <= 1);
+    CHECK(std::abs(texel.y - raster.y) <= 1);
+    exact_texels += texel == raster;
+  }
+  // Every face met, and away from the edges the texels agree exactly.
+  for (int count : per_face) CHECK(count > points / 20);
+  CHECK(exact_texels > points * 99 / 100);
+  // A wrong sign or swap in one face would move its points across the face (ndc off by up to 2).
+  int face = -1;
+  CHECK(cube_face_eye(glm::vec3(1.0f, 0.5f, 0.25f), face) == glm::vec3(-0.25f, -0.5f, -1.0f));
+  CHECK(face == 0);
+  CHECK(cube_face_eye(glm::vec3(0.25f, -1.0f, 0.5f), face) == glm::vec3(0.25f, -0.5f, -1.0f));
+  CHECK(face == 3);
 }

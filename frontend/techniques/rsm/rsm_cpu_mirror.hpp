@@ -43,9 +43,9 @@ struct cube_face_rsms {
 std::optional<cube_face_rsms> read_cube_faces(const rsm_pipeline& pipeline, std::size_t view);
 
 /// Pass 3 on the CPU: [irradiance | camera depth] at the indirect buffer's resolution, with the
-/// coverage's coarse lights read back in `buffers`; with `cube` (read_cube_faces), Alg. 3, 6 and
-/// alg6_ray weigh the coarse lights by coarse_light_cube_visibility over its faces, as gather.frag
-/// does; without it they stay unoccluded.
+/// coverage's coarse lights read back in `buffers`; with `cube` (read_cube_faces), every technique
+/// but rsm-voxel weighs the coarse lights by coarse_light_cube_visibility over its faces, as
+/// gather.frag does; without it they stay unoccluded.
 image cpu_gather_pass(const rsm_pass_buffers& buffers, const rsm_frame_constants& constants, int threads, const cube_face_rsms* cube = nullptr);
 
 /// Pass 3b on the CPU (temporal accumulation, rsm_pipeline::render_next): `indirect` (this frame's

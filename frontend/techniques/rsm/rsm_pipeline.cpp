@@ -127,16 +127,15 @@ std::optional<coarse_cube_views> coarse_cube_of(const std::vector<rsm_frame_cons
     return std::nullopt;
   coarse_cube_views cube;
   // Points in the gathering face's eye space: to the cube's (world) axes by the inverse view's
-  // rotation (transform_direction), to face g's eye space by g's view after the inverse.
-  const glm::mat4 world_from_here = glm::inverse(here.light.view);
-  cube.frames.cube_from_light = world_from_here;
+  // rotation (transform_direction); each face's eye space from there is the kernel's
+  // cube_face_eye, the convention make_light_frustum renders the faces with.
+  cube.frames.cube_from_light = glm::inverse(here.light.view);
   std::array<bool, 6> found{};
   for (std::size_t v = 0; v < views.size(); ++v)
     if (views[v].light_index == here.light_index && views[v].face >= 0 && views[v].face < 6) {
       const std::size_t g = static_cast<std::size_t>(views[v].face);
       found[g] = true;
       cube.view_of_face[g] = v;
-      cube.frames.face_from_light[g] = views[v].light.view * world_from_here;
     }
   for (bool present : found)
     if (!present) return std::nullopt;
@@ -242,6 +241,19 @@ rsm_pipeline::rsm_pipeline(const shader_library& shaders, const scene& source, c
     indirect_targets_.emplace_back(constants_.indirect_size.x, constants_.indirect_size.y, std::vector<texel_format>{settings.format}, false);
   }
   rsm_valid_.assign(views_.size(), 0);
+  for (std::size_t k = 0; k < views_.size(); ++k) {
+    if (views_[k].face != 0 || !coarse_cube_of(views_, k)) continue;
+    const std::size_t light = views_[k].light_index;
+    if (cube_depths_.size() <= light) cube_depths_.resize(light + 1);
+    cube_depths_[light] = gl_texture(generate_texture());
+    glBindTexture(GL_TEXTURE_2D_ARRAY, cube_depths_[light].get());
+    glTexImage3D(GL_TEXTURE_2D_ARRAY, 0, GL_R32UI, settings.rsm_size, settings.rsm_size, 6, 0, GL_RED_INTEGER, GL_UNSIGNED_INT, nullptr);
+    // Integer textures are complete only with nearest filtering (texelFetch reads level 0).
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAX_LEVEL, 0);
+    check_gl("allocating light " + std::to_string(light) + "'s six cube face depths of " + std::to_string(settings.rsm_size) + "^2");
+  }
   if (with_voxels(constants_)) {
     // Built once: a pipeline's triangles are fixed for its life (a new scene is a new pipeline).
     const auto start = std::chrono::steady_clock::now();
@@ -310,6 +322,9 @@ void rsm_pipeline::set_settings_uniforms() {
       coarse_program_.set("rsm_size", glm::ivec2(settings_.rsm_size));
       coarse_program_.set("coverage_blocks", constants_.gather.coverage_blocks);
       coarse_program_.set("rsm_packed", 0);
+      // Unit 8 also when no cube is bound there (a spot's or a sun's view): a usampler2DArray left
+      // on unit 0 beside rsm_packed's usampler2D makes every draw an invalid operation.
+      if (judges_coarse_lights_by_segment(technique.visibility)) gather_program_.set("rsm_face_depths", 8);
     }
     if (with_voxels(constants_)) {
       gather_program_.set("voxel_packed", voxel_unit(constants_));
@@ -550,6 +565,14 @@ void rsm_pipeline::draw_rsm(std::size_t view) {
     glDrawArrays(GL_TRIANGLES, 0, 3);
     glBindVertexArray(0);
     glEnable(GL_DEPTH_TEST);
+    const rsm_frame_constants& drawn = views_[view];
+    if (drawn.face >= 0 && drawn.light_index < cube_depths_.size() && cube_depths_[drawn.light_index].get() != 0) {
+      // The face's depths into its layer of the light's cube (the RSM's first word: R32UI keeps
+      // the bits), for the coarse lights' visibility of every face's gather.
+      rsm_target.bind_for_reading(0);
+      glBindTexture(GL_TEXTURE_2D_ARRAY, cube_depths_[drawn.light_index].get());
+      glCopyTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, drawn.face, 0, 0, rsm_target.width(), rsm_target.height());
+    }
     timer_.end();
   }
   rsm_valid_[view] = 1;
@@ -579,17 +602,14 @@ void rsm_pipeline::draw_gather(std::size_t view) {
   if (with_voxels(constants_)) voxel_texture_->bind(voxel_unit(constants_));
   if (with_coverage(constants_) && judges_coarse_lights_by_segment(constants_.technique.visibility)) {
     // The coarse lights' visibility (lib/rsm_coarse_visibility.glsl): a point light's six depth
-    // maps on units 8..13, or cube_faces 0 (unoccluded).
+    // maps, the layers of its cube_depths_ on unit 8, or cube_faces 0 (unoccluded).
     const std::optional<coarse_cube_views> cube = coarse_cube_of(views_, view);
-    if (cube)
-      for (int g = 0; g < 6; ++g) {
-        const std::size_t face = static_cast<std::size_t>(g);
-        rsm_targets_[cube->view_of_face[face]].colour(0).bind(8 + g);
-        gather_program_.set("rsm_face" + std::to_string(g), 8 + g);
-        gather_program_.set("cube_frames.face_from_light[" + std::to_string(g) + "]", cube->frames.face_from_light[face]);
-      }
+    if (cube) {
+      glActiveTexture(GL_TEXTURE0 + 8);
+      glBindTexture(GL_TEXTURE_2D_ARRAY, cube_depths_.at(views_[view].light_index).get());
+      gather_program_.set("cube_frames.cube_from_light", cube->frames.cube_from_light);
+    }
     gather_program_.set("cube_faces", cube ? 1 : 0);
-    if (cube) gather_program_.set("cube_frames.cube_from_light", cube->frames.cube_from_light);
   }
   gather_program_.use();
   glDrawArrays(GL_TRIANGLES, 0, 3);

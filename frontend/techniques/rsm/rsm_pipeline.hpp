@@ -84,14 +84,14 @@ std::vector<rsm_frame_constants> make_view_constants(const scene& source, const 
                                                      const rsm_pipeline_settings& settings);
 
 /// A point light's cube for the coarse lights' visibility of one of its views (gather.frag's
-/// cube_frames and rsm_face0..5): the frames from the gathering face's eye space, and which view
-/// draws each face.
+/// cube_frames and rsm_face_depths' layers): the rotation from the gathering face's eye space to
+/// the cube's axes, and which view draws each face.
 struct coarse_cube_views {
   cube_depth_frames<float> frames;
   std::array<std::size_t, 6> view_of_face{};
 };
 /// The cube of view `view` of `views` when its gather judges the coverage's coarse lights against
-/// the light's six depth maps: coverage on, Alg. 3, 6 or alg6_ray (judges_coarse_lights_by_segment),
+/// the light's six depth maps: coverage on, any technique but rsm-voxel (judges_coarse_lights_by_segment),
 /// a point light's face with all six faces among `views`. Nothing otherwise (a spot's or a sun's
 /// coarse lights stay unoccluded: its one map does not see the segment outside its frustum).
 std::optional<coarse_cube_views> coarse_cube_of(const std::vector<rsm_frame_constants>& views, std::size_t view);
@@ -255,6 +255,12 @@ class rsm_pipeline final : public pipeline {
   double voxel_build_ms_ = 0.0;
   std::optional<texture_2d> voxel_texture_;
   std::vector<framebuffer> rsm_targets_;       ///< one per view
+  /// Per light index: a point light's six faces' eye-space depths, one R32UI layer per face (each
+  /// face's RSM's first word, copied after the face is drawn), which gather.frag's coarse
+  /// visibility reads in one fetch where six samplers needed an if chain that llvmpipe runs for
+  /// every lane (docs/scenes.md, "Cost"); an empty texture for the lights whose gathers do not
+  /// judge their coarse lights (coarse_cube_of).
+  std::vector<gl_texture> cube_depths_;
   std::vector<framebuffer> coarse_targets_;    ///< one per view (1 x 1 without coverage)
   framebuffer gbuffer_target_;
   std::vector<framebuffer> indirect_targets_;  ///< one per view
