@@ -14,17 +14,14 @@
 #include <vplkit/form_factor.hpp>
 
 #include "tests/closed_forms.hpp"
+#include "tests/kernels/random_vectors.hpp"
 
 using namespace vplkit;
 
 namespace {
 
-constexpr double pi = closed_forms::pi;
+using closed_forms::pi;
 
-glm::dvec3 random_unit(std::mt19937& random) {
-  std::normal_distribution<double> normal;
-  return glm::normalize(glm::dvec3(normal(random), normal(random), normal(random)));
-}
 
 }  // namespace
 
@@ -110,7 +107,7 @@ TEST_CASE("final gathering in a closed environment of radiance 1 gives E = pi an
   std::mt19937 random(42);
   std::uniform_real_distribution<double> uniform(-0.5, 0.5);
   for (int trial = 0; trial < 50; ++trial) {
-    const glm::dvec3 x(uniform(random), uniform(random), uniform(random)), n = random_unit(random);
+    const glm::dvec3 x(uniform(random), uniform(random), uniform(random)), n = vplkit::testing::random_unit_vector<double>(random);
     const glm::dvec3 e = final_gather_irradiance<gather_form_factor::polygon>(x, n, glm::dvec3(0.0), m, constant);
     // The interior edges' terms cancel exactly between neighbouring quads (lambert_edge is odd in
     // its two ends), so only the closing edges along the tangent plane carry form_factor.hpp's
@@ -125,7 +122,7 @@ TEST_CASE("an object approaching a wall: the polygon gather stays close to the e
   const int m = 4;
   std::mt19937 random(43);
   std::vector<glm::dvec3> directions;
-  for (int k = 0; k < 200; ++k) directions.push_back(random_unit(random));
+  for (int k = 0; k < 200; ++k) directions.push_back(vplkit::testing::random_unit_vector<double>(random));
   // And the points of the object that look straight at a virtual light of the wall's face: the
   // texel centre directions of face +x.
   for (int j = 0; j < m; ++j)

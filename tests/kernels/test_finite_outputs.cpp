@@ -22,7 +22,7 @@ using namespace vplkit;
 namespace {
 
 // 10^6, or $VPLKIT_PROPERTY_INPUTS (1 to 10^6) where it is set.
-const int random_inputs = [] {
+const int property_input_count = [] {
   const char* from_environment = std::getenv("VPLKIT_PROPERTY_INPUTS");
   const int count = from_environment ? std::atoi(from_environment) : 1000000;
   if (count < 1 || count > 1000000) throw std::runtime_error("VPLKIT_PROPERTY_INPUTS must be in [1, 1000000]");
@@ -101,7 +101,7 @@ TEST_CASE_TEMPLATE("the light kernels (Eq. 3.2, the spot and directional lights)
   const irradiance_settings<T> settings{T(0.1)};
   spot_light<T> spot;
   directional_light<T> sun;
-  for (int i = 0; i < random_inputs; ++i) {
+  for (int i = 0; i < property_input_count; ++i) {
     const glm::vec<3, T> x = in.point(), n = in.normal();
     const glm::vec<3, T> xp = i % 5 == 0 ? x : in.point();  // coincident points
     const glm::vec<3, T> np = i % 7 == 0 ? in.grazing(n) : in.normal();
@@ -119,7 +119,7 @@ TEST_CASE_TEMPLATE("the light kernels (Eq. 3.2, the spot and directional lights)
 TEST_CASE_TEMPLATE("the form factors (point-to-point and polygon-to-point) are finite", T, float, double) {
   input_source<T> in;
   failures found;
-  for (int i = 0; i < random_inputs; ++i) {
+  for (int i = 0; i < property_input_count; ++i) {
     const glm::vec<3, T> x = in.point(), n = in.normal();
     const glm::vec<3, T> y = i % 5 == 0 ? x : in.point(), ny = i % 7 == 0 ? in.grazing(n) : in.normal();
     VPLKIT_EXPECT_FINITE("point_form_factor", point_form_factor(x, n, y, ny), text(x) + " " + text(n) + " " + text(y) + " " + text(ny));
@@ -140,7 +140,7 @@ TEST_CASE_TEMPLATE("the Light Wave kernels (Eq. 4.5, the lobe, the faked shadows
   input_source<T> in;
   failures found;
   const lightwave_shading_settings<T> shading;
-  for (int i = 0; i < random_inputs; ++i) {
+  for (int i = 0; i < property_input_count; ++i) {
     const glm::vec<3, T> x = in.point(), n = in.normal(), eye = i % 9 == 0 ? x : in.point();
     lightwave_vpl<T> vpl{i % 5 == 0 ? x : in.point(), i % 7 == 0 ? in.grazing(n) : in.unit(), in.uniform(0, 1)};
     const std::string inputs = text(x) + " " + text(n) + " eye " + text(eye) + " vpl " + text(vpl.position) + " " + text(vpl.normal);
@@ -160,7 +160,7 @@ TEST_CASE_TEMPLATE("the visibility kernels (elevation slots, Alg. 4, the bilater
   const bilateral_settings<T> bilateral;
   const shadow_density_settings<T> shadow;
   const glm::ivec2 rsm_size(64, 64);
-  for (int i = 0; i < random_inputs; ++i) {
+  for (int i = 0; i < property_input_count; ++i) {
     const glm::vec<3, T> x = in.point(), xp = i % 5 == 0 ? x : in.point();
     const int slot = elevation_bucket(x, xp, slots);
     if (slot < 0 || slot >= slots.count) found.add("elevation_bucket " + std::to_string(slot) + " for " + text(x) + " " + text(xp));
@@ -185,7 +185,7 @@ TEST_CASE_TEMPLATE("the sampling kernels (radial and disk patterns, cube-map dir
   failures found;
   const radial_pattern_constants<T> radial = make_radial_pattern_constants(radial_pattern_settings<T>{});
   disk_pattern_settings<T> disk;
-  for (int i = 0; i < random_inputs; ++i) {
+  for (int i = 0; i < property_input_count; ++i) {
     const glm::uvec2 pixel(static_cast<unsigned>(in.engine()), static_cast<unsigned>(in.engine()));
     const pattern_sample<T> sample = radial_pattern_sample(i % 20, (i / 20) % 15, pixel, radial);
     if (!finite(sample.offset) || !finite(sample.weight) || !(sample.weight >= T(0))) found.add("radial_pattern_sample at pixel " + text(glm::vec<2, T>(pixel)));
@@ -219,7 +219,7 @@ TEST_CASE_TEMPLATE("the gathers (RSM with Alg. 6, final gathering) are finite ov
     return texel;
   };
   const auto cube_fetch = [&](int, int, int) { return glm::vec<4, T>(in.uniform(0, 10), in.uniform(0, 10), in.uniform(0, 10), std::fabs(in.magnitude())); };
-  const int receivers = std::min(2000, std::max(1, random_inputs / 50));
+  const int receivers = std::min(2000, std::max(1, property_input_count / 50));
   for (int i = 0; i < receivers; ++i) {
     gather_receiver<T> receiver{in.point(), in.normal(), glm::vec<2, T>(in.uniform(-4, 68), in.uniform(-4, 68)), glm::uvec2(i, i * 7)};
     receiver.position.z = -std::fabs(receiver.position.z);  // in front of the light

@@ -12,19 +12,16 @@
 #include <vplkit/form_factor.hpp>
 
 #include "tests/closed_forms.hpp"
+#include "tests/kernels/random_vectors.hpp"
 
 using namespace vplkit;
 
 namespace {
 
-constexpr double pi = closed_forms::pi;
+using closed_forms::pi;
 using closed_forms::parallel_rectangle;
 using closed_forms::perpendicular_rectangle;
 
-glm::dvec3 random_unit(std::mt19937& random) {
-  std::normal_distribution<double> normal;
-  return glm::normalize(glm::dvec3(normal(random), normal(random), normal(random)));
-}
 
 }  // namespace
 
@@ -71,8 +68,8 @@ TEST_CASE("polygon_form_factor agrees with a Monte Carlo integral of the point k
   for (int trial = 0; trial < 6; ++trial) {
     // A random planar parallelogram near a random point and normal: partly below the tangent
     // plane in some trials.
-    const glm::dvec3 x(0.0), n = random_unit(random);
-    const glm::dvec3 origin = random_unit(random) * (1.0 + uniform(random)), e1 = random_unit(random) * 0.8, e2 = random_unit(random) * 0.8;
+    const glm::dvec3 x(0.0), n = vplkit::testing::random_unit_vector<double>(random);
+    const glm::dvec3 origin = vplkit::testing::random_unit_vector<double>(random) * (1.0 + uniform(random)), e1 = vplkit::testing::random_unit_vector<double>(random) * 0.8, e2 = vplkit::testing::random_unit_vector<double>(random) * 0.8;
     const glm::dvec3 normal = glm::normalize(glm::cross(e1, e2));
     const double area = glm::length(glm::cross(e1, e2));
     const int samples = 200000;
@@ -99,7 +96,7 @@ TEST_CASE("the six faces of a closed cube around a point give F = 1, for any nor
   const glm::dvec3 c[8] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}};
   const int faces[6][4] = {{0, 1, 2, 3}, {4, 5, 6, 7}, {0, 1, 5, 4}, {3, 2, 6, 7}, {0, 3, 7, 4}, {1, 2, 6, 5}};
   for (int trial = 0; trial < 200; ++trial) {
-    const glm::dvec3 x(uniform(random), uniform(random), uniform(random)), n = random_unit(random);
+    const glm::dvec3 x(uniform(random), uniform(random), uniform(random)), n = vplkit::testing::random_unit_vector<double>(random);
     double total = 0.0;
     double fast_total = 0.0;
     for (const auto& face : faces) {
@@ -184,10 +181,10 @@ TEST_CASE("lambert_edge is within 2.2e-8 of the exact (atan2) term for every ang
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);
   double worst = 0.0;
   for (int trial = 0; trial < 200000; ++trial) {
-    const glm::dvec3 n = random_unit(random), a = random_unit(random) * (0.1 + 2.0 * std::fabs(uniform(random)));
+    const glm::dvec3 n = vplkit::testing::random_unit_vector<double>(random), a = vplkit::testing::random_unit_vector<double>(random) * (0.1 + 2.0 * std::fabs(uniform(random)));
     // Angles from 1e-6 rad to pi - 1e-3 (nearer pi the edge passes through x: ill-conditioned in any form).
     const double gamma = trial % 4 == 0 ? std::pow(10.0, -6.0 + 6.0 * std::fabs(uniform(random))) : (pi - 1e-3) * std::fabs(uniform(random));
-    const glm::dvec3 axis = glm::normalize(glm::cross(a, random_unit(random)));
+    const glm::dvec3 axis = glm::normalize(glm::cross(a, vplkit::testing::random_unit_vector<double>(random)));
     const glm::dvec3 unit_a = glm::normalize(a), perpendicular = glm::cross(axis, unit_a);
     const glm::dvec3 b = (unit_a * std::cos(gamma) + perpendicular * std::sin(gamma)) * (0.1 + 2.0 * std::fabs(uniform(random)));
     const double fast = detail::lambert_edge(a, detail::inverse_length(a), b, detail::inverse_length(b), n);
@@ -209,13 +206,13 @@ TEST_CASE("polygon_form_factor is within its bound of the exact form for random 
   int straddling = 0, four_crossings = 0;
   double worst = 0.0;
   for (int trial = 0; trial < 100000; ++trial) {
-    const glm::dvec3 x(0.0), n = random_unit(random);
+    const glm::dvec3 x(0.0), n = vplkit::testing::random_unit_vector<double>(random);
     glm::dvec3 c[4];
     if (trial % 2 == 0) {  // a planar parallelogram
-      const glm::dvec3 origin = random_unit(random) * (0.2 + std::fabs(uniform(random))), e1 = random_unit(random) * 0.8, e2 = random_unit(random) * 0.8;
+      const glm::dvec3 origin = vplkit::testing::random_unit_vector<double>(random) * (0.2 + std::fabs(uniform(random))), e1 = vplkit::testing::random_unit_vector<double>(random) * 0.8, e2 = vplkit::testing::random_unit_vector<double>(random) * 0.8;
       c[0] = origin, c[1] = origin + e1, c[2] = origin + e1 + e2, c[3] = origin + e2;
     } else {  // any four points: non-planar, non-convex, crossing the plane up to four times
-      for (glm::dvec3& corner : c) corner = random_unit(random) * (0.2 + std::fabs(uniform(random)));
+      for (glm::dvec3& corner : c) corner = vplkit::testing::random_unit_vector<double>(random) * (0.2 + std::fabs(uniform(random)));
     }
     int crossings = 0;
     for (int k = 0; k < 4; ++k) crossings += (glm::dot(n, c[k]) >= 0.0) != (glm::dot(n, c[(k + 1) % 4]) >= 0.0) ? 1 : 0;
@@ -231,8 +228,8 @@ TEST_CASE("polygon_form_factor is within its bound of the exact form for random 
   // In float, against the exact form in double: rounding, not the polynomial, dominates.
   double worst_float = 0.0;
   for (int trial = 0; trial < 20000; ++trial) {
-    const glm::dvec3 n = random_unit(random);
-    const glm::dvec3 origin = random_unit(random) * (0.5 + std::fabs(uniform(random))), e1 = random_unit(random) * 0.5, e2 = random_unit(random) * 0.5;
+    const glm::dvec3 n = vplkit::testing::random_unit_vector<double>(random);
+    const glm::dvec3 origin = vplkit::testing::random_unit_vector<double>(random) * (0.5 + std::fabs(uniform(random))), e1 = vplkit::testing::random_unit_vector<double>(random) * 0.5, e2 = vplkit::testing::random_unit_vector<double>(random) * 0.5;
     const glm::vec3 fn(n), f0(origin), f1(origin + e1), f2(origin + e1 + e2), f3(origin + e2);
     const double exact = polygon_form_factor_exact(glm::dvec3(0.0), glm::dvec3(fn), glm::dvec3(f0), glm::dvec3(f1), glm::dvec3(f2), glm::dvec3(f3));
     worst_float = std::max(worst_float, std::fabs(double(polygon_form_factor(glm::vec3(0.0f), fn, f0, f1, f2, f3)) - exact));

@@ -9,18 +9,12 @@
 
 #include <vplkit/direct_light.hpp>
 #include <vplkit/irradiance.hpp>
+#include "tests/kernels/random_vectors.hpp"
 
 using vplkit::irradiance_settings;
 using vplkit::pixel_light_irradiance;
 
 namespace {
-
-template <typename T>
-glm::vec<3, T> random_unit(std::mt19937& random) {
-  std::normal_distribution<T> normal(0, 1);
-  glm::vec<3, T> v(normal(random), normal(random), normal(random));
-  return glm::normalize(v);
-}
 
 template <typename T>
 glm::vec<3, T> random_point(std::mt19937& random) {
@@ -37,7 +31,7 @@ TEST_CASE("Eq. 3.2 is symmetric under swapping the pixel light and the receiver"
   const glm::vec3 flux(1.0f, 0.5f, 0.25f);
   for (int i = 0; i < 10000; ++i) {
     const glm::vec3 x = random_point<float>(random), xp = random_point<float>(random);
-    const glm::vec3 n = random_unit<float>(random), np = random_unit<float>(random);
+    const glm::vec3 n = vplkit::testing::random_unit_vector<float>(random), np = vplkit::testing::random_unit_vector<float>(random);
     const glm::vec3 forward = pixel_light_irradiance(x, n, xp, np, flux);
     const glm::vec3 swapped = pixel_light_irradiance(xp, np, x, n, flux);
     REQUIRE(forward == swapped);
@@ -62,9 +56,9 @@ TEST_CASE("Eq. 3.2 equals flux * <np, d> <n, -d> / |d|^4, so it falls as 1/r^2 a
   const glm::dvec3 flux(2.0, 1.0, 0.5);
   for (int i = 0; i < 2000; ++i) {
     const glm::dvec3 xp = random_point<double>(random);
-    const glm::dvec3 direction = random_unit<double>(random);
+    const glm::dvec3 direction = vplkit::testing::random_unit_vector<double>(random);
     // Normals that see each other: the light's within 90 degrees of d, the receiver's of -d.
-    glm::dvec3 np = random_unit<double>(random), n = random_unit<double>(random);
+    glm::dvec3 np = vplkit::testing::random_unit_vector<double>(random), n = vplkit::testing::random_unit_vector<double>(random);
     if (glm::dot(np, direction) < 0) np = -np;
     if (glm::dot(n, direction) > 0) n = -n;
     const double r = 0.5 + i * 1e-3;
@@ -107,7 +101,7 @@ TEST_CASE("Eq. 3.2 in float agrees with double to float precision") {
   std::mt19937 random(3);
   for (int i = 0; i < 10000; ++i) {
     const glm::dvec3 x = random_point<double>(random), xp = random_point<double>(random);
-    const glm::dvec3 n = random_unit<double>(random), np = random_unit<double>(random);
+    const glm::dvec3 n = vplkit::testing::random_unit_vector<double>(random), np = vplkit::testing::random_unit_vector<double>(random);
     const double e_double = pixel_light_irradiance(x, n, xp, np, glm::dvec3(1.0)).x;
     const float e_float = pixel_light_irradiance(glm::vec3(x), glm::vec3(n), glm::vec3(xp), glm::vec3(np), glm::vec3(1.0f)).x;
     // The dot products cancel for near-tangent configurations, so compare against the scale

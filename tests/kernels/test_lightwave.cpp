@@ -175,7 +175,7 @@ lightwave_cone_settings<double> cone_settings(int angle, int per_ray, double hal
   return settings;
 }
 
-constexpr double pi = closed_forms::pi;
+using closed_forms::pi;
 
 }  // namespace
 

@@ -17,7 +17,7 @@ using namespace vplkit;
 
 namespace {
 
-constexpr double pi = closed_forms::pi;
+using closed_forms::pi;
 
 // The definition of section 3.3, with atan: slot = floor((phi + pi/2) / pi * B).
 int bucket_by_angle(const glm::dvec3& x, const glm::dvec3& xp, int slots) {

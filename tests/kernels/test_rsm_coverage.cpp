@@ -18,7 +18,7 @@ using namespace vplkit;
 
 namespace {
 
-constexpr double pi = closed_forms::pi;
+using closed_forms::pi;
 
 // A flat RSM in the light's eye space: texel (x, y) at (x h, y h, depth), facing the light, each
 // with the same flux; texels with x >= `empty_from` are empty (eye depth 0).

@@ -9,15 +9,11 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <vplkit/rsm_packing.hpp>
+#include "tests/kernels/random_vectors.hpp"
 
 using namespace vplkit;
 
 namespace {
-
-glm::vec3 random_unit(std::mt19937& random) {
-  std::normal_distribution<float> normal;
-  return glm::normalize(glm::vec3(normal(random), normal(random), normal(random)));
-}
 
 rsm_texel<float> round_trip(float depth, const glm::vec3& normal, const glm::vec3& flux) {
   return unpack_rsm_texel(pack_rsm_texel(depth, normal, flux), glm::ivec2(0), make_rsm_unprojection(1.0f, true, glm::ivec2(1)));
@@ -29,7 +25,7 @@ TEST_CASE("normals: every coordinate round-trips within 2^-16, the axes and thei
   std::mt19937 random(3);
   float worst = 0.0f;
   for (int i = 0; i < 100000; ++i) {
-    const glm::vec3 n = random_unit(random);
+    const glm::vec3 n = vplkit::testing::random_unit_vector<float>(random);
     const rsm_texel<float> back = round_trip(-1.0f, n, glm::vec3(1.0f));
     for (int k = 0; k < 3; ++k) {
       worst = std::max(worst, std::fabs(back.normal[k] - n[k]));

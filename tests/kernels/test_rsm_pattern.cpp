@@ -17,7 +17,7 @@
 using namespace vplkit;
 
 namespace {
-constexpr double pi = closed_forms::pi;
+using closed_forms::pi;
 
 // Mean and RMS error, over `pixels` receivers, of the radial pattern's estimate of the
 // integral of f over its annulus.

@@ -12,7 +12,12 @@
 #include "tests/kernels/synthetic_rsm.hpp"
 
 using namespace vplkit;
-using namespace vplkit::testing;
+// The synthetic scene's names one by one: a using-directive would reach into the files compiled
+// after this one in its unity batch (tests/CMakeLists.txt).
+using vplkit::testing::light_height;
+using vplkit::testing::light_view_projection;
+using vplkit::testing::rsm_size;
+using vplkit::testing::synthetic_rsm;
 
 TEST_CASE("Alg. 4: a flat lit floor is lit, an occluder's shadow is dark, the window softens the edge") {
   // Depths of the synthetic scene: floor at y = 0 (eye depth -10), block top at eye depth -9.2.

@@ -12,7 +12,19 @@
 
 #include <vplkit/parity/inputs.hpp>
 
-using namespace vplkit::parity;
+// The names this file tests, one by one: a using-directive would reach into the files compiled
+// after this one in its unity batch (tests/CMakeLists.txt).
+using vplkit::parity::float_generator;
+using vplkit::parity::geometry_inputs;
+using vplkit::parity::grid_of;
+using vplkit::parity::kernel_inputs;
+using vplkit::parity::log_uniform_values;
+using vplkit::parity::points;
+using vplkit::parity::random_inputs;
+using vplkit::parity::seeded_grid;
+using vplkit::parity::special_values;
+using vplkit::parity::uniform_values;
+using vplkit::parity::unit_vectors;
 
 TEST_CASE("the same seed gives the same numbers; another seed other numbers") {
   random_inputs a(42), b(42), c(43);

@@ -37,10 +37,10 @@ kernel_source plumbing_kernel(const std::string& name) {
   return source;
 }
 
-constexpr int width = 13, height = 7;  // not a multiple of the compute runs' 64
+constexpr int grid_width = 13, grid_height = 7;  // not a multiple of the compute runs' 64
 
 kernel_inputs plumbing_inputs() {
-  kernel_inputs inputs = grid_of(width, height, 1, 1);
+  kernel_inputs inputs = grid_of(grid_width, grid_height, 1, 1);
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     const float f = static_cast<float>(i);
     inputs.floats[0][i] = glm::vec4(f, -f / 8.0f, 0.5f, f * 4.0f);
@@ -52,14 +52,14 @@ kernel_inputs plumbing_inputs() {
 kernel_resources plumbing_resources(float min_distance) {
   kernel_resources resources;
   std::vector<glm::vec4> offsets;
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) offsets.push_back(glm::vec4(static_cast<float>(x), static_cast<float>(100 * y), 0.125f, -1.0f));
-  resources.tables = {{"offsets", width, height, offsets}};
+  for (int y = 0; y < grid_height; ++y)
+    for (int x = 0; x < grid_width; ++x) offsets.push_back(glm::vec4(static_cast<float>(x), static_cast<float>(100 * y), 0.125f, -1.0f));
+  resources.tables = {{"offsets", grid_width, grid_height, offsets}};
   // Words a float path would not carry: the top bit, a signalling NaN's pattern (a float texture
   // or conversion may quieten it), all ones, and one per texel.
   std::vector<glm::uvec4> words;
-  for (unsigned i = 0; i < static_cast<unsigned>(width * height); ++i) words.push_back(glm::uvec4(0x80000000u | i, 0x7f800001u, 0xffffffffu - i, i << 20));
-  resources.uint_tables = {{"words", width, height, words}};
+  for (unsigned i = 0; i < static_cast<unsigned>(grid_width * grid_height); ++i) words.push_back(glm::uvec4(0x80000000u | i, 0x7f800001u, 0xffffffffu - i, i << 20));
+  resources.uint_tables = {{"words", grid_width, grid_height, words}};
   resources.blocks = {settings_block("settings", irradiance_settings<float>{min_distance})};
   return resources;
 }
@@ -74,7 +74,7 @@ TEST_CASE("parity targets: every stage of every target runs the same kernel with
   for (std::size_t i = 0; i < inputs.size(); ++i) {
     const glm::vec4 offset = resources.tables[0].texels[i];
     floats[i] = 2.0f * inputs.floats[0][i] + offset + glm::vec4(0.375f);
-    uints[i] = inputs.uints[0][i] ^ glm::uvec4(static_cast<unsigned>(i % width), static_cast<unsigned>(i / width), 7u, 0u) ^ resources.uint_tables[0].texels[i];
+    uints[i] = inputs.uints[0][i] ^ glm::uvec4(static_cast<unsigned>(i % grid_width), static_cast<unsigned>(i / grid_width), 7u, 0u) ^ resources.uint_tables[0].texels[i];
   }
   struct stage_run {
     target where;

@@ -14,12 +14,13 @@
 #include <vector>
 
 #include <vplkit/std140.hpp>
+#include "tests/gl_test_helpers.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-fs::path source_dir() { return fs::path(VPLKIT_TEST_SOURCE_DIR).parent_path(); }
+using vplkit::testing::source_dir;
 
 std::string read_text(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);

@@ -44,20 +44,21 @@
 
 #include "frontend/core/files.hpp"
 #include <vplkit/gl/program.hpp>
+#include "tests/gl_test_helpers.hpp"
 
 namespace fs = std::filesystem;
 using namespace vplkit;
 
 namespace {
 
-struct target {
+struct glsl_target {
   const char* name;
   const char* header;  // the including shader's first lines
   bool vulkan;
 };
 
-const std::vector<target>& targets() {
-  static const std::vector<target> all = {
+const std::vector<glsl_target>& targets() {
+  static const std::vector<glsl_target> all = {
       {"GLSL 3.30 core", "#version 330 core\n", false},
       {"GLSL 4.50 core", "#version 450 core\n", false},
       {"GLSL 4.60 core", "#version 460 core\n", false},
@@ -137,7 +138,7 @@ std::vector<define_row> parse_defines(const std::string& cell, const std::string
   return defines;
 }
 
-fs::path source_dir() { return fs::path(VPLKIT_TEST_SOURCE_DIR).parent_path(); }
+using vplkit::testing::source_dir;
 
 // The rows of docs/glsl-twins.md's lib-file table, by file.
 std::map<std::string, lib_row> docs_rows() {
@@ -166,7 +167,7 @@ struct run_result {
 
 // Runs a tool with its output into `log`, without a shell (paths may hold any character) and
 // without fork's copy of this process (posix_spawn).
-run_result run(const std::vector<std::string>& command, const fs::path& log) {
+run_result run_tool(const std::vector<std::string>& command, const fs::path& log) {
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_addopen(&actions, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
@@ -290,7 +291,7 @@ std::vector<function> functions_of(const std::string& preprocessed) {
 // The minimal including shader: the defines, the include, a uniform block with one member per
 // value the calls need, the functions the file leaves to its includer, and main() calling every
 // function the file defines.
-std::string including_shader(const target& on, const std::string& file, const std::vector<std::pair<std::string, std::string>>& defines,
+std::string including_shader(const glsl_target& on, const std::string& file, const std::vector<std::pair<std::string, std::string>>& defines,
                              const std::vector<function>& functions) {
   std::string text = on.header;
   for (const auto& [name, value] : defines) text += "#define " + name + " " + value + "\n";
@@ -354,14 +355,7 @@ std::string first_error(const std::string& log) {
   return trim(log.substr(0, log.find('\n')));
 }
 
-struct scratch_folder {
-  fs::path path = fs::temp_directory_path() / ("vplkit-glsl-targets-" + std::to_string(::getpid()));
-  scratch_folder() { fs::create_directories(path); }
-  ~scratch_folder() {
-    std::error_code ignored;
-    fs::remove_all(path, ignored);
-  }
-};
+using vplkit::testing::scratch_folder;
 
 
 // The C++ header a lib file is the twin of: its first line names it ("GLSL twin of
@@ -394,7 +388,7 @@ bool names_its_cpp_twin(const std::string& text, const std::string& name) {
 using define_list = std::vector<std::pair<std::string, std::string>>;
 
 // One lib file with one set of defines, and what became of it.
-struct variant {
+struct define_variant {
   std::string file;
   define_list defines;
   std::string shown;                     // " NAME=VALUE ..."
@@ -445,7 +439,7 @@ TEST_CASE("every lib file compiles for GLSL 3.30, 4.50 and 4.60 core, GLSL ES 3.
   const fs::path shaders = source_dir() / "shaders";
   const shader_library library(shaders);
   const std::map<std::string, lib_row> rows = docs_rows();
-  const scratch_folder scratch;
+  const scratch_folder scratch("glsl-targets");
 
   std::vector<std::string> files;
   for (const fs::directory_entry& entry : fs::directory_iterator(shaders / "lib"))
@@ -458,7 +452,7 @@ TEST_CASE("every lib file compiles for GLSL 3.30, 4.50 and 4.60 core, GLSL ES 3.
 
   // The variants, each preprocessed alone (the file, its defines, an empty main) to find the
   // functions it defines and the ones it leaves to the includer; all in one glslang run.
-  std::vector<variant> variants;
+  std::vector<define_variant> variants;
   std::vector<std::string> preprocess = {glslang, "-E"};
   std::vector<expanded_source> alone;
   for (const std::string& file : files) {
@@ -471,7 +465,7 @@ TEST_CASE("every lib file compiles for GLSL 3.30, 4.50 and 4.60 core, GLSL ES 3.
     for (const std::string& macro : tested_macros(read_file(shaders / file, std::uintmax_t{1} << 20, "shader file")))
       CHECK_MESSAGE(listed.count(macro) == 1, file << " tests " << macro << ", which its row in docs/glsl-twins.md does not list");
     for (const define_list& defines : variants_of(row)) {
-      variant v;
+      define_variant v;
       v.file = file;
       v.defines = defines;
       for (const auto& [name, value] : defines) v.shown += " " + name + "=" + value;
@@ -482,7 +476,7 @@ TEST_CASE("every lib file compiles for GLSL 3.30, 4.50 and 4.60 core, GLSL ES 3.
       variants.push_back(v);
     }
   }
-  const run_result preprocessed = run(preprocess, scratch.path / "alone.log");
+  const run_result preprocessed = run_tool(preprocess, scratch.path / "alone.log");
   std::vector<std::string> texts;
   if (preprocessed.status == 0) {
     for (const std::string& line : split(preprocessed.output, '\n')) {
@@ -492,7 +486,7 @@ TEST_CASE("every lib file compiles for GLSL 3.30, 4.50 and 4.60 core, GLSL ES 3.
     REQUIRE(texts.size() == variants.size());
   } else {  // one variant or more stopped (an #error): run each alone to say which
     for (std::size_t k = 0; k < variants.size(); ++k) {
-      const run_result one = run({glslang, "-E", preprocess[k + 2]}, scratch.path / "alone.log");
+      const run_result one = run_tool({glslang, "-E", preprocess[k + 2]}, scratch.path / "alone.log");
       texts.push_back(one.status == 0 ? one.output : "");
       if (one.status != 0) {
         variants[k].errors.assign(targets().size(), first_error(map_log_to_files(one.output, alone[k].file_names)));
@@ -506,7 +500,7 @@ TEST_CASE("every lib file compiles for GLSL 3.30, 4.50 and 4.60 core, GLSL ES 3.
   std::set<std::string> gl_paths;
   std::map<std::string, int> paired;  // "lib file: function" paired with its C++ twin
   for (std::size_t k = 0; k < variants.size(); ++k) {
-    variant& v = variants[k];
+    define_variant& v = variants[k];
     if (!v.errors.empty()) continue;
     for (const function& f : functions_of(texts[k]))
       if (f.name != "main") v.functions.push_back(f);
@@ -548,45 +542,45 @@ TEST_CASE("every lib file compiles for GLSL 3.30, 4.50 and 4.60 core, GLSL ES 3.
       }
     }
   }
-  const run_result gl = run(compile_gl, scratch.path / "gl.log");
+  const run_result gl = run_tool(compile_gl, scratch.path / "gl.log");
   const std::map<std::string, std::string> gl_logs = logs_by_file(gl.output, gl_paths);
   std::size_t compiled = gl_paths.size();
-  for (variant& v : variants)
+  for (define_variant& v : variants)
     for (std::size_t t = 0; t < v.paths.size(); ++t) {
       const auto log = gl_logs.find(v.paths[t].string());
       if (!targets()[t].vulkan && log != gl_logs.end() && log->second.find("ERROR") != std::string::npos)
         v.errors[t] = map_log_to_files(log->second, v.sources[t].file_names);
     }
-  CHECK_MESSAGE((gl.status == 0) == std::all_of(variants.begin(), variants.end(), [](const variant& v) {
+  CHECK_MESSAGE((gl.status == 0) == std::all_of(variants.begin(), variants.end(), [](const define_variant& v) {
                   return std::all_of(v.errors.begin(), v.errors.end(), [](const std::string& e) { return e.empty(); });
                 }),
                 "glslang's exit status and its messages disagree:\n" << gl.output);
 
   // Vulkan: one glslang -V (a SPIR-V module has one entry point per stage) and one spirv-val per
   // variant, on as many threads as there are cores.
-  const std::size_t vulkan = static_cast<std::size_t>(std::find_if(targets().begin(), targets().end(), [](const target& t) { return t.vulkan; }) -
+  const std::size_t vulkan = static_cast<std::size_t>(std::find_if(targets().begin(), targets().end(), [](const glsl_target& t) { return t.vulkan; }) -
                                                       targets().begin());
   const unsigned workers = std::max(1u, std::min(4u, std::thread::hardware_concurrency()));
   std::vector<std::thread> threads;
   for (unsigned w = 0; w < workers; ++w)
     threads.emplace_back([&, w] {
       for (std::size_t k = w; k < variants.size(); k += workers) {
-        variant& v = variants[k];
+        define_variant& v = variants[k];
         if (v.paths.empty()) continue;
         const fs::path spirv = scratch.path / ("variant" + std::to_string(k) + ".spv");
         const fs::path log = scratch.path / ("variant" + std::to_string(k) + ".log");
-        run_result result = run({glslang, "-V", "--target-env", "vulkan1.0", "-o", spirv.string(), v.paths[vulkan].string()}, log);
-        if (result.status == 0) result = run({spirv_val, "--target-env", "vulkan1.0", spirv.string()}, log);
+        run_result result = run_tool({glslang, "-V", "--target-env", "vulkan1.0", "-o", spirv.string(), v.paths[vulkan].string()}, log);
+        if (result.status == 0) result = run_tool({spirv_val, "--target-env", "vulkan1.0", spirv.string()}, log);
         if (result.status != 0) v.errors[vulkan] = map_log_to_files(result.output, v.sources[vulkan].file_names);
       }
     });
   for (std::thread& thread : threads) thread.join();
-  for (const variant& v : variants) compiled += v.paths.empty() ? 0 : 1;
+  for (const define_variant& v : variants) compiled += v.paths.empty() ? 0 : 1;
 
   // matrix[file][target]: "ok", or the first error of the first variant that failed there.
   std::map<std::string, std::vector<std::string>> matrix;
   std::map<std::string, std::size_t> variant_counts;
-  for (const variant& v : variants) {
+  for (const define_variant& v : variants) {
     std::vector<std::string>& cells = matrix[v.file];
     if (cells.empty()) cells.assign(targets().size(), "ok");
     ++variant_counts[v.file];
@@ -599,7 +593,7 @@ TEST_CASE("every lib file compiles for GLSL 3.30, 4.50 and 4.60 core, GLSL ES 3.
 
   // The matrix as docs/glsl-twins.md shows it.
   std::string table = "| lib file | variants |";
-  for (const target& on : targets()) table += std::string(" ") + on.name + " |";
+  for (const glsl_target& on : targets()) table += std::string(" ") + on.name + " |";
   table += "\n|---|---|";
   for (std::size_t t = 0; t < targets().size(); ++t) table += "---|";
   table += "\n";

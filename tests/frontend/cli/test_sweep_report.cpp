@@ -19,6 +19,7 @@
 #include "frontend/core/setting.hpp"
 #include "frontend/image/metrics.hpp"
 #include "frontend/image/reference_noise.hpp"
+#include "tests/gl_test_helpers.hpp"
 
 namespace fs = std::filesystem;
 using namespace vplkit;
@@ -26,14 +27,7 @@ using vplkit::cli::sweep_table;
 
 namespace {
 
-struct scratch_folder {
-  fs::path path = fs::temp_directory_path() / ("vplkit-sweep-report-" + std::to_string(std::random_device{}()));
-  scratch_folder() { fs::create_directories(path); }
-  ~scratch_folder() {
-    std::error_code ignored;
-    fs::remove_all(path, ignored);
-  }
-};
+using vplkit::testing::scratch_folder;
 
 // The definition, pair by pair: B beats A when B's upper bounds are at most A's lower bounds on
 // both axes and below on one, each value +- its standard error when `within_noise`, else exact
@@ -269,7 +263,7 @@ TEST_CASE("the reference's noise: synthetic Gaussian noise of a known size is wh
 }
 
 TEST_CASE("the CSV reads back every cell a hostile name can hold") {
-  const scratch_folder folder;
+  const scratch_folder folder("sweep-report");
   sweep_table table;
   table.columns = {"scene", "technique", "radius", "key"};
   const std::vector<std::string> scenes = {"evil\nsystem \"touch MARKER\"\n#", "comma, quote \" and \\ backslash", "cr\rlf\r\nend",
@@ -332,7 +326,7 @@ TEST_CASE("markdown shows names as text: no table cell, heading, link or HTML co
 }
 
 TEST_CASE("the sweep's lock: a second holder is refused at once, and the folder's output lock stays free for the holder's writes") {
-  const scratch_folder folder;
+  const scratch_folder folder("sweep-report");
   const folder_lock sweep(folder.path, 0.0, ".vplkit-sweep.lock");
   CHECK(fs::exists(folder.path / ".vplkit-sweep.lock"));
   CHECK_THROWS_AS(folder_lock(folder.path, 0.0, ".vplkit-sweep.lock"), folder_lock_busy);

@@ -29,20 +29,14 @@
 
 #include "frontend/core/error.hpp"
 #include "frontend/core/files.hpp"
+#include "tests/gl_test_helpers.hpp"
 
 namespace fs = std::filesystem;
 using namespace vplkit;
 
 namespace {
 
-struct scratch_folder {
-  fs::path path = fs::temp_directory_path() / ("vplkit-files-" + std::to_string(std::random_device{}()));
-  scratch_folder() { fs::create_directories(path); }
-  ~scratch_folder() {
-    std::error_code ignored;
-    fs::remove_all(path, ignored);
-  }
-};
+using vplkit::testing::scratch_folder;
 
 std::string contents(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
@@ -64,7 +58,7 @@ std::vector<std::string> names_in(const fs::path& folder) {
 }  // namespace
 
 TEST_CASE("a failed rename at any step of the install leaves the previous set whole, and nothing else") {
-  const scratch_folder folder;
+  const scratch_folder folder("files");
   const fs::path a = folder.path / "a.png", b = folder.path / "a-indirect.pfm", c = folder.path / "a-indirect.png";
   write_all_or_nothing({text_file(a, "old a"), text_file(b, "old b"), text_file(c, "old c")});
   // Three targets: each moved aside, then its new file renamed in: 6 renames; fail each in turn.
@@ -108,7 +102,7 @@ TEST_CASE("a failed rename at any step of the install leaves the previous set wh
 }
 
 TEST_CASE("a previous file that cannot be put back is named with where it is kept") {
-  const scratch_folder folder;
+  const scratch_folder folder("files");
   const fs::path a = folder.path / "a.png", b = folder.path / "b.png";
   write_all_or_nothing({text_file(a, "old a"), text_file(b, "old b")});
   write_options options;
@@ -136,7 +130,7 @@ TEST_CASE("a previous file that cannot be put back is named with where it is kep
 }
 
 TEST_CASE("temporary names stay short: a legal 255-byte output name is written") {
-  const scratch_folder folder;
+  const scratch_folder folder("files");
   const std::string name = std::string(251, 'n') + ".png";  // 255 bytes, the most a Linux file name has
   const fs::path target = folder.path / name;
   write_bytes_atomically(target, {1, 2, 3});
@@ -150,7 +144,7 @@ TEST_CASE("temporary names stay short: a legal 255-byte output name is written")
 }
 
 TEST_CASE("every write message keeps the system's reason") {
-  const scratch_folder folder;
+  const scratch_folder folder("files");
   write_bytes_atomically(folder.path / "a-file", {1});
   CHECK_THROWS_WITH_AS(write_bytes_atomically(folder.path / "a-file" / "x.png", {1}), doctest::Contains("cannot create folder"), vplkit::error);
   fs::create_directories(folder.path / "x.png");
@@ -169,7 +163,7 @@ TEST_CASE("every write message keeps the system's reason") {
 }
 
 TEST_CASE("the output lock: writers to one folder install one after the other, a stuck holder is named") {
-  const scratch_folder folder;
+  const scratch_folder folder("files");
   const fs::path a = folder.path / "a.png", b = folder.path / "a-indirect.pfm";
   // Two writers, each writing its own pair many times: the pair on disk is always one writer's.
   std::atomic<bool> mixed{false};
@@ -218,7 +212,7 @@ TEST_CASE("the output lock: writers to one folder install one after the other, a
 }
 
 TEST_CASE("same_file: one file under two names is the same, existing or not; two names are not") {
-  scratch_folder scratch;
+  scratch_folder scratch("files");
   const fs::path file = scratch.path / "input.pfm";
   std::ofstream(file) << "x";
   fs::create_directories(scratch.path / "sub");
@@ -257,7 +251,7 @@ entry_kind kind_of(const fs::path& path) {
 }  // namespace
 
 TEST_CASE("device nodes are written through and stay device nodes; ENOSPC is an error that installs nothing") {
-  const scratch_folder folder;
+  const scratch_folder folder("files");
   const fs::path null = folder.path / "null", full = folder.path / "full", png = folder.path / "a.png";
   std::string why;
   if (!make_char_device(null, 3, why) || !make_char_device(full, 7, why)) {
@@ -288,7 +282,7 @@ TEST_CASE("device nodes are written through and stay device nodes; ENOSPC is an 
 }
 
 TEST_CASE("a FIFO's reader gets the bytes, and the FIFO stays a FIFO") {
-  const scratch_folder folder;
+  const scratch_folder folder("files");
   const fs::path fifo = folder.path / "frame.png";
   REQUIRE(::mkfifo(fifo.c_str(), 0666) == 0);
   std::string received;
@@ -319,7 +313,7 @@ TEST_CASE("a FIFO's reader gets the bytes, and the FIFO stays a FIFO") {
 }
 
 TEST_CASE("links: to a regular file, that file is replaced and the link stays; a dangling link and a socket are refused by name") {
-  const scratch_folder folder;
+  const scratch_folder folder("files");
   fs::create_directories(folder.path / "real");
   const fs::path target = folder.path / "real" / "out.glsl", link = folder.path / "out.glsl";
   std::ofstream(target) << "old";
@@ -384,7 +378,7 @@ TEST_CASE("descriptor_output: the bytes in order, and a lost write's errno (ENOS
   }
   ::close(ends[0]);
   ::close(ends[1]);
-  const scratch_folder folder;
+  const scratch_folder folder("files");
   std::string why;
   if (!make_char_device(folder.path / "full", 7, why)) {
     MESSAGE("skipped the ENOSPC case: mknod is not permitted here (" << why << ")");
@@ -409,7 +403,7 @@ TEST_CASE("two outputs with one path are found among 100,000 in about a second (
   // A --poses sequence of 50,000 frames has 100,000 outputs; the check compared every pair (5 * 10^9
   // comparisons of normalised paths, hours). The repeat is the very last output, spelt differently
   // ("./"), and names the later of the two.
-  scratch_folder scratch;
+  scratch_folder scratch("files");
   std::vector<output_file> files;
   std::atomic<int> encoded{0};
   for (int i = 0; i < 100000; ++i)

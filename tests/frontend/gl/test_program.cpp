@@ -15,6 +15,7 @@
 #include "frontend/gl/debug_output.hpp"
 #include "frontend/gl/gl.hpp"
 #include "frontend/core/error.hpp"
+#include "tests/gl_test_helpers.hpp"
 
 namespace fs = std::filesystem;
 using namespace vplkit;
@@ -35,14 +36,7 @@ struct scratch_shaders {
   ~scratch_shaders() { fs::remove_all(root); }
 };
 
-std::string message_of(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const vplkit::error& failure) {
-    return failure.what();
-  }
-  return "(no error)";
-}
+using vplkit::testing::message_of;
 
 }  // namespace
 

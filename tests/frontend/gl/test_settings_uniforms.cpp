@@ -15,6 +15,7 @@
 #include "frontend/gl/gl.hpp"
 #include <vplkit/gl/settings_uniforms.hpp>
 #include <vplkit/parity/parity.hpp>
+#include "tests/gl_test_helpers.hpp"
 
 namespace fs = std::filesystem;
 using namespace vplkit;
@@ -29,14 +30,7 @@ uniform_declarations shipped_lib_declarations() {
   return declarations;
 }
 
-std::string message_of(const std::function<void()>& action) {
-  try {
-    action();
-  } catch (const vplkit::error& failure) {
-    return failure.what();
-  }
-  return "(no error)";
-}
+using vplkit::testing::message_of;
 
 std::string irradiance_program(const std::string& struct_body, const std::string& read = "min_distance") {
   return "#version 330 core\nstruct irradiance_settings {\n" + struct_body + "};\nuniform irradiance_settings irradiance;\nout vec4 colour;\n"

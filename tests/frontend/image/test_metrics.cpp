@@ -13,7 +13,7 @@ using namespace vplkit;
 
 namespace {
 
-image gradient(int width, int height, float offset = 0.0f, int shift = 0) {
+image shifted_gradient(int width, int height, float offset = 0.0f, int shift = 0) {
   image ramp(width, height);
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
@@ -27,7 +27,7 @@ image gradient(int width, int height, float offset = 0.0f, int shift = 0) {
 }  // namespace
 
 TEST_CASE("identical images: RMSE 0, PSNR infinite, SSIM 1, 100% similar, no leak") {
-  const image a = gradient(40, 30);
+  const image a = shifted_gradient(40, 30);
   image mask = a;
   for (auto& p : mask.texels) p = glm::vec4(1.0f);
   const image_metrics m = compare_images(a, a, &mask);
@@ -42,7 +42,7 @@ TEST_CASE("identical images: RMSE 0, PSNR infinite, SSIM 1, 100% similar, no lea
 
 TEST_CASE("a constant offset c: RMSE = c, PSNR = 20 log10(peak / c), relative MSE closed form, SSIM below 1") {
   const float c = 0.05f;
-  const image reference = gradient(40, 30), offset = gradient(40, 30, c);
+  const image reference = shifted_gradient(40, 30), offset = shifted_gradient(40, 30, c);
   const image_metrics m = compare_images(offset, reference);
   CHECK(m.rmse == doctest::Approx(c).epsilon(1e-5));
   double peak = 0.0, relative = 0.0;
@@ -60,7 +60,7 @@ TEST_CASE("a constant offset c: RMSE = c, PSNR = 20 log10(peak / c), relative MS
 
 TEST_CASE("a shifted copy: RMSE from the shifted ramp, SSIM and similarity drop, the leak error counts only the mask") {
   const int width = 64, shift = 3;
-  const image reference = gradient(width, 16), shifted = gradient(width, 16, 0.0f, shift);
+  const image reference = shifted_gradient(width, 16), shifted = shifted_gradient(width, 16, 0.0f, shift);
   const image_metrics m = compare_images(shifted, reference);
   // Per row: x >= shift differ by 0.8 shift / (w - 1) in red, half that in green, 0 in blue;
   // x < shift by 0.8 x / (w - 1), half in green.

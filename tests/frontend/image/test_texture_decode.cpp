@@ -18,7 +18,7 @@ using namespace vplkit;
 namespace {
 
 // A w x h RGBA8 image: red in the left half, blue in the right, alpha 200.
-std::vector<std::uint8_t> halves(int w, int h) {
+std::vector<std::uint8_t> red_blue_halves(int w, int h) {
   std::vector<std::uint8_t> rgba(static_cast<std::size_t>(w * h * 4));
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
@@ -55,7 +55,7 @@ std::string decode_error(const std::string& bytes, const texture_limits& limits 
 }  // namespace
 
 TEST_CASE("texture decoding: a PNG gives its stored RGBA8, rows top-down") {
-  const std::vector<std::uint8_t> rgba = halves(8, 4);
+  const std::vector<std::uint8_t> rgba = red_blue_halves(8, 4);
   const std::string png = as_bytes(encode_png(8, 4, rgba));
   CHECK(texture_format_of(png) == texture_file_format::png);
   const texture_pixels decoded = decode_texture(png, "halves.png");
@@ -65,7 +65,7 @@ TEST_CASE("texture decoding: a PNG gives its stored RGBA8, rows top-down") {
 }
 
 TEST_CASE("texture decoding: a JPEG gives its colours within the codec's error, opaque") {
-  const std::vector<std::uint8_t> rgba = halves(32, 16);
+  const std::vector<std::uint8_t> rgba = red_blue_halves(32, 16);
   const std::string jpeg = jpeg_of(32, 16, rgba);
   CHECK(texture_format_of(jpeg) == texture_file_format::jpeg);
   const texture_pixels decoded = decode_texture(jpeg, "halves.jpg");
@@ -81,7 +81,7 @@ TEST_CASE("texture decoding: a JPEG gives its colours within the codec's error, 
 }
 
 TEST_CASE("texture decoding: sizes over the limits, truncated data and other formats are refused, naming the texture") {
-  const std::string png = as_bytes(encode_png(64, 32, halves(64, 32)));
+  const std::string png = as_bytes(encode_png(64, 32, red_blue_halves(64, 32)));
   texture_limits small;
   small.max_side = 32;
   const std::string side = decode_error(png, small);
@@ -90,7 +90,7 @@ TEST_CASE("texture decoding: sizes over the limits, truncated data and other for
   small.max_side = 64;
   small.max_pixels = 1000;
   CHECK(decode_error(png, small).find("1000 pixels in all") != std::string::npos);  // png.cpp's message
-  const std::string jpeg = jpeg_of(64, 32, halves(64, 32));
+  const std::string jpeg = jpeg_of(64, 32, red_blue_halves(64, 32));
   CHECK(decode_error(jpeg, small).find("JPEG claims 64x32") != std::string::npos);
   // Truncated: the header is read, the data is not all there.
   CHECK(decode_error(png.substr(0, png.size() / 2)).find("scene.gltf: image 3 'floor': not a readable PNG") == 0);

@@ -25,7 +25,7 @@ void add_inward_box(mesh& target, glm::vec3 centre, glm::vec3 size) {
     for (const std::size_t k : {0, 2, 1}) target.indices.push_back(base + box.indices[i + k]);
 }
 
-bool inside(const bounding_box& box, glm::vec3 p) { return glm::all(glm::greaterThan(p, box.minimum)) && glm::all(glm::lessThan(p, box.maximum)); }
+bool inside_box(const bounding_box& box, glm::vec3 p) { return glm::all(glm::greaterThan(p, box.minimum)) && glm::all(glm::lessThan(p, box.maximum)); }
 
 }  // namespace
 
@@ -37,10 +37,10 @@ TEST_CASE("framing: a closed room is seen and lit from inside, below the ceiling
   const bounding_box box = bounds(room);
   const scene framed = frame_mesh("room", room);
   CHECK(framed.geometry.triangle_count() == triangles);
-  CHECK(inside(box, framed.view.position));
+  CHECK(inside_box(box, framed.view.position));
   CHECK(framed.view.position.y < 3.0f);
   REQUIRE(framed.lights[0].kind == light_kind::spot);
-  CHECK(inside(box, framed.lights[0].spot.position));
+  CHECK(inside_box(box, framed.lights[0].spot.position));
   CHECK(framed.lights[0].spot.position.y < 3.0f);
   CHECK(framed.lights[0].spot.position.y > framed.view.position.y);
   REQUIRE(framed.notes.size() == 1);

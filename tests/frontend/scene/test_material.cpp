@@ -14,7 +14,7 @@ using namespace vplkit;
 namespace {
 
 // A 4x2 texture: codes 0, 60, 120, 180 along x on row 0; row 1 all 255; alpha 255 - red code.
-texture ramp() {
+texture ramp_texture() {
   texture_level level{4, 2, {}};
   for (int y = 0; y < 2; ++y)
     for (int x = 0; x < 4; ++x) {
@@ -27,7 +27,7 @@ texture ramp() {
 }  // namespace
 
 TEST_CASE("material: the mip chain halves each side down to 1x1 and keeps the mean in linear light") {
-  const texture t = ramp();
+  const texture t = ramp_texture();
   REQUIRE(t.levels.size() == 3);
   CHECK(t.levels[1].width == 2);
   CHECK(t.levels[1].height == 1);
@@ -41,7 +41,7 @@ TEST_CASE("material: the mip chain halves each side down to 1x1 and keeps the me
 }
 
 TEST_CASE("material: sample_texture with GL's wrap modes and filters") {
-  const texture t = ramp();
+  const texture t = ramp_texture();
   texture_sampler nearest;
   nearest.mag = nearest.min = texture_filter::nearest;
   const float texel1 = srgb8_to_linear(60), texel3 = srgb8_to_linear(180);
@@ -68,7 +68,7 @@ TEST_CASE("material: a mesh's albedo is its factor times the texture, and MASK c
                 {{0, 0, 1}, {0, 1, 0}, {0.5f, 1.0f, 1.0f}, {0.375f, 0.25f}}};
   m.indices = {0, 1, 2, 0, 2, 1};
   auto library = std::make_shared<material_library>();
-  library->textures.push_back(ramp());
+  library->textures.push_back(ramp_texture());
   surface_material textured;
   textured.texture = 0;
   textured.sampler.mag = texture_filter::nearest;

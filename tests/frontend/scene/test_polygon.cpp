@@ -27,7 +27,7 @@ double shoelace(const std::vector<glm::dvec2>& p) {
 }
 
 // Whether point q is inside the polygon by the crossing number (even-odd, as GLU's odd rule).
-bool inside(const std::vector<glm::dvec2>& p, const glm::dvec2& q) {
+bool inside_polygon(const std::vector<glm::dvec2>& p, const glm::dvec2& q) {
   bool in = false;
   for (std::size_t i = 0, j = p.size() - 1; i < p.size(); j = i++)
     if ((p[i].y > q.y) != (p[j].y > q.y) && q.x < (p[j].x - p[i].x) * (q.y - p[i].y) / (p[j].y - p[i].y) + p[i].x) in = !in;
@@ -62,7 +62,7 @@ void check_triangulation(const std::vector<glm::dvec2>& polygon, const glm::dvec
     total += area;
     for (const glm::dvec2& q : {(a + b + c) / 3.0, (a + b) * 0.5 + (c - (a + b) * 0.5) * 1e-6, (b + c) * 0.5 + (a - (b + c) * 0.5) * 1e-6,
                                 (c + a) * 0.5 + (b - (c + a) * 0.5) * 1e-6})
-      if (!inside(polygon, q)) ++outside;
+      if (!inside_polygon(polygon, q)) ++outside;
   }
   CHECK(inverted == 0);
   CHECK(outside == 0);

@@ -21,7 +21,7 @@ using namespace vplkit;
 
 namespace {
 
-constexpr int side = 64;  // pixels
+constexpr int target_side = 64;  // pixels of the render target
 
 // Coplanar axis-aligned rectangles (two triangles each) of random albedo, overlapping, each
 // covering the pixels [x0, x1] x [y0, y1] (edges a quarter pixel outside the outer pixel centres,
@@ -35,7 +35,7 @@ struct quad_mesh {
 
 quad_mesh make_quads(int count, bool reversed) {
   std::mt19937 random(36);
-  std::uniform_int_distribution<int> coordinate(0, side - 1);
+  std::uniform_int_distribution<int> coordinate(0, target_side - 1);
   std::uniform_real_distribution<float> channel(0.0f, 1.0f);
   quad_mesh out;
   for (int q = 0; q < count; ++q) {
@@ -46,7 +46,7 @@ quad_mesh make_quads(int count, bool reversed) {
   }
   std::vector<glm::vec3> albedos;
   for (int q = 0; q < count; ++q) albedos.push_back({channel(random), channel(random), channel(random)});
-  const auto ndc = [](float pixel) { return pixel / side * 2.0f - 1.0f; };
+  const auto ndc = [](float pixel) { return pixel / target_side * 2.0f - 1.0f; };
   for (int i = 0; i < count; ++i) {
     const int q = reversed ? count - 1 - i : i;
     const glm::ivec4 r = out.rectangles[static_cast<std::size_t>(q)];
@@ -68,12 +68,12 @@ quad_mesh make_quads(int count, bool reversed) {
 // The mesh drawn into an RGBA32F target: RGB blended "over" with a constant alpha of 1/2, so that
 // the image depends on the order of the triangles; alpha added, so that it counts the fragments
 // at each pixel. Also the primitives the vertex stage sent on (GL_PRIMITIVES_GENERATED).
-struct drawn {
+struct drawn_mesh {
   image texels;
   std::uint64_t primitives = 0;
 };
 
-drawn draw_quads(const mesh& geometry, draw_chunking chunking) {
+drawn_mesh draw_quads(const mesh& geometry, draw_chunking chunking) {
   const shader_library& shaders = parity::test_shaders();
   const program surfaces = link_program(
       "chunked draw test",
@@ -87,7 +87,7 @@ drawn draw_quads(const mesh& geometry, draw_chunking chunking) {
   surfaces.use();
   surfaces.set("view_projection", glm::mat4(1.0f));
   const mesh_buffers buffers(geometry, chunking);
-  framebuffer target(side, side, {texel_format::rgba32f}, false);
+  framebuffer target(target_side, target_side, {texel_format::rgba32f}, false);
   target.bind();
   glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
   glClear(GL_COLOR_BUFFER_BIT);
@@ -99,7 +99,7 @@ drawn draw_quads(const mesh& geometry, draw_chunking chunking) {
   buffers.draw(surfaces);
   glEndQuery(GL_PRIMITIVES_GENERATED);
   glDisable(GL_BLEND);
-  drawn out;
+  drawn_mesh out;
   GLuint64 primitives = 0;
   glGetQueryObjectui64v(query.get(), GL_QUERY_RESULT, &primitives);
   out.primitives = primitives;
@@ -119,11 +119,11 @@ TEST_CASE("chunked draws draw every triangle once, in order: the same image bit 
   constexpr int quads = 1500;  // 3000 triangles in runs of 800, 800 and 1400
   const quad_mesh scene = make_quads(quads, false);
   // Fragments per pixel: one for each rectangle over its centre (of its two triangles, one).
-  std::vector<int> expected_count(side * side, 0);
+  std::vector<int> expected_count(target_side * target_side, 0);
   for (const glm::ivec4& r : scene.rectangles)
     for (int y = r.y; y <= r.w; ++y)
-      for (int x = r.x; x <= r.z; ++x) ++expected_count[static_cast<std::size_t>(y * side + x)];
-  const auto check_counts = [&](const drawn& result) {
+      for (int x = r.x; x <= r.z; ++x) ++expected_count[static_cast<std::size_t>(y * target_side + x)];
+  const auto check_counts = [&](const drawn_mesh& result) {
     REQUIRE(result.texels.texels.size() == expected_count.size());
     std::size_t wrong = 0;
     for (std::size_t i = 0; i < expected_count.size(); ++i) wrong += result.texels.texels[i].a != static_cast<float>(expected_count[i]);
@@ -131,25 +131,25 @@ TEST_CASE("chunked draws draw every triangle once, in order: the same image bit 
     CHECK(result.primitives == 2 * quads);
   };
 
-  const drawn whole = draw_quads(scene.geometry, draw_chunking{});  // the defaults: one draw call per run
+  const drawn_mesh whole = draw_quads(scene.geometry, draw_chunking{});  // the defaults: one draw call per run
   check_counts(whole);
   // The order is visible: the same triangles drawn back to front give another image (else the
   // comparisons below could not see a chunk drawn out of order).
-  const drawn reversed = draw_quads(make_quads(quads, true).geometry, draw_chunking{});
+  const drawn_mesh reversed = draw_quads(make_quads(quads, true).geometry, draw_chunking{});
   check_counts(reversed);
   CHECK_FALSE(same_bits(whole.texels, reversed.texels));
 
   // Chunks of 1, 7 (runs not a multiple of it), 64 and 4096 triangles (one chunk, more than a run).
   for (const GLsizei chunk : {1, 7, 64, 4096}) {
     CAPTURE(chunk);
-    const drawn chunked = draw_quads(scene.geometry, draw_chunking{0, chunk});
+    const drawn_mesh chunked = draw_quads(scene.geometry, draw_chunking{0, chunk});
     check_counts(chunked);
     CHECK(same_bits(chunked.texels, whole.texels));
   }
   // At the threshold a run is one draw call; one triangle above it, chunked.
   for (const GLsizei threshold : {800, 799}) {
     CAPTURE(threshold);
-    const drawn result = draw_quads(scene.geometry, draw_chunking{threshold, 7});
+    const drawn_mesh result = draw_quads(scene.geometry, draw_chunking{threshold, 7});
     check_counts(result);
     CHECK(same_bits(result.texels, whole.texels));
   }

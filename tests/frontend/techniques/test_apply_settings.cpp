@@ -25,6 +25,7 @@
 #include "frontend/image/image.hpp"
 #include "frontend/scene/scene.hpp"
 #include "frontend/techniques/registry.hpp"
+#include "tests/gl_test_helpers.hpp"
 
 using namespace vplkit;
 
@@ -95,13 +96,7 @@ std::optional<trial> find_change(const technique_family& family, const std::stri
   return std::nullopt;
 }
 
-std::size_t different_texels(const image& a, const image& b) {
-  REQUIRE(a.width == b.width);
-  REQUIRE(a.height == b.height);
-  std::size_t different = 0;
-  for (std::size_t i = 0; i < a.texels.size(); ++i) different += a.texels[i] != b.texels[i];
-  return different;
-}
+using vplkit::testing::different_texels;
 
 }  // namespace
 

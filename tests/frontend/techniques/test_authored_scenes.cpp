@@ -20,10 +20,10 @@ using namespace vplkit;
 
 namespace {
 
-struct scratch_folder {
+struct scene_folder {
   fs::path root = fs::temp_directory_path() / ("vplkit-scenes-" + std::to_string(std::random_device{}()));
-  scratch_folder() { fs::create_directories(root); }
-  ~scratch_folder() { fs::remove_all(root); }
+  scene_folder() { fs::create_directories(root); }
+  ~scene_folder() { fs::remove_all(root); }
   fs::path write(const std::string& name, const std::string& bytes) const {
     std::ofstream(root / name, std::ios::binary) << bytes;
     return root / name;
@@ -57,7 +57,7 @@ std::string jpeg_bytes(int w, int h, const std::vector<std::uint8_t>& rgba) {
   return bytes;
 }
 
-rsm_pipeline_settings small() {
+rsm_pipeline_settings small_rsm_settings() {
   rsm_pipeline_settings settings;
   settings.width = settings.height = 64;
   settings.rsm_size = 128;
@@ -90,7 +90,7 @@ glm::vec3 mean_of(const image& picture, int x0, int x1, int y0, int y1) {
 }  // namespace
 
 TEST_CASE("authored scenes: a floor textured half red, half blue shows red and blue (PNG and JPEG)") {
-  const scratch_folder folder;
+  const scene_folder folder;
   const std::vector<std::uint8_t> rgba = halves(64, 64, {220, 20, 20}, {20, 20, 220});
   folder.write("halves.png", png_bytes(64, 64, rgba));
   folder.write("halves.jpg", jpeg_bytes(64, 64, rgba));
@@ -100,7 +100,7 @@ TEST_CASE("authored scenes: a floor textured half red, half blue shows red and b
     const fs::path obj = folder.write("floor.obj", "mtllib floor.mtl\nv -2 0 2\nv 2 0 2\nv 2 0 -2\nv -2 0 -2\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n"
                                                    "vn 0 1 0\nusemtl floor\nf 1/1/1 2/2/1 3/3/1 4/4/1\n");
     // Seen from straight above, -x on the left: u = 0 at x = -2 is the texture's red half.
-    rsm_pipeline pipeline(parity::test_shaders(), posed("floor", load_obj(obj), {0, 4, 0.001f}, {0, 0, 0}, {0, 3, 0.001f}, {0, 0, 0}, 2.0f), small());
+    rsm_pipeline pipeline(parity::test_shaders(), posed("floor", load_obj(obj), {0, 4, 0.001f}, {0, 0, 0}, {0, 3, 0.001f}, {0, 0, 0}, 2.0f), small_rsm_settings());
     const image radiance = pipeline.render().radiance;
     const glm::vec3 left = mean_of(radiance, 8, 24, 16, 48), right = mean_of(radiance, 40, 56, 16, 48);
     CAPTURE(left);
@@ -111,13 +111,13 @@ TEST_CASE("authored scenes: a floor textured half red, half blue shows red and b
 }
 
 TEST_CASE("authored scenes: a red-textured wall on a white material tints the floor's indirect light") {
-  const scratch_folder folder;
+  const scene_folder folder;
   folder.write("red.png", png_bytes(8, 8, halves(8, 8, {230, 10, 10}, {230, 10, 10})));
   folder.write("wall.mtl", "newmtl white\nKd 0.8 0.8 0.8\nnewmtl wall\nKd 1 1 1\nmap_Kd red.png\n");
   const fs::path obj = folder.write("wall.obj", "mtllib wall.mtl\nv -3 0 3\nv 3 0 3\nv 3 0 -3\nv -3 0 -3\nv -3 0 -1\nv 3 0 -1\nv 3 3 -1\nv -3 3 -1\n"
                                                 "vt 0 1\nvt 1 1\nvt 1 0\nvt 0 0\nvn 0 1 0\nvn 0 0 1\nusemtl white\nf 1//1 2//1 3//1 4//1\n"
                                                 "usemtl wall\nf 5/1/2 6/2/2 7/3/2 8/4/2\n");
-  rsm_pipeline pipeline(parity::test_shaders(), posed("wall", load_obj(obj), {0, 2.5f, 4}, {0, 0.3f, -1}, {0, 4, 3}, {0, 0, -1}, 10.0f), small());
+  rsm_pipeline pipeline(parity::test_shaders(), posed("wall", load_obj(obj), {0, 2.5f, 4}, {0, 0.3f, -1}, {0, 4, 3}, {0, 0, -1}, 10.0f), small_rsm_settings());
   const glm::vec3 floor = mean_of(pipeline.render().indirect, 16, 48, 0, 20);  // the bottom of the image: the floor
   CAPTURE(floor);
   CHECK(floor.r >= 1.5f * floor.b);
@@ -134,7 +134,7 @@ TEST_CASE("authored scenes: a closed room without camera or light is seen lit fr
   }
   add_box(room, {0.0f, 0.4f, 0.0f}, {2.0f, 0.8f, 1.2f}, 0.0f, glm::vec3(0.73f));
   add_box(room, {1.9f, 0.6f, 1.4f}, {0.8f, 1.2f, 0.8f}, 20.0f, glm::vec3(0.73f));
-  rsm_pipeline pipeline(parity::test_shaders(), frame_mesh("room", room), small());
+  rsm_pipeline pipeline(parity::test_shaders(), frame_mesh("room", room), small_rsm_settings());
   const image radiance = pipeline.render().radiance;
   std::size_t black = 0;
   double sum = 0.0;
@@ -151,7 +151,7 @@ TEST_CASE("authored scenes: a closed room without camera or light is seen lit fr
 
 TEST_CASE("authored scenes: doubling the light's intensity doubles the indirect light") {
   scene source = built_in_scene("cornell-box");
-  rsm_pipeline_settings settings = small();
+  rsm_pipeline_settings settings = small_rsm_settings();
   settings.format = texel_format::rgba32f;
   const image once = rsm_pipeline(parity::test_shaders(), source, settings).render().indirect;
   source.lights[0].spot.intensity *= 2.0f;

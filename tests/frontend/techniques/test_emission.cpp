@@ -114,7 +114,7 @@ glm::ivec2 pixel_of(const scene& s, glm::vec3 p) {
 
 glm::vec3 rgb_at(const image& picture, glm::ivec2 pixel) { return glm::vec3(picture.at(pixel.x, pixel.y)); }
 
-void check_close(glm::vec3 seen, glm::vec3 expected, float relative) {
+void check_colour_close(glm::vec3 seen, glm::vec3 expected, float relative) {
   for (int c = 0; c < 3; ++c) {
     CAPTURE(c);
     CAPTURE(seen[c]);
@@ -187,9 +187,9 @@ TEST_CASE("emission: every family's final image adds factor x texture where an e
     CHECK(with.emission_pass);
     CHECK_FALSE(without.emission_pass);
     // The emitters' albedo is 0: what the camera sees of them is their emission, in closed form.
-    check_close(rgb_at(with.radiance, at_a), emission_a(), texture_tolerance);
-    check_close(rgb_at(with.radiance, at_b), emission_b(), factor_tolerance);  // strength 3: three times the factor
-    check_close(rgb_at(without.radiance, at_a), glm::vec3(0.0f), 0.0f);
+    check_colour_close(rgb_at(with.radiance, at_a), emission_a(), texture_tolerance);
+    check_colour_close(rgb_at(with.radiance, at_b), emission_b(), factor_tolerance);  // strength 3: three times the factor
+    check_colour_close(rgb_at(without.radiance, at_a), glm::vec3(0.0f), 0.0f);
     // Behind the box and on an emitter's back: the image without emission, to the bit.
     CHECK(rgb_at(with.radiance, hidden) == rgb_at(without.radiance, hidden));
     CHECK(rgb_at(with.radiance, back) == rgb_at(without.radiance, back));
@@ -227,8 +227,8 @@ TEST_CASE("emission: the Monte Carlo reference adds it where the camera ray's fi
   const one_bounce_images without = reference_one_bounce(dark, width, height, 8, 1, 2);
   REQUIRE(std::any_of(with.indirect.texels.begin(), with.indirect.texels.end(), [](const glm::vec4& v) { return v.r > 0.0f; }));
   const glm::ivec2 at_a = pixel_of(lit, point_a), at_b = pixel_of(lit, point_b), hidden = pixel_of(lit, point_hidden), back = pixel_of(lit, point_back);
-  check_close(rgb_at(with.radiance, at_a), emission_a(), 1e-5f);
-  check_close(rgb_at(with.radiance, at_b), emission_b(), 1e-5f);
+  check_colour_close(rgb_at(with.radiance, at_a), emission_a(), 1e-5f);
+  check_colour_close(rgb_at(with.radiance, at_b), emission_b(), 1e-5f);
   CHECK(rgb_at(with.radiance, hidden) == rgb_at(without.radiance, hidden));
   CHECK(rgb_at(with.radiance, back) == rgb_at(without.radiance, back));
   CHECK(with.direct.texels == without.direct.texels);
@@ -251,7 +251,7 @@ TEST_CASE("emission: the Monte Carlo reference adds it where the camera ray's fi
         if (!interior) continue;
         ++compared;
         const bool textured = glm::all(glm::lessThanEqual(glm::abs(added - emission_a()), 1e-5f * emission_a()));
-        check_close(rgb_at(technique.radiance, {x, y}), rgb_at(with.radiance, {x, y}), textured ? texture_tolerance : factor_tolerance);
+        check_colour_close(rgb_at(technique.radiance, {x, y}), rgb_at(with.radiance, {x, y}), textured ? texture_tolerance : factor_tolerance);
       }
     CHECK(compared > 30);
   }

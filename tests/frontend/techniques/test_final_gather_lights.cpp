@@ -25,7 +25,7 @@ using namespace vplkit::parity;
 
 namespace {
 
-final_gather_settings small(const char* technique) {
+final_gather_settings small_final_gather_settings(const char* technique) {
   final_gather_settings settings;
   settings.technique = technique;
   settings.width = settings.height = 48;
@@ -74,9 +74,9 @@ TEST_CASE("final gathering with two lights (a spot and a point light) is the sum
   const scene_light bulb = bulb_at(glm::vec3(-0.4f, 1.5f, -0.3f), 0.6f);
   for (const char* technique : {"finalgather-polygon", "finalgather-point", "envmap"}) {
     INFO(technique);
-    final_gather_pipeline both(test_shaders(), box_lit_by({spot, bulb}), small(technique));
-    final_gather_pipeline only_spot(test_shaders(), box_lit_by({spot}), small(technique));
-    final_gather_pipeline only_bulb(test_shaders(), box_lit_by({bulb}), small(technique));
+    final_gather_pipeline both(test_shaders(), box_lit_by({spot, bulb}), small_final_gather_settings(technique));
+    final_gather_pipeline only_spot(test_shaders(), box_lit_by({spot}), small_final_gather_settings(technique));
+    final_gather_pipeline only_bulb(test_shaders(), box_lit_by({bulb}), small_final_gather_settings(technique));
     const final_gather_frame f2 = both.render(), fs = only_spot.render(), fb = only_bulb.render();
     // Each light contributes a real share (else the sum would hold trivially).
     const double spot_share = relative_difference(fs.indirect, f2.indirect), bulb_share = relative_difference(fb.indirect, f2.indirect);
@@ -134,8 +134,8 @@ TEST_CASE("final gathering: a second light of zero power leaves the single-spot 
        }()}) {
     for (const char* technique : {"finalgather-polygon", "envmap"}) {
       INFO(technique << ", a dark " << light_kind_name(dark.kind));
-      final_gather_pipeline one(test_shaders(), box_lit_by({spot}), small(technique));
-      final_gather_pipeline two(test_shaders(), box_lit_by({spot, dark}), small(technique));
+      final_gather_pipeline one(test_shaders(), box_lit_by({spot}), small_final_gather_settings(technique));
+      final_gather_pipeline two(test_shaders(), box_lit_by({spot, dark}), small_final_gather_settings(technique));
       const final_gather_frame a = one.render(), b = two.render();
       std::size_t differing = 0, lit = 0;
       for (std::size_t i = 0; i < a.radiance.texels.size(); ++i) {
@@ -156,7 +156,7 @@ TEST_CASE("final gathering: a point light's occluder darkens the wall behind it 
   room.lights = {bulb_at(glm::vec3(-0.3f, 1.0f, 0.0f), 1.0f)};
   add_quad(room.geometry, {-0.7f, 0.8f, 0.25f}, {-0.7f, 0.8f, -0.25f}, {-0.7f, 1.2f, -0.25f}, {-0.7f, 1.2f, 0.25f}, {1, 0, 0}, glm::vec3(0.5f));
   const final_gather_scene s = make_final_gather_scene(room, "sphere", glm::vec3(0.5f, 1.0f, 0.6f), 0.2f);
-  final_gather_settings settings = small("finalgather-polygon");
+  final_gather_settings settings = small_final_gather_settings("finalgather-polygon");
   settings.face_size = settings.resolution = 32;
   final_gather_pipeline pipeline(test_shaders(), s, settings);
   pipeline.render();
@@ -193,7 +193,7 @@ TEST_CASE("final gathering: a point light's occluder darkens the wall behind it 
 TEST_CASE("final gathering with no light is black: the view, the object's indirect light, every technique") {
   for (const char* technique : {"finalgather-polygon", "finalgather-point", "envmap"}) {
     INFO(technique);
-    final_gather_pipeline pipeline(test_shaders(), box_lit_by({}), small(technique));
+    final_gather_pipeline pipeline(test_shaders(), box_lit_by({}), small_final_gather_settings(technique));
     const final_gather_frame frame = pipeline.render();
     const final_gather_buffers buffers = pipeline.read_buffers();
     std::size_t surfaces = 0, nonzero = 0;
@@ -213,7 +213,7 @@ TEST_CASE("final gathering: a sun over the closed box lights nothing inside it (
   sun.kind = light_kind::directional;
   sun.directional.direction = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f));
   sun.directional.irradiance = glm::vec3(2.0f);
-  final_gather_pipeline pipeline(test_shaders(), box_lit_by({sun}), small("finalgather-polygon"));
+  final_gather_pipeline pipeline(test_shaders(), box_lit_by({sun}), small_final_gather_settings("finalgather-polygon"));
   const final_gather_frame frame = pipeline.render();
   const final_gather_buffers buffers = pipeline.read_buffers();
   // Receivers the sun faces (unshadowed irradiance > 0) must all be dark, except on the room's

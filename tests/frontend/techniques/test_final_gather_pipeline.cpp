@@ -24,7 +24,7 @@ using namespace vplkit::parity;
 
 namespace {
 
-final_gather_settings small(const char* technique, int resolution) {
+final_gather_settings final_gather_settings_at(const char* technique, int resolution) {
   final_gather_settings settings;
   settings.technique = technique;
   settings.width = settings.height = 48;
@@ -42,7 +42,7 @@ TEST_CASE("final gathering shading pass matches the CPU mirror: polygon, point, 
   const final_gather_scene scene = make_final_gather_scene("sphere", glm::vec3(0.55f, 0.7f, 0.1f), 0.5f);
   for (const char* technique : {"finalgather-polygon", "finalgather-point", "envmap"}) {
     for (int resolution : {4, 2}) {
-      final_gather_pipeline pipeline(test_shaders(), scene, small(technique, resolution));
+      final_gather_pipeline pipeline(test_shaders(), scene, final_gather_settings_at(technique, resolution));
       const final_gather_frame frame = pipeline.render();
       const final_gather_buffers buffers = pipeline.read_buffers();
       const final_gather_images cpu = cpu_final_gather_shade(buffers, scene, pipeline.settings(), 2);
@@ -62,16 +62,16 @@ TEST_CASE("final gathering shading pass matches the CPU mirror: polygon, point, 
 
 TEST_CASE("final gathering errors: M not dividing the face size, a reference point outside the room, an object that fails to load") {
   const final_gather_scene scene = make_final_gather_scene("sphere", glm::vec3(0.0f, 0.7f, 0.0f), 0.5f);
-  final_gather_settings settings = small("finalgather-polygon", 4);
+  final_gather_settings settings = final_gather_settings_at("finalgather-polygon", 4);
   settings.face_size = 30;
   CHECK_THROWS_WITH_AS(final_gather_pipeline(test_shaders(), scene, settings), doctest::Contains("M = 4 does not divide the face size 30"), vplkit::error);
   // Outside the room: the cube map sees the walls' backs and the void around them.
   const final_gather_scene outside = make_final_gather_scene("sphere", glm::vec3(0.0f, 0.7f, 3.0f), 0.5f);
-  final_gather_pipeline pipeline(test_shaders(), outside, small("finalgather-polygon", 4));
+  final_gather_pipeline pipeline(test_shaders(), outside, final_gather_settings_at("finalgather-polygon", 4));
   CHECK_THROWS_WITH_AS(pipeline.render(), doctest::Contains("outside the room or inside geometry"), vplkit::error);
   // An object touching a wall: the environment is nearer than the object's radius.
   const final_gather_scene touching = make_final_gather_scene("sphere", glm::vec3(0.9f, 0.7f, 0.0f), 0.5f);
-  final_gather_pipeline touching_pipeline(test_shaders(), touching, small("finalgather-polygon", 4));
+  final_gather_pipeline touching_pipeline(test_shaders(), touching, final_gather_settings_at("finalgather-polygon", 4));
   CHECK_THROWS_WITH_AS(touching_pipeline.render(), doctest::Contains("intersects a wall"), vplkit::error);
   CHECK_THROWS_WITH_AS(make_final_gather_scene("/nonexistent/bunny.obj", glm::vec3(0.0f), 0.5f), doctest::Contains("no such OBJ file"),
                        vplkit::error);
@@ -84,7 +84,7 @@ TEST_CASE("the object approaching a wall: polygon stays near the exact irradianc
     const final_gather_scene scene = make_final_gather_scene("sphere", glm::vec3(x_position, 0.8f, 0.0f), 0.5f);
     double polygon_max = 0.0, polygon_min = 1e30, point_max = 0.0;
     for (const char* technique : {"finalgather-polygon", "finalgather-point"}) {
-      final_gather_settings settings = small(technique, 4);
+      final_gather_settings settings = final_gather_settings_at(technique, 4);
       settings.width = settings.height = 96;
       settings.face_size = 64;
       final_gather_pipeline pipeline(test_shaders(), scene, settings);
@@ -137,8 +137,8 @@ TEST_CASE("final gathering in a scene: the built-in box written as glTF and read
   const final_gather_scene built_in = make_final_gather_scene("sphere", position, 0.5f);
   const final_gather_scene given = make_final_gather_scene(loaded, "sphere", position, 0.5f);
   for (const char* technique : {"finalgather-polygon", "finalgather-point", "envmap"}) {
-    final_gather_pipeline a(test_shaders(), built_in, small(technique, 4));
-    final_gather_pipeline b(test_shaders(), given, small(technique, 4));
+    final_gather_pipeline a(test_shaders(), built_in, final_gather_settings_at(technique, 4));
+    final_gather_pipeline b(test_shaders(), given, final_gather_settings_at(technique, 4));
     const final_gather_frame fa = a.render(), fb = b.render();
     std::size_t lit = 0, differing = 0;
     for (std::size_t i = 0; i < fa.indirect.texels.size(); ++i) {
@@ -202,7 +202,7 @@ scene box_with_table() {
 TEST_CASE("final gathering in a scene: the room's shadows are in the view's direct light and the cube map, as the ray-traced reference has them") {
   const scene room = box_with_table();
   const final_gather_scene s = make_final_gather_scene(room, "sphere", glm::vec3(0.0f, 0.3f, 0.0f), 0.3f);
-  final_gather_settings settings = small("finalgather-polygon", 4);
+  final_gather_settings settings = final_gather_settings_at("finalgather-polygon", 4);
   settings.width = settings.height = 64;
   settings.face_size = 64;
   final_gather_pipeline pipeline(test_shaders(), s, settings);
@@ -275,7 +275,7 @@ TEST_CASE("--object-node and --object-at: a node of the scene becomes the object
   for (const vertex& v : s.room.vertices)
     CHECK_FALSE((std::abs(v.position.x + 1.3f) < 0.079f && std::abs(v.position.z - 0.4f) < 0.079f && v.position.y > 0.78f && v.position.y < 1.02f));
   // Drawn: the object is seen and gathers light from the studio.
-  final_gather_pipeline pipeline(test_shaders(), s, small("finalgather-polygon", 4));
+  final_gather_pipeline pipeline(test_shaders(), s, final_gather_settings_at("finalgather-polygon", 4));
   const final_gather_frame frame = pipeline.render();
   std::size_t lit = 0;
   for (const glm::vec4& texel : frame.indirect.texels) lit += texel.r > 0.0f;

@@ -27,7 +27,7 @@ using namespace vplkit::parity;
 
 namespace {
 
-lightwave_settings small(const char* technique, int side = 64) {
+lightwave_settings lightwave_settings_of_side(const char* technique, int side = 64) {
   lightwave_settings settings;
   settings.technique = technique;
   settings.width = side;
@@ -217,7 +217,7 @@ double sum_error(const image& whole, const std::vector<const image*>& parts) {
 
 TEST_CASE("Light Wave, a point light in the open: its direct light is the closed form within 7 %, no acne, over the cube's faces") {
   const scene source = open_floor(point_at({0.3f, 1.0f, -0.2f}, glm::vec3(2.0f)));
-  lightwave_pipeline pipeline(test_shaders(), source, small("lightwave-direct", 96));
+  lightwave_pipeline pipeline(test_shaders(), source, lightwave_settings_of_side("lightwave-direct", 96));
   REQUIRE(pipeline.light_layers() == 6);
   const lightwave_frame frame = pipeline.render();
   std::size_t side_faces = 0;
@@ -238,7 +238,7 @@ TEST_CASE("Light Wave, a point light in the open: its direct light is the closed
 
 TEST_CASE("Light Wave, a point light behind a wall: its cube shadow map darkens the floor beyond the wall, not the floor before it") {
   const scene source = open_floor(point_at({0.3f, 1.0f, -0.2f}, glm::vec3(2.0f)), true);
-  const lightwave_frame frame = lightwave_pipeline(test_shaders(), source, small("lightwave-direct", 96)).render();
+  const lightwave_frame frame = lightwave_pipeline(test_shaders(), source, lightwave_settings_of_side("lightwave-direct", 96)).render();
   const direct_check before = compare_direct(source, source.view, frame.radiance, [](const hit& h) { return h.position.y < 0.01f && h.position.x < 0.8f; });
   // Beyond the wall the traced light is 0: count the pixels there that the pipeline lit.
   const float aspect = 1.0f;
@@ -264,7 +264,7 @@ TEST_CASE("Light Wave, a point light behind a wall: its cube shadow map darkens 
 
 TEST_CASE("Light Wave, a point light in a closed box: all six walls lit at the closed form, no face missing, no dark seam") {
   const scene box = closed_box();
-  lightwave_pipeline pipeline(test_shaders(), box, small("lightwave-direct", 64));
+  lightwave_pipeline pipeline(test_shaders(), box, lightwave_settings_of_side("lightwave-direct", 64));
   for (int axis = 0; axis < 3; ++axis)
     for (float side : {-1.0f, 1.0f}) {
       CAPTURE(axis);
@@ -291,7 +291,7 @@ TEST_CASE("Light Wave, a point light's flux VPLs in a closed box carry the whole
   const scene box = closed_box();
   for (const char* technique : {"lightwave-unshadowed", "lightwave-accurate"}) {
     CAPTURE(technique);
-    lightwave_pipeline pipeline(test_shaders(), box, small(technique, 32));
+    lightwave_pipeline pipeline(test_shaders(), box, lightwave_settings_of_side(technique, 32));
     pipeline.set_camera(facing_wall(1, -1.0f));
     pipeline.render();
     REQUIRE(pipeline.vpl_count() == lightwave_sphere_sample_count(5, 5));
@@ -308,7 +308,7 @@ TEST_CASE("Light Wave, a point light's flux VPLs in a closed box carry the whole
     CHECK(pipeline.receiver_vpls().size() < pipeline.flux_vpls().size());
   }
   // The indirect light on each wall: positive everywhere the camera sees it.
-  lightwave_pipeline unshadowed(test_shaders(), box, small("lightwave-unshadowed", 32));
+  lightwave_pipeline unshadowed(test_shaders(), box, lightwave_settings_of_side("lightwave-unshadowed", 32));
   for (int axis = 0; axis < 3; ++axis)
     for (float side : {-1.0f, 1.0f}) {
       unshadowed.set_camera(facing_wall(axis, side));
@@ -346,8 +346,8 @@ TEST_CASE("Light Wave, a point light's integrated shadows: in a closed box nothi
   // lowest factors 0.77 to 0.82: what remains is the stepping's own error (coordinates
   // interpolated between two views of a wall seen at a grazing angle), which the thesis has too.
   const scene box = closed_box();
-  lightwave_pipeline integrated(test_shaders(), box, small("lightwave-integrated", 32));
-  lightwave_pipeline unshadowed(test_shaders(), box, small("lightwave-unshadowed", 32));
+  lightwave_pipeline integrated(test_shaders(), box, lightwave_settings_of_side("lightwave-integrated", 32));
+  lightwave_pipeline unshadowed(test_shaders(), box, lightwave_settings_of_side("lightwave-unshadowed", 32));
   for (int axis = 0; axis < 3; ++axis)
     for (float side : {-1.0f, 1.0f}) {
       integrated.set_camera(facing_wall(axis, side));
@@ -376,8 +376,8 @@ TEST_CASE("Light Wave, a point light's integrated shadows: in a closed box nothi
   // block hides (the walls' and the floor's beyond it), so the shadows must still darken there.
   scene blocked = box;
   add_box(blocked.geometry, {0.0f, -0.75f, 0.0f}, {0.5f, 0.5f, 0.5f}, 0.0f, glm::vec3(0.6f));
-  lightwave_pipeline blocked_integrated(test_shaders(), blocked, small("lightwave-integrated", 32));
-  lightwave_pipeline blocked_unshadowed(test_shaders(), blocked, small("lightwave-unshadowed", 32));
+  lightwave_pipeline blocked_integrated(test_shaders(), blocked, lightwave_settings_of_side("lightwave-integrated", 32));
+  lightwave_pipeline blocked_unshadowed(test_shaders(), blocked, lightwave_settings_of_side("lightwave-unshadowed", 32));
   blocked_integrated.set_camera(facing_wall(1, -1.0f));
   blocked_unshadowed.set_camera(facing_wall(1, -1.0f));
   const indirect_summary shadowed = summarise(blocked_integrated.render()), open = summarise(blocked_unshadowed.render());
@@ -389,7 +389,7 @@ TEST_CASE("Light Wave, a point light's integrated shadows: in a closed box nothi
 TEST_CASE("Light Wave, a sun on an open floor: its direct light is the closed form; its flux VPLs carry E x albedo x the floor's area across the light") {
   const glm::vec3 direction = glm::normalize(glm::vec3(0.3f, -1.0f, 0.2f));
   const scene source = open_floor(sun_along(direction, glm::vec3(1.2f)));
-  lightwave_pipeline pipeline(test_shaders(), source, small("lightwave-direct", 96));
+  lightwave_pipeline pipeline(test_shaders(), source, lightwave_settings_of_side("lightwave-direct", 96));
   REQUIRE(pipeline.light_layers() == 1);
   const lightwave_frame frame = pipeline.render();
   const direct_check open = compare_direct(source, source.view, frame.radiance, anywhere);
@@ -402,7 +402,7 @@ TEST_CASE("Light Wave, a sun on an open floor: its direct light is the closed fo
   CHECK(static_cast<double>(open.dark) <= 0.01 * static_cast<double>(open.lit));
   CHECK(static_cast<double>(open.within) >= 0.97 * static_cast<double>(open.lit));
 
-  lightwave_pipeline flux(test_shaders(), source, small("lightwave-unshadowed", 32));
+  lightwave_pipeline flux(test_shaders(), source, lightwave_settings_of_side("lightwave-unshadowed", 32));
   flux.render();
   REQUIRE(flux.vpl_count() == lightwave_parallel_sample_count(5, 5));
   glm::dvec3 total(0.0);
@@ -433,7 +433,7 @@ TEST_CASE("Light Wave, a point light split into two at its place: every techniqu
       if (energy == lightwave_energy::thesis && technique.mode >= lightwave_mode::unshadowed) continue;
       CAPTURE(technique.name);
       CAPTURE(static_cast<int>(energy));
-      lightwave_settings settings = small(technique.name, 48);
+      lightwave_settings settings = lightwave_settings_of_side(technique.name, 48);
       settings.energy = energy;
       const lightwave_frame one = lightwave_pipeline(test_shaders(), box, settings).render();
       const lightwave_frame parts = lightwave_pipeline(test_shaders(), with_lights(box, {part_a, part_b}), settings).render();
@@ -455,7 +455,7 @@ void check_mixed_lights(lightwave_energy energy) {
   for (const lightwave_technique& technique : lightwave_techniques()) {
     CAPTURE(technique.name);
     CAPTURE(static_cast<int>(energy));
-    lightwave_settings settings = small(technique.name, 32);
+    lightwave_settings settings = lightwave_settings_of_side(technique.name, 32);
     settings.energy = energy;
     std::vector<lightwave_frame> single;
     std::vector<image> single_direct;  // render's -direct.pfm, the main pass's fifth output
@@ -506,13 +506,13 @@ TEST_CASE("Light Wave, a spot, a point light and a sun, thesis energy: every tec
 TEST_CASE("Light Wave, several lights share the scene's mesh, receivers and screen buffers; a light keeps its kind when it moves") {
   scene mixed = make_boxes_scene();
   mixed.lights.push_back(point_at({0.5f, 1.2f, 0.3f}, glm::vec3(0.6f)));
-  lightwave_pipeline pipeline(test_shaders(), mixed, small("lightwave-accurate", 32));
+  lightwave_pipeline pipeline(test_shaders(), mixed, lightwave_settings_of_side("lightwave-accurate", 32));
   REQUIRE(pipeline.light_count() == 2);
   CHECK(pipeline.light_pipeline(1).shares_resources_with(pipeline));
   CHECK(pipeline.light_pipeline(1).light_layers() == 6);
   // The receivers' textures and sum targets at least, which a further light no longer makes again.
   CHECK(pipeline.shared_bytes() > static_cast<std::uint64_t>(pipeline.drawn_mesh().vertices.size()) * 16u * 3u);
-  const lightwave_pipeline alone(test_shaders(), with_lights(mixed, {mixed.lights[1]}), small("lightwave-accurate", 32));
+  const lightwave_pipeline alone(test_shaders(), with_lights(mixed, {mixed.lights[1]}), lightwave_settings_of_side("lightwave-accurate", 32));
   CHECK_FALSE(alone.shares_resources_with(pipeline));
   // A move that keeps the kind is drawn; one that changes it is refused, naming both kinds.
   scene_light moved = mixed.lights[1];

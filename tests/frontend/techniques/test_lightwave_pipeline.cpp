@@ -23,7 +23,7 @@ using namespace vplkit::parity;
 
 namespace {
 
-lightwave_settings small(const char* technique) {
+lightwave_settings small_lightwave_settings(const char* technique) {
   lightwave_settings settings;
   settings.technique = technique;
   settings.width = 64;
@@ -37,7 +37,7 @@ lightwave_settings small(const char* technique) {
 
 TEST_CASE("Light Wave vertex stage equals the CPU sum of Eq. 4.5 over all 6485 VPLs, vertex by vertex (thesis energy)") {
   const scene boxes = make_boxes_scene();
-  lightwave_settings settings = small("lightwave-unshadowed");
+  lightwave_settings settings = small_lightwave_settings("lightwave-unshadowed");
   settings.energy = lightwave_energy::thesis;
   lightwave_pipeline pipeline(test_shaders(), boxes, settings);
   const std::vector<glm::vec3> gpu = pipeline.capture_vertex_indirect();
@@ -93,7 +93,7 @@ void check_receiver_sums(lightwave_pipeline& pipeline, const std::vector<glm::ve
 
 TEST_CASE("Light Wave flux energy: the indirect light summed at the receivers equals the CPU sum over the receivers' VPLs at every receiver's sample point") {
   const scene boxes = make_boxes_scene();
-  lightwave_pipeline pipeline(test_shaders(), boxes, small("lightwave-unshadowed"));
+  lightwave_pipeline pipeline(test_shaders(), boxes, small_lightwave_settings("lightwave-unshadowed"));
   const std::vector<glm::vec3> gpu = pipeline.capture_vertex_indirect();
   REQUIRE(pipeline.drawn_mesh().triangle_count() > boxes.geometry.triangle_count());  // subdivided
   // Bands of lightwave_sum_receivers and a part of one, then empty texels: receiver i's sum read
@@ -110,7 +110,7 @@ TEST_CASE("Light Wave flux energy: the indirect light summed at the receivers eq
   check_receiver_sums(pipeline, gpu);
 
   SUBCASE("the VPLs in passes of 97: each pass continues the last one's sum, the same result to the bit") {
-    lightwave_settings settings = small("lightwave-unshadowed");
+    lightwave_settings settings = small_lightwave_settings("lightwave-unshadowed");
     settings.vpls_per_pass = 97;
     lightwave_pipeline in_passes(test_shaders(), boxes, settings);
     const std::vector<glm::vec3> passes = in_passes.capture_vertex_indirect();
@@ -137,7 +137,7 @@ TEST_CASE("Light Wave flux energy: the indirect light summed at the receivers eq
     check_receiver_sums(in_passes, moved_passes);
   }
   SUBCASE("the scene's own vertices as receivers: another grid") {
-    lightwave_settings settings = small("lightwave-unshadowed");
+    lightwave_settings settings = small_lightwave_settings("lightwave-unshadowed");
     settings.receiver_spacing = 4.0f;  // the scene as it is
     lightwave_pipeline coarse(test_shaders(), boxes, settings);
     const std::vector<glm::vec3> sums = coarse.capture_vertex_indirect();
@@ -152,7 +152,7 @@ TEST_CASE("Light Wave flux energy: more VPLs per pass than a uniform block holds
   GLint block_bytes = 0;
   glGetIntegerv(GL_MAX_UNIFORM_BLOCK_SIZE, &block_bytes);
   const int too_many = block_bytes / 48 + 1;
-  lightwave_settings settings = small("lightwave-unshadowed");
+  lightwave_settings settings = small_lightwave_settings("lightwave-unshadowed");
   settings.vpls_per_pass = too_many;
   if (too_many <= 65535) {
     try {
@@ -176,7 +176,7 @@ TEST_CASE("Light Wave modes, both energies: finite images; shadows only remove i
     CAPTURE(static_cast<int>(energy));
     std::map<std::string, image> images;
     for (const lightwave_technique& technique : lightwave_techniques()) {
-      lightwave_settings settings = small(technique.name);
+      lightwave_settings settings = small_lightwave_settings(technique.name);
       settings.energy = energy;
       lightwave_pipeline pipeline(test_shaders(), boxes, settings);
       const lightwave_frame frame = pipeline.render();
@@ -215,7 +215,7 @@ TEST_CASE("Light Wave modes, both energies: finite images; shadows only remove i
 }
 
 TEST_CASE("Light Wave redraws what a move invalidated: VPLs and shadow maps after a light move, the main pass after any; draw() redraws both") {
-  lightwave_settings settings = small("lightwave-accurate");
+  lightwave_settings settings = small_lightwave_settings("lightwave-accurate");
   settings.shadow_variant = lightwave_shadow_variant::thesis;  // casters that do not follow the camera
   lightwave_pipeline pipeline(test_shaders(), make_boxes_scene(), settings);
   const auto passes = [&] {
@@ -248,7 +248,7 @@ TEST_CASE("Light Wave redraws what a move invalidated: VPLs and shadow maps afte
   // The default accurate shadows (importance, flux energy) choose their casters for the whole
   // scene: a camera move redraws the main pass alone; with the thesis energy they follow the camera.
   for (const lightwave_energy energy : {lightwave_energy::flux, lightwave_energy::thesis}) {
-    lightwave_settings importance = small("lightwave-accurate");
+    lightwave_settings importance = small_lightwave_settings("lightwave-accurate");
     importance.energy = energy;
     lightwave_pipeline grouped(test_shaders(), make_boxes_scene(), importance);
     grouped.draw_changed();
@@ -268,9 +268,9 @@ TEST_CASE("Light Wave redraws what a move invalidated: VPLs and shadow maps afte
 
 TEST_CASE("shadow-map memory: the pipeline reports what it allocated") {
   // The pipeline reports what it allocated: 1 + 20 maps of 2x the 64 x 36 screen.
-  lightwave_pipeline pipeline(test_shaders(), make_boxes_scene(), small("lightwave-accurate"));
+  lightwave_pipeline pipeline(test_shaders(), make_boxes_scene(), small_lightwave_settings("lightwave-accurate"));
   CHECK(pipeline.shadow_map_bytes() == lightwave_shadow_map_bytes(128, 72, 21));
-  lightwave_pipeline integrated(test_shaders(), make_boxes_scene(), small("lightwave-integrated"));
+  lightwave_pipeline integrated(test_shaders(), make_boxes_scene(), small_lightwave_settings("lightwave-integrated"));
   CHECK(integrated.shadow_map_bytes() == lightwave_shadow_map_bytes(128, 72, 6));
 }
 
@@ -316,20 +316,20 @@ std::string settings_error(const lightwave_settings& settings) {
 
 TEST_CASE("Light Wave settings errors name the setting") {
   const auto message = settings_error;
-  lightwave_settings s = small("lightwave-accurate");
+  lightwave_settings s = small_lightwave_settings("lightwave-accurate");
   s.angle_deg = 7;
   CHECK(message(s).find("ray-angle must be 1, 2, 3, 5, 6, 9, 10, 15, 18, 30, 45 or 90, got '7'") != std::string::npos);
-  s = small("lightwave-accurate");
+  s = small_lightwave_settings("lightwave-accurate");
   s.per_ray = 0;
   CHECK(message(s).find("vpls-per-ray must be a whole number in [1, 32]") != std::string::npos);
-  s = small("lightwave-accurate");
+  s = small_lightwave_settings("lightwave-accurate");
   s.angle_deg = 90;
   s.per_ray = 1;  // 5 VPLs
   CHECK(message(s).find("more accurate shadow maps (20) than VPLs (5)") != std::string::npos);
-  s = small("lightwave-integrated");
+  s = small_lightwave_settings("lightwave-integrated");
   s.integrated_steps = -1;
   CHECK(message(s).find("integrated-steps must be a whole number in [0, 64]") != std::string::npos);
-  s = small("lightwave-accurate");
+  s = small_lightwave_settings("lightwave-accurate");
   s.shadow_map_scale = 17.0f;
   CHECK(message(s).find("shadow-map-scale must be a number in (0, 16]") != std::string::npos);
   s.width = 1280;
@@ -337,10 +337,10 @@ TEST_CASE("Light Wave settings errors name the setting") {
   s.shadow_map_scale = 14.0f;  // 17920 x 10080: refused by validate(), naming the settings, before a texture is made
   CHECK(message(s).find("shadow-map-scale 14 with a 1280x720 image (size) makes shadow maps of 17920 texels per side, more than 16384") !=
         std::string::npos);
-  s = small("lightwave-accurate");
+  s = small_lightwave_settings("lightwave-accurate");
   s.accurate_maps = 65;
   CHECK(message(s).find("shadow-maps must be a whole number in [0, 64]") != std::string::npos);
-  s = small("lightwave-faked");
+  s = small_lightwave_settings("lightwave-faked");
   for (float bad : {std::nanf(""), -1.0f, 0.0f, 100.0f}) {
     s.faked_multiplier = bad;
     CHECK(message(s).find("faked-multiplier must be a number in [0.5, 4]") != std::string::npos);
@@ -348,7 +348,7 @@ TEST_CASE("Light Wave settings errors name the setting") {
 }
 
 TEST_CASE("Light Wave shadow maps beyond the GL implementation's memory: GL_OUT_OF_MEMORY, named" * doctest::test_suite("slow")) {
-  lightwave_settings s = small("lightwave-accurate");
+  lightwave_settings s = small_lightwave_settings("lightwave-accurate");
   s.width = 1280;
   s.height = 720;
   s.shadow_map_scale = 12.0f;  // 15360 x 8640 x 21 layers: 10.4 GiB
@@ -401,7 +401,7 @@ double mean_factor(const lightwave_frame& frame, const scene& s, float x0, float
 }
 
 lightwave_settings square(const char* technique) {
-  lightwave_settings settings = small(technique);
+  lightwave_settings settings = small_lightwave_settings(technique);
   settings.width = settings.height = 128;
   return settings;
 }
@@ -453,7 +453,7 @@ TEST_CASE("the number of indirect shadow maps matters: 0, 1, 5, 10 and 20 maps g
   const scene boxes = make_boxes_scene();
   std::map<int, std::vector<std::uint8_t>> images;
   for (int maps : {0, 1, 5, 10, 20}) {
-    lightwave_settings settings = small("lightwave-accurate");
+    lightwave_settings settings = small_lightwave_settings("lightwave-accurate");
     settings.energy = lightwave_energy::thesis;  // the thesis's table; the boxes barely occlude a flux bounce
     settings.width = 256;
     settings.height = 144;
@@ -490,7 +490,7 @@ TEST_CASE("the number of indirect shadow maps matters: 0, 1, 5, 10 and 20 maps g
 
 TEST_CASE("flux energy: accurate shadows with no map give the unshadowed image") {
   const scene boxes = make_boxes_scene();
-  lightwave_settings settings = small("lightwave-accurate");
+  lightwave_settings settings = small_lightwave_settings("lightwave-accurate");
   settings.width = 256;
   settings.height = 144;
   settings.accurate_maps = 0;
@@ -552,7 +552,7 @@ double luminance_sum(const image& a) {
 
 TEST_CASE("flux energy: the indirect light follows the light's intensity and the albedos (one albedo at the VPL, one at the receiver)") {
   const scene base = room_scene(false);
-  lightwave_settings settings = small("lightwave-unshadowed");
+  lightwave_settings settings = small_lightwave_settings("lightwave-unshadowed");
   lightwave_pipeline reference(test_shaders(), base, settings);
   const double indirect = luminance_sum(reference.render().indirect);
   REQUIRE(indirect > 0.0);
@@ -584,7 +584,7 @@ TEST_CASE("flux energy: a narrow spot aimed at a wall away from the room's centr
   for (std::size_t i = 0; i < reference.radiance.texels.size(); ++i)
     reference_indirect += luminance(glm::dvec3(reference.radiance.texels[i]) - glm::dvec3(reference_direct.radiance.texels[i]));
   REQUIRE(reference_indirect > 0.0);
-  lightwave_settings settings = small("lightwave-accurate");
+  lightwave_settings settings = small_lightwave_settings("lightwave-accurate");
   settings.width = width;
   settings.height = height;
   lightwave_pipeline flux(test_shaders(), s, settings);
@@ -661,7 +661,7 @@ TEST_CASE("flux energy, accurate shadows: 1, 5 and 20 maps are never further fro
     const int width = 64, height = 36;
     const one_bounce_images reference = reference_one_bounce(s, width, height, 256, 1u, 2);
     const auto rmse_of = [&](int maps) {
-      lightwave_settings settings = small(maps == 0 ? "lightwave-unshadowed" : "lightwave-accurate");
+      lightwave_settings settings = small_lightwave_settings(maps == 0 ? "lightwave-unshadowed" : "lightwave-accurate");
       settings.width = width;
       settings.height = height;
       settings.accurate_maps = std::max(maps, 1);
@@ -691,7 +691,7 @@ TEST_CASE("accurate shadows, importance: the image does not depend on the seed, 
   for (lightwave_energy energy : {lightwave_energy::flux, lightwave_energy::thesis}) {
     std::vector<std::vector<std::uint8_t>> images;
     for (std::uint32_t seed : {0u, 1u, 2u}) {
-      lightwave_settings settings = small("lightwave-accurate");
+      lightwave_settings settings = small_lightwave_settings("lightwave-accurate");
       settings.energy = energy;
       settings.seed = seed;
       lightwave_pipeline pipeline(test_shaders(), boxes, settings);
@@ -702,7 +702,7 @@ TEST_CASE("accurate shadows, importance: the image does not depend on the seed, 
     CHECK(images[2] == images[0]);
   }
   // The thesis's variant draws its VPLs with the seed.
-  lightwave_settings thesis = small("lightwave-accurate");
+  lightwave_settings thesis = small_lightwave_settings("lightwave-accurate");
   thesis.shadow_variant = lightwave_shadow_variant::thesis;
   lightwave_pipeline first(test_shaders(), boxes, thesis);
   thesis.seed = 2;
@@ -759,7 +759,7 @@ TEST_CASE("Light Wave's shadowed main pass after its depth pre-pass: no pixel lo
   // position that differed between the two programs would leave black holes. (2) A panel under
   // the light whose MASK material cuts it out entirely changes the image by a small fraction of
   // what the same panel opaque does: it is neither drawn nor shadows the floor.
-  const auto render = [](const scene& s, const char* technique) { return lightwave_pipeline(test_shaders(), s, small(technique)).render().radiance; };
+  const auto render = [](const scene& s, const char* technique) { return lightwave_pipeline(test_shaders(), s, small_lightwave_settings(technique)).render().radiance; };
   const auto with_panel = [](bool cut_out) {
     scene s = room_scene(false);
     mesh& m = s.geometry;
@@ -830,7 +830,7 @@ TEST_CASE("Light Wave, two spots: every technique's image and indirect light, bo
   const scene both = two_spot_boxes(), first = only_light(both, 0), second = only_light(both, 1);
   for (lightwave_energy energy : {lightwave_energy::flux, lightwave_energy::thesis})
     for (const lightwave_technique& technique : lightwave_techniques()) {
-      lightwave_settings settings = small(technique.name);
+      lightwave_settings settings = small_lightwave_settings(technique.name);
       settings.energy = energy;
       CAPTURE(technique.name);
       CAPTURE(static_cast<int>(energy));
@@ -864,7 +864,7 @@ TEST_CASE("Light Wave, two spots: every technique's image and indirect light, bo
 
 TEST_CASE("Light Wave, two spots: passes named by light; moving light 1 rebuilds light 1 alone and gives the image of a new pipeline") {
   const scene both = two_spot_boxes();
-  const lightwave_settings settings = small("lightwave-accurate");
+  const lightwave_settings settings = small_lightwave_settings("lightwave-accurate");
   lightwave_pipeline pipeline(test_shaders(), both, settings);
   pipeline.draw_changed();
   std::vector<std::string> names;
@@ -900,7 +900,7 @@ TEST_CASE("Light Wave, two spots: passes named by light; moving light 1 rebuilds
 
 TEST_CASE("Light Wave, two spots: a setting applied in place reaches both lights: the image of a fresh pipeline with it") {
   const scene both = two_spot_boxes();
-  const lightwave_settings settings = small("lightwave-accurate");
+  const lightwave_settings settings = small_lightwave_settings("lightwave-accurate");
   lightwave_pipeline pipeline(test_shaders(), both, settings);
   pipeline.draw();
   // The clamp distance: in place, the shadow maps redrawn and the same VPLs summed again, per light.

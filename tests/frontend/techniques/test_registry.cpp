@@ -167,7 +167,7 @@ namespace {
 
 // Values to try for a setting other than `value`: its range's closed ends, its allowed values or
 // choices, and the value doubled, halved, plus and minus one.
-std::vector<std::string> other_values(const setting_info& info, const std::string& value) {
+std::vector<std::string> other_allowed_values(const setting_info& info, const std::string& value) {
   std::vector<std::string> candidates;
   if (info.type == setting_type::choice) return info.choices;
   for (int allowed : info.allowed) candidates.push_back(std::to_string(allowed));
@@ -196,7 +196,7 @@ TEST_CASE("every kernel-struct member a setting feeds moves with the setting, as
         CAPTURE(technique);
         CAPTURE(info->name);
         bool moved = false;
-        for (const std::string& candidate : other_values(*info, settings->get(info->name))) {
+        for (const std::string& candidate : other_allowed_values(*info, settings->get(info->name))) {
           const std::unique_ptr<technique_settings> changed = settings->clone();
           if (!changed->set(info->name, candidate).empty() || !changed->validate().empty() || changed->get(info->name) == settings->get(info->name)) continue;
           CAPTURE(candidate);
@@ -263,7 +263,7 @@ TEST_CASE("every technique's pipeline takes cameras and lights the same way and 
 
 namespace {
 
-double luminance_sum(const image& picture) {
+double rec709_luminance_sum(const image& picture) {
   double sum = 0.0;
   for (const glm::vec4& texel : picture.texels) sum += 0.2126 * texel.r + 0.7152 * texel.g + 0.0722 * texel.b;
   return sum;
@@ -278,7 +278,7 @@ double indirect_sum(const technique_family& family, const std::string& technique
     if (settings->find(name)) REQUIRE(settings->set(name, value) == "");
   const std::unique_ptr<pipeline> drawn = family.make_pipeline(parity::test_shaders(), &source, *settings);
   drawn->draw();
-  return luminance_sum(drawn->indirect_output().read_image());
+  return rec709_luminance_sum(drawn->indirect_output().read_image());
 }
 
 }  // namespace
@@ -313,7 +313,7 @@ TEST_CASE("-indirect.pfm is the indirect irradiance in every family: one bounce 
     for (std::size_t i = 0; i < frame.indirect.texels.size(); ++i)
       if (frame.indirect.texels[i].r + frame.indirect.texels[i].g + frame.indirect.texels[i].b > 0.0f)
         object_radiance += 0.2126 * frame.radiance.texels[i].r + 0.7152 * frame.radiance.texels[i].g + 0.0722 * frame.radiance.texels[i].b;
-    return std::make_pair(luminance_sum(frame.indirect), object_radiance);
+    return std::make_pair(rec709_luminance_sum(frame.indirect), object_radiance);
   };
   const auto [irradiance, radiance] = gathered();
   REQUIRE(irradiance > 0.0);

@@ -11,6 +11,7 @@
 #include "frontend/techniques/registry.hpp"
 #include "frontend/viewer/technique_view.hpp"
 #include <vplkit/parity/parity.hpp>
+#include "tests/gl_test_helpers.hpp"
 
 using namespace vplkit;
 
@@ -44,13 +45,7 @@ std::pair<image, image> fresh_frame(const viewer_scenes& scenes, const technique
   return {fresh->output().read_image(), fresh->indirect_output().read_image()};
 }
 
-std::size_t different_texels(const image& a, const image& b) {
-  REQUIRE(a.width == b.width);
-  REQUIRE(a.height == b.height);
-  std::size_t different = 0;
-  for (std::size_t i = 0; i < a.texels.size(); ++i) different += a.texels[i] != b.texels[i];
-  return different;
-}
+using vplkit::testing::different_texels;
 
 void require_same(const image& a, const image& b, const char* what) {
   INFO(what);
