@@ -349,8 +349,9 @@ constexpr bool judges_coarse_lights_by_segment(rsm_visibility visibility) { retu
 /// same samples with exact visibility. `coarse_fetch(glm::ivec2 block) -> coarse_light<T>` reads the
 /// coarse lights (rsm_coverage.hpp) when settings.coverage_blocks > 0; no_coarse_lights{}: none.
 /// A visibility with a member `coarse(receiver, coarse_light)` judges the coarse lights too
-/// (voxel_rsm_visibility; gather_rsm's Alg. 3/6/alg6_ray given a coarse visibility); the others
-/// leave them unoccluded, as the thesis's coverage does. A visibility with a member
+/// (voxel_rsm_visibility; gather_rsm's micro_linear_buffer_with_coarse, for every visibility and
+/// both patterns, given a coarse visibility); the others (e.g. the ground truth's ray cast) leave
+/// them unoccluded, as the thesis's coverage does. A visibility with a member
 /// `samples_per_march()` (voxel_rsm_visibility) is called once per group of that many consecutive
 /// samples of a path (the last group of a path may be shorter), for the group's largest member
 /// (rsm_sample_group), and its answer weighs the whole group: the march is what rsm-voxel's frame
