@@ -25,6 +25,22 @@
 using namespace vplkit;
 using namespace vplkit::parity;
 
+namespace {
+
+// The packed grid as the harness's float tables (see the top comment): voxels_low and
+// voxels_high, its words' 16-bit halves, which the shader's voxel_fetch puts back together.
+std::vector<kernel_table> packed_grid_tables(const voxel_grid& grid) {
+  const glm::ivec2 texture_size = voxel_texture_size(grid.shape.cells);
+  std::vector<glm::vec4> low_halves, high_halves;
+  for (const glm::uvec4& word : grid.texels) {
+    low_halves.push_back(glm::vec4(word & 0xffffu));
+    high_halves.push_back(glm::vec4(word >> 16u));
+  }
+  return {{"voxels_low", texture_size.x, texture_size.y, low_halves}, {"voxels_high", texture_size.x, texture_size.y, high_halves}};
+}
+
+}  // namespace
+
 TEST_CASE("parity: voxel_light_visible over a packed grid of a cluttered closed room, on every target") {
   std::mt19937 random(41);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
@@ -67,14 +83,8 @@ TEST_CASE("parity: voxel_light_visible over a packed grid of a cluttered closed 
     inputs.floats[3][i] = glm::vec4(np, i == 5 ? 0.0f : 0.2f + 0.8f * unit(random));
   }
   const voxel_march_settings<float> march;
-  const glm::ivec2 texture_size = voxel_texture_size(grid.shape.cells);
-  std::vector<glm::vec4> low_halves, high_halves;
-  for (const glm::uvec4& word : grid.texels) {
-    low_halves.push_back(glm::vec4(word & 0xffffu));
-    high_halves.push_back(glm::vec4(word >> 16u));
-  }
   kernel_resources resources;
-  resources.tables = {{"voxels_low", texture_size.x, texture_size.y, low_halves}, {"voxels_high", texture_size.x, texture_size.y, high_halves}};
+  resources.tables = packed_grid_tables(grid);
   resources.blocks = {settings_block("shape", grid.shape), settings_block("march", march)};
   std::vector<glm::vec4> cpu(inputs.size()), cpu_coarse(inputs.size());
   int hidden = 0, coarse_hidden = 0;
@@ -219,18 +229,9 @@ TEST_CASE("parity: the voxel gather, one march per group of samples, on the synt
   CHECK(lit > inputs.size() / 3);
   CHECK(changed > inputs.size() / 10);
 
-  const glm::ivec2 texture_size = voxel_texture_size(grid.shape.cells);
-  std::vector<glm::vec4> low_halves, high_halves;
-  for (const glm::uvec4& word : grid.texels) {
-    low_halves.push_back(glm::vec4(word & 0xffffu));
-    high_halves.push_back(glm::vec4(word >> 16u));
-  }
   kernel_resources resources;
-  resources.tables = {{"rsm_position", size, size, position},
-                      {"rsm_normal", size, size, normal},
-                      {"rsm_flux", size, size, flux},
-                      {"voxels_low", texture_size.x, texture_size.y, low_halves},
-                      {"voxels_high", texture_size.x, texture_size.y, high_halves}};
+  resources.tables = packed_grid_tables(grid);
+  resources.tables.insert(resources.tables.begin(), {{"rsm_position", size, size, position}, {"rsm_normal", size, size, normal}, {"rsm_flux", size, size, flux}});
   resources.blocks = {settings_block("settings", settings), settings_block("shape", grid.shape), settings_block("march", grouped)};
   // Eq. 3.2 per term and the sums' roundings as in test_parity_rsm_gather (120 terms), and the
   // verdicts: a yes/no per group whose march may flip where a segment passes within a rounding
