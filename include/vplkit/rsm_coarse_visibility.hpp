@@ -57,12 +57,12 @@ struct cube_depth_frames {
 /// +z (dx, -dy), -z (-dx, -dy)). Selects and negations only, no matrix.
 template <typename T>
 glm::vec<3, T> cube_face_eye(const glm::vec<3, T>& d, int& face) {
+  face = cube_face_of(d);  // the one face selection (ties included), cube_map.hpp's
   const glm::vec<3, T> a = glm::abs(d);
-  const bool on_x = a.x >= a.y && a.x >= a.z;
-  const bool on_y = !on_x && a.y >= a.z;
-  const bool on_z = !on_x && !on_y;
-  const bool positive = on_x ? d.x >= T(0) : (on_y ? d.y >= T(0) : d.z >= T(0));
-  face = (on_x ? 0 : (on_y ? 2 : 4)) + (positive ? 0 : 1);
+  const bool on_x = face < 2;
+  const bool on_y = face == 2 || face == 3;
+  const bool on_z = face > 3;
+  const bool positive = face % 2 == 0;
   const T sgn = positive ? T(1) : T(-1);
   const T x = on_x ? -sgn * d.z : (on_z ? sgn * d.x : d.x);
   const T y = on_y ? sgn * d.z : -d.y;

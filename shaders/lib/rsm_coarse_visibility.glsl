@@ -18,12 +18,12 @@ struct cube_depth_frames {
 };
 
 vec3 cube_face_eye(vec3 d, out int face) {
+  face = cube_face_of(d);  // the one face selection (ties included), lib/cube_map.glsl's
   vec3 a = abs(d);
-  bool on_x = a.x >= a.y && a.x >= a.z;
-  bool on_y = !on_x && a.y >= a.z;
-  bool on_z = !on_x && !on_y;
-  bool positive = on_x ? d.x >= 0.0 : (on_y ? d.y >= 0.0 : d.z >= 0.0);
-  face = (on_x ? 0 : (on_y ? 2 : 4)) + (positive ? 0 : 1);
+  bool on_x = face < 2;
+  bool on_y = face == 2 || face == 3;
+  bool on_z = face > 3;
+  bool positive = face % 2 == 0;
   float sgn = positive ? 1.0 : -1.0;
   float x = on_x ? -sgn * d.z : (on_z ? sgn * d.x : d.x);
   float y = on_y ? sgn * d.z : -d.y;
