@@ -293,7 +293,9 @@ void png_inflate_bomb(const fs::path& folder) {
   const double seconds = seconds_since(start), peak = peak_mebibytes();
   std::cout << "exit " << result.status << ": " << result.err << "peak " << peak << " MiB (" << before << " before), " << seconds << " s\n";
   expect(result.status == 1 && result.err.find("an inflate bomb?") != std::string::npos, "refused as an inflate bomb");
-  expect(seconds < 5.0, "within 5 s");
+  // A guard against a hang (inflating without the bound), not a timing: 3 s on a loaded 2-core
+  // machine; the peak below is what shows the bomb was refused before it was inflated.
+  expect(seconds < 60.0, "within 60 s");
   expect(peak <= before + 64, "peak within 64 MiB of the probe's own");
 }
 
