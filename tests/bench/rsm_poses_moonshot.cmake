@@ -3,7 +3,8 @@
 # estimated from a second Monte Carlo image of another seed. The second image must be another seed's
 # (the same image twice would estimate no noise and report the raw error as the corrected one), it
 # must be cached under its own name beside seed 1's (one file for both would hand one seed's image to
-# the other), and a second run must read both back and report the same numbers.
+# the other), and a second run must read both back and report the same numbers. voxel.csv holds the
+# frame's row at full precision (the table's 2 digits cannot tell 0.849 from the target's 0.85).
 #   cmake -DPOSES_TOOL=<vplkit_rsm_poses> -DWORK=<scratch> -P rsm_poses_moonshot.cmake
 include("${CMAKE_CURRENT_LIST_DIR}/../cli/cli_common.cmake")
 
@@ -39,6 +40,23 @@ expect_true("voxel.md has the moonshot's target row" report MATCHES "[|] moonsho
 string(REGEX MATCH "Monte Carlo image's noise [(][^)]*[)] is ([0-9.]+) / " noise_text "${report}")
 set(noise "${CMAKE_MATCH_1}")
 expect_true("the Monte Carlo image's noise is above 0 % (found '${noise}')" noise AND noise GREATER 0)
+
+# voxel.csv: the frame's numbers at full precision, one field per column of its header.
+set(csv "")
+if(EXISTS "${WORK}/first/voxel.csv")
+  file(STRINGS "${WORK}/first/voxel.csv" csv)
+endif()
+list(LENGTH csv csv_lines)
+expect_true("voxel.csv holds its header and the frame's row (${csv_lines} lines)" csv_lines EQUAL 2)
+if(csv_lines EQUAL 2)
+  list(GET csv 0 header)
+  list(GET csv 1 row)
+  string(REGEX MATCHALL "," header_commas "${header}")
+  string(REGEX MATCHALL "," row_commas "${row}")
+  list(LENGTH header_commas header_count)
+  list(LENGTH row_commas row_count)
+  expect_true("the row has the header's fields (${row})" row MATCHES "^\"cornell-box\"," AND row_count EQUAL header_count)
+endif()
 
 # A second run reads both images from the cache: the same moonshot, frame row included.
 execute_process(COMMAND ${run_command} --out "${WORK}/second" RESULT_VARIABLE code OUTPUT_QUIET ERROR_VARIABLE err)
