@@ -400,10 +400,12 @@ int main(int argc, char** argv) {
       const int repeat = timing > 0 ? timing : 5;
       std::ostringstream md, rows, csv;
       // voxel.csv: every number of a frame's row at full precision (the table rounds to 2 digits,
-      // and a ratio printed 0.85 may be just outside the image target).
+      // and a ratio printed 0.85 may be just outside the image target), and the share of the
+      // unoccluded light on receivers the pattern cannot reach (the coverage's coarse lights
+      // light them alone: where a frame's misses come from).
       csv << std::setprecision(9) << "frame,leak_share,image_voxel,image_radial,leak_ratio,leak_bias_voxel,leak_bias_radial,rmse_ratio,rmse_voxel,rmse_radial,"
              "ms_radial,ms_alg6,ms_voxel,cost_radial,cost_alg6,grid_build_ms,marches_per_receiver,fetches_per_march,hidden_share,moonshot,"
-             "moonshot_se,moonshot_radial,monte_carlo_noise\n";
+             "moonshot_se,moonshot_radial,monte_carlo_noise,uncovered_share\n";
       int image_met = 0, leak_met = 0, leak_counted = 0, rmse_met = 0, cost_met = 0, cost_alg6_met = 0, counted = 0, moonshot_met = 0, moonshot_radial_met = 0;
       spread image_ratios, leak_ratios, rmse_ratios, cost_ratios, cost_alg6_ratios, build_ms, marched, steps, moonshots, moonshots_radial, mc_noise;
       for (const pose_frame& frame : frames) {
@@ -492,7 +494,7 @@ int main(int argc, char** argv) {
         csv << "," << voxels.raw_leak.bias << "," << radial.raw_leak.bias << "," << rmse << "," << voxels.raw_vs_exact.rmse << "," << radial.raw_vs_exact.rmse << ","
             << ms[0] << "," << ms[2] << "," << ms[1] << "," << cost << "," << cost_alg6 << "," << built.voxel_build_ms() << "," << marches_per_receiver << ","
             << fetches_per_march << "," << marches.hidden / std::max(marches.marches, 1.0) << "," << moonshot.rmse_corrected << "," << moonshot.rmse_se << ","
-            << moonshot_radial.rmse_corrected << "," << moonshot.noise << "\n";
+            << moonshot_radial.rmse_corrected << "," << moonshot.noise << "," << reference.uncovered_share << "\n";
         std::cerr << "  image " << fixed(image_voxel, 2) << " (radial " << fixed(image_radial, 2) << "), leak " << fixed(leak, 2)
                   << (leak_counts ? "" : " (region < 2 %)") << ", rmse " << fixed(rmse, 2) << ", cost " << fixed(cost, 2) << " (rsm-alg6's " << fixed(cost_alg6, 2)
                   << "), moonshot " << percent(moonshot.rmse_corrected) << " % (radial " << percent(moonshot_radial.rmse_corrected) << " %)\n";
