@@ -17,7 +17,7 @@
 // --voxel: rsm-voxel's targets against rsm-radial frame by frame, its cost against rsm-radial and
 // rsm-alg6, where its time goes (marches per receiver, fetches per march) and the moonshot (the
 // filtered image's per-pixel error against the Monte Carlo image, the reference's noise taken out,
-// from a second Monte Carlo image of another seed); writes voxel.md.
+// from a second Monte Carlo image of another seed); writes voxel.md and voxel.csv (full precision).
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
