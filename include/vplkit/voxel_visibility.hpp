@@ -385,35 +385,29 @@ T voxel_march_words(Fetch&& fetch, glm::ivec3 grid_cells, const glm::vec<3, T>& 
   const glm::vec<3, T> d = voxel_axes_along(major, to) - u0;
   const glm::vec<3, T> size(cells);
   constexpr T far = T(1e30);
-  // Clip t to the grid's box (slabs), as voxel_march_cells.
-  T t_enter = T(0), t_exit = T(1);
-  glm::vec<3, T> inverse_d(far);
-  for (int i = 0; i < 3; ++i) {
-    if (std::abs(d[i]) > T(1e-12)) {
-      inverse_d[i] = T(1) / d[i];
-      const T ta = (T(0) - u0[i]) * inverse_d[i], tb = (size[i] - u0[i]) * inverse_d[i];
-      t_enter = glm::max(t_enter, glm::min(ta, tb));
-      t_exit = glm::min(t_exit, glm::max(ta, tb));
-    } else if (u0[i] < T(0) || u0[i] > size[i]) {
-      return T(1);  // parallel to this slab and outside it
-    }
-  }
-  if (t_enter > t_exit) return T(1);
+  // Clip t to the grid's box (slabs), as voxel_march_cells but without a branch per axis (the
+  // march's setup is most of its cost: docs/rsm-study.md, "Where the time goes"): an axis the
+  // segment does not move along bounds nothing, unless the segment lies outside its slab.
+  const glm::vec<3, bool> moving = glm::greaterThan(glm::abs(d), glm::vec<3, T>(T(1e-12)));
+  const glm::vec<3, T> inverse_d = glm::mix(glm::vec<3, T>(far), glm::vec<3, T>(T(1)) / glm::mix(glm::vec<3, T>(T(1)), d, moving), moving);
+  const glm::vec<3, T> ta = (glm::vec<3, T>(T(0)) - u0) * inverse_d;
+  const glm::vec<3, T> tb = (size - u0) * inverse_d;
+  const glm::vec<3, T> t_low = glm::mix(glm::vec<3, T>(-far), glm::min(ta, tb), moving);
+  const glm::vec<3, T> t_high = glm::mix(glm::vec<3, T>(far), glm::max(ta, tb), moving);
+  const glm::vec<3, T> parallel = glm::vec<3, T>(T(1)) - glm::vec<3, T>(moving);
+  const T blocked = glm::dot(parallel, glm::vec<3, T>(glm::lessThan(u0, glm::vec<3, T>(T(0)))) + glm::vec<3, T>(glm::greaterThan(u0, size)));
+  const T t_enter = glm::max(T(0), glm::max(t_low.x, glm::max(t_low.y, t_low.z)));
+  const T t_exit = glm::min(T(1), glm::min(t_high.x, glm::min(t_high.y, t_high.z)));
+  if (t_enter > t_exit || blocked > T(0)) return T(1);
   glm::ivec3 cell = glm::clamp(glm::ivec3(glm::floor(u0 + d * t_enter)), glm::ivec3(0), cells - 1);
   // From here cell.z counts words; z_from is the first cell of the current column's run.
   int z_from = cell.z;
   cell.z = cell.z >> 5;
   const glm::vec<3, T> side(T(1), T(1), T(voxel_cells_per_word));  // a super-cell's sides, in cells
-  glm::ivec3 step(0);
-  glm::vec<3, T> t_max(far), t_delta(far);
-  for (int i = 0; i < 3; ++i) {
-    if (std::abs(d[i]) > T(1e-12)) {
-      step[i] = d[i] > T(0) ? 1 : -1;
-      const T boundary = T(cell[i] + (d[i] > T(0) ? 1 : 0)) * side[i];
-      t_max[i] = (boundary - u0[i]) * inverse_d[i];
-      t_delta[i] = std::abs(inverse_d[i]) * side[i];
-    }
-  }
+  const glm::ivec3 step = glm::ivec3(glm::sign(d)) * glm::ivec3(moving);
+  const glm::vec<3, T> boundary = glm::vec<3, T>(cell + glm::ivec3(glm::greaterThan(d, glm::vec<3, T>(T(0))))) * side;
+  glm::vec<3, T> t_max = glm::mix(glm::vec<3, T>(far), (boundary - u0) * inverse_d, moving);
+  const glm::vec<3, T> t_delta = glm::mix(glm::vec<3, T>(far), glm::abs(inverse_d) * side, moving);
   const glm::ivec3 limit(cells.x, cells.y, (cells.z + voxel_cells_per_word - 1) >> 5);
   const int steps = limit.x + limit.y + limit.z;
   for (int n = 0; n <= steps; ++n) {

@@ -51,36 +51,25 @@ float voxel_march_words(ivec3 grid_cells, vec3 from, vec3 to) {
   vec3 d = voxel_axes_along(major, to) - u0;
   vec3 size = vec3(cells);
   const float far_away = 1e30;
-  float t_enter = 0.0;
-  float t_exit = 1.0;
-  vec3 inverse_d = vec3(far_away);
-  for (int i = 0; i < 3; ++i) {
-    if (abs(d[i]) > 1e-12) {
-      inverse_d[i] = 1.0 / d[i];
-      float ta = (0.0 - u0[i]) * inverse_d[i];
-      float tb = (size[i] - u0[i]) * inverse_d[i];
-      t_enter = max(t_enter, min(ta, tb));
-      t_exit = min(t_exit, max(ta, tb));
-    } else if (u0[i] < 0.0 || u0[i] > size[i]) {
-      return 1.0;
-    }
-  }
-  if (t_enter > t_exit) return 1.0;
+  bvec3 moving = greaterThan(abs(d), vec3(1e-12));
+  vec3 inverse_d = mix(vec3(far_away), vec3(1.0) / mix(vec3(1.0), d, moving), moving);
+  vec3 ta = (vec3(0.0) - u0) * inverse_d;
+  vec3 tb = (size - u0) * inverse_d;
+  vec3 t_low = mix(vec3(-far_away), min(ta, tb), moving);
+  vec3 t_high = mix(vec3(far_away), max(ta, tb), moving);
+  vec3 parallel = vec3(1.0) - vec3(moving);
+  float blocked = dot(parallel, vec3(lessThan(u0, vec3(0.0))) + vec3(greaterThan(u0, size)));
+  float t_enter = max(0.0, max(t_low.x, max(t_low.y, t_low.z)));
+  float t_exit = min(1.0, min(t_high.x, min(t_high.y, t_high.z)));
+  if (t_enter > t_exit || blocked > 0.0) return 1.0;
   ivec3 cell = clamp(ivec3(floor(u0 + d * t_enter)), ivec3(0), cells - 1);
   int z_from = cell.z;
   cell.z = cell.z >> 5;
   vec3 side = vec3(1.0, 1.0, float(voxel_cells_per_word));
-  ivec3 cell_step = ivec3(0);
-  vec3 t_max = vec3(far_away);
-  vec3 t_delta = vec3(far_away);
-  for (int i = 0; i < 3; ++i) {
-    if (abs(d[i]) > 1e-12) {
-      cell_step[i] = d[i] > 0.0 ? 1 : -1;
-      float boundary = float(cell[i] + (d[i] > 0.0 ? 1 : 0)) * side[i];
-      t_max[i] = (boundary - u0[i]) * inverse_d[i];
-      t_delta[i] = abs(inverse_d[i]) * side[i];
-    }
-  }
+  ivec3 cell_step = ivec3(sign(d)) * ivec3(moving);
+  vec3 boundary = vec3(cell + ivec3(greaterThan(d, vec3(0.0)))) * side;
+  vec3 t_max = mix(vec3(far_away), (boundary - u0) * inverse_d, moving);
+  vec3 t_delta = mix(vec3(far_away), abs(inverse_d) * side, moving);
   ivec3 limit = ivec3(cells.x, cells.y, (cells.z + voxel_cells_per_word - 1) >> 5);
   int steps = limit.x + limit.y + limit.z;
   for (int n = 0; n <= steps; ++n) {
