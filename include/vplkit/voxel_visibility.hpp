@@ -15,22 +15,40 @@
 // fits) and by 2048 texels per side of the packed texture (GLSL ES 3.00's least
 // GL_MAX_TEXTURE_SIZE).
 //
-// Packing (the CPU grid holds the GPU texture's words): one RGBA32UI texel holds 128 cells along z,
-// z = 32 c + b in component c, bit b; the texel of cell (x, y, z) is (x, y + (z / 128) * cells.y),
-// so the texture is cells.x wide and cells.y * ceil(cells.z / 128) high: 16 bytes per 128 cells.
-// GL 3.3 and ES 3.0 read it with texelFetch on a usampler2D.
+// Packing (the CPU grid holds the GPU texture's words): three copies of the grid, one per axis,
+// side by side in one RGBA32UI texture (an atlas; one usampler2D, so that choosing a copy is an
+// offset, not a divergent choice of sampler). In the copy along axis a, one texel holds 128
+// consecutive cells along a, cell a = 32 c + b in component c, bit b; with (b, c) the next two
+// axes in cyclic order (x: y, z; y: z, x; z: x, y), the texel of a cell is (offset_a + cell.b,
+// cell.c + (cell.a / 128) * cells.c). The copies lie at x offsets 0 (along z, the single copy of
+// earlier rounds), cells.x (along x) and cells.x + cells.y (along y), so the texture is
+// cells.x + cells.y + cells.z wide and as high as the highest copy: 16 bytes per 128 cells per
+// copy, and zero texels below the lower copies (on a flat scene the copies' heights differ: the
+// study's sun frames, 130 x 15-34 x 130 cells, take 1.1-1.2 MiB where the cells alone need
+// 3 x 60-138 KiB). max_megabytes and the 2048 texels per side bound the whole texture. GL 3.3
+// and ES 3.0 read it with texelFetch on a usampler2D.
 //
-// The march (voxel_march_cells): from the receiver x moved start_offset cell sides along its
+// The march (voxel_march_words): from the receiver x moved start_offset cell sides along its
 // normal to the sample x_p moved end_offset cell sides along its normal, every cell the segment
-// passes through is visited (6-connected); one occupied cell hides the sample. A point farther
-// than sqrt(3) cell sides from a plane lies in a cell the plane cannot touch, so with offsets of
-// 2 (the defaults; sqrt(3) plus the growth and a margin) neither the receiver's nor the sample's
-// own (locally flat) surface occludes them. Larger offsets step over walls thinner than the
-// offset near the receiver; smaller ones darken every receiver by its own surface.
-// A coarse level (one bit per 4 x 4 x 4 cells, stepped brick by brick through empty space) cut
-// the fetches per march by a quarter on beyond.txt but made llvmpipe's frame slower: its SIMD
-// lanes run every branch of the loop's body, so each step cost both levels' work
-// (docs/rsm-study.md, "Beyond one RSM": "Where the time goes").
+// passes through (6-connected; voxel_march_cells, the cell-by-cell 3D DDA, is the definition)
+// is tested; one occupied cell hides the sample. It marches the copy whose words lie along the
+// segment's major axis, in words of 32 cells (a texel component): a 3D DDA over super-cells of
+// 1 x 1 x 32 cells in that copy (the two minor axes step a cell, the major one a word), and at each
+// step the run of cells the segment crosses in that column of the word, floor(a(t_start)) to
+// floor(a(t_end)) clamped to the word (the major coordinate is monotonic along the segment),
+// tested at once with a mask. The same cells as the cell-by-cell march (up to a tie where two
+// axes' boundaries meet within a rounding), one fetch per step, and the two minor extents plus
+// major / 32 steps instead of dx + dy + dz: about 2/3 of the cells on a diagonal, far fewer near
+// an axis (the study's frames: 2.3-2.6x fewer fetches per march).
+// A point farther than sqrt(3) cell sides from a plane lies in a cell the plane cannot touch, so
+// with offsets of 2 (the defaults; sqrt(3) plus the growth and a margin) neither the receiver's
+// nor the sample's own (locally flat) surface occludes them. Larger offsets step over walls
+// thinner than the offset near the receiver; smaller ones darken every receiver by its own
+// surface. Two earlier ways to shorten the march lost on llvmpipe, whose SIMD lanes run every
+// branch of the loop's body and each loop as long as the group's longest: a coarse level (one bit
+// per 4 x 4 x 4 cells) and a distance per cell both fetched fewer cells with a dearer step and
+// made the frame slower; a word along z only (the single copy, words of 32 or 128 cells) saved
+// only the z steps and measured no cheaper (docs/rsm-study.md, "Where the time goes").
 //
 // One march per group (voxel_march_settings::group): llvmpipe's frame pays for every march that any
 // lane of a SIMD group runs, as long as the group's longest, not for the cells fetched. So the
@@ -62,15 +80,15 @@
 
 namespace vplkit {
 
-/// Largest voxel_grid_settings::resolution: 512 cells (with the margin 514) keep the packed texture
-/// within 2048 texels per side for any scene's shape.
+/// Largest voxel_grid_settings::resolution; make_voxel_grid_shape grows the cells further where
+/// the packed texture would exceed 2048 texels a side (a cube keeps at most 512 cells a side).
 inline constexpr int voxel_grid_max_resolution = 512;
 /// The most samples of a path that share one march (voxel_march_settings::group): a path holds at
 /// most 256 (radial_pattern_settings::samples_per_path).
 inline constexpr int voxel_max_group = 256;
 /// The packed texture's largest side (GLSL ES 3.00's least GL_MAX_TEXTURE_SIZE).
 inline constexpr int voxel_grid_max_texture_side = 2048;
-/// Cells per packed texel (RGBA32UI: 4 x 32 bits along z).
+/// Cells per packed texel (RGBA32UI: 4 x 32 bits along its copy's axis).
 inline constexpr int voxel_cells_per_texel = 128;
 
 /// How the grid is built (CPU only).
@@ -141,13 +159,35 @@ struct settings_description<voxel_grid_shape<T>> {
   static setting_problem rules(const S& settings) { return schema::no_rules(settings); }
 };
 
-/// The packed texture's size in texels for `cells`.
-inline glm::ivec2 voxel_texture_size(glm::ivec3 cells) {
-  return glm::ivec2(cells.x, cells.y * ((cells.z + voxel_cells_per_texel - 1) / voxel_cells_per_texel));
+/// A vector with its axes in the order of the copy along `axis` (voxel_texel_along): the next two
+/// axes in cyclic order, then `axis` (x: y, z, x; y: z, x, y; z: x, y, z). GLSL twin: voxel_axes_along.
+template <typename V>
+V voxel_axes_along(int axis, const V& v) {
+  return axis == 0 ? V(v.y, v.z, v.x) : (axis == 1 ? V(v.z, v.x, v.y) : v);
 }
 
-/// The packed texel holding cell `cell`. GLSL twin: voxel_texel.
-inline glm::ivec2 voxel_texel(glm::ivec3 cell, glm::ivec3 cells) { return glm::ivec2(cell.x, cell.y + (cell.z >> 7) * cells.y); }
+/// The x offset of the copy along `axis` in the packed texture: z at 0, x at cells.x, y at
+/// cells.x + cells.y. GLSL twin: voxel_copy_offset.
+inline int voxel_copy_offset(int axis, glm::ivec3 cells) { return axis == 2 ? 0 : (axis == 0 ? cells.x : cells.x + cells.y); }
+
+/// The packed texture's size in texels for `cells`: the three copies side by side, as high as the
+/// highest.
+inline glm::ivec2 voxel_texture_size(glm::ivec3 cells) {
+  int height = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    const glm::ivec3 along = voxel_axes_along(axis, cells);
+    height = glm::max(height, along.y * ((along.z + voxel_cells_per_texel - 1) / voxel_cells_per_texel));
+  }
+  return glm::ivec2(cells.x + cells.y + cells.z, height);
+}
+
+/// The texel holding cell `cell` of a copy at x offset `offset` (voxel_copy_offset), `cell` and
+/// `cells` in that copy's order (voxel_axes_along): its bit is cell.z's (voxel_bit). GLSL twin:
+/// voxel_texel_along.
+inline glm::ivec2 voxel_texel_along(int offset, glm::ivec3 cell, glm::ivec3 cells) { return glm::ivec2(offset + cell.x, cell.y + (cell.z >> 7) * cells.y); }
+
+/// The packed texel holding cell `cell` in the copy along z (the cell-by-cell march's). GLSL twin: voxel_texel.
+inline glm::ivec2 voxel_texel(glm::ivec3 cell, glm::ivec3 cells) { return voxel_texel_along(0, cell, cells); }
 
 /// Whether cell z's bit is set in its packed texel. GLSL twin: voxel_bit.
 inline bool voxel_bit(const glm::uvec4& texel, int z) { return ((texel[(z >> 5) & 3] >> static_cast<unsigned>(z & 31)) & 1u) != 0u; }
@@ -209,22 +249,27 @@ bool triangle_box_overlap(const glm::vec<3, T>& centre, const glm::vec<3, T>& ha
   return !separated(glm::cross(edges[0], edges[1]));
 }
 
-/// The CPU grid: its shape and the packed texture's texels (row by row, voxel_texture_size).
+/// The CPU grid: its shape and the packed texture's texels (row by row, voxel_texture_size): every
+/// cell's bit in each of the three copies.
 struct voxel_grid {
   voxel_grid_shape<float> shape;
   std::vector<glm::uvec4> texels;
+  int width = 0;  ///< the packed texture's width (voxel_texture_size)
   std::size_t occupied_cells = 0;
 
-  bool occupied(glm::ivec3 cell) const {
-    const glm::ivec2 t = voxel_texel(cell, shape.cells);
-    return voxel_bit(texels[static_cast<std::size_t>(t.y) * static_cast<std::size_t>(shape.cells.x) + static_cast<std::size_t>(t.x)], cell.z);
+  const glm::uvec4& texel(glm::ivec2 t) const {
+    return texels[static_cast<std::size_t>(t.y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(t.x)];
   }
+  /// Read from the copy along z (mark keeps the three copies the same).
+  bool occupied(glm::ivec3 cell) const { return voxel_bit(texel(voxel_texel(cell, shape.cells)), cell.z); }
   void mark(glm::ivec3 cell) {
-    const glm::ivec2 t = voxel_texel(cell, shape.cells);
-    std::uint32_t& word = texels[static_cast<std::size_t>(t.y) * static_cast<std::size_t>(shape.cells.x) + static_cast<std::size_t>(t.x)][(cell.z >> 5) & 3];
-    const std::uint32_t bit = 1u << static_cast<unsigned>(cell.z & 31);
-    occupied_cells += (word & bit) == 0u ? 1u : 0u;
-    word |= bit;
+    occupied_cells += occupied(cell) ? 0u : 1u;
+    for (int axis = 0; axis < 3; ++axis) {
+      const glm::ivec3 along = voxel_axes_along(axis, cell);
+      const glm::ivec2 t = voxel_texel_along(voxel_copy_offset(axis, shape.cells), along, voxel_axes_along(axis, shape.cells));
+      texels[static_cast<std::size_t>(t.y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(t.x)][(along.z >> 5) & 3] |=
+          1u << static_cast<unsigned>(along.z & 31);
+    }
   }
   std::size_t bytes() const { return texels.size() * sizeof(glm::uvec4); }
 };
@@ -234,6 +279,7 @@ inline voxel_grid make_voxel_grid(const voxel_grid_shape<float>& shape) {
   voxel_grid grid;
   grid.shape = shape;
   const glm::ivec2 size = voxel_texture_size(shape.cells);
+  grid.width = size.x;
   grid.texels.assign(static_cast<std::size_t>(size.x) * static_cast<std::size_t>(size.y), glm::uvec4(0u));
   return grid;
 }
@@ -262,7 +308,8 @@ inline void voxel_grid_add_triangle(voxel_grid& grid, const glm::vec3& a, const 
 /// Whether nothing occupied lies on the segment from `u0` to `u1`, both in the grid's cells (cell
 /// (i, j, k) spans [i, i + 1) x [j, j + 1) x [k, k + 1)): a 3D DDA over every cell the segment
 /// passes through, clipped to the grid (outside it is empty). 1 visible, 0 hidden.
-/// `fetch(glm::ivec2 texel) -> glm::uvec4` reads the packed grid. GLSL twin: voxel_march_cells.
+/// `fetch(glm::ivec2 texel) -> glm::uvec4` reads the packed grid (the copy along z). The definition
+/// that the gather's march, voxel_march_words, is tested against; C++ only (the shaders march words).
 /// The steps are written in the order the twin computes them, without a division by a zero
 /// direction (infinite steps are a large number instead).
 template <typename T, typename Fetch>
@@ -310,6 +357,79 @@ T voxel_march_cells(Fetch&& fetch, glm::ivec3 cells, const glm::vec<3, T>& u0, c
   return T(1);
 }
 
+/// Cells per word of the march (a texel component): voxel_march_words steps the major axis a word at a time.
+inline constexpr int voxel_cells_per_word = 32;
+
+/// Whether nothing occupied lies on the segment from `from` to `to` (in the grid's cells): the
+/// cells voxel_march_cells visits (up to ties), read from the copy along the segment's major axis a
+/// word of 32 cells at a time. In that copy's order (voxel_axes_along) the major axis is z: a 3D
+/// DDA over super-cells of 1 x 1 x 32 cells (t_delta.z = 32 |1/d.z|), each step's interval of t
+/// ending at the first boundary of the three (or at the clip), and the cells of the step's column
+/// of the word from floor(z) where the interval begins to floor(z) where it ends (z is monotonic
+/// along the segment) tested at once: a mask of bits low..high of the word's component, both
+/// clamped to [0, 31], so that no shift reaches 32. The column sequence is the cell march's (the
+/// same x and y boundaries, the same ties to the lower axis); the runs follow floor(z(t)) where the
+/// cell march compares accumulated boundaries, so the two differ only where a z boundary and
+/// another axis's meet within a rounding (a segment through a cell's edge). 1 visible, 0 hidden.
+/// GLSL twin: voxel_march_words.
+template <typename T, typename Fetch>
+T voxel_march_words(Fetch&& fetch, glm::ivec3 grid_cells, const glm::vec<3, T>& from, const glm::vec<3, T>& to) {
+  // The major axis (ties to z, then x): its copy's words lie along the segment.
+  const glm::vec<3, T> extent = glm::abs(to - from);
+  int major = 2;
+  if (extent.x > extent[major]) major = 0;
+  if (extent.y > extent[major]) major = 1;
+  const int offset = voxel_copy_offset(major, grid_cells);
+  const glm::ivec3 cells = voxel_axes_along(major, grid_cells);
+  const glm::vec<3, T> u0 = voxel_axes_along(major, from);
+  const glm::vec<3, T> d = voxel_axes_along(major, to) - u0;
+  const glm::vec<3, T> size(cells);
+  constexpr T far = T(1e30);
+  // Clip t to the grid's box (slabs), as voxel_march_cells but without a branch per axis (the
+  // march's setup is most of its cost: docs/rsm-study.md, "Where the time goes"): an axis the
+  // segment does not move along bounds nothing, unless the segment lies outside its slab.
+  const glm::vec<3, bool> moving = glm::greaterThan(glm::abs(d), glm::vec<3, T>(T(1e-12)));
+  const glm::vec<3, T> inverse_d = glm::mix(glm::vec<3, T>(far), glm::vec<3, T>(T(1)) / glm::mix(glm::vec<3, T>(T(1)), d, moving), moving);
+  const glm::vec<3, T> ta = (glm::vec<3, T>(T(0)) - u0) * inverse_d;
+  const glm::vec<3, T> tb = (size - u0) * inverse_d;
+  const glm::vec<3, T> t_low = glm::mix(glm::vec<3, T>(-far), glm::min(ta, tb), moving);
+  const glm::vec<3, T> t_high = glm::mix(glm::vec<3, T>(far), glm::max(ta, tb), moving);
+  const glm::vec<3, T> parallel = glm::vec<3, T>(T(1)) - glm::vec<3, T>(moving);
+  const T blocked = glm::dot(parallel, glm::vec<3, T>(glm::lessThan(u0, glm::vec<3, T>(T(0)))) + glm::vec<3, T>(glm::greaterThan(u0, size)));
+  const T t_enter = glm::max(T(0), glm::max(t_low.x, glm::max(t_low.y, t_low.z)));
+  const T t_exit = glm::min(T(1), glm::min(t_high.x, glm::min(t_high.y, t_high.z)));
+  if (t_enter > t_exit || blocked > T(0)) return T(1);
+  glm::ivec3 cell = glm::clamp(glm::ivec3(glm::floor(u0 + d * t_enter)), glm::ivec3(0), cells - 1);
+  // From here cell.z counts words; z_from is the first cell of the current column's run.
+  int z_from = cell.z;
+  cell.z = cell.z >> 5;
+  const glm::vec<3, T> side(T(1), T(1), T(voxel_cells_per_word));  // a super-cell's sides, in cells
+  const glm::ivec3 step = glm::ivec3(glm::sign(d)) * glm::ivec3(moving);
+  const glm::vec<3, T> boundary = glm::vec<3, T>(cell + glm::ivec3(glm::greaterThan(d, glm::vec<3, T>(T(0))))) * side;
+  glm::vec<3, T> t_max = glm::mix(glm::vec<3, T>(far), (boundary - u0) * inverse_d, moving);
+  const glm::vec<3, T> t_delta = glm::mix(glm::vec<3, T>(far), glm::abs(inverse_d) * side, moving);
+  const glm::ivec3 limit(cells.x, cells.y, (cells.z + voxel_cells_per_word - 1) >> 5);
+  const int steps = limit.x + limit.y + limit.z;
+  for (int n = 0; n <= steps; ++n) {
+    // The axis whose boundary comes first; ties to the lower axis.
+    int axis = 0;
+    if (t_max.y < t_max[axis]) axis = 1;
+    if (t_max.z < t_max[axis]) axis = 2;
+    const int z_to = static_cast<int>(std::floor(u0.z + d.z * glm::min(t_max[axis], t_exit)));
+    const int base = cell.z << 5;
+    const int low = glm::clamp(glm::min(z_from, z_to) - base, 0, 31);
+    const int high = glm::clamp(glm::max(z_from, z_to) - base, 0, 31);
+    const std::uint32_t mask = (~0u << static_cast<unsigned>(low)) & (~0u >> static_cast<unsigned>(31 - high));
+    if ((fetch(voxel_texel_along(offset, glm::ivec3(cell.x, cell.y, base), cells))[cell.z & 3] & mask) != 0u) return T(0);
+    if (t_max[axis] > t_exit) break;
+    cell[axis] += step[axis];
+    if (cell[axis] < 0 || cell[axis] >= limit[axis]) break;
+    t_max[axis] += t_delta[axis];
+    z_from = z_to;
+  }
+  return T(1);
+}
+
 /// The affine map from a space (e.g. the light's eye space) to the grid's cells, given the map
 /// from that space to the world (rigid or the identity): p -> (to_world p - origin) / cell_size.
 /// The gather's single matrix. GLSL: gather.frag's uniform voxel_from_light.
@@ -320,11 +440,11 @@ glm::mat<4, 4, T> voxel_cells_from(const voxel_grid_shape<T>& shape, const glm::
   return to_cells * to_world;
 }
 
-/// voxel_march_cells between two world points.
+/// voxel_march_words between two world points.
 template <typename T, typename Fetch>
 T voxel_segment_visible(Fetch&& fetch, const voxel_grid_shape<T>& shape, const glm::vec<3, T>& from, const glm::vec<3, T>& to) {
   const T inverse_cell = T(1) / shape.cell_size;
-  return voxel_march_cells(fetch, shape.cells, (from - shape.origin) * inverse_cell, (to - shape.origin) * inverse_cell);
+  return voxel_march_words(fetch, shape.cells, (from - shape.origin) * inverse_cell, (to - shape.origin) * inverse_cell);
 }
 
 /// The visibility of a pixel light (position x_p, unit normal n_p) from a receiver (x, n), all in
@@ -336,7 +456,7 @@ T voxel_light_visible(Fetch&& fetch, const voxel_grid_shape<T>& shape, const vox
                       const glm::vec<3, T>& x, const glm::vec<3, T>& n, const glm::vec<3, T>& xp, const glm::vec<3, T>& np) {
   const glm::vec<3, T> to_light = xp - x;
   if (!(glm::dot(n, to_light) > T(0)) || !(glm::dot(np, to_light) < T(0))) return T(1);
-  return voxel_march_cells(fetch, shape.cells, transform_point(to_cells, x + n * (settings.start_offset * shape.cell_size)),
+  return voxel_march_words(fetch, shape.cells, transform_point(to_cells, x + n * (settings.start_offset * shape.cell_size)),
                            transform_point(to_cells, xp + np * (settings.end_offset * shape.cell_size)));
 }
 
@@ -362,9 +482,7 @@ T voxel_coarse_light_visible(Fetch&& fetch, const voxel_grid_shape<T>& shape, co
 /// The packed grid's fetch for the C++ gather.
 struct voxel_grid_fetch {
   const voxel_grid* grid;
-  glm::uvec4 operator()(glm::ivec2 texel) const {
-    return grid->texels[static_cast<std::size_t>(texel.y) * static_cast<std::size_t>(grid->shape.cells.x) + static_cast<std::size_t>(texel.x)];
-  }
+  glm::uvec4 operator()(glm::ivec2 texel) const { return grid->texel(texel); }
 };
 
 /// The Visibility of gather_rsm_with (rsm_gather.hpp) by the grid: the receiver, the pixel lights

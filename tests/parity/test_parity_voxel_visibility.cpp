@@ -7,7 +7,10 @@
 // so the packed words travel as two tables of their 16-bit halves, integers a float holds
 // exactly, and the shader's voxel_fetch puts them back together bit for bit. And the gather that
 // marches it (lib/rsm_gather.glsl with VPLKIT_VISIBILITY 8: one march per group of consecutive
-// samples of a path, rsm_sample_group) against gather_rsm_with and voxel_rsm_visibility.
+// samples of a path, rsm_sample_group) against gather_rsm_with and voxel_rsm_visibility. And the
+// word march itself (voxel_segment_visible) on a grid longer than a texel along every axis, with
+// segments inside a word, across word boundaries and along an axis: each reads the copy along its
+// major axis.
 #include <doctest/doctest.h>
 
 #include <cstdio>
@@ -257,5 +260,63 @@ TEST_CASE("parity: the voxel gather, one march per group of samples, on the synt
     const kernel_outputs gpu = run.run(source, inputs, run.where, resources);
     require_parity(compare(source.name, gpu.floats[0], cpu, inputs,
                            {1e-6f, relative, 16, 0.02, "Eq. 3.2's error per term, the sums' roundings; a group's verdict may flip at a cell's edge"}, 3));
+  }
+}
+
+TEST_CASE("parity: voxel_segment_visible across words and texels along every axis of a cluttered grid, on every target") {
+  // 200 x 170 x 150 unit cells (every axis longer than a texel's 128 cells), 0.4 % occupied at
+  // random; segments anywhere, short ones inside a word, ones across a word boundary, along an axis.
+  voxel_grid_shape<float> shape;
+  shape.cells = glm::ivec3(200, 170, 150);
+  voxel_grid grid = make_voxel_grid(shape);
+  std::mt19937 random(47);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  for (int z = 0; z < shape.cells.z; ++z)
+    for (int y = 0; y < shape.cells.y; ++y)
+      for (int x = 0; x < shape.cells.x; ++x)
+        if (unit(random) < 0.004f) grid.mark(glm::ivec3(x, y, z));
+  const glm::vec3 size(shape.cells);
+  kernel_inputs inputs = grid_of(64, 64, 2);
+  std::vector<glm::vec4> cpu(inputs.size());
+  int hidden = 0;
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    glm::vec3 a = glm::vec3(unit(random), unit(random), unit(random)) * (size + 8.0f) - 4.0f;
+    glm::vec3 b = glm::vec3(unit(random), unit(random), unit(random)) * (size + 8.0f) - 4.0f;
+    const int axis = static_cast<int>(i / 4) % 3;
+    if (i % 4 == 1) {  // within one word along `axis`
+      const float start = 32.0f * std::floor(unit(random) * 4.0f);
+      b = a + 6.0f * (glm::vec3(unit(random), unit(random), unit(random)) - 0.5f);
+      a[axis] = start + 0.5f + 31.0f * unit(random);
+      b[axis] = start + 0.5f + 31.0f * unit(random);
+    } else if (i % 4 == 2) {  // across a word boundary along `axis`
+      const float boundary = 32.0f * (1.0f + std::floor(unit(random) * 3.0f));
+      a[axis] = boundary - 40.0f * unit(random);
+      b[axis] = boundary + 40.0f * unit(random);
+    } else if (i % 4 == 3) {  // along `axis`
+      b = a;
+      b[axis] = unit(random) * size[axis];
+    }
+    inputs.floats[0][i] = glm::vec4(a, 0.0f);
+    inputs.floats[1][i] = glm::vec4(b, 0.0f);
+    cpu[i] = glm::vec4(voxel_segment_visible(voxel_grid_fetch{&grid}, grid.shape, a, b), 0.0f, 0.0f, 0.0f);
+    hidden += cpu[i].x == 0.0f ? 1 : 0;
+  }
+  // Both answers are exercised.
+  CHECK(hidden > 800);
+  CHECK(hidden < 3300);
+  kernel_resources resources;
+  resources.tables = packed_grid_tables(grid);
+  resources.blocks = {settings_block("shape", grid.shape)};
+  for (const testing::target_run& run : testing::every_target()) {
+    kernel_source source;
+    source.name = "voxel_segment_visible, words (" + run.name() + ")";
+    CAPTURE(source.name);
+    if (!testing::target_runs(run.where)) continue;
+    source.includes = {"lib/voxel_visibility.glsl"};
+    source.declarations = "uvec4 voxel_fetch(ivec2 t) { return uvec4(voxels_low(t)) | (uvec4(voxels_high(t)) << 16u); }\n";
+    source.body = "fout0 = vec4(voxel_segment_visible(shape, fin0.xyz, fin1.xyz), 0.0, 0.0, 0.0);";
+    source.float_outputs = 1;
+    const kernel_outputs gpu = run.run(source, inputs, run.where, resources);
+    require_parity(compare(source.name, gpu.floats[0], cpu, inputs, {0.0f, 0.0f, 0, 0.002, "a discrete answer; near-ties at cell edges"}, 1));
   }
 }
