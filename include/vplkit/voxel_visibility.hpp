@@ -40,7 +40,7 @@
 // tested at once with a mask. The same cells as the cell-by-cell march (up to a tie where two
 // axes' boundaries meet within a rounding), one fetch per step, and the two minor extents plus
 // major / 32 steps instead of dx + dy + dz: about 2/3 of the cells on a diagonal, far fewer near
-// an axis (the study's frames: 2.3-2.6x fewer fetches per march).
+// an axis (the study's frames: 2.2-2.6x fewer fetches per march).
 // A point farther than sqrt(3) cell sides from a plane lies in a cell the plane cannot touch, so
 // with offsets of 2 (the defaults; sqrt(3) plus the growth and a margin) neither the receiver's
 // nor the sample's own (locally flat) surface occludes them. Larger offsets step over walls
