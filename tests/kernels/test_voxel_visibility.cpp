@@ -558,7 +558,7 @@ TEST_CASE("the word march gives the cell march's verdict on cluttered grids: eve
       const int kind = i % 6;
       glm::vec3 a = anywhere(), b = anywhere();
       if (kind == 1) {  // short, within one word along a random axis (both ends in one 32-cell span)
-        const int axis = i % 3;
+        const int axis = (i / 6) % 3;  // not i % 3: i % 6 == 1 here, so i % 3 is always 1 (y)
         const float start = 32.0f * std::floor(unit(random) * std::floor(size[axis] / 32.0f));
         b = a + 6.0f * (glm::vec3(unit(random), unit(random), unit(random)) - 0.5f);
         a[axis] = start + 0.5f + 31.0f * unit(random);
@@ -592,7 +592,7 @@ TEST_CASE("the word march gives the cell march's verdict on cluttered grids: eve
     CAPTURE(cells);
     MESSAGE("cells " << cells.x << "x" << cells.y << "x" << cells.z << ": " << hidden << " hidden, " << visible << " visible, " << ties << " ties");
     CHECK(ties <= 6);  // measured: none of 6 000 on each grid
-    CHECK(hidden > 600);  // measured: 898-1179
+    CHECK(hidden > 600);  // measured: 889-1186
     CHECK(visible > 3000);
     for (const int count : kinds) CHECK(count > 900);
   }
