@@ -126,13 +126,6 @@ struct technique_row {
   int coverage_blocks = default_coverage_blocks;
 };
 
-// A CSV field: quoted, its quotes doubled (a frame's label is the pose file's comment, any text).
-std::string csv_field(const std::string& text) {
-  std::string quoted = "\"";
-  for (const char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return quoted + "\"";
-}
-
 // A frame of the pose file: its scene with the frame's camera and light, and its label (the
 // line's comment, else the file and line).
 struct posed_frame {
@@ -424,7 +417,7 @@ int main(int argc, char** argv) {
         const double mc_mean = image_mean(monte_carlo);
         if (!(mc_mean > 0.0) || !(image_mean(reference.exact) > 0.0)) {
           rows << "| " << label << " | no indirect light in view (left out) |||||||||\n";
-          csv << csv_field(label) << ",no indirect light in view\n";
+          csv << csv_quoted(label) << ",no indirect light in view\n";
           continue;
         }
         ++counted;
@@ -489,7 +482,7 @@ int main(int argc, char** argv) {
              << grid.shape.cells.z << ", " << grid.bytes() / 1024 << " KiB, " << fixed(built.voxel_build_ms(), 1) << " ms | " << fixed(marches_per_receiver, 1)
              << ", " << fixed(fetches_per_march, 1) << ", " << percent(marches.hidden / std::max(marches.marches, 1.0)) << " % | " << percent(moonshot.rmse_corrected)
              << " +- " << percent(moonshot.rmse_se) << " % (" << percent(moonshot_radial.rmse_corrected) << " %; " << percent(moonshot.noise) << " %) |\n";
-        csv << csv_field(label) << "," << leak_share << "," << image_voxel << "," << image_radial << ",";
+        csv << csv_quoted(label) << "," << leak_share << "," << image_voxel << "," << image_radial << ",";
         if (leak_counts) csv << leak;  // empty where the region holds < 2 % (not counted)
         csv << "," << voxels.raw_leak.bias << "," << radial.raw_leak.bias << "," << rmse << "," << voxels.raw_vs_exact.rmse << "," << radial.raw_vs_exact.rmse << ","
             << ms[0] << "," << ms[2] << "," << ms[1] << "," << cost << "," << cost_alg6 << "," << built.voxel_build_ms() << "," << marches_per_receiver << ","

@@ -18,6 +18,7 @@
 #include "frontend/core/error.hpp"
 #include "frontend/core/files.hpp"
 #include "frontend/core/setting.hpp"
+#include "frontend/core/text.hpp"
 
 namespace vplkit::cli {
 
@@ -35,12 +36,7 @@ std::optional<double> sweep_table::number(const std::map<std::string, std::strin
 
 namespace {
 
-std::string csv_cell(const std::string& text) {
-  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
-  std::string quoted = "\"";
-  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return quoted + "\"";
-}
+std::string csv_cell(const std::string& text) { return text.find_first_of(",\"\n\r") == std::string::npos ? text : csv_quoted(text); }
 
 // The records of a CSV text (quotes as csv_cell writes them: a quoted cell may span lines, as a
 // scene's name with a line end does), each with the line it starts on; CRLF reads as LF. Throws

@@ -187,10 +187,12 @@ inline glm::ivec2 voxel_texture_size(glm::ivec3 cells) {
 /// voxel_texel_along.
 inline glm::ivec2 voxel_texel_along(int offset, glm::ivec3 cell, glm::ivec3 cells) { return glm::ivec2(offset + cell.x, cell.y + (cell.z >> 7) * cells.y); }
 
-/// The packed texel holding cell `cell` in the copy along z (the cell-by-cell march's). GLSL twin: voxel_texel.
+/// The packed texel holding cell `cell` in the copy along z (the cell-by-cell march's and the
+/// grid's `occupied`; C++ only: the GLSL march reads words, voxel_texel_along).
 inline glm::ivec2 voxel_texel(glm::ivec3 cell, glm::ivec3 cells) { return voxel_texel_along(0, cell, cells); }
 
-/// Whether cell z's bit is set in its packed texel. GLSL twin: voxel_bit.
+/// Whether cell z's bit is set in its packed texel (C++ only: the GLSL march tests a word's run
+/// of bits with one mask).
 inline bool voxel_bit(const glm::uvec4& texel, int z) { return ((texel[(z >> 5) & 3] >> static_cast<unsigned>(z & 31)) & 1u) != 0u; }
 
 /// The packed grid's size in bytes.

@@ -34,10 +34,6 @@ int voxel_copy_offset(int axis, ivec3 cells) { return axis == 2 ? 0 : (axis == 0
 
 ivec2 voxel_texel_along(int offset, ivec3 cell, ivec3 cells) { return ivec2(offset + cell.x, cell.y + (cell.z >> 7) * cells.y); }
 
-ivec2 voxel_texel(ivec3 cell, ivec3 cells) { return voxel_texel_along(0, cell, cells); }
-
-bool voxel_bit(uvec4 texel, int z) { return ((texel[(z >> 5) & 3] >> uint(z & 31)) & 1u) != 0u; }
-
 const int voxel_cells_per_word = 32;
 
 float voxel_march_words(ivec3 grid_cells, vec3 from, vec3 to) {
