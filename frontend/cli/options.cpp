@@ -14,6 +14,7 @@
 
 #include "frontend/core/error.hpp"
 #include "frontend/core/parallel.hpp"
+#include "frontend/core/progress.hpp"
 #include "frontend/core/setting.hpp"
 #include "frontend/image/image.hpp"
 #include "frontend/scene/gltf_scene.hpp"
@@ -89,6 +90,7 @@ void check_environment() {
     (void)headless_api_from_environment();
     (void)egl_device_from_environment();
     (void)hardware_threads();
+    (void)progress_interval_from_environment();
   } catch (const vplkit::error& failure) {
     throw usage_error(failure.what());
   }

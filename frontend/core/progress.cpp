@@ -6,6 +6,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <string>
 #include <iostream>
 
 #include "frontend/core/error.hpp"
@@ -31,10 +33,25 @@ std::string duration_text(double seconds) {
   return text;
 }
 
+double progress_interval_from_environment() {
+  const char* from_environment = std::getenv("VPLKIT_PROGRESS_SECONDS");
+  if (!from_environment || !*from_environment) return progress_settings{}.interval_seconds;
+  const std::string text(from_environment);
+  // Digits with at most one point, nothing else: strtod alone would also take leading spaces, a
+  // sign, "inf", "nan" and hexadecimal.
+  const bool plain_number = !text.empty() && text.size() <= 16 && text.find_first_not_of("0123456789.") == std::string::npos &&
+                            std::count(text.begin(), text.end(), '.') <= 1 && text != ".";
+  const double seconds = plain_number ? std::strtod(text.c_str(), nullptr) : 0.0;
+  if (!plain_number || !(seconds >= 0.1 && seconds <= 86400.0))
+    throw error("VPLKIT_PROGRESS_SECONDS must be a number of seconds in [0.1, 86400]; got '" + excerpt(text) + "'");
+  return seconds;
+}
+
 progress_settings progress_on_stderr() {
   progress_settings settings;
   settings.out = &std::cerr;
   settings.terminal = isatty(2) != 0;
+  settings.interval_seconds = progress_interval_from_environment();
   return settings;
 }
 

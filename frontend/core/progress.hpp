@@ -34,7 +34,13 @@ struct progress_settings {
   std::string deadline_name;     ///< what set the deadline, for the message ("--max-seconds 60")
 };
 
-/// Progress on stderr (a bar when it is a terminal), no deadline.
+/// $VPLKIT_PROGRESS_SECONDS, the interval of the plain progress lines (5 s where it is not set):
+/// a log that keeps fewer lines sets more, a test that must see several lines in a short run sets
+/// less. Throws vplkit::error when it is not a number of seconds in [0.1, 86400].
+double progress_interval_from_environment();
+
+/// Progress on stderr (a bar when it is a terminal, else lines every
+/// progress_interval_from_environment() seconds), no deadline.
 progress_settings progress_on_stderr();
 
 class progress_monitor {

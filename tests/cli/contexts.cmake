@@ -40,7 +40,8 @@ expect_failure("no GL context (window without a display)" "no GL context: GLFW" 
 foreach(case "VPLKIT_EGL_DEVICE=junk;VPLKIT_EGL_DEVICE must be an EGL device index in \\[0, 1024\\] like --device .*got 'junk'"
              "VPLKIT_EGL_DEVICE=-1;VPLKIT_EGL_DEVICE must be an EGL device index"
              "VPLKIT_CONTEXT=junk;VPLKIT_CONTEXT must be one of auto, egl, egl-surfaceless, osmesa; got 'junk'"
-             "VPLKIT_THREADS=junk;VPLKIT_THREADS must be a whole number in \\[1, 1024\\]; got 'junk'")
+             "VPLKIT_THREADS=junk;VPLKIT_THREADS must be a whole number in \\[1, 1024\\]; got 'junk'"
+             "VPLKIT_PROGRESS_SECONDS=0;VPLKIT_PROGRESS_SECONDS must be a number of seconds in \\[0.1, 86400\\]; got '0'")
   list(GET case 0 variable)
   list(GET case 1 pattern)
   execute_process(COMMAND ${CMAKE_COMMAND} -E env ${variable} "${VPLKIT}" render --size 8 --out "${WORK}/environment.png"

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cstdlib>
 #include <new>
 #include <sstream>
 #include <stdexcept>
@@ -95,4 +96,34 @@ TEST_CASE("counts and durations as messages show them") {
   CHECK(duration_text(12 * 60) == "12 min");
   CHECK(duration_text(44.3 * 3600) == "44.3 h");
   CHECK(duration_text(3 * 86400) == "3.0 days");
+}
+
+TEST_CASE("VPLKIT_PROGRESS_SECONDS sets the interval of the plain lines: 5 s without it, seconds in [0.1, 86400]") {
+  // Restores the variable the test process was started with (ctest sets none).
+  const char* started_with = std::getenv("VPLKIT_PROGRESS_SECONDS");
+  const std::string saved = started_with ? started_with : "";
+  const auto set = [](const char* value) {
+    if (value) setenv("VPLKIT_PROGRESS_SECONDS", value, 1);
+    else unsetenv("VPLKIT_PROGRESS_SECONDS");
+  };
+  set(nullptr);
+  CHECK(progress_interval_from_environment() == 5.0);
+  CHECK(progress_on_stderr().interval_seconds == 5.0);
+  set("");
+  CHECK(progress_interval_from_environment() == 5.0);
+  set("1");
+  CHECK(progress_interval_from_environment() == 1.0);
+  CHECK(progress_on_stderr().interval_seconds == 1.0);
+  set("0.1");
+  CHECK(progress_interval_from_environment() == doctest::Approx(0.1));
+  set("86400");
+  CHECK(progress_interval_from_environment() == 86400.0);
+  for (const char* refused : {"0", "0.05", "-1", "+5", "86401", "1e1", "inf", "nan", "5 s", " 5", "5x", "0x10p-4", "1.2.3", ".", "junk"}) {
+    CAPTURE(refused);
+    set(refused);
+    CHECK_THROWS_WITH_AS(progress_interval_from_environment(),
+                         ("VPLKIT_PROGRESS_SECONDS must be a number of seconds in [0.1, 86400]; got '" + std::string(refused) + "'").c_str(),
+                         vplkit::error);
+  }
+  set(started_with ? saved.c_str() : nullptr);
 }
