@@ -42,7 +42,8 @@ std::string stem_of(const std::string& scene_name) { return fs::path(scene_name)
 
 // Long work, announced and bounded: the cost before the work starts (rays, and seconds from a
 // calibration), refused when it does not fit --max-seconds (counted from the command's start),
-// and progress on stderr (plain lines every 5 s when it is not a terminal) with the deadline.
+// and progress on stderr (plain lines every 5 s, or $VPLKIT_PROGRESS_SECONDS, when it is not a
+// terminal) with the deadline.
 progress_settings announce(const reference_state& s, const reference_cost& cost, double started, int threads) {
   std::cerr << "vplkit reference: " << cost.what << ": " << (cost.rays > 0.0 ? "at most " + count_text(cost.rays) + " rays" : std::string("no rays"))
             << ", estimated " << duration_text(cost.seconds) << " on " << threads << " thread" << (threads == 1 ? "" : "s") << "\n";

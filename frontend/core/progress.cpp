@@ -3,12 +3,15 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <string>
 #include <iostream>
+#include <string>
+#include <string_view>
+#include <system_error>
 
 #include "frontend/core/error.hpp"
 
@@ -33,19 +36,26 @@ std::string duration_text(double seconds) {
   return text;
 }
 
-double progress_interval_from_environment() {
-  const char* from_environment = std::getenv("VPLKIT_PROGRESS_SECONDS");
-  if (!from_environment || !*from_environment) return progress_settings{}.interval_seconds;
-  const std::string text(from_environment);
-  // Digits with at most one point, nothing else: strtod alone would also take leading spaces, a
-  // sign, "inf", "nan" and hexadecimal.
-  const bool plain_number = !text.empty() && text.size() <= 16 && text.find_first_not_of("0123456789.") == std::string::npos &&
-                            std::count(text.begin(), text.end(), '.') <= 1 && text != ".";
-  const double seconds = plain_number ? std::strtod(text.c_str(), nullptr) : 0.0;
-  if (!plain_number || !(seconds >= 0.1 && seconds <= 86400.0))
-    throw error("VPLKIT_PROGRESS_SECONDS must be a number of seconds in [0.1, 86400]; got '" + excerpt(text) + "'");
+double progress_interval_from_text(const char* text) {
+  if (!text || !*text) return progress_settings{}.interval_seconds;
+  const std::string_view digits(text);
+  // Digits with at most one point and nothing else; from_chars alone would also take a minus
+  // sign, an exponent, "inf" and "nan". from_chars, unlike strtod, does not depend on the locale.
+  double seconds = 0.0;
+  bool plain = digits.find_first_not_of("0123456789.") == std::string_view::npos && std::count(digits.begin(), digits.end(), '.') <= 1 &&
+               digits != ".";
+  if (plain) {
+    const auto [end, code] = std::from_chars(digits.data(), digits.data() + digits.size(), seconds);
+    if (code == std::errc::result_out_of_range) seconds = HUGE_VAL;  // digits beyond double's range: too many seconds
+    else plain = code == std::errc() && end == digits.data() + digits.size();
+  }
+  if (!plain) throw error("VPLKIT_PROGRESS_SECONDS must be digits with at most one point (like 2.5), a number of seconds in [0.1, 86400]; got '" + excerpt(digits) + "'");
+  if (!(seconds >= 0.1 && seconds <= 86400.0))
+    throw error("VPLKIT_PROGRESS_SECONDS must be a number of seconds in [0.1, 86400]; got '" + excerpt(digits) + "'");
   return seconds;
 }
+
+double progress_interval_from_environment() { return progress_interval_from_text(std::getenv("VPLKIT_PROGRESS_SECONDS")); }
 
 progress_settings progress_on_stderr() {
   progress_settings settings;

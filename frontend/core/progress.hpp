@@ -34,13 +34,17 @@ struct progress_settings {
   std::string deadline_name;     ///< what set the deadline, for the message ("--max-seconds 60")
 };
 
-/// $VPLKIT_PROGRESS_SECONDS, the interval of the plain progress lines (5 s where it is not set):
-/// a log that keeps fewer lines sets more, a test that must see several lines in a short run sets
-/// less. Throws vplkit::error when it is not a number of seconds in [0.1, 86400].
+/// The interval of the plain progress lines that `text` asks for: digits with at most one point
+/// (2.5, 10, .5), in [0.1, 86400] seconds; nullptr or "" is the default, 5 s. Throws vplkit::error
+/// naming VPLKIT_PROGRESS_SECONDS otherwise (a sign, an exponent, spaces, "inf": refused, not
+/// guessed at).
+double progress_interval_from_text(const char* text);
+/// $VPLKIT_PROGRESS_SECONDS read by progress_interval_from_text: a log that keeps fewer lines sets
+/// more, a test that must see several lines in a short run sets less.
 double progress_interval_from_environment();
 
 /// Progress on stderr (a bar when it is a terminal, else lines every
-/// progress_interval_from_environment() seconds), no deadline.
+/// progress_interval_from_environment() seconds), no deadline. Throws as that does.
 progress_settings progress_on_stderr();
 
 class progress_monitor {

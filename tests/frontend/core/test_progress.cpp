@@ -99,31 +99,34 @@ TEST_CASE("counts and durations as messages show them") {
 }
 
 TEST_CASE("VPLKIT_PROGRESS_SECONDS sets the interval of the plain lines: 5 s without it, seconds in [0.1, 86400]") {
-  // Restores the variable the test process was started with (ctest sets none).
-  const char* started_with = std::getenv("VPLKIT_PROGRESS_SECONDS");
-  const std::string saved = started_with ? started_with : "";
-  const auto set = [](const char* value) {
-    if (value) setenv("VPLKIT_PROGRESS_SECONDS", value, 1);
-    else unsetenv("VPLKIT_PROGRESS_SECONDS");
-  };
-  set(nullptr);
-  CHECK(progress_interval_from_environment() == 5.0);
-  CHECK(progress_on_stderr().interval_seconds == 5.0);
-  set("");
-  CHECK(progress_interval_from_environment() == 5.0);
-  set("1");
-  CHECK(progress_interval_from_environment() == 1.0);
-  CHECK(progress_on_stderr().interval_seconds == 1.0);
-  set("0.1");
-  CHECK(progress_interval_from_environment() == doctest::Approx(0.1));
-  set("86400");
-  CHECK(progress_interval_from_environment() == 86400.0);
-  for (const char* refused : {"0", "0.05", "-1", "+5", "86401", "1e1", "inf", "nan", "5 s", " 5", "5x", "0x10p-4", "1.2.3", ".", "junk"}) {
+  CHECK(progress_interval_from_text(nullptr) == 5.0);
+  CHECK(progress_interval_from_text("") == 5.0);
+  CHECK(progress_interval_from_text("1") == 1.0);
+  CHECK(progress_interval_from_text("2.5") == 2.5);
+  CHECK(progress_interval_from_text(".5") == 0.5);
+  CHECK(progress_interval_from_text("5.") == 5.0);
+  CHECK(progress_interval_from_text("00001") == 1.0);
+  CHECK(progress_interval_from_text("0.1") == 0.1);
+  CHECK(progress_interval_from_text("86400") == 86400.0);
+  CHECK(progress_interval_from_text("1.00000000000000000000") == 1.0);
+  const std::string format = "VPLKIT_PROGRESS_SECONDS must be digits with at most one point (like 2.5), a number of seconds in [0.1, 86400]; got '";
+  for (const char* refused : {"-1", "+5", "1e1", "inf", "nan", "5 s", " 5", "5x", "0x10p-4", "1.2.3", ".", "junk"}) {
     CAPTURE(refused);
-    set(refused);
-    CHECK_THROWS_WITH_AS(progress_interval_from_environment(),
-                         ("VPLKIT_PROGRESS_SECONDS must be a number of seconds in [0.1, 86400]; got '" + std::string(refused) + "'").c_str(),
-                         vplkit::error);
+    CHECK_THROWS_WITH_AS(progress_interval_from_text(refused), (format + refused + "'").c_str(), vplkit::error);
   }
-  set(started_with ? saved.c_str() : nullptr);
+  const std::string range = "VPLKIT_PROGRESS_SECONDS must be a number of seconds in [0.1, 86400]; got '";
+  for (const char* refused : {"0", "0.", "0.05", "0.0999", "86400.5", "86401", "99999999999999999999999999999"}) {
+    CAPTURE(refused);
+    CHECK_THROWS_WITH_AS(progress_interval_from_text(refused), (range + refused + "'").c_str(), vplkit::error);
+  }
+  // A long value is echoed shortened, not whole.
+  const std::string long_value(300, '7');
+  CHECK_THROWS_WITH_AS(progress_interval_from_text(long_value.c_str()), (range + excerpt(long_value) + "'").c_str(), vplkit::error);
+  CHECK(excerpt(long_value).size() < long_value.size());
+  // Digits beyond double's range are too many seconds, not a malformed value.
+  const std::string huge(400, '9');
+  CHECK_THROWS_WITH_AS(progress_interval_from_text(huge.c_str()), (range + excerpt(huge) + "'").c_str(), vplkit::error);
+  // The monitor on stderr takes the variable's interval: the process's own environment, read, not
+  // set here (setenv while the GL driver's threads may call getenv is a race).
+  CHECK(progress_on_stderr().interval_seconds == progress_interval_from_text(std::getenv("VPLKIT_PROGRESS_SECONDS")));
 }
