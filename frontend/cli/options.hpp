@@ -105,8 +105,8 @@ struct common_options {
 
 /// The environment variables that stand for options (VPLKIT_CONTEXT for --context,
 /// VPLKIT_EGL_DEVICE for --device, VPLKIT_THREADS, VPLKIT_PROGRESS_SECONDS) checked like them:
-/// throws usage_error naming the variable for a malformed value, before a command runs. (VPLKIT_SHADER_DIR is checked where
-/// shaders are read, like --shader-dir.)
+/// throws usage_error naming the variable for a malformed value, before a command runs.
+/// (VPLKIT_SHADER_DIR is checked where shaders are read, like --shader-dir.)
 void check_environment();
 
 /// The options add_common_options registered, for a command that scopes some of them.

@@ -75,10 +75,11 @@ std::string frame_suffix(std::size_t frame, std::size_t count) {
 // The frames of --poses, rendered in one pipeline (pipeline::draw_next: for the RSM techniques the
 // pattern turns and the temporal accumulation blends with the history); nothing is written unless every frame renders.
 // A long sequence reports its progress on stderr (a plain line every 5 s, or
-// $VPLKIT_PROGRESS_SECONDS, with the time left, when stderr is not a terminal). --max-seconds (counted from the command's start) stops it after the
-// frame during which the time ran out: the frames rendered until then, 1 to k, are written (all or
-// nothing, as a whole sequence is), stderr says how many, and the exit code is
-// exit_stopped_by_deadline, so a script can tell a shortened sequence from a whole one.
+// $VPLKIT_PROGRESS_SECONDS, with the time left, when stderr is not a terminal). --max-seconds
+// (counted from the command's start) stops it after the frame during which the time ran out: the
+// frames rendered until then, 1 to k, are written (all or nothing, as a whole sequence is), stderr
+// says how many, and the exit code is exit_stopped_by_deadline, so a script can tell a shortened
+// sequence from a whole one.
 int render_sequence(const session& io, const render_state& s, const technique_settings& settings, output_set& files) {
   const double started = steady_seconds();
   const std::vector<pose_frame> frames = read_pose_file(s.poses, false);
