@@ -73,8 +73,8 @@ table() {
   echo "(CPU seconds: user + system of every process of the step; on $jobs idle cores a step takes"
   echo " at least CPU seconds / $jobs)"
 }
-# tests <build folder> <label> [ctest options...]: ctest of one tier, the tests side by side on
-# every core.
+# tests <build folder> <label> [ctest options...]: ctest of the tests with one label (a tier, or
+# `release`: tests/CMakeLists.txt), side by side on every core.
 tests() {
   local folder=$1 label=$2
   shift 2
@@ -97,7 +97,7 @@ if [ "$fast" = yes ]; then
   exit 0
 fi
 # The rest of the fast tier runs in the sanitizer build, below.
-timed "tests: Release, fast tier's kernel and benchmark tests" tests build fast -R '^(kernel|bench): '
+timed "tests: Release, fast tier's kernel and benchmark tests" tests build release
 timed "tests: Release, slow tier" tests build slow
 # The sanitizer build makes what its fast tier runs (tests/CMakeLists.txt, vplkit_fast_tier): not
 # the slow tier's executables, which it does not run; scripts/fuzz.sh links the fuzz executables.

@@ -3,17 +3,17 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <string_view>
-#include <system_error>
 
 #include "frontend/core/error.hpp"
+#include "frontend/core/setting.hpp"
 
 namespace vplkit {
 
@@ -39,20 +39,15 @@ std::string duration_text(double seconds) {
 double progress_interval_from_text(const char* text) {
   if (!text || !*text) return progress_settings{}.interval_seconds;
   const std::string_view digits(text);
-  // Digits with at most one point and nothing else; from_chars alone would also take a minus
-  // sign, an exponent, "inf" and "nan". from_chars, unlike strtod, does not depend on the locale.
-  double seconds = 0.0;
-  bool plain = digits.find_first_not_of("0123456789.") == std::string_view::npos && std::count(digits.begin(), digits.end(), '.') <= 1 &&
-               digits != ".";
-  if (plain) {
-    const auto [end, code] = std::from_chars(digits.data(), digits.data() + digits.size(), seconds);
-    if (code == std::errc::result_out_of_range) seconds = HUGE_VAL;  // digits beyond double's range: too many seconds
-    else plain = code == std::errc() && end == digits.data() + digits.size();
-  }
-  if (!plain) throw error("VPLKIT_PROGRESS_SECONDS must be digits with at most one point (like 2.5), a number of seconds in [0.1, 86400]; got '" + excerpt(digits) + "'");
-  if (!(seconds >= 0.1 && seconds <= 86400.0))
+  // Digits with at most one point and nothing else: parse_real alone would also take spaces, a
+  // sign, an exponent, "inf" and "nan".
+  if (digits.find_first_not_of("0123456789.") != std::string_view::npos || std::count(digits.begin(), digits.end(), '.') > 1 || digits == ".")
+    throw error("VPLKIT_PROGRESS_SECONDS must be digits with at most one point (like 2.5), a number of seconds in [0.1, 86400]; got '" + excerpt(digits) + "'");
+  // Such digits that parse_real refuses are beyond a double's range.
+  const std::optional<double> seconds = parse_real(digits);
+  if (!seconds || !(*seconds >= 0.1 && *seconds <= 86400.0))
     throw error("VPLKIT_PROGRESS_SECONDS must be a number of seconds in [0.1, 86400]; got '" + excerpt(digits) + "'");
-  return seconds;
+  return *seconds;
 }
 
 double progress_interval_from_environment() { return progress_interval_from_text(std::getenv("VPLKIT_PROGRESS_SECONDS")); }
